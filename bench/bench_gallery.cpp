@@ -1,0 +1,85 @@
+// Times every gallery example (load elements, evaluate on the 2000 x 2000 window, write
+// the SVG text) with one and two threads, and compares the medians with the times the
+// thesis publishes in its Appendix A.
+//
+//   bench_gallery [--runs N] [--markdown FILE] [--only NAME[,NAME...]]
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#include "gallery.hpp"
+
+namespace {
+
+double run_once(const gallery::Example& e) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const tex::Arrangement a = e.build(gallery::default_elements_dir());
+    const std::string svg =
+        tex::ToSVG(a(tex::Region::rectangle(0, 0, gallery::kSize, gallery::kSize)), gallery::kSize);
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (svg.size() < 100) std::abort();  // keep the work observable
+    return s;
+}
+
+double median_time(const gallery::Example& e, unsigned threads, int runs) {
+    tex::SetThreads(threads);
+    run_once(e);  // warm-up (page faults, label table)
+    std::vector<double> t;
+    for (int i = 0; i < runs; ++i) t.push_back(run_once(e));
+    std::sort(t.begin(), t.end());
+    return t[t.size() / 2];
+}
+
+std::string fmt(double v, const char* f) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, f, v);
+    return buf;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    int runs = 7;
+    std::string markdown, only;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "--runs" && i + 1 < argc) runs = std::max(1, std::atoi(argv[++i]));
+        else if (a == "--markdown" && i + 1 < argc) markdown = argv[++i];
+        else if (a == "--only" && i + 1 < argc) only = argv[++i];
+        else {
+            std::cerr << "usage: bench_gallery [--runs N] [--markdown FILE] [--only NAMES]\n";
+            return 2;
+        }
+    }
+    std::ostringstream md;
+    md << "| example | published (thesis) | 1 thread (median) | 2 threads (median) | speed-up vs thesis, 1 thread | 2 threads |\n"
+       << "|---|---:|---:|---:|---:|---:|\n";
+    std::printf("%-10s %10s %12s %12s %10s %10s\n", "example", "published", "1 thread", "2 threads", "x (1t)", "x (2t)");
+    for (const auto& e : gallery::examples()) {
+        if (!only.empty() && ("," + only + ",").find("," + e.name + ",") == std::string::npos) continue;
+        const double t1 = median_time(e, 1, runs);
+        const double t2 = median_time(e, 2, runs);
+        const bool known = e.published_seconds > 0, published = e.published_seconds >= 0;
+        const double pub = known ? e.published_seconds : 1.0;  // "< 1 sec" in the thesis
+        const std::string pub_s = !published ? std::string("n/a") : known ? fmt(pub, "%.0f s") : std::string("< 1 s");
+        const std::string r1 = !published ? std::string("-") : (known ? "" : "> ") + fmt(pub / t1, "%.0f");
+        const std::string r2 = !published ? std::string("-") : (known ? "" : "> ") + fmt(pub / t2, "%.0f");
+        std::printf("%-10s %10s %10.1f ms %10.1f ms %10s %10s\n", e.name.c_str(), pub_s.c_str(), t1 * 1e3, t2 * 1e3,
+                    r1.c_str(), r2.c_str());
+        md << "| " << e.title << " | " << pub_s << " | " << fmt(t1 * 1e3, "%.1f ms") << " | "
+           << fmt(t2 * 1e3, "%.1f ms") << " | " << r1 << " | " << r2 << " |\n";
+    }
+    if (!markdown.empty()) {
+        std::ofstream out(markdown);
+        out << "<!-- written by bench_gallery; medians of " << runs << " runs after one warm-up; "
+            << std::thread::hardware_concurrency() << " hardware threads -->\n"
+            << md.str();
+        std::cout << "report written to " << markdown << "\n";
+    }
+    return 0;
+}

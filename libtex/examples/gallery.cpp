@@ -1,0 +1,210 @@
+// Appendix A of the thesis, script by script, in C++. The comments give each script's
+// intent; the elements in elements/ are the project's own drawings.
+#include "gallery.hpp"
+
+#include <cmath>
+
+namespace gallery {
+using namespace tex;
+
+namespace {
+
+Curves load(const std::string& dir, const std::string& name) { return ImportSVG(dir + "/" + name); }
+
+Arrangement stripes(const std::string&) {
+    // Stripes at 45 degrees with a cycle of two widths (200 and 67).
+    return StripesPartition(StripesProperties(pi / 4, kSize / 10, kSize / 30));
+}
+
+Arrangement grid(const std::string&) {
+    Stripes h = StripesProperties(0, kSize / 10, kSize / 25);
+    Stripes v = StripesProperties(pi / 2, kSize / 8);
+    return GridPartition(h, v, KEEP_OUTSIDE);
+}
+
+Arrangement uniform(const std::string&) {
+    return UniformPartition(IrregularProperties(50 / (kSize * kSize)), KEEP_OUTSIDE);
+}
+
+Arrangement random_(const std::string&) {
+    return RandomPartition(IrregularProperties(50 / (kSize * kSize)), KEEP_OUTSIDE);
+}
+
+Arrangement puzzle(const std::string& dir) {
+    const Curves zig = load(dir, "zig2.svg");
+    Stripes l1 = StripesProperties(0.0, kSize / 16);
+    Stripes l2 = StripesProperties(pi / 2, kSize / 16);
+    SetEdgeLabels(l1, {"h1", "h2"});
+    SetEdgeLabels(l2, {"v1", "v2"});
+    Arrangement grid_tex = GridPartition(l1, l2, KEEP_OUTSIDE);
+    // Drop every other vertical edge, staggered from row to row: a brick wall.
+    auto grid_to_wall = [](const Edge& e) {
+        const auto around = IncidentEdges(TargetVertex(e));
+        if ((HasLabel(e, "v1") && HasLabel(around, "h1")) || (HasLabel(e, "v2") && HasLabel(around, "h2")))
+            return Nothing();
+        return ToCurve(e);
+    };
+    // Replace each edge by the tab curve, facing a random side.
+    auto edge_to_curve = [zig](const Edge& e) {
+        const Point sc = PointLabeled(zig, "start"), dc = PointLabeled(zig, "end");
+        const Point sv = Location(SourceVertex(e)), dv = Location(TargetVertex(e));
+        if (Random(e, 0, 1, 0) < 0.5) return MatchPoints(zig, sc, dc, sv, dv);
+        return MatchPoints(zig, sc, dc, dv, sv);
+    };
+    return MapToEdges(edge_to_curve, MapToEdges(grid_to_wall, grid_tex));
+}
+
+Arrangement rosettes(const std::string& dir) {
+    const Curves line = load(dir, "line.svg");
+    const Curves circle = load(dir, "circle.svg");
+    Arrangement part = UniformPartition(IrregularProperties(70 / (kSize * kSize)), KEEP_OUTSIDE);
+    // A four-line star on each face centroid.
+    auto face_to_star = [line](const Face& f) {
+        const double rot = Random(f, 0.0, 2 * pi, 0);
+        const Curves e1 = MatchPoint(line, BBoxCenter(line), Centroid(f));
+        const Curves e2 = Append(Rotate(e1, rot), Rotate(e1, rot + pi / 2));
+        return Append(e2, Rotate(e2, pi / 4));
+    };
+    // A circle on each free end of the star's lines.
+    auto vertex_to_circle = [circle](const Vertex& v) {
+        if (IncidentEdges(v).size() > 1) return Nothing();
+        return MatchPoint(circle, BBoxCenter(circle), Location(v));
+    };
+    return MapToVertices(vertex_to_circle, MapToFaces(face_to_star, part));
+}
+
+Arrangement cracks(const std::string& dir) {
+    const std::vector<Curves> lines = {load(dir, "line1.svg"), load(dir, "line2.svg"), load(dir, "line3.svg")};
+    Arrangement part = RandomPartition(IrregularProperties(200 / (kSize * kSize)), KEEP_OUTSIDE);
+    auto rescale_face = [](const Face& f) { return Scale(Contour(f), 0.8); };
+    auto edge_to_curve = [lines](const Edge& e) {
+        const Curves& l = lines[std::size_t(std::floor(Random(e, 0, double(lines.size()), 0)))];
+        return MatchPoints(l, PointLabeled(l, "start"), PointLabeled(l, "end"),
+                           Location(SourceVertex(e)), Location(TargetVertex(e)));
+    };
+    return MapToEdges(edge_to_curve, MapToFaces(rescale_face, part));
+}
+
+// Checkerboard selection shared by the bimodal hatching and regular crosses examples.
+bool one_face_in_two(const Face& f) {
+    return (HasLabel(f, "v1") && HasLabel(f, "h1")) || (HasLabel(f, "v2") && HasLabel(f, "h2"));
+}
+
+Arrangement labelled_grid(double w1, double w2) {
+    Stripes l1 = StripesProperties(0, w1);
+    Stripes l2 = StripesProperties(pi / 2, w2);
+    SetFaceLabels(l1, {"h1", "h2"});
+    SetFaceLabels(l2, {"v1", "v2"});
+    return GridPartition(l1, l2, KEEP_OUTSIDE);
+}
+
+Arrangement bimodal(const std::string& dir) {
+    const Curves hatch = load(dir, "hatch.svg");
+    // Two crossing hatches in one face of two, jittered.
+    auto face_to_hatches = [hatch](const Face& f) {
+        if (!one_face_in_two(f)) return Nothing();
+        const Curves e1 = Scale(hatch, Random(f, 2.6, 2.7, 1));
+        const Curves e2 = Rotate(e1, pi / 7 + Random(f, -pi / 12, pi / 12, 2));
+        const Curves e3 = Rotate(e1, pi / 2 + Random(f, -pi / 12, pi / 12, 3));
+        const Curves e4 = Append(e2, e3);
+        const double w = BBoxWidth(f) / 7, h = BBoxHeight(f) / 7;
+        const Point pos = Centroid(f) + Point(Random(f, -w, w, 4), Random(f, -h, h, 5));
+        return MatchPoint(e4, BBoxCenter(e4), pos);
+    };
+    return MapToFaces(face_to_hatches, labelled_grid(kSize / 10, kSize / 20));
+}
+
+Arrangement crosses(const std::string& dir) {
+    const Curves cross = load(dir, "cross.svg");
+    auto face_to_cross = [cross](const Face& f) {
+        if (!one_face_in_two(f)) return Nothing();
+        const Curves e1 = Scale(cross, Random(f, 1.35, 1.45, 2));
+        const Curves e2 = Rotate(e1, Random(f, -pi / 20, pi / 20, 4));
+        return MatchPoint(e2, BBoxCenter(e2), BBoxCenter(f));
+    };
+    return MapToFaces(face_to_cross, labelled_grid(kSize / 10, kSize / 18));
+}
+
+Arrangement curves(const std::string& dir) {
+    const Curves hatch = load(dir, "hatch.svg");
+    Arrangement grid_tex = GridPartition(StripesProperties(pi / 4, kSize / 10),
+                                         StripesProperties(pi / 2 + pi / 4, kSize / 10), KEEP_OUTSIDE);
+    auto face_to_hatch = [hatch](const Face& f) {
+        const Curves e1 = Scale(hatch, Random(f, 1.3, 1.4, 0));
+        const Curves e2 = Rotate(e1, pi / 4 + Random(f, -pi / 12, pi / 12, 1));
+        return MatchPoint(e2, BBoxCenter(hatch), Centroid(f));
+    };
+    return MapToFaces(face_to_hatch, grid_tex);
+}
+
+Arrangement clusters(const std::string& dir) {
+    const Curves circle = load(dir, "dot.svg");
+    Stripes lines = StripesProperties(pi / 2, kSize / 10);
+    SetFaceLabels(lines, {"v1", "v2"});
+    Arrangement stripes_tex = StripesPartition(lines);
+    auto face_to_circle = [circle](const Face& f) {
+        return Scale(MatchPoint(circle, BBoxCenter(circle), Centroid(f)), 0.02);
+    };
+    // A sub-scale uniform partition of one stripe in two, a dot in each of its cells.
+    auto face_to_circles = [face_to_circle](const Face& f) {
+        if (!HasLabel(f, "v2")) return Nothing();
+        Arrangement part = UniformPartition(IrregularProperties(100 / (BBoxWidth(f) * BBoxHeight(f))),
+                                            CROP_ADD_BOUNDARY);
+        return MapToFaces(face_to_circle, part)(f);
+    };
+    return MapToFaces(face_to_circles, stripes_tex);
+}
+
+Arrangement overview(const std::string& dir) {
+    const Curves blob = load(dir, "blob.svg");
+    const Curves zig = load(dir, "zig.svg");
+    auto map_blob_to = [blob](const Face& f) {
+        const Curves b = Rotate(blob, Random(f, 0, 2 * pi, 0));
+        return MatchPoint(b, BBoxCenter(b), Centroid(f));
+    };
+    auto map_curve_to = [zig](const Edge& e) {
+        if (IsBoundary(e)) return ToCurve(e);
+        return MatchPoints(zig, PointLabeled(zig, "start"), PointLabeled(zig, "end"),
+                           Location(SourceVertex(e)), Location(TargetVertex(e)));
+    };
+    // A randomly oriented grid inside each blob, its inner edges replaced by strokes.
+    auto map_arrangement_to = [map_curve_to](const Face& f) {
+        const double theta = Random(f, 0, 2 * pi, 1);
+        const double width = BBoxWidth(f) / 5;
+        Arrangement init = GridPartition(StripesProperties(theta, width),
+                                         StripesProperties(theta + pi / 2, width), CROP_ADD_BOUNDARY);
+        return MapToEdges(map_curve_to, init)(f);
+    };
+    Arrangement init_tex = UniformPartition(IrregularProperties(10 / (kSize * kSize)), KEEP_OUTSIDE);
+    return MapToFaces(map_arrangement_to, MapToFaces(map_blob_to, init_tex));
+}
+
+}  // namespace
+
+const std::vector<Example>& examples() {
+    static const std::vector<Example> all = {
+        {"stripes", "Stripes", 0, stripes},
+        {"grid", "Grid", 0, grid},
+        {"uniform", "Uniform", 2, uniform},
+        {"random", "Random", 0, random_},
+        {"puzzle", "Puzzle", 18, puzzle},
+        {"rosettes", "Rosettes", 36, rosettes},
+        {"cracks", "Cracks", 35, cracks},
+        {"bimodal", "By example limitations: bimodal hatching", 7, bimodal},
+        {"crosses", "By example limitations: regular crosses", 6, crosses},
+        {"curves", "By example limitations: regular curves", 4, curves},
+        {"clusters", "By example limitations: clusters", 42, clusters},
+        {"overview", "Overview (Fig. 3.1)", -1, overview},
+    };
+    return all;
+}
+
+const Example& find(const std::string& name) {
+    for (const auto& e : examples())
+        if (e.name == name) return e;
+    throw tex::Error("gallery", "no example named '" + name + "'");
+}
+
+std::string default_elements_dir() { return RH_GALLERY_ELEMENTS; }
+
+}  // namespace gallery

@@ -1,0 +1,29 @@
+// The thesis's Appendix A examples (and the overview of Fig. 3.1) written with libtex.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "libtex/tex.hpp"
+
+namespace gallery {
+
+struct Example {
+    std::string name;          // file stem of the output
+    std::string title;         // name in the thesis
+    double published_seconds;  // Appendix A time; 0: "< 1 sec"; -1: not published
+    // Builds the arrangement (loads its SVG elements from `elements`).
+    std::function<tex::Arrangement(const std::string& elements)> build;
+};
+
+// Output size of every example (the thesis's `size = 2000`).
+inline constexpr double kSize = 2000;
+
+const std::vector<Example>& examples();
+// The example with that name; throws tex::Error when there is none.
+const Example& find(const std::string& name);
+// Default folder of the SVG elements (the source tree).
+std::string default_elements_dir();
+
+}  // namespace gallery

@@ -1,0 +1,25 @@
+// Merging operators (thesis 3.5, table 3.5).
+#pragma once
+
+#include "libtex/arrangement.hpp"
+#include "libtex/partitions.hpp"
+
+namespace tex {
+
+// All the curves of a1 and a2.
+Arrangement Union(Arrangement a1, Arrangement a2);
+// Edges of a1 inside the bounded faces of a2. CROP cuts a1's curves along a2's face
+// boundaries; CROP_ADD_BOUNDARY also adds those boundaries; KEEP_INSIDE keeps the edges of
+// a1's planar map lying entirely inside; KEEP_OUTSIDE keeps those that meet the inside.
+Arrangement Inside(Arrangement a1, Arrangement a2, Border b);
+// Same as Inside with "outside the bounded faces of a2".
+Arrangement Outside(Arrangement a1, Arrangement a2, Border b);
+
+// The mask computation shared by the merges and the cropping partitions: `subject` curves
+// cut by the boundaries of the bounded faces of `mask_map`; returns the kept pieces.
+enum class MaskSide { Inside, Outside };
+Curves apply_mask(const Curves& subject, const PlanarMap& mask_map, MaskSide side, Border b);
+// Same, with a region as the mask.
+Curves apply_mask(const Curves& subject, const Region& region, Border b);
+
+}  // namespace tex

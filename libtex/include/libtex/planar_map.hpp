@@ -1,0 +1,97 @@
+// PlanarMap: the planar map induced by a set of curves (thesis 3.2).
+//
+// Induction runs CGAL's Arrangement_2 over an exact-constructions kernel, with every
+// segment carrying the ids of the curves it comes from (consolidated curve data, so
+// overlapping curves merge their data). The result is then frozen into plain tables of
+// vertices, edges and faces with their labels, incidences and double coordinates. The
+// tables are immutable, so mappers may query them from several threads at once and
+// never touch CGAL objects.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "libtex/curves.hpp"
+#include "libtex/geometry.hpp"
+#include "libtex/labels.hpp"
+
+namespace tex {
+
+class PlanarMap;
+using MapPtr = std::shared_ptr<const PlanarMap>;
+
+// One curve an edge was cut from: its index in the induced Curves and whether the curve
+// runs the same way as the edge.
+struct EdgeSource {
+    std::uint32_t curve;
+    bool forward;
+};
+
+// One side of an edge on a face boundary: the edge and whether the face is on its left.
+struct Side {
+    int edge;
+    bool left;
+};
+
+struct VertexRec {
+    Point point;
+    Labels labels;
+    std::vector<int> edges;  // incident edges, counter-clockwise around the vertex
+    std::vector<int> faces;  // incident faces, counter-clockwise, without repetition
+    std::uint64_t key = 0;   // geometric key for Random(cell, ...)
+};
+
+struct EdgeRec {
+    int source = -1, target = -1;  // edges are oriented like their first source curve
+    int left = -1, right = -1;     // faces on each side
+    Labels labels, left_labels, right_labels;
+    std::vector<EdgeSource> sources;
+    std::uint64_t key = 0;
+};
+
+struct FaceRec {
+    bool unbounded = false;
+    Labels labels;
+    // Boundary cycles: for a bounded face the first one is the outer boundary
+    // (counter-clockwise), the others are holes (clockwise); the unbounded face has only
+    // hole cycles. The face is on the left of each traversed side.
+    std::vector<std::vector<Side>> cycles;
+    std::vector<int> vertices;  // distinct vertices of the boundary, in traversal order
+    std::vector<int> edges;     // distinct edges of the boundary, in traversal order
+    std::uint64_t key = 0;
+};
+
+class PlanarMap {
+public:
+    // Induces the planar map of the curves (segments of every polyline, split at every
+    // intersection, overlaps merged). Zero-length segments are ignored.
+    static MapPtr induce(const Curves& curves);
+
+    const std::vector<VertexRec>& vertices() const { return vertices_; }
+    const std::vector<EdgeRec>& edges() const { return edges_; }
+    const std::vector<FaceRec>& faces() const { return faces_; }
+    int unbounded_face() const { return unbounded_; }
+
+    // Point of side s traversed with the face on the left: first point of that side.
+    const Point& side_start(const Side& s) const {
+        const EdgeRec& e = edges_[s.edge];
+        return vertices_[s.left ? e.source : e.target].point;
+    }
+    // A face boundary cycle as a ring of points.
+    std::vector<Point> cycle_points(int face, std::size_t cycle) const;
+    // Edge e as a two-point curve carrying its labels and side labels.
+    Curve edge_curve(int e) const;
+    // Every edge as a curve (the planar map drawn as open polylines).
+    Curves edge_curves() const;
+
+private:
+    friend struct PlanarMapBuilder;
+    std::vector<VertexRec> vertices_;
+    std::vector<EdgeRec> edges_;
+    std::vector<FaceRec> faces_;
+    int unbounded_ = -1;
+};
+
+}  // namespace tex

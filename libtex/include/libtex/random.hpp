@@ -1,0 +1,69 @@
+// Deterministic randomness.
+//
+// Every random value in libtex is a pure function of a key (a cell's geometry, a tile of
+// the plane, a site), a stream number n and the global seed, never of a pointer, an
+// index or the order in which threads visit cells. The same script and seed therefore
+// give the same bytes with any number of threads (ARCHITECTURE.md, "Random").
+#pragma once
+
+#include <cstdint>
+
+#include "libtex/geometry.hpp"
+
+namespace tex {
+
+// Global seed used by every random operator (default 0).
+void SetSeed(std::uint64_t seed);
+std::uint64_t GetSeed();
+
+// SplitMix64 finaliser: a good 64-bit mixing function.
+inline std::uint64_t mix64(std::uint64_t z) {
+    z += 0x9e3779b97f4a7c15ULL;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+}
+inline std::uint64_t hash_combine(std::uint64_t h, std::uint64_t v) { return mix64(h ^ mix64(v)); }
+std::uint64_t hash_double(std::uint64_t h, double v);
+inline std::uint64_t hash_point(std::uint64_t h, const Point& p) {
+    return hash_double(hash_double(h, p.x), p.y);
+}
+// Uniform double in [0, 1) from a 64-bit hash.
+inline double unit_from_hash(std::uint64_t h) { return double(h >> 11) * 0x1.0p-53; }
+
+// A small counter-based generator: value i is a pure function of (key, i).
+class KeyedRng {
+public:
+    explicit KeyedRng(std::uint64_t key) : key_(key) {}
+    std::uint64_t next_u64() { return mix64(key_ ^ mix64(++counter_)); }
+    double uniform() { return unit_from_hash(next_u64()); }
+    double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
+    // Poisson-distributed count with the given mean (inversion; fine for small means,
+    // normal approximation above 500).
+    std::uint32_t poisson(double mean);
+
+private:
+    std::uint64_t key_;
+    std::uint64_t counter_ = 0;
+};
+
+// Scope that binds the unkeyed Random(min, max) of the current thread to a cell key, so
+// that a mapper calling Random(min, max) gets the same values whatever thread runs it.
+class RandomScope {
+public:
+    explicit RandomScope(std::uint64_t key);
+    ~RandomScope();
+    RandomScope(const RandomScope&) = delete;
+    RandomScope& operator=(const RandomScope&) = delete;
+
+private:
+    std::uint64_t saved_key_;
+    std::uint64_t saved_counter_;
+    bool saved_active_;
+};
+
+// Random value in [min, max): inside a mapper it is keyed by the visited cell and the
+// call count in that mapper; outside mappers it is a seeded stream of the calling thread.
+double Random(double min, double max);
+
+}  // namespace tex

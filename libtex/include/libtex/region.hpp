@@ -1,0 +1,48 @@
+// Region: the domain an arrangement is evaluated on, a polygon with holes.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "libtex/geometry.hpp"
+
+namespace tex {
+
+class Curves;
+
+class Region {
+public:
+    Region() = default;
+    // Outer ring and holes; orientations are normalised (outer counter-clockwise, holes
+    // clockwise, so the inside is always on the left). Throws tex::Error naming `op` when
+    // the outer ring has fewer than three distinct points or no area.
+    Region(std::vector<Point> outer, std::vector<std::vector<Point>> holes = {},
+           const std::string& op = "Region");
+
+    static Region rectangle(double xmin, double ymin, double xmax, double ymax);
+
+    const std::vector<Point>& outer() const { return outer_; }
+    const std::vector<std::vector<Point>>& holes() const { return holes_; }
+    bool empty() const { return outer_.empty(); }
+    const BBox& bbox() const { return bbox_; }
+    double area() const;
+    // Even-odd test over all rings; points on a ring count as inside.
+    bool contains(const Point& p) const;
+    // The rings as closed curves, inside on the left.
+    Curves boundary() const;
+
+private:
+    std::vector<Point> outer_;
+    std::vector<std::vector<Point>> holes_;
+    BBox bbox_;
+};
+
+// Relation of a convex polygon to a region, decided on doubles (used by the KEEP_INSIDE /
+// KEEP_OUTSIDE border modes, which keep or drop whole cells).
+enum class Overlap { Disjoint, Partial, Inside };
+Overlap classify_polygon(const std::vector<Point>& poly, const BBox& poly_box, const Region& r);
+
+// True when the point lies inside the (closed) polygon ring.
+bool point_in_ring(const Point& p, const std::vector<Point>& ring);
+
+}  // namespace tex

@@ -1,0 +1,20 @@
+#include "libtex/arrangement.hpp"
+
+namespace tex {
+
+Arrangement::Arrangement() : Arrangement(Fn([](const Region&) { return Curves{}; })) {}
+
+Arrangement::Arrangement(Fn fn) : fn_(std::make_shared<const Fn>(std::move(fn))) {}
+
+Curves Arrangement::operator()(const Region& r) const { return (*fn_)(r); }
+
+Curves Arrangement::operator()(const Face& f) const { return (*fn_)(ToRegion(f)); }
+
+MapPtr Arrangement::induce(const Region& r) const { return PlanarMap::induce((*fn_)(r)); }
+
+Arrangement Constant(Curves c) {
+    auto shared = std::make_shared<const Curves>(std::move(c));
+    return Arrangement([shared](const Region&) { return *shared; });
+}
+
+}  // namespace tex

@@ -1,0 +1,188 @@
+#include "libtex/cells.hpp"
+
+#include <algorithm>
+
+#include "libtex/error.hpp"
+#include "libtex/random.hpp"
+
+namespace tex {
+namespace {
+
+template <class C>
+void require(const C& c, const char* op) {
+    if (!c.valid()) throw Error(op, "invalid cell (not attached to a planar map)");
+}
+
+double keyed_random(std::uint64_t key, double min, double max, double n) {
+    std::uint64_t h = hash_combine(mix64(GetSeed() ^ 0x4345114cULL), key);
+    h = hash_double(h, n);
+    return min + (max - min) * unit_from_hash(mix64(h));
+}
+
+}  // namespace
+
+const VertexRec& record(const Vertex& v) { require(v, "Vertex"); return v.map().vertices()[v.id()]; }
+const EdgeRec& record(const Edge& e) { require(e, "Edge"); return e.map().edges()[e.id()]; }
+const FaceRec& record(const Face& f) { require(f, "Face"); return f.map().faces()[f.id()]; }
+
+std::vector<Face> IncidentFaces(const Vertex& v) {
+    std::vector<Face> out;
+    for (int f : record(v).faces) out.emplace_back(v.map_ptr(), f);
+    return out;
+}
+
+std::vector<Edge> IncidentEdges(const Vertex& v) {
+    std::vector<Edge> out;
+    for (int e : record(v).edges) out.emplace_back(v.map_ptr(), e);
+    return out;
+}
+
+std::vector<Edge> IncidentEdges(const Face& f) {
+    std::vector<Edge> out;
+    for (int e : record(f).edges) out.emplace_back(f.map_ptr(), e);
+    return out;
+}
+
+std::vector<Vertex> IncidentVertices(const Face& f) {
+    std::vector<Vertex> out;
+    for (int v : record(f).vertices) out.emplace_back(f.map_ptr(), v);
+    return out;
+}
+
+Vertex SourceVertex(const Edge& e) { return Vertex(e.map_ptr(), record(e).source); }
+Vertex TargetVertex(const Edge& e) { return Vertex(e.map_ptr(), record(e).target); }
+Face LeftFace(const Edge& e) { return Face(e.map_ptr(), record(e).left); }
+Face RightFace(const Edge& e) { return Face(e.map_ptr(), record(e).right); }
+
+BBox CellBBox(const Vertex& c) {
+    BBox b;
+    b.add(record(c).point);
+    return b;
+}
+
+BBox CellBBox(const Edge& c) {
+    const EdgeRec& r = record(c);
+    BBox b;
+    b.add(c.map().vertices()[r.source].point);
+    b.add(c.map().vertices()[r.target].point);
+    return b;
+}
+
+BBox CellBBox(const Face& c) {
+    const FaceRec& r = record(c);
+    BBox b;
+    if (r.unbounded) return b;
+    for (const Side& s : r.cycles.front()) b.add(c.map().side_start(s));
+    return b;
+}
+
+Curves MatchFace(const Curves& c, const Face& f) {
+    const BBox cb = c.bbox(), fb = CellBBox(f);
+    if (cb.empty() || fb.empty()) return c;
+    const double sx = cb.width() > 0 ? fb.width() / cb.width() : 0.0;
+    const double sy = cb.height() > 0 ? fb.height() / cb.height() : 0.0;
+    double s = (sx > 0 && sy > 0) ? std::min(sx, sy) : std::max(sx, sy);
+    if (s == 0) s = 1;
+    Curves out = c;
+    out.transform(Affine::translation(fb.center() - cb.center())
+                      .then_after(Affine::scaling(s, s, cb.center())));
+    return out;
+}
+
+Point Location(const Vertex& v) { return record(v).point; }
+
+Point LocationAt(const Edge& e, double s) {
+    const EdgeRec& r = record(e);
+    const Point& a = e.map().vertices()[r.source].point;
+    const Point& b = e.map().vertices()[r.target].point;
+    return a + (b - a) * s;
+}
+
+Point Centroid(const Face& f) {
+    const FaceRec& r = record(f);
+    if (r.unbounded) throw Error("Centroid", "the unbounded face has no centroid");
+    double a = 0, cx = 0, cy = 0;
+    for (std::size_t k = 0; k < r.cycles.size(); ++k) {
+        const auto ring = f.map().cycle_points(f.id(), k);
+        for (std::size_t i = 0; i < ring.size(); ++i) {
+            const Point& p = ring[i];
+            const Point& q = ring[(i + 1) % ring.size()];
+            const double w = cross(p, q);
+            a += w;
+            cx += (p.x + q.x) * w;
+            cy += (p.y + q.y) * w;
+        }
+    }
+    if (a == 0) return CellBBox(f).center();
+    return {cx / (3 * a), cy / (3 * a)};
+}
+
+Curves Contour(const Face& f) {
+    const FaceRec& r = record(f);
+    Curves out;
+    for (std::size_t k = 0; k < r.cycles.size(); ++k) {
+        Curve c;
+        c.points = f.map().cycle_points(f.id(), k);
+        c.closed = true;
+        c.left = r.labels;
+        out.curves.push_back(std::move(c));
+    }
+    return out;
+}
+
+Curves ToCurve(const Edge& e) {
+    Curves out;
+    out.curves.push_back(e.map().edge_curve(e.id()));
+    return out;
+}
+
+Region ToRegion(const Face& f) {
+    const FaceRec& r = record(f);
+    if (r.unbounded) throw Error("ToRegion", "the unbounded face is not a region");
+    std::vector<std::vector<Point>> holes;
+    for (std::size_t k = 1; k < r.cycles.size(); ++k) holes.push_back(f.map().cycle_points(f.id(), k));
+    return Region(f.map().cycle_points(f.id(), 0), std::move(holes), "ToRegion");
+}
+
+bool HasLabel(const Vertex& c, const std::string& l) { return record(c).labels.has(l); }
+bool HasLabel(const Edge& c, const std::string& l) { return record(c).labels.has(l); }
+bool HasLabel(const Face& c, const std::string& l) { return record(c).labels.has(l); }
+
+template <class C>
+static bool any_label(const std::vector<C>& cells, const std::string& l) {
+    LabelId id;
+    if (!find_label(l, id)) return false;
+    return std::any_of(cells.begin(), cells.end(), [&](const C& c) { return record(c).labels.has(id); });
+}
+bool HasLabel(const std::vector<Vertex>& c, const std::string& l) { return any_label(c, l); }
+bool HasLabel(const std::vector<Edge>& c, const std::string& l) { return any_label(c, l); }
+bool HasLabel(const std::vector<Face>& c, const std::string& l) { return any_label(c, l); }
+
+bool IsBoundary(const Vertex& c) {
+    const int u = c.map().unbounded_face();
+    const auto& fs = record(c).faces;
+    return std::find(fs.begin(), fs.end(), u) != fs.end();
+}
+
+bool IsBoundary(const Edge& c) {
+    const EdgeRec& r = record(c);
+    const int u = c.map().unbounded_face();
+    return r.left == u || r.right == u;
+}
+
+bool IsBoundary(const Face& c) {
+    const FaceRec& r = record(c);
+    if (r.unbounded) return true;
+    const int u = c.map().unbounded_face();
+    for (int e : r.edges) {
+        const EdgeRec& er = c.map().edges()[e];
+        if (er.left == u || er.right == u) return true;
+    }
+    return false;
+}
+
+double Random(const Vertex& c, double min, double max, double n) { return keyed_random(record(c).key, min, max, n); }
+double Random(const Edge& c, double min, double max, double n) { return keyed_random(record(c).key, min, max, n); }
+double Random(const Face& c, double min, double max, double n) { return keyed_random(record(c).key, min, max, n); }
+
+}  // namespace tex

@@ -1,0 +1,63 @@
+#include "libtex/parallel.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace tex {
+namespace {
+
+std::atomic<unsigned> g_threads{0};
+thread_local bool t_in_worker = false;
+
+}  // namespace
+
+void SetThreads(unsigned n) { g_threads.store(n); }
+
+unsigned GetThreads() {
+    unsigned n = g_threads.load();
+    if (n == 0) n = std::max(1u, std::thread::hardware_concurrency());
+    return n;
+}
+
+void parallel_for(std::size_t n, const std::function<void(std::size_t)>& body) {
+    const unsigned threads = unsigned(std::min<std::size_t>(GetThreads(), n));
+    if (threads <= 1 || t_in_worker) {
+        for (std::size_t i = 0; i < n; ++i) body(i);
+        return;
+    }
+    std::atomic<std::size_t> next{0};
+    std::mutex error_mutex;
+    std::size_t error_index = n;
+    std::exception_ptr error;
+    auto work = [&] {
+        const bool saved = t_in_worker;
+        t_in_worker = true;
+        for (;;) {
+            const std::size_t i = next.fetch_add(1);
+            if (i >= n) break;
+            try {
+                body(i);
+            } catch (...) {
+                std::lock_guard lock(error_mutex);
+                if (i < error_index) {
+                    error_index = i;
+                    error = std::current_exception();
+                }
+                next.store(n);  // stop handing out work
+            }
+        }
+        t_in_worker = saved;
+    };
+    std::vector<std::thread> pool;
+    pool.reserve(threads - 1);
+    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
+    work();
+    for (auto& th : pool) th.join();
+    if (error) std::rethrow_exception(error);
+}
+
+}  // namespace tex

@@ -1,0 +1,75 @@
+#include "libtex/random.hpp"
+
+#include <atomic>
+#include <cmath>
+#include <cstring>
+
+namespace tex {
+namespace {
+
+std::atomic<std::uint64_t> g_seed{0};
+
+struct ThreadStream {
+    bool active = false;  // inside a mapper: keyed by the visited cell
+    std::uint64_t key = 0;
+    std::uint64_t counter = 0;
+    std::uint64_t free_counter = 0;  // outside mappers
+};
+thread_local ThreadStream t_stream;
+
+}  // namespace
+
+void SetSeed(std::uint64_t seed) { g_seed.store(seed); }
+std::uint64_t GetSeed() { return g_seed.load(); }
+
+std::uint64_t hash_double(std::uint64_t h, double v) {
+    if (v == 0.0) v = 0.0;  // -0 and +0 hash alike
+    std::uint64_t bits;
+    std::memcpy(&bits, &v, sizeof bits);
+    return hash_combine(h, bits);
+}
+
+std::uint32_t KeyedRng::poisson(double mean) {
+    if (mean <= 0) return 0;
+    if (mean > 500) {
+        // Box-Muller normal approximation.
+        const double u1 = std::max(uniform(), 1e-300), u2 = uniform();
+        const double z = std::sqrt(-2 * std::log(u1)) * std::cos(2 * pi * u2);
+        const double v = std::round(mean + std::sqrt(mean) * z);
+        return v < 0 ? 0u : std::uint32_t(v);
+    }
+    const double limit = std::exp(-mean);
+    double p = uniform();
+    std::uint32_t k = 0;
+    while (p > limit) {
+        p *= uniform();
+        ++k;
+    }
+    return k;
+}
+
+RandomScope::RandomScope(std::uint64_t key)
+    : saved_key_(t_stream.key), saved_counter_(t_stream.counter), saved_active_(t_stream.active) {
+    t_stream.active = true;
+    t_stream.key = key;
+    t_stream.counter = 0;
+}
+
+RandomScope::~RandomScope() {
+    t_stream.active = saved_active_;
+    t_stream.key = saved_key_;
+    t_stream.counter = saved_counter_;
+}
+
+double Random(double min, double max) {
+    std::uint64_t h;
+    if (t_stream.active) {
+        h = hash_combine(hash_combine(mix64(GetSeed() ^ 0x52414e44ULL), t_stream.key),
+                         ++t_stream.counter);
+    } else {
+        h = hash_combine(mix64(GetSeed() ^ 0x46524545ULL), ++t_stream.free_counter);
+    }
+    return min + (max - min) * unit_from_hash(h);
+}
+
+}  // namespace tex

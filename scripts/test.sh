@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Set up, build, then run every test: ctest (C++) and pytest (Python). Fails if either
+# fails, and if pytest collects nothing (exit code 5).
+set -uo pipefail
+cd "$(dirname "$0")/.."
+scripts/setup.sh || exit 1
+BUILD_DIR="${RH_BUILD_DIR:-build}"
+export RH_BUILD_DIR="$(cd "$BUILD_DIR" && pwd)"
+
+ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$(nproc)"
+ctest_rc=$?
+
+# Debian's interpreter: the first python3 on PATH may not see Debian's modules.
+/usr/bin/python3 -m pytest -q tests/python
+pytest_rc=$?
+if [ "$pytest_rc" -eq 5 ]; then
+  echo "test: pytest collected no test: the test setup is broken" >&2
+fi
+
+echo "test: ctest exit $ctest_rc, pytest exit $pytest_rc"
+[ "$ctest_rc" -eq 0 ] && [ "$pytest_rc" -eq 0 ]

@@ -1,0 +1,94 @@
+// Curves utilities and the adjacency built-ins on curves (tables 3.4 and 3.6).
+#include <gtest/gtest.h>
+
+#include "helpers.hpp"
+
+using namespace tex;
+
+namespace {
+
+Curves element() {
+    Curves c = Polyline({{0, 0}, {10, 0}, {10, 4}});
+    c.points.push_back({{0, 0}, Labels{"start"}});
+    c.points.push_back({{10, 4}, Labels{"end"}});
+    return c;
+}
+
+void expect_near(const Point& a, const Point& b) {
+    EXPECT_NEAR(a.x, b.x, 1e-9);
+    EXPECT_NEAR(a.y, b.y, 1e-9);
+}
+
+}  // namespace
+
+TEST(Curves, MatchPointsSendsSourcesToTargets) {
+    const Curves c = element();
+    const Point t1{100, 50}, t2{80, 90};
+    const Curves m = MatchPoints(c, PointLabeled(c, "start"), PointLabeled(c, "end"), t1, t2);
+    expect_near(PointLabeled(m, "start"), t1);
+    expect_near(PointLabeled(m, "end"), t2);
+    // A similarity: lengths scale uniformly.
+    const double s = distance(t1, t2) / distance({0, 0}, {10, 4});
+    EXPECT_NEAR(th::length(m), th::length(c) * s, 1e-9);
+}
+
+TEST(Curves, MatchPointsRejectsCoincidentSources) {
+    EXPECT_TEX_ERROR(MatchPoints(element(), {1, 1}, {1, 1}, {0, 0}, {1, 0}), "MatchPoints", "coincide");
+}
+
+TEST(Curves, MatchPointTranslates) {
+    const Curves m = MatchPoint(element(), {10, 0}, {0, 0});
+    expect_near(m.curves[0].points[0], {-10, 0});
+    expect_near(PointLabeled(m, "end"), {0, 4});
+}
+
+TEST(Curves, ScaleAndRotateAboutTheBoundingBoxCentre) {
+    const Curves c = element();
+    const Point centre = BBoxCenter(c);
+    expect_near(centre, {5, 2});
+    const Curves s = Scale(c, 2);
+    expect_near(BBoxCenter(s), centre);
+    EXPECT_NEAR(BBoxWidth(s), 20, 1e-12);
+    EXPECT_NEAR(BBoxHeight(s), 8, 1e-12);
+    const Curves r = Rotate(c, pi / 2);
+    expect_near(BBoxCenter(r), centre);
+    EXPECT_NEAR(BBoxWidth(r), 4, 1e-9);
+    EXPECT_NEAR(BBoxHeight(r), 10, 1e-9);
+    EXPECT_NEAR(th::length(r), th::length(c), 1e-9);
+}
+
+TEST(Curves, MirrorSwapsSideLabels) {
+    Curves c = Polyline({{0, 0}, {1, 0}});
+    c.curves[0].left = Labels{"l"};
+    const Curves m = Scale(c, -1, 1);
+    EXPECT_TRUE(m.curves[0].right.has("l"));
+    EXPECT_TRUE(m.curves[0].left.empty());
+}
+
+TEST(Curves, AppendNothingAndLabelledCurves) {
+    Curves a = element();
+    a.curves[0].labels.add("body");
+    const Curves b = Append(a, Translate(Polyline({{0, 0}, {1, 1}}), {5, 5}));
+    EXPECT_EQ(b.curves.size(), 2u);
+    EXPECT_TRUE(Nothing().empty());
+    EXPECT_EQ(CurveLabeled(b, "body").curves.size(), 1u);
+    EXPECT_TEX_ERROR(CurveLabeled(b, "tail"), "CurveLabeled", "'tail'");
+    EXPECT_TEX_ERROR(PointLabeled(b, "middle"), "PointLabeled", "no point labelled 'middle'");
+}
+
+TEST(Random, UnkeyedRandomIsKeyedByScope) {
+    double a1, a2, b1;
+    {
+        RandomScope s(42);
+        a1 = Random(0, 1);
+        a2 = Random(0, 1);
+    }
+    {
+        RandomScope s(42);
+        b1 = Random(0, 1);
+    }
+    EXPECT_EQ(a1, b1);
+    EXPECT_NE(a1, a2);
+    EXPECT_GE(a1, 0);
+    EXPECT_LT(a1, 1);
+}

@@ -1,0 +1,241 @@
+// Partitioning operators (table 3.2) and their border modes (Fig. 3.4).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "helpers.hpp"
+
+using namespace tex;
+
+namespace {
+
+bool face_inside(const PlanarMap& m, int f, const Region& r, double eps = 1e-9) {
+    for (int v : m.faces()[f].vertices) {
+        const Point p = m.vertices()[v].point;
+        const BBox b = r.bbox().expanded(eps);
+        if (!b.contains(p)) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+TEST(Stripes, WidthCycleAndLabelCyclesAreReproduced) {
+    Stripes s = StripesProperties(0, 10, 20, 5);
+    SetEdgeLabels(s, {"a", "b"});
+    SetFaceLabels(s, {"x", "y", "z"});
+    const Region r = Region::rectangle(0, 1, 100, 99);
+    const MapPtr m = StripesPartition(s).induce(r);
+    // Horizontal stripe lines are the labelled edges; the outline has none.
+    std::set<double> ys;
+    for (const auto& e : m->edges()) {
+        if (e.labels.empty()) continue;
+        const double y = m->vertices()[e.source].point.y;
+        EXPECT_EQ(y, m->vertices()[e.target].point.y);
+        ys.insert(y);
+        // Line i (offsets 0, 10, 30, 35, 45, ...) carries label a for even i, b for odd i.
+        const int i = y == 10 ? 1 : y == 30 ? 2 : y == 35 ? 3 : y == 45 ? 4 : y == 65 ? 5 : y == 70 ? 6 : 7;
+        EXPECT_TRUE(e.labels.has(i % 2 == 0 ? "a" : "b")) << "line at y=" << y;
+        EXPECT_EQ(e.labels.size(), 1u);
+    }
+    EXPECT_EQ(std::vector<double>(ys.begin(), ys.end()), (std::vector<double>{10, 30, 35, 45, 65, 70, 80}));
+    // Band i (between line i and i+1) carries face label i mod 3.
+    const std::vector<double> offsets = {0, 10, 30, 35, 45, 65, 70, 80, 100};
+    const char* names[] = {"x", "y", "z"};
+    std::size_t checked = 0;
+    for (std::size_t f = 0; f < m->faces().size(); ++f) {
+        if (m->faces()[f].unbounded) continue;
+        const double cy = Centroid(Face(m, int(f))).y;
+        const std::size_t band = std::size_t(std::upper_bound(offsets.begin(), offsets.end(), cy) - offsets.begin()) - 1;
+        EXPECT_TRUE(m->faces()[f].labels.has(names[band % 3])) << "band " << band;
+        EXPECT_EQ(m->faces()[f].labels.size(), 1u);
+        ++checked;
+    }
+    EXPECT_EQ(checked, 8u);
+}
+
+TEST(Stripes, AnchoredToThePlane) {
+    // Two neighbouring regions see the same lines.
+    Stripes s = StripesProperties(0.3, 7, 3);
+    SetEdgeLabels(s, {"line"});
+    const Arrangement a = StripesPartition(s);
+    auto crossings = [&](const Region& r, double x) {
+        std::set<long long> ys;
+        for (const auto& c : a(r).curves) {
+            if (!c.labels.has("line")) continue;
+            for (const auto& p : c.points)
+                if (std::abs(p.x - x) < 1e-9) ys.insert(std::llround(p.y * 1e6));
+        }
+        return ys;
+    };
+    const auto left = crossings(Region::rectangle(0, 0, 50, 50), 50);
+    const auto right = crossings(Region::rectangle(50, 0, 100, 50), 50);
+    EXPECT_FALSE(left.empty());
+    EXPECT_EQ(left, right);
+}
+
+TEST(Grid, BorderModes) {
+    const Stripes h = StripesProperties(0, 10), v = StripesProperties(pi / 2, 10);
+    const Region r = Region::rectangle(5, 5, 95, 95);
+    const MapPtr inside = GridPartition(h, v, KEEP_INSIDE).induce(r);
+    const MapPtr outside = GridPartition(h, v, KEEP_OUTSIDE).induce(r);
+    const MapPtr crop = GridPartition(h, v, CROP).induce(r);
+    const MapPtr cropb = GridPartition(h, v, CROP_ADD_BOUNDARY).induce(r);
+    EXPECT_EQ(th::bounded_faces(*inside), 64u);    // cells [10, 90]^2
+    EXPECT_EQ(th::bounded_faces(*outside), 100u);  // cells [0, 100]^2
+    EXPECT_EQ(th::bounded_faces(*cropb), 100u);    // 64 whole cells + 36 cut ones
+    EXPECT_EQ(th::bounded_faces(*crop), 64u);      // cut cells stay open without the outline
+    double area = 0;
+    for (std::size_t f = 0; f < cropb->faces().size(); ++f) {
+        if (cropb->faces()[f].unbounded) continue;
+        EXPECT_TRUE(face_inside(*cropb, int(f), r));
+        area += th::face_area(*cropb, int(f));
+    }
+    EXPECT_NEAR(area, r.area(), 1e-9);  // the cropped faces tile the region exactly
+    for (const auto& vx : crop->vertices()) EXPECT_TRUE(r.bbox().expanded(1e-9).contains(vx.point));
+    for (std::size_t f = 0; f < inside->faces().size(); ++f)
+        if (!inside->faces()[f].unbounded) EXPECT_TRUE(face_inside(*inside, int(f), r));
+}
+
+TEST(Grid, KeepModesOnARegionWithAHole) {
+    const Stripes h = StripesProperties(0, 10), v = StripesProperties(pi / 2, 10);
+    const Region r({{0, 0}, {100, 0}, {100, 100}, {0, 100}}, {{{35, 35}, {65, 35}, {65, 65}, {35, 65}}});
+    // 16 cells meet the hole, 4 of them lie entirely in it. The kept cells enclose the
+    // dropped ones, which leaves one more bounded face in the planar map: the gap.
+    auto cells = [](const PlanarMap& m) {
+        std::size_t n = 0;
+        for (std::size_t f = 0; f < m.faces().size(); ++f)
+            n += !m.faces()[f].unbounded && std::abs(th::face_area(m, int(f)) - 100) < 1e-9;
+        return n;
+    };
+    const MapPtr in = GridPartition(h, v, KEEP_INSIDE).induce(r);
+    const MapPtr out = GridPartition(h, v, KEEP_OUTSIDE).induce(r);
+    EXPECT_EQ(cells(*in), 84u);
+    EXPECT_EQ(th::bounded_faces(*in), 85u);
+    EXPECT_EQ(cells(*out), 96u);
+    EXPECT_EQ(th::bounded_faces(*out), 97u);
+    const MapPtr cropb = GridPartition(h, v, CROP_ADD_BOUNDARY).induce(r);
+    double area = 0;
+    for (std::size_t f = 0; f < cropb->faces().size(); ++f)
+        if (!cropb->faces()[f].unbounded) area += th::face_area(*cropb, int(f));
+    // The hole is a bounded face of the outline too (area 900): everything else is the region.
+    EXPECT_NEAR(area, r.area() + 900, 1e-9);
+}
+
+TEST(Grid, FaceLabelsFromBothFamilies) {
+    Stripes h = StripesProperties(0, 10), v = StripesProperties(pi / 2, 10);
+    SetFaceLabels(h, {"h1", "h2"});
+    SetFaceLabels(v, {"v1", "v2"});
+    const MapPtr m = GridPartition(h, v, KEEP_INSIDE).induce(Region::rectangle(0, 0, 40, 40));
+    EXPECT_EQ(th::bounded_faces(*m), 16u);
+    for (std::size_t f = 0; f < m->faces().size(); ++f) {
+        if (m->faces()[f].unbounded) continue;
+        const Point c = Centroid(Face(m, int(f)));
+        // Bands are numbered along each family's normal (-sin a, cos a): +y for the
+        // horizontal lines (a = 0), -x for the vertical ones (a = pi/2).
+        const int i = int(std::floor(c.y / 10)), j = int(std::floor(-c.x / 10));
+        const auto& l = m->faces()[f].labels;
+        EXPECT_EQ(l.size(), 2u);
+        EXPECT_TRUE(l.has(i % 2 ? "h2" : "h1"));
+        EXPECT_TRUE(l.has((j % 2 + 2) % 2 ? "v2" : "v1"));
+    }
+}
+
+TEST(Grid, ParallelFamiliesAreRefused) {
+    const Stripes a = StripesProperties(0.5, 10), b = StripesProperties(0.5, 4);
+    EXPECT_TEX_ERROR(GridPartition(a, b, CROP)(Region::rectangle(0, 0, 10, 10)), "GridPartition", "parallel");
+}
+
+TEST(Uniform, FaceCountFollowsDensityAndSitesRespectTheRadius) {
+    // Many faces, so that the cut cells along the border weigh little.
+    const double d = 2500.0 / (1000.0 * 1000.0);
+    const Region r = Region::rectangle(0, 0, 1000, 1000);
+    const MapPtr m = UniformPartition(IrregularProperties(d), CROP_ADD_BOUNDARY).induce(r);
+    const double faces = double(th::bounded_faces(*m));
+    EXPECT_NEAR(faces, d * r.area(), 0.1 * d * r.area());
+    const auto sites = PoissonDiskSites(d, BBox{0, 0, 1000, 1000});
+    EXPECT_NEAR(double(sites.size()), 2500, 250);
+    const double rad = PoissonDiskRadius(d);
+    double min_d2 = 1e300;
+    for (std::size_t i = 0; i < sites.size(); ++i)
+        for (std::size_t j = i + 1; j < sites.size(); ++j) min_d2 = std::min(min_d2, dot(sites[i] - sites[j], sites[i] - sites[j]));
+    EXPECT_GE(std::sqrt(min_d2), rad);
+    // Dense: sites are not much further apart than the radius (no big holes).
+    EXPECT_LT(std::sqrt(min_d2), 1.5 * rad);
+}
+
+TEST(Uniform, SitesAreAFunctionOfThePlane) {
+    const double d = 1e-3;
+    const auto a = PoissonDiskSites(d, BBox{0, 0, 300, 300});
+    const auto b = PoissonDiskSites(d, BBox{150, -100, 500, 300});
+    std::set<std::pair<double, double>> sa, sb;
+    for (const auto& p : a)
+        if (p.x >= 150) sa.insert({p.x, p.y});
+    for (const auto& p : b)
+        if (p.x <= 300 && p.y >= 0) sb.insert({p.x, p.y});
+    EXPECT_FALSE(sa.empty());
+    EXPECT_EQ(sa, sb);
+}
+
+TEST(Random, PoissonCountFollowsDensity) {
+    const double d = 1e-3;
+    const auto s = PoissonSites(d, BBox{0, 0, 1000, 1000});
+    EXPECT_NEAR(double(s.size()), 1000, 100);  // mean 1000, sd 32
+    const MapPtr m = RandomPartition(IrregularProperties(d), KEEP_INSIDE).induce(Region::rectangle(0, 0, 1000, 1000));
+    EXPECT_GT(th::bounded_faces(*m), 800u);
+    EXPECT_LT(th::bounded_faces(*m), 1000u);
+}
+
+TEST(Irregular, KeepOutsideKeepsWholeCellsCoveringTheRegion) {
+    const Region r = Region::rectangle(0, 0, 500, 500);
+    const MapPtr m = UniformPartition(IrregularProperties(1e-4), KEEP_OUTSIDE).induce(r);
+    double area = 0;
+    BBox all;
+    for (std::size_t f = 0; f < m->faces().size(); ++f) {
+        if (m->faces()[f].unbounded) continue;
+        area += th::face_area(*m, int(f));
+        for (int v : m->faces()[f].vertices) all.add(m->vertices()[v].point);
+    }
+    EXPECT_GT(area, r.area());
+    EXPECT_LT(all.xmin, 0);
+    EXPECT_GT(all.xmax, 500);
+    // Every point of the region lies in some kept face: probe a lattice.
+    for (double x = 5; x < 500; x += 49)
+        for (double y = 5; y < 500; y += 49) {
+            bool found = false;
+            for (std::size_t f = 0; f < m->faces().size() && !found; ++f)
+                if (!m->faces()[f].unbounded) found = point_in_ring({x, y}, m->cycle_points(int(f), 0));
+            EXPECT_TRUE(found) << x << "," << y;
+        }
+}
+
+TEST(Irregular, WeightedLabels) {
+    Irregular p = IrregularProperties(1e-3);
+    SetWeightedFaceLabels(p, {{"dark", 0.25}, {"light", 0.5}});
+    const MapPtr m = UniformPartition(p, KEEP_INSIDE).induce(Region::rectangle(0, 0, 1000, 1000));
+    std::size_t dark = 0, light = 0, none = 0;
+    for (const auto& f : m->faces()) {
+        if (f.unbounded) continue;
+        if (f.labels.has("dark")) ++dark;
+        else if (f.labels.has("light")) ++light;
+        else ++none;
+    }
+    const double n = double(dark + light + none);
+    EXPECT_NEAR(dark / n, 0.25, 0.05);
+    EXPECT_NEAR(light / n, 0.5, 0.05);
+    EXPECT_TEX_ERROR(SetWeightedEdgeLabels(p, {{"a", 0.7}, {"b", 0.6}}), "SetWeightedEdgeLabels", "sum to 1.3");
+    EXPECT_TEX_ERROR(SetWeightedVertexLabels(p, {{"a", -0.1}}), "SetWeightedVertexLabels", "-0.1");
+}
+
+TEST(Partitions, BadParametersAreNamed) {
+    EXPECT_TEX_ERROR(StripesProperties(0, 0.0), "StripesProperties", "width 0 ");
+    EXPECT_TEX_ERROR(StripesProperties(0, 10, -2), "StripesProperties", "width -2");
+    EXPECT_TEX_ERROR(StripesProperties(0, std::vector<double>{}), "StripesProperties", "no width");
+    EXPECT_TEX_ERROR(IrregularProperties(0), "IrregularProperties", "density 0 ");
+    EXPECT_TEX_ERROR(IrregularProperties(-3), "IrregularProperties", "density -3");
+    EXPECT_TEX_ERROR(Region({{0, 0}, {1, 1}}), "Region", "empty region");
+    EXPECT_TEX_ERROR(Region({{0, 0}, {1, 1}, {2, 2}}), "Region", "no area");
+    EXPECT_TEX_ERROR(ExportSVG(Nothing(), 0, "/tmp/never.svg"), "ExportSVG", "size 0");
+}
