@@ -4,6 +4,7 @@
 #include <tinyxml2.h>
 
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -367,11 +368,13 @@ double coarse_extent(const tinyxml2::XMLElement* root, const std::string& origin
 }
 
 // Number formatting for export: fixed three decimals, trailing zeros trimmed, no "-0".
+// std::to_chars is exact like printf's %.3f but several times faster (the SVG text is a
+// large part of a gallery example's time).
 void append_number(std::string& s, double v) {
     char buf[64];
-    if (std::abs(v) < 5e-4) v = 0;
-    std::snprintf(buf, sizeof buf, "%.3f", v);
-    std::size_t n = std::strlen(buf);
+    if (std::abs(v) < 5e-4 || !std::isfinite(v)) v = 0;
+    const auto res = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, 3);
+    std::size_t n = std::size_t(res.ptr - buf);
     while (n > 0 && buf[n - 1] == '0') --n;
     if (n > 0 && buf[n - 1] == '.') --n;
     s.append(buf, n);
