@@ -1,0 +1,36 @@
+// Writers: GeoPackage (one LineString layer per hatch family), SVG (one group per family,
+// true scale, CRS and bounds in its metadata) and a PNG preview. All writes are atomic:
+// to a temporary file in the same folder, renamed at the end.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "carto/raster.hpp"
+#include "carto/styles.hpp"
+
+namespace carto {
+
+struct FaceHatches {
+    std::int64_t face_id;
+    std::vector<Hatch> hatches;
+};
+
+struct Drawing {
+    std::vector<FaceHatches> faces;
+    std::string crs_wkt;
+    std::string style;
+    double scale = 10000;
+    tex::BBox bounds;  // extent of the drawing in the working CRS
+};
+
+void write_gpkg(const Drawing& d, const std::string& path);
+void write_svg(const Drawing& d, const std::string& path);
+// A PNG preview `pixels` wide, over a light hillshade when one is given.
+void write_png(const Drawing& d, const std::string& path, int pixels, const Raster* hillshade);
+
+// Throws Error(OutputExists) when the file exists and overwrite is false, or when its
+// folder does not exist.
+void check_output(const std::string& path, bool overwrite);
+
+}  // namespace carto

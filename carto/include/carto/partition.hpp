@@ -1,0 +1,71 @@
+// The partition of rock areas (seed section 5.4): faces to hatch separately, whose borders
+// are labelled ridge, valley (thalweg) or other, with an optional hatching orientation and
+// density per face.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "libtex/region.hpp"
+
+namespace carto {
+
+using tex::Point;
+
+enum class LineKind { Other = 0, Ridge = 1, Valley = 2 };
+const char* kind_name(LineKind k);
+
+// One segment of a face's boundary rings with its label and the face across it (-1: none).
+struct BoundarySegment {
+    Point a, b;
+    LineKind kind = LineKind::Other;
+    int neighbor = -1;
+};
+
+struct RockFace {
+    std::int64_t id = 0;     // feature id (or the id attribute)
+    tex::Region region;      // in the working CRS
+    std::vector<BoundarySegment> boundary;
+    std::optional<double> orientation;  // hatch direction, math angle in radians (axial)
+    std::optional<double> density;      // 0 (sparse, light) .. 1 (dense, dark)
+};
+
+struct LabelledLine {
+    std::vector<Point> points;
+    LineKind kind;
+};
+
+struct Partition {
+    std::vector<RockFace> faces;
+    std::vector<LabelledLine> lines;  // ridge and valley lines in the working CRS
+    std::string crs_wkt;
+    std::vector<std::string> notes;   // what was repaired or derived, for the log
+    tex::BBox bounds() const;
+};
+
+struct PartitionOptions {
+    std::string path;                     // OGR dataset (GeoPackage, shapefile, ...)
+    std::string faces_layer;              // "" = the first polygon layer
+    std::string lines_layer;              // "" = the first line layer (attribute labels)
+    std::string label_field = "kind";     // ridge / valley / other
+    std::string id_field;                 // "" = feature ids
+    std::string orientation_field = "orientation";  // degrees, azimuth of the hatches
+    std::string orientation_layer;        // line layer, one line per face ("" = look for one)
+    std::string density_field = "density";          // 0..1
+    std::string density_layer;            // point or polygon layer with a density field
+    bool repair = true;                   // repair invalid polygons (else refuse them)
+    double snap = 0.5;                    // ground units: boundary / line matching tolerance
+};
+
+// Reads the partition and reprojects it to the working CRS. Lines come either from a line
+// layer with a label attribute, or from layers named after their kind ("ridges",
+// "valleys", "thalwegs"...). Throws carto::Error naming the dataset, layer or field.
+Partition load_partition(const PartitionOptions& opt, const std::string& working_wkt);
+
+// Labels the boundary segments of every face from the lines, and finds the face across
+// each segment (shared by load_partition and by tools building partitions in memory).
+void label_boundaries(Partition& p, double snap);
+
+}  // namespace carto

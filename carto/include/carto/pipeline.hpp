@@ -1,0 +1,63 @@
+// The Chapter 5 pipeline as one library function: the rockhatch command, the Python module
+// and the QGIS plugin all call carto::run.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "carto/output.hpp"
+#include "carto/partition.hpp"
+#include "carto/terrain.hpp"
+
+namespace carto {
+
+struct Options {
+    std::string dem;                     // --dem
+    PartitionOptions partition;          // --partition and its layer / field options
+    std::string slope, roughness;        // optional rasters (percent, 0..1)
+    std::string style;                   // "" = default style
+    std::map<std::string, double> params;  // --param name=value
+    double scale = 10000;                // --scale (1:scale)
+    std::uint64_t seed = 0;              // --seed
+    unsigned threads = 0;                // --threads (0 = all)
+    std::vector<std::string> outputs;    // .gpkg, .svg, .png
+    bool overwrite = false;
+    int png_pixels = 1600;
+    // Hatch only the faces whose centroid lies in this box (for tiling large areas).
+    std::optional<tex::BBox> window;
+};
+
+struct Stats {
+    std::size_t faces = 0;
+    std::size_t hatches = 0;
+    double seconds = 0;
+    std::string crs;                  // working CRS name
+    std::vector<std::string> notes;   // what was repaired, derived or assumed
+};
+
+// Progress: fraction in [0, 1] and a stage name; return false to cancel.
+using Progress = std::function<bool(double, const std::string&)>;
+
+// The data a style runs on, once read and prepared.
+struct Prepared {
+    Terrain terrain;  // in the working CRS
+    Partition partition;
+    double zmin = 0, zmax = 1;
+    std::vector<std::string> notes;
+};
+
+// Validates the options that need no file (style, parameters, scale, outputs).
+void validate(const Options& o);
+// Reads the DEM (reprojected to a projected working CRS when geographic), the optional
+// rasters and the partition.
+Prepared prepare(const Options& o, const Progress& progress = {});
+// Hatches the faces (in parallel, deterministic).
+Drawing hatch(const Prepared& p, const Options& o, const Progress& progress = {});
+// Everything: validate, prepare, hatch, write.
+Stats run(const Options& o, const Progress& progress = {});
+
+}  // namespace carto

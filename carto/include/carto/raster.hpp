@@ -1,0 +1,63 @@
+// Rasters read through GDAL, as float grids with NaN for NoData, a geotransform and a CRS.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "libtex/geometry.hpp"
+
+namespace carto {
+
+using tex::BBox;
+using tex::Point;
+
+struct Raster {
+    int width = 0, height = 0;
+    std::array<double, 6> gt{0, 1, 0, 0, 0, -1};  // GDAL geotransform
+    std::string crs_wkt;                          // empty: no CRS
+    std::vector<float> data;                      // row-major, NaN = NoData
+
+    float at(int col, int row) const { return data[std::size_t(row) * width + col]; }
+    float& at(int col, int row) { return data[std::size_t(row) * width + col]; }
+    bool north_up() const { return gt[2] == 0 && gt[4] == 0; }
+    double cell_x() const { return std::abs(gt[1]); }
+    double cell_y() const { return std::abs(gt[5]); }
+    // World coordinates of a pixel position (col, row in pixel units, 0.5 = centre).
+    Point to_world(double col, double row) const {
+        return {gt[0] + col * gt[1] + row * gt[2], gt[3] + col * gt[4] + row * gt[5]};
+    }
+    Point to_pixel(const Point& w) const;  // north-up rasters only
+    BBox bounds() const;
+    // Bilinear interpolation at a world point over the four surrounding cell centres;
+    // NoData neighbours are left out and the weights renormalised. NaN outside or when all
+    // four are NoData.
+    double sample(const Point& w) const;
+    // Value of the cell containing w (NaN outside).
+    double nearest(const Point& w) const;
+    // Minimum and maximum of the valid cells (NaN, NaN when none).
+    std::pair<double, double> min_max() const;
+};
+
+// Reads band 1 of a raster. `what` names the input in error messages ("--dem").
+Raster read_raster(const std::string& path, const std::string& what);
+// Writes a Float32 GeoTIFF (deflate), NaN written as NoData (-9999 unless given).
+void write_geotiff(const Raster& r, const std::string& path, double nodata = -9999.0);
+// True when the CRS is geographic (degrees).
+bool is_geographic(const std::string& wkt);
+// WKT of an EPSG code.
+std::string epsg_wkt(int code);
+// Short "EPSG:xxxx" name when the CRS has one, else its name.
+std::string crs_name(const std::string& wkt);
+// True when both describe the same CRS.
+bool same_crs(const std::string& a, const std::string& b);
+// The UTM zone (WGS 84) containing a longitude/latitude, as an EPSG code (GeographicLib).
+int utm_epsg(double lon, double lat);
+// Reprojects a raster (bilinear, NoData kept) to a CRS, with square cells of `cell` units
+// (0: chosen by GDAL to keep the resolution).
+Raster warp(const Raster& src, const std::string& dst_wkt, double cell = 0.0);
+// Resamples `src` onto the grid of `like` (same CRS assumed or reprojected).
+Raster resample_like(const Raster& src, const Raster& like);
+
+}  // namespace carto

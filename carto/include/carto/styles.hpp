@@ -1,0 +1,76 @@
+// The rock-hatching styles: the design iterations of the seed's Fig. 5.4 (a) to (g).
+//
+// A style is a controlled arrangement (seed 5.3): given the control fields (face-wise
+// orientation and density, elevation, roughness) it returns, for one face, the hatches of
+// that face. It reads the fields only inside the face and at its boundary, so changing a
+// field in a window changes the output only near that window.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "carto/hatching.hpp"
+#include "carto/partition.hpp"
+
+namespace carto {
+
+enum class Family { Fill = 0, Ridge = 1, Valley = 2, Cross = 3 };
+inline constexpr int kFamilies = 4;
+const char* family_name(Family f);
+// Suggested stroke width on paper (mm).
+double family_width_mm(Family f);
+
+struct Hatch {
+    Polyline points;
+    bool closed = false;
+    Family family = Family::Fill;
+};
+
+struct StyleParam {
+    std::string name;
+    double value;      // default
+    std::string unit;  // "mm" (on paper, converted with the scale), "ratio", "deg"
+    std::string help;
+};
+
+struct StyleInfo {
+    std::string name;    // e.g. "bidirectional"
+    std::string figure;  // "5.4g"
+    std::string title;
+    std::vector<StyleParam> params;
+};
+
+// All built-in styles, (a) to (g); the default is the last one.
+const std::vector<StyleInfo>& styles();
+const std::string& default_style();
+// Throws carto::Error(UnknownStyle) listing the known names.
+const StyleInfo& find_style(const std::string& name);
+
+// A point -> value function (seed 5.3.1).
+using Field = std::function<double(const Point&)>;
+
+// Everything a style reads about one face.
+struct FaceControls {
+    double orientation;  // hatch direction, radians (axial)
+    double density;      // 0..1, 1 = darkest
+    double height;       // 0..1, highest point of the face's boundary in the DEM's range
+    // Density of the face across boundary segment i (NaN: none).
+    std::function<double(int)> neighbour_density;
+    // Feature id of the face across boundary segment i (-1: none).
+    std::function<std::int64_t(int)> neighbour_id;
+    Field height_field;     // 0..1 normalised elevation
+    Field roughness_field;  // 0..1
+};
+
+// Style parameters resolved to ground units (mm x scale / 1000 for "mm" parameters).
+using ParamValues = std::map<std::string, double>;
+ParamValues resolve_params(const StyleInfo& s, const std::map<std::string, double>& overrides, double scale);
+
+// The hatches of one face.
+std::vector<Hatch> hatch_face(const StyleInfo& style, const ParamValues& p, const RockFace& face,
+                              const FaceControls& c, std::uint64_t seed);
+
+}  // namespace carto

@@ -1,0 +1,231 @@
+#include "carto/output.hpp"
+
+#include <OpenImageIO/imageio.h>
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "carto/error.hpp"
+
+namespace fs = std::filesystem;
+
+namespace carto {
+namespace {
+
+// Temporary name next to the target, removed on any failure.
+struct TempFile {
+    std::string path;
+    bool keep = false;
+    explicit TempFile(const std::string& target, const std::string& ext)
+        : path(target + ".part" + ext) {
+        std::error_code ec;
+        fs::remove(path, ec);
+    }
+    void commit(const std::string& target) {
+        std::error_code ec;
+        fs::rename(path, target, ec);
+        if (ec) throw Error(Code::OutputExists, "-o '" + target + "': cannot move the result in place (" + ec.message() + ")");
+        keep = true;
+    }
+    ~TempFile() {
+        if (!keep) {
+            std::error_code ec;
+            fs::remove(path, ec);
+        }
+    }
+};
+
+void num(std::string& s, double v) {
+    char buf[64];
+    if (std::abs(v) < 5e-4 || !std::isfinite(v)) v = 0;
+    auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, 3);
+    std::size_t n = std::size_t(r.ptr - buf);
+    while (n > 0 && buf[n - 1] == '0') --n;
+    if (n > 0 && buf[n - 1] == '.') --n;
+    s.append(buf, n);
+}
+
+std::string xml_escape(const std::string& in) {
+    std::string out;
+    for (char c : in) {
+        if (c == '<') out += "&lt;";
+        else if (c == '>') out += "&gt;";
+        else if (c == '&') out += "&amp;";
+        else if (c == '"') out += "&quot;";
+        else out += c;
+    }
+    return out;
+}
+
+}  // namespace
+
+void check_output(const std::string& path, bool overwrite) {
+    const fs::path p(path);
+    const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+    if (!fs::is_directory(dir)) throw Error(Code::OutputExists, "-o '" + path + "': the folder does not exist");
+    if (fs::exists(p) && !overwrite)
+        throw Error(Code::OutputExists, "-o '" + path + "': the file exists (use --overwrite to replace it)");
+}
+
+void write_gpkg(const Drawing& d, const std::string& path) {
+    GDALAllRegister();
+    // A fixed timestamp in gpkg_contents, so that the same run writes the same bytes.
+    CPLSetConfigOption("OGR_CURRENT_DATE", "2000-01-01T00:00:00.000Z");
+    TempFile tmp(path, ".gpkg");
+    {
+        GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GPKG");
+        if (!drv) throw Error(Code::Failure, "GDAL has no GeoPackage driver");
+        std::unique_ptr<GDALDataset> ds(drv->Create(tmp.path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
+        if (!ds) throw Error(Code::OutputExists, "-o '" + path + "': cannot create (" + CPLGetLastErrorMsg() + ")");
+        OGRSpatialReference srs;
+        srs.importFromWkt(d.crs_wkt.c_str());
+        srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+        for (int fam = 0; fam < kFamilies; ++fam) {
+            const Family f = Family(fam);
+            const std::string name = std::string("hatch_") + family_name(f);
+            OGRLayer* layer = ds->CreateLayer(name.c_str(), &srs, wkbLineString, nullptr);
+            if (!layer) throw Error(Code::OutputExists, "-o '" + path + "': cannot create layer " + name);
+            OGRFieldDefn fid("face_id", OFTInteger64), ffam("family", OFTString), fsty("style", OFTString),
+                fw("width_mm", OFTReal);
+            layer->CreateField(&fid);
+            layer->CreateField(&ffam);
+            layer->CreateField(&fsty);
+            layer->CreateField(&fw);
+            ds->StartTransaction();
+            for (const auto& face : d.faces)
+                for (const auto& h : face.hatches) {
+                    if (h.family != f || h.points.size() < 2) continue;
+                    OGRFeature feat(layer->GetLayerDefn());
+                    feat.SetField("face_id", GIntBig(face.face_id));
+                    feat.SetField("family", family_name(f));
+                    feat.SetField("style", d.style.c_str());
+                    feat.SetField("width_mm", family_width_mm(f));
+                    OGRLineString ls;
+                    ls.setNumPoints(int(h.points.size() + (h.closed ? 1 : 0)));
+                    for (std::size_t i = 0; i < h.points.size(); ++i) ls.setPoint(int(i), h.points[i].x, h.points[i].y);
+                    if (h.closed) ls.setPoint(int(h.points.size()), h.points[0].x, h.points[0].y);
+                    feat.SetGeometry(&ls);
+                    if (layer->CreateFeature(&feat) != OGRERR_NONE)
+                        throw Error(Code::OutputExists, "-o '" + path + "': write failed (" + CPLGetLastErrorMsg() + ")");
+                }
+            ds->CommitTransaction();
+        }
+        // Closing the dataset flushes it; only then is it renamed.
+    }
+    tmp.commit(path);
+}
+
+void write_svg(const Drawing& d, const std::string& path) {
+    const tex::BBox b = d.bounds.empty() ? tex::BBox{0, 0, 1, 1} : d.bounds;
+    const double mm_per_unit = 1000.0 / d.scale;
+    std::string s;
+    s += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+    s += "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:rh=\"https://rockhatch.invalid/ns\" width=\"";
+    num(s, b.width() * mm_per_unit);
+    s += "mm\" height=\"";
+    num(s, b.height() * mm_per_unit);
+    s += "mm\" viewBox=\"0 0 ";
+    num(s, b.width());
+    s += " ";
+    num(s, b.height());
+    s += "\">\n<metadata>\n  <rh:georeference crs=\"" + xml_escape(crs_name(d.crs_wkt)) + "\" scale=\"";
+    num(s, d.scale);
+    s += "\" xmin=\"";
+    num(s, b.xmin);
+    s += "\" ymin=\"";
+    num(s, b.ymin);
+    s += "\" xmax=\"";
+    num(s, b.xmax);
+    s += "\" ymax=\"";
+    num(s, b.ymax);
+    s += "\" units=\"ground units of the CRS; y = ymax - svg_y, x = xmin + svg_x\" style=\"" + xml_escape(d.style) + "\"/>\n";
+    s += "  <rh:crs-wkt>" + xml_escape(d.crs_wkt) + "</rh:crs-wkt>\n</metadata>\n";
+    for (int fam = 0; fam < kFamilies; ++fam) {
+        const Family f = Family(fam);
+        s += "<g id=\"";
+        s += family_name(f);
+        s += "\" fill=\"none\" stroke=\"black\" stroke-linecap=\"round\" stroke-linejoin=\"round\" stroke-width=\"";
+        num(s, family_width_mm(f) / mm_per_unit);
+        s += "\">\n";
+        for (const auto& face : d.faces)
+            for (const auto& h : face.hatches) {
+                if (h.family != f || h.points.size() < 2) continue;
+                s += h.closed ? "<polygon points=\"" : "<polyline points=\"";
+                for (std::size_t i = 0; i < h.points.size(); ++i) {
+                    if (i) s += ' ';
+                    num(s, h.points[i].x - b.xmin);
+                    s += ',';
+                    num(s, b.ymax - h.points[i].y);
+                }
+                s += "\"/>\n";
+            }
+        s += "</g>\n";
+    }
+    s += "</svg>\n";
+    TempFile tmp(path, ".svg");
+    {
+        std::ofstream out(tmp.path, std::ios::binary);
+        out << s;
+        out.flush();
+        if (!out) throw Error(Code::OutputExists, "-o '" + path + "': write failed");
+    }
+    tmp.commit(path);
+}
+
+void write_png(const Drawing& d, const std::string& path, int pixels, const Raster* hillshade) {
+    const tex::BBox b = d.bounds.empty() ? tex::BBox{0, 0, 1, 1} : d.bounds;
+    const double upp = std::max(b.width(), b.height()) / pixels;  // ground units per pixel
+    const int w = std::max(1, int(std::ceil(b.width() / upp))), h = std::max(1, int(std::ceil(b.height() / upp)));
+    std::vector<float> img(std::size_t(w) * h, 1.0f);
+    if (hillshade) {
+        for (int r = 0; r < h; ++r)
+            for (int c = 0; c < w; ++c) {
+                const double v = hillshade->sample({b.xmin + (c + 0.5) * upp, b.ymax - (r + 0.5) * upp});
+                if (!std::isnan(v)) img[std::size_t(r) * w + c] = float(0.82 + 0.18 * v);
+            }
+    }
+    // Strokes: darken pixels by coverage of a line of the family's width (at least one pixel).
+    auto stamp = [&](double x, double y, double radius, float ink) {
+        const int c0 = int(std::floor(x - radius - 1)), c1 = int(std::ceil(x + radius + 1));
+        const int r0 = int(std::floor(y - radius - 1)), r1 = int(std::ceil(y + radius + 1));
+        for (int r = std::max(0, r0); r <= std::min(h - 1, r1); ++r)
+            for (int c = std::max(0, c0); c <= std::min(w - 1, c1); ++c) {
+                const double dist = std::hypot(c + 0.5 - x, r + 0.5 - y);
+                const double cover = std::clamp(radius + 0.5 - dist, 0.0, 1.0);
+                float& px = img[std::size_t(r) * w + c];
+                px = std::min(px, float(1.0 - ink * cover));
+            }
+    };
+    for (const auto& face : d.faces)
+        for (const auto& hh : face.hatches) {
+            const double radius = std::max(0.5, family_width_mm(hh.family) * d.scale / 1000.0 / upp / 2);
+            const std::size_t n = hh.points.size();
+            const std::size_t segs = hh.closed ? n : n - 1;
+            for (std::size_t i = 0; i < segs && n > 1; ++i) {
+                const Point a = hh.points[i], q = hh.points[(i + 1) % n];
+                const double ax = (a.x - b.xmin) / upp, ay = (b.ymax - a.y) / upp;
+                const double bx = (q.x - b.xmin) / upp, by = (b.ymax - q.y) / upp;
+                const int steps = std::max(1, int(std::ceil(std::hypot(bx - ax, by - ay) * 2)));
+                for (int k = 0; k <= steps; ++k) {
+                    const double t = double(k) / steps;
+                    stamp(ax + (bx - ax) * t, ay + (by - ay) * t, radius, 0.9f);
+                }
+            }
+        }
+    std::vector<unsigned char> bytes(img.size());
+    for (std::size_t i = 0; i < img.size(); ++i) bytes[i] = (unsigned char)std::lround(std::clamp(img[i], 0.0f, 1.0f) * 255);
+    TempFile tmp(path, ".png");
+    auto out = OIIO::ImageOutput::create(tmp.path);
+    if (!out) throw Error(Code::OutputExists, "-o '" + path + "': no PNG writer (OpenImageIO)");
+    OIIO::ImageSpec spec(w, h, 1, OIIO::TypeDesc::UINT8);
+    if (!out->open(tmp.path, spec) || !out->write_image(OIIO::TypeDesc::UINT8, bytes.data()) || !out->close())
+        throw Error(Code::OutputExists, "-o '" + path + "': cannot write the PNG (" + out->geterror() + ")");
+    tmp.commit(path);
+}
+
+}  // namespace carto

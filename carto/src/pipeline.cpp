@@ -1,0 +1,217 @@
+#include "carto/pipeline.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <atomic>
+#include <filesystem>
+#include <mutex>
+
+#include "carto/error.hpp"
+#include "libtex/parallel.hpp"
+
+namespace carto {
+namespace {
+
+std::string extension(const std::string& path) {
+    std::string e = std::filesystem::path(path).extension().string();
+    for (auto& ch : e) ch = char(std::tolower((unsigned char)ch));
+    return e;
+}
+
+bool tick(const Progress& p, double f, const std::string& stage) {
+    if (p && !p(f, stage)) throw Error(Code::Cancelled, "cancelled during " + stage);
+    return true;
+}
+
+// Mean of a raster over sample points inside a face (a lattice of about 400 points).
+template <class F>
+void for_face_samples(const RockFace& f, double cell, F&& fn) {
+    const tex::BBox& b = f.region.bbox();
+    const double step = std::max(cell, std::max(b.width(), b.height()) / 20);
+    for (double y = b.ymin + step / 2; y < b.ymax; y += step)
+        for (double x = b.xmin + step / 2; x < b.xmax; x += step)
+            if (f.region.contains({x, y})) fn(Point{x, y});
+}
+
+}  // namespace
+
+void validate(const Options& o) {
+    if (!(o.scale > 0) || !std::isfinite(o.scale))
+        throw Error(Code::Usage, "--scale: " + std::to_string(o.scale) + " is not a positive number");
+    const StyleInfo& s = find_style(o.style.empty() ? default_style() : o.style);
+    resolve_params(s, o.params, o.scale);
+    if (o.dem.empty()) throw Error(Code::Usage, "--dem is required");
+    if (o.partition.path.empty()) throw Error(Code::Usage, "--partition is required");
+    if (o.outputs.empty()) throw Error(Code::Usage, "-o is required (.gpkg, .svg or .png)");
+    if (!(o.partition.snap > 0)) throw Error(Code::Usage, "--snap must be positive");
+    for (const auto& out : o.outputs) {
+        const std::string e = extension(out);
+        if (e != ".gpkg" && e != ".svg" && e != ".png")
+            throw Error(Code::Usage, "-o '" + out + "': unknown format (use .gpkg, .svg or .png)");
+        check_output(out, o.overwrite);
+    }
+    if (o.png_pixels < 16 || o.png_pixels > 20000) throw Error(Code::Usage, "--png-size must be in 16..20000");
+}
+
+Prepared prepare(const Options& o, const Progress& progress) {
+    Prepared p;
+    tick(progress, 0.0, "reading the DEM");
+    Raster dem = read_raster(o.dem, "--dem");
+    if (dem.min_max().first != dem.min_max().first)
+        throw Error(Code::BadLayer, "--dem '" + o.dem + "': every cell is NoData");
+    if (is_geographic(dem.crs_wkt)) {
+        // Slopes need ground distances: reproject to the UTM zone of the DEM's centre with
+        // square cells of the DEM's north-south ground size.
+        const tex::BBox b = dem.bounds();
+        const int epsg = utm_epsg(b.center().x, b.center().y);
+        const double cell = dem.cell_y() * 111320.0;
+        dem = warp(dem, epsg_wkt(epsg), cell);
+        p.notes.push_back("DEM in a geographic CRS: reprojected to EPSG:" + std::to_string(epsg) + " (UTM, " +
+                          std::to_string(int(std::round(cell))) + " m cells)");
+    }
+    tick(progress, 0.08, "terrain fields");
+    p.terrain = compute_terrain(dem);
+    auto load_like = [&](const std::string& path, const char* what, Raster& target) {
+        Raster r = read_raster(path, what);
+        if (!same_crs(r.crs_wkt, dem.crs_wkt) || r.width != dem.width || r.height != dem.height || r.gt != dem.gt)
+            r = resample_like(r, dem);
+        target = std::move(r);
+    };
+    if (!o.slope.empty()) load_like(o.slope, "--slope", p.terrain.slope);
+    if (!o.roughness.empty()) {
+        load_like(o.roughness, "--roughness", p.terrain.roughness);
+        for (float v : p.terrain.roughness.data)
+            if (!std::isnan(v) && (v < -1e-6 || v > 1 + 1e-6))
+                throw Error(Code::BadLayer, "--roughness '" + o.roughness + "': values must lie in 0..1 (found " +
+                                                std::to_string(v) + ")");
+    }
+    std::tie(p.zmin, p.zmax) = dem.min_max();
+    if (!(p.zmax > p.zmin)) p.zmax = p.zmin + 1;
+
+    tick(progress, 0.15, "reading the partition");
+    p.partition = load_partition(o.partition, dem.crs_wkt);
+    for (const auto& n : p.partition.notes) p.notes.push_back(n);
+    if (!p.partition.bounds().intersects(dem.bounds()))
+        throw Error(Code::NoOverlap, "--partition '" + o.partition.path + "' does not overlap --dem '" + o.dem + "'");
+
+    // Resolve orientation and density of every face (neighbours need them too).
+    std::size_t derived_o = 0, derived_d = 0;
+    const double cell = dem.cell_x();
+    for (RockFace& f : p.partition.faces) {
+        if (!f.orientation) {
+            double sx = 0, sy = 0;
+            for_face_samples(f, cell, [&](const Point& q) {
+                const double a = p.terrain.aspect.sample(q), s = p.terrain.slope.nearest(q);
+                if (std::isnan(a) || std::isnan(s)) return;
+                sx += s * std::cos(a);
+                sy += s * std::sin(a);
+            });
+            f.orientation = (sx == 0 && sy == 0) ? 0.0 : std::atan2(sy, sx);
+            ++derived_o;
+        }
+        if (!f.density) {
+            double sum = 0;
+            int n = 0;
+            for_face_samples(f, cell, [&](const Point& q) {
+                const double h = p.terrain.hillshade.sample(q);
+                if (!std::isnan(h)) {
+                    sum += h;
+                    ++n;
+                }
+            });
+            f.density = n ? std::clamp(1.0 - sum / n, 0.0, 1.0) : 0.5;
+            ++derived_d;
+        }
+    }
+    if (derived_o)
+        p.notes.push_back("orientation of " + std::to_string(derived_o) + " face(s) derived from the terrain (mean fall line)");
+    if (derived_d)
+        p.notes.push_back("density of " + std::to_string(derived_d) + " face(s) derived from the terrain (1 - mean hillshade)");
+    return p;
+}
+
+Drawing hatch(const Prepared& p, const Options& o, const Progress& progress) {
+    const StyleInfo& style = find_style(o.style.empty() ? default_style() : o.style);
+    const ParamValues params = resolve_params(style, o.params, o.scale);
+    const Partition& part = p.partition;
+    std::vector<int> todo;
+    for (std::size_t i = 0; i < part.faces.size(); ++i) {
+        if (o.window) {
+            const Point c = part.faces[i].region.bbox().center();
+            const tex::BBox& w = *o.window;
+            // Half-open window: a face on the shared border of two tiles goes to one tile.
+            if (!(c.x >= w.xmin && c.x < w.xmax && c.y >= w.ymin && c.y < w.ymax)) continue;
+        }
+        todo.push_back(int(i));
+    }
+    Drawing d;
+    d.crs_wkt = part.crs_wkt;
+    d.style = style.name;
+    d.scale = o.scale;
+    d.faces.resize(todo.size());
+    const Raster& elev = p.terrain.elevation;
+    const Raster& rough = p.terrain.roughness;
+    const double zmin = p.zmin, zr = p.zmax - p.zmin;
+    Field height_field = [&](const Point& q) { return (elev.sample(q) - zmin) / zr; };
+    Field rough_field = [&](const Point& q) { return rough.sample(q); };
+    tex::SetThreads(o.threads);
+    std::atomic<std::size_t> done{0};
+    std::atomic<bool> cancelled{false};
+    std::mutex progress_mutex;
+    tex::parallel_for(todo.size(), [&](std::size_t k) {
+        if (cancelled) return;
+        const RockFace& f = part.faces[todo[k]];
+        FaceControls c;
+        c.orientation = *f.orientation;
+        c.density = *f.density;
+        double zmax_face = -1e300;
+        for (const auto& q : f.region.outer()) {
+            const double z = elev.sample(q);
+            if (!std::isnan(z)) zmax_face = std::max(zmax_face, z);
+        }
+        c.height = zmax_face > -1e300 ? std::clamp((zmax_face - zmin) / zr, 0.0, 1.0) : 0.5;
+        c.neighbour_density = [&](int i) {
+            const int n = f.boundary[i].neighbor;
+            return n < 0 ? std::nan("") : *part.faces[n].density;
+        };
+        c.neighbour_id = [&](int i) {
+            const int n = f.boundary[i].neighbor;
+            return n < 0 ? std::int64_t(-1) : part.faces[n].id;
+        };
+        c.height_field = height_field;
+        c.roughness_field = rough_field;
+        d.faces[k] = {f.id, hatch_face(style, params, f, c, o.seed)};
+        const std::size_t n = ++done;
+        if (progress) {
+            std::lock_guard lock(progress_mutex);
+            if (!progress(0.2 + 0.7 * double(n) / double(todo.size()), "hatching")) cancelled = true;
+        }
+    });
+    if (cancelled) throw Error(Code::Cancelled, "cancelled during hatching");
+    for (std::size_t k = 0; k < todo.size(); ++k) d.bounds.add(part.faces[todo[k]].region.bbox());
+    return d;
+}
+
+Stats run(const Options& o, const Progress& progress) {
+    const auto t0 = std::chrono::steady_clock::now();
+    validate(o);
+    Prepared p = prepare(o, progress);
+    Drawing d = hatch(p, o, progress);
+    tick(progress, 0.92, "writing");
+    for (const auto& out : o.outputs) {
+        const std::string e = extension(out);
+        if (e == ".gpkg") write_gpkg(d, out);
+        else if (e == ".svg") write_svg(d, out);
+        else write_png(d, out, o.png_pixels, &p.terrain.hillshade);
+    }
+    tick(progress, 1.0, "done");
+    Stats s;
+    s.faces = d.faces.size();
+    for (const auto& f : d.faces) s.hatches += f.hatches.size();
+    s.crs = crs_name(d.crs_wkt);
+    s.notes = p.notes;
+    s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return s;
+}
+
+}  // namespace carto

@@ -1,0 +1,261 @@
+#include "carto/raster.hpp"
+
+#include <GeographicLib/UTMUPS.hpp>
+#include <gdal_priv.h>
+#include <gdalwarper.h>
+#include <ogr_spatialref.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <memory>
+
+#include "carto/error.hpp"
+
+namespace carto {
+namespace {
+
+struct DatasetCloser {
+    void operator()(GDALDataset* d) const { GDALClose(GDALDataset::ToHandle(d)); }
+};
+using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
+
+void register_gdal() {
+    static const bool once = [] {
+        GDALAllRegister();
+        CPLSetConfigOption("CPL_LOG", "/dev/null");
+        return true;
+    }();
+    (void)once;
+}
+
+// GDAL prints its own errors to stderr; keep them quiet and turn them into messages.
+struct QuietGdal {
+    QuietGdal() { CPLPushErrorHandler(CPLQuietErrorHandler); }
+    ~QuietGdal() { CPLPopErrorHandler(); }
+};
+
+const float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+Raster from_dataset(GDALDataset& ds, const std::string& what, const std::string& path) {
+    Raster r;
+    r.width = ds.GetRasterXSize();
+    r.height = ds.GetRasterYSize();
+    if (ds.GetRasterCount() < 1 || r.width <= 0 || r.height <= 0)
+        throw Error(Code::InputMissing, what + " '" + path + "': no raster band");
+    if (ds.GetGeoTransform(r.gt.data()) != CE_None)
+        throw Error(Code::NoCrs, what + " '" + path + "': no georeferencing (geotransform)");
+    if (const OGRSpatialReference* srs = ds.GetSpatialRef()) {
+        char* wkt = nullptr;
+        const char* opts[] = {"FORMAT=WKT2_2019", nullptr};
+        srs->exportToWkt(&wkt, opts);
+        if (wkt) r.crs_wkt = wkt;
+        CPLFree(wkt);
+    }
+    GDALRasterBand* band = ds.GetRasterBand(1);
+    int has_nodata = 0;
+    const double nodata = band->GetNoDataValue(&has_nodata);
+    r.data.resize(std::size_t(r.width) * r.height);
+    if (band->RasterIO(GF_Read, 0, 0, r.width, r.height, r.data.data(), r.width, r.height, GDT_Float32,
+                       0, 0) != CE_None)
+        throw Error(Code::InputMissing, what + " '" + path + "': cannot read the pixels (" +
+                                            CPLGetLastErrorMsg() + ")");
+    const float nd = float(nodata);
+    for (float& v : r.data)
+        if (!std::isfinite(v) || (has_nodata && (v == nd || (std::isnan(nd) && std::isnan(v))))) v = kNaN;
+    return r;
+}
+
+}  // namespace
+
+Point Raster::to_pixel(const Point& w) const {
+    return {(w.x - gt[0]) / gt[1], (w.y - gt[3]) / gt[5]};
+}
+
+BBox Raster::bounds() const {
+    BBox b;
+    b.add(to_world(0, 0));
+    b.add(to_world(width, 0));
+    b.add(to_world(0, height));
+    b.add(to_world(width, height));
+    return b;
+}
+
+double Raster::sample(const Point& w) const {
+    const Point p = to_pixel(w);
+    const double fx = p.x - 0.5, fy = p.y - 0.5;
+    if (!(p.x >= 0 && p.y >= 0 && p.x <= width && p.y <= height)) return std::nan("");
+    const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
+    const double tx = fx - x0, ty = fy - y0;
+    double sum = 0, wsum = 0;
+    for (int dy = 0; dy <= 1; ++dy)
+        for (int dx = 0; dx <= 1; ++dx) {
+            const int cx = std::clamp(x0 + dx, 0, width - 1), cy = std::clamp(y0 + dy, 0, height - 1);
+            const float v = at(cx, cy);
+            if (std::isnan(v)) continue;
+            const double wgt = (dx ? tx : 1 - tx) * (dy ? ty : 1 - ty);
+            sum += wgt * v;
+            wsum += wgt;
+        }
+    if (wsum <= 1e-12) return nearest(w);
+    return sum / wsum;
+}
+
+double Raster::nearest(const Point& w) const {
+    const Point p = to_pixel(w);
+    const int c = int(std::floor(p.x)), r = int(std::floor(p.y));
+    if (c < 0 || r < 0 || c >= width || r >= height) return std::nan("");
+    return at(c, r);
+}
+
+std::pair<double, double> Raster::min_max() const {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (float v : data)
+        if (!std::isnan(v)) {
+            lo = std::min(lo, double(v));
+            hi = std::max(hi, double(v));
+        }
+    if (lo > hi) return {std::nan(""), std::nan("")};
+    return {lo, hi};
+}
+
+Raster read_raster(const std::string& path, const std::string& what) {
+    register_gdal();
+    if (!std::filesystem::exists(path))
+        throw Error(Code::InputMissing, what + " '" + path + "': no such file");
+    QuietGdal quiet;
+    DatasetPtr ds(GDALDataset::FromHandle(GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY,
+                                                     nullptr, nullptr, nullptr)));
+    if (!ds) throw Error(Code::InputMissing, what + " '" + path + "': not a raster GDAL can read");
+    Raster r = from_dataset(*ds, what, path);
+    if (r.crs_wkt.empty()) throw Error(Code::NoCrs, what + " '" + path + "': the raster has no CRS");
+    if (!r.north_up())
+        throw Error(Code::BadLayer, what + " '" + path + "': rotated rasters are not supported");
+    return r;
+}
+
+void write_geotiff(const Raster& r, const std::string& path, double nodata) {
+    register_gdal();
+    QuietGdal quiet;
+    GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
+    const char* opts[] = {"COMPRESS=DEFLATE", "PREDICTOR=3", "TILED=YES", nullptr};
+    const std::string tmp = path + ".tmp.tif";
+    {
+        DatasetPtr ds(drv->Create(tmp.c_str(), r.width, r.height, 1, GDT_Float32, const_cast<char**>(opts)));
+        if (!ds) throw Error(Code::OutputExists, "'" + path + "': cannot create (" + CPLGetLastErrorMsg() + ")");
+        ds->SetGeoTransform(const_cast<double*>(r.gt.data()));
+        if (!r.crs_wkt.empty()) {
+            OGRSpatialReference srs;
+            srs.importFromWkt(r.crs_wkt.c_str());
+            ds->SetSpatialRef(&srs);
+        }
+        std::vector<float> buf(r.data);
+        for (float& v : buf)
+            if (std::isnan(v)) v = float(nodata);
+        GDALRasterBand* b = ds->GetRasterBand(1);
+        b->SetNoDataValue(nodata);
+        if (b->RasterIO(GF_Write, 0, 0, r.width, r.height, buf.data(), r.width, r.height, GDT_Float32, 0, 0) !=
+            CE_None)
+            throw Error(Code::OutputExists, "'" + path + "': write failed");
+    }
+    std::filesystem::rename(tmp, path);
+}
+
+bool is_geographic(const std::string& wkt) {
+    OGRSpatialReference srs;
+    if (srs.importFromWkt(wkt.c_str()) != OGRERR_NONE) return false;
+    return srs.IsGeographic();
+}
+
+std::string epsg_wkt(int code) {
+    OGRSpatialReference srs;
+    if (srs.importFromEPSG(code) != OGRERR_NONE)
+        throw Error(Code::NoCrs, "EPSG:" + std::to_string(code) + " is not a CRS PROJ knows");
+    char* wkt = nullptr;
+    const char* opts[] = {"FORMAT=WKT2_2019", nullptr};
+    srs.exportToWkt(&wkt, opts);
+    std::string out = wkt ? wkt : "";
+    CPLFree(wkt);
+    return out;
+}
+
+std::string crs_name(const std::string& wkt) {
+    OGRSpatialReference srs;
+    if (srs.importFromWkt(wkt.c_str()) != OGRERR_NONE) return "unknown CRS";
+    srs.AutoIdentifyEPSG();
+    const char* auth = srs.GetAuthorityName(nullptr);
+    const char* code = srs.GetAuthorityCode(nullptr);
+    if (auth && code) return std::string(auth) + ":" + code;
+    const char* name = srs.GetName();
+    return name ? name : "unnamed CRS";
+}
+
+bool same_crs(const std::string& a, const std::string& b) {
+    OGRSpatialReference sa, sb;
+    if (sa.importFromWkt(a.c_str()) != OGRERR_NONE || sb.importFromWkt(b.c_str()) != OGRERR_NONE) return false;
+    const char* opts[] = {"IGNORE_DATA_AXIS_TO_SRS_AXIS_MAPPING=YES", "CRITERION=EQUIVALENT_EXCEPT_AXIS_ORDER_GEOGCRS", nullptr};
+    return sa.IsSame(&sb, opts);
+}
+
+int utm_epsg(double lon, double lat) {
+    const int zone = GeographicLib::UTMUPS::StandardZone(lat, lon);
+    if (zone == GeographicLib::UTMUPS::UPS)
+        throw Error(Code::NoCrs, "the DEM lies in a polar region (UPS), give a projected DEM");
+    return (lat >= 0 ? 32600 : 32700) + zone;
+}
+
+Raster warp(const Raster& src, const std::string& dst_wkt, double cell) {
+    register_gdal();
+    QuietGdal quiet;
+    GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
+    DatasetPtr in(mem->Create("", src.width, src.height, 1, GDT_Float32, nullptr));
+    in->SetGeoTransform(const_cast<double*>(src.gt.data()));
+    OGRSpatialReference srs;
+    srs.importFromWkt(src.crs_wkt.c_str());
+    in->SetSpatialRef(&srs);
+    GDALRasterBand* b = in->GetRasterBand(1);
+    b->SetNoDataValue(std::nan(""));
+    std::vector<float> buf(src.data);
+    if (b->RasterIO(GF_Write, 0, 0, src.width, src.height, buf.data(), src.width, src.height, GDT_Float32, 0, 0) != CE_None)
+        throw Error(Code::Failure, "cannot copy the raster for reprojection");
+
+    GDALWarpOptions* wo = GDALCreateWarpOptions();
+    wo->eResampleAlg = GRA_Bilinear;
+    wo->papszWarpOptions = CSLSetNameValue(wo->papszWarpOptions, "INIT_DEST", "NO_DATA");
+    DatasetPtr vrt(GDALDataset::FromHandle(GDALAutoCreateWarpedVRTEx(
+        GDALDataset::ToHandle(in.get()), src.crs_wkt.c_str(), dst_wkt.c_str(), GRA_Bilinear, 0.0, wo, nullptr)));
+    GDALDestroyWarpOptions(wo);
+    if (!vrt) throw Error(Code::NoCrs, std::string("cannot reproject the raster: ") + CPLGetLastErrorMsg());
+    Raster out = from_dataset(*vrt, "warp", "");
+    if (cell > 0) {
+        // Resample to square cells of the requested size over the same extent.
+        Raster target;
+        const BBox bb = out.bounds();
+        target.width = std::max(1, int(std::ceil(bb.width() / cell)));
+        target.height = std::max(1, int(std::ceil(bb.height() / cell)));
+        target.gt = {bb.xmin, cell, 0, bb.ymax, 0, -cell};
+        target.crs_wkt = dst_wkt;
+        target.data.assign(std::size_t(target.width) * target.height, kNaN);
+        for (int r = 0; r < target.height; ++r)
+            for (int c = 0; c < target.width; ++c) target.at(c, r) = float(out.sample(target.to_world(c + 0.5, r + 0.5)));
+        target.crs_wkt = dst_wkt;
+        return target;
+    }
+    out.crs_wkt = dst_wkt;
+    return out;
+}
+
+}  // namespace carto
+
+namespace carto {
+
+Raster resample_like(const Raster& src0, const Raster& like) {
+    const Raster src = same_crs(src0.crs_wkt, like.crs_wkt) ? src0 : warp(src0, like.crs_wkt);
+    Raster out = like;
+    for (int r = 0; r < like.height; ++r)
+        for (int c = 0; c < like.width; ++c) out.at(c, r) = float(src.sample(like.to_world(c + 0.5, r + 0.5)));
+    return out;
+}
+
+}  // namespace carto

@@ -1,0 +1,72 @@
+#include "carto/terrain.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace carto {
+
+Terrain compute_terrain(const Raster& dem) {
+    Terrain t;
+    t.elevation = dem;
+    t.slope = t.aspect = t.roughness = t.hillshade = dem;
+    const int w = dem.width, h = dem.height;
+    const double dx = dem.cell_x(), dy = dem.cell_y();
+    // Illumination from the north-west (azimuth 315, altitude 45), the map convention.
+    const double az = (360.0 - 315.0 + 90.0) * M_PI / 180.0;  // as a math angle
+    const double alt = 45.0 * M_PI / 180.0;
+    const double lx = std::cos(alt) * std::cos(az), ly = std::cos(alt) * std::sin(az), lz = std::sin(alt);
+    std::vector<float> nx(dem.data.size(), NAN), ny(dem.data.size(), NAN), nz(dem.data.size(), NAN);
+    auto z = [&](int c, int r, float centre) {
+        c = std::clamp(c, 0, w - 1);
+        r = std::clamp(r, 0, h - 1);
+        const float v = dem.at(c, r);
+        return std::isnan(v) ? centre : v;  // NoData neighbours take the centre's value
+    };
+    for (int r = 0; r < h; ++r)
+        for (int c = 0; c < w; ++c) {
+            const float z0 = dem.at(c, r);
+            const std::size_t i = std::size_t(r) * w + c;
+            if (std::isnan(z0)) {
+                t.slope.data[i] = t.aspect.data[i] = t.hillshade.data[i] = NAN;
+                continue;
+            }
+            const double a = z(c - 1, r - 1, z0), b = z(c, r - 1, z0), cc = z(c + 1, r - 1, z0);
+            const double d = z(c - 1, r, z0), f = z(c + 1, r, z0);
+            const double g = z(c - 1, r + 1, z0), hh = z(c, r + 1, z0), ii = z(c + 1, r + 1, z0);
+            // Horn: east and north gradients (rows go south).
+            const double dzdx = ((cc + 2 * f + ii) - (a + 2 * d + g)) / (8 * dx);
+            const double dzdy = ((a + 2 * b + cc) - (g + 2 * hh + ii)) / (8 * dy);
+            const double grad = std::hypot(dzdx, dzdy);
+            t.slope.data[i] = float(100.0 * grad);
+            t.aspect.data[i] = grad > 0 ? float(std::atan2(-dzdy, -dzdx)) : NAN;
+            const double n = std::sqrt(dzdx * dzdx + dzdy * dzdy + 1);
+            nx[i] = float(-dzdx / n);
+            ny[i] = float(-dzdy / n);
+            nz[i] = float(1 / n);
+            t.hillshade.data[i] = float(std::max(0.0, (nx[i] * lx + ny[i] * ly + nz[i] * lz)));
+        }
+    // Vector ruggedness: 1 - |mean unit normal| over the 3x3 window (0 flat or planar, up to 1).
+    for (int r = 0; r < h; ++r)
+        for (int c = 0; c < w; ++c) {
+            const std::size_t i = std::size_t(r) * w + c;
+            if (std::isnan(nz[i])) {
+                t.roughness.data[i] = NAN;
+                continue;
+            }
+            double sx = 0, sy = 0, sz = 0;
+            int n = 0;
+            for (int rr = std::max(0, r - 1); rr <= std::min(h - 1, r + 1); ++rr)
+                for (int cc = std::max(0, c - 1); cc <= std::min(w - 1, c + 1); ++cc) {
+                    const std::size_t j = std::size_t(rr) * w + cc;
+                    if (std::isnan(nz[j])) continue;
+                    sx += nx[j];
+                    sy += ny[j];
+                    sz += nz[j];
+                    ++n;
+                }
+            t.roughness.data[i] = float(1.0 - std::sqrt(sx * sx + sy * sy + sz * sz) / n);
+        }
+    return t;
+}
+
+}  // namespace carto
