@@ -10,8 +10,11 @@ PACKAGES=(
   build-essential cmake ninja-build pkg-config
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev   # libtex: exact planar maps
   libtinyxml2-dev                                   # libtex: SVG import
+  libgdal-dev gdal-bin libproj-dev proj-bin         # carto: rasters, vectors, CRSs
+  libgeographiclib-dev                              # carto: UTM zone of geographic DEMs
+  libopenimageio-dev                                # carto: PNG previews
   libgtest-dev                                      # C++ tests
-  python3 python3-pytest                            # Python tests (Debian's interpreter)
+  python3 python3-pytest python3-gdal python3-numpy # Python tests (Debian's interpreter)
   librsvg2-bin                                      # PNG previews of the SVG outputs
 )
 

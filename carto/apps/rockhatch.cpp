@@ -98,6 +98,8 @@ std::vector<Option> options(carto::Options& o, bool& quiet, bool& list_styles, b
          }},
         {"--png-size", "PIXELS", "width of PNG previews (default 1600)",
          [&](const std::string& v) { o.png_pixels = int(parse_uint("--png-size", v)); }},
+        {"--no-spatial-index", nullptr, "write the GeoPackage without its R-tree (much faster for millions of hatches)",
+         [&](const std::string&) { o.spatial_index = false; }},
         {"--overwrite", nullptr, "replace existing outputs", [&](const std::string&) { o.overwrite = true; }},
         {"-q", nullptr, "quiet: no progress bar", [&](const std::string&) { quiet = true; }},
         {"--list-styles", nullptr, "list the styles, their parameters and defaults", [&](const std::string&) { list_styles = true; }},

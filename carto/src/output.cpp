@@ -5,6 +5,7 @@
 #include <ogrsf_frmts.h>
 
 #include <charconv>
+#include <cstdlib>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -72,7 +73,7 @@ void check_output(const std::string& path, bool overwrite) {
         throw Error(Code::OutputExists, "-o '" + path + "': the file exists (use --overwrite to replace it)");
 }
 
-void write_gpkg(const Drawing& d, const std::string& path) {
+void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index) {
     GDALAllRegister();
     // A fixed timestamp in gpkg_contents, so that the same run writes the same bytes.
     CPLSetConfigOption("OGR_CURRENT_DATE", "2000-01-01T00:00:00.000Z");
@@ -80,6 +81,9 @@ void write_gpkg(const Drawing& d, const std::string& path) {
     {
         GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GPKG");
         if (!drv) throw Error(Code::Failure, "GDAL has no GeoPackage driver");
+        // The file is a temporary one renamed at the end, so SQLite need not journal or sync.
+        CPLSetConfigOption("OGR_SQLITE_SYNCHRONOUS", "OFF");
+        CPLSetConfigOption("OGR_SQLITE_JOURNAL", "OFF");
         std::unique_ptr<GDALDataset> ds(drv->Create(tmp.path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
         if (!ds) throw Error(Code::OutputExists, "-o '" + path + "': cannot create (" + CPLGetLastErrorMsg() + ")");
         OGRSpatialReference srs;
@@ -88,7 +92,10 @@ void write_gpkg(const Drawing& d, const std::string& path) {
         for (int fam = 0; fam < kFamilies; ++fam) {
             const Family f = Family(fam);
             const std::string name = std::string("hatch_") + family_name(f);
-            OGRLayer* layer = ds->CreateLayer(name.c_str(), &srs, wkbLineString, nullptr);
+            // SQLite builds the R-tree row by row; with GDAL 3.6 that is most of the time spent
+            // writing a large drawing, hence the option to leave it out.
+            const char* lco[] = {spatial_index ? "SPATIAL_INDEX=YES" : "SPATIAL_INDEX=NO", nullptr};
+            OGRLayer* layer = ds->CreateLayer(name.c_str(), &srs, wkbLineString, const_cast<char**>(lco));
             if (!layer) throw Error(Code::OutputExists, "-o '" + path + "': cannot create layer " + name);
             OGRFieldDefn fid("face_id", OFTInteger64), ffam("family", OFTString), fsty("style", OFTString),
                 fw("width_mm", OFTReal);
@@ -97,19 +104,20 @@ void write_gpkg(const Drawing& d, const std::string& path) {
             layer->CreateField(&fsty);
             layer->CreateField(&fw);
             ds->StartTransaction();
+            OGRFeature feat(layer->GetLayerDefn());
+            feat.SetField(1, family_name(f));
+            feat.SetField(2, d.style.c_str());
+            feat.SetField(3, family_width_mm(f));
             for (const auto& face : d.faces)
                 for (const auto& h : face.hatches) {
                     if (h.family != f || h.points.size() < 2) continue;
-                    OGRFeature feat(layer->GetLayerDefn());
-                    feat.SetField("face_id", GIntBig(face.face_id));
-                    feat.SetField("family", family_name(f));
-                    feat.SetField("style", d.style.c_str());
-                    feat.SetField("width_mm", family_width_mm(f));
-                    OGRLineString ls;
-                    ls.setNumPoints(int(h.points.size() + (h.closed ? 1 : 0)));
-                    for (std::size_t i = 0; i < h.points.size(); ++i) ls.setPoint(int(i), h.points[i].x, h.points[i].y);
-                    if (h.closed) ls.setPoint(int(h.points.size()), h.points[0].x, h.points[0].y);
-                    feat.SetGeometry(&ls);
+                    feat.SetFID(OGRNullFID);
+                    feat.SetField(0, GIntBig(face.face_id));
+                    auto* ls = new OGRLineString();
+                    ls->setNumPoints(int(h.points.size() + (h.closed ? 1 : 0)), FALSE);
+                    for (std::size_t i = 0; i < h.points.size(); ++i) ls->setPoint(int(i), h.points[i].x, h.points[i].y);
+                    if (h.closed) ls->setPoint(int(h.points.size()), h.points[0].x, h.points[0].y);
+                    feat.SetGeometryDirectly(ls);
                     if (layer->CreateFeature(&feat) != OGRERR_NONE)
                         throw Error(Code::OutputExists, "-o '" + path + "': write failed (" + CPLGetLastErrorMsg() + ")");
                 }

@@ -49,7 +49,10 @@ struct Reprojector {
 
 Reprojector reprojector(OGRLayer* layer, const std::string& working_wkt, const std::string& what) {
     const OGRSpatialReference* srs = layer->GetSpatialRef();
-    if (!srs) throw Error(Code::NoCrs, what + ": layer '" + layer->GetName() + "' has no CRS");
+    // GeoPackage layers without a CRS report an "Undefined" placeholder.
+    const char* name = srs ? srs->GetName() : nullptr;
+    if (!srs || srs->IsEmpty() || (name && std::string(name).find("Undefined") != std::string::npos))
+        throw Error(Code::NoCrs, what + ": layer '" + layer->GetName() + "' has no CRS");
     OGRSpatialReference dst;
     dst.importFromWkt(working_wkt.c_str());
     dst.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);

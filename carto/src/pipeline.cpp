@@ -200,7 +200,7 @@ Stats run(const Options& o, const Progress& progress) {
     tick(progress, 0.92, "writing");
     for (const auto& out : o.outputs) {
         const std::string e = extension(out);
-        if (e == ".gpkg") write_gpkg(d, out);
+        if (e == ".gpkg") write_gpkg(d, out, o.spatial_index);
         else if (e == ".svg") write_svg(d, out);
         else write_png(d, out, o.png_pixels, &p.terrain.hillshade);
     }

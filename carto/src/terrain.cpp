@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 namespace carto {
 
@@ -16,11 +17,18 @@ Terrain compute_terrain(const Raster& dem) {
     const double alt = 45.0 * M_PI / 180.0;
     const double lx = std::cos(alt) * std::cos(az), ly = std::cos(alt) * std::sin(az), lz = std::sin(alt);
     std::vector<float> nx(dem.data.size(), NAN), ny(dem.data.size(), NAN), nz(dem.data.size(), NAN);
-    auto z = [&](int c, int r, float centre) {
-        c = std::clamp(c, 0, w - 1);
-        r = std::clamp(r, 0, h - 1);
-        const float v = dem.at(c, r);
-        return std::isnan(v) ? centre : v;  // NoData neighbours take the centre's value
+    // A missing neighbour (raster edge or NoData) is extrapolated linearly through the
+    // centre from the opposite neighbour (or, at a corner, from its two sides), so planes keep
+    // their exact slope up to the edge; with nothing to extrapolate from it takes the centre's
+    // value.
+    auto valid = [&](int c, int r) { return c >= 0 && r >= 0 && c < w && r < h && !std::isnan(dem.at(c, r)); };
+    std::function<double(int, int, int, int)> z = [&](int c0, int r0, int dc, int dr) -> double {
+        const double centre = dem.at(c0, r0);
+        if (valid(c0 + dc, r0 + dr)) return dem.at(c0 + dc, r0 + dr);
+        if (valid(c0 - dc, r0 - dr)) return 2 * centre - dem.at(c0 - dc, r0 - dr);
+        // A corner: sum of the two steps when both exist (exact on planes).
+        if (dc != 0 && dr != 0) return z(c0, r0, dc, 0) + z(c0, r0, 0, dr) - centre;
+        return centre;
     };
     for (int r = 0; r < h; ++r)
         for (int c = 0; c < w; ++c) {
@@ -30,9 +38,9 @@ Terrain compute_terrain(const Raster& dem) {
                 t.slope.data[i] = t.aspect.data[i] = t.hillshade.data[i] = NAN;
                 continue;
             }
-            const double a = z(c - 1, r - 1, z0), b = z(c, r - 1, z0), cc = z(c + 1, r - 1, z0);
-            const double d = z(c - 1, r, z0), f = z(c + 1, r, z0);
-            const double g = z(c - 1, r + 1, z0), hh = z(c, r + 1, z0), ii = z(c + 1, r + 1, z0);
+            const double a = z(c, r, -1, -1), b = z(c, r, 0, -1), cc = z(c, r, 1, -1);
+            const double d = z(c, r, -1, 0), f = z(c, r, 1, 0);
+            const double g = z(c, r, -1, 1), hh = z(c, r, 0, 1), ii = z(c, r, 1, 1);
             // Horn: east and north gradients (rows go south).
             const double dzdx = ((cc + 2 * f + ii) - (a + 2 * d + g)) / (8 * dx);
             const double dzdy = ((a + 2 * b + cc) - (g + 2 * hh + ii)) / (8 * dy);

@@ -24,7 +24,7 @@ struct Drawing {
     tex::BBox bounds;  // extent of the drawing in the working CRS
 };
 
-void write_gpkg(const Drawing& d, const std::string& path);
+void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index = true);
 void write_svg(const Drawing& d, const std::string& path);
 // A PNG preview `pixels` wide, over a light hillshade when one is given.
 void write_png(const Drawing& d, const std::string& path, int pixels, const Raster* hillshade);

@@ -27,6 +27,7 @@ struct Options {
     std::vector<std::string> outputs;    // .gpkg, .svg, .png
     bool overwrite = false;
     int png_pixels = 1600;
+    bool spatial_index = true;           // R-tree in the GeoPackage
     // Hatch only the faces whose centroid lies in this box (for tiling large areas).
     std::optional<tex::BBox> window;
 };

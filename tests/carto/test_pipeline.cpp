@@ -1,0 +1,257 @@
+// The pipeline on the bundled sample: hatches respect ridges and valleys, follow the density
+// and orientation fields, are local, tile exactly and do not depend on the thread count.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "carto/error.hpp"
+#include "carto/pipeline.hpp"
+
+using namespace carto;
+
+namespace {
+
+Options sample_options(const std::string& style) {
+    Options o;
+    o.dem = std::string(RH_SAMPLE_DIR) + "/dem.tif";
+    o.partition.path = std::string(RH_SAMPLE_DIR) + "/partition.gpkg";
+    o.style = style;
+    o.threads = 2;
+    return o;
+}
+
+const Prepared& sample() {
+    static const Prepared p = prepare(sample_options(""));
+    return p;
+}
+
+// A real crossing: each segment's ends lie on opposite sides of the other's line, more than
+// a millimetre away (clipped hatches end on the face border, within rounding).
+bool proper_cross(const Point& a, const Point& b, const Point& c, const Point& d) {
+    const double tol = 1e-3;
+    const double lab = tex::norm(b - a), lcd = tex::norm(d - c);
+    if (lab == 0 || lcd == 0) return false;
+    const double d1 = tex::cross(b - a, c - a) / lab, d2 = tex::cross(b - a, d - a) / lab;
+    const double d3 = tex::cross(d - c, a - c) / lcd, d4 = tex::cross(d - c, b - c) / lcd;
+    return ((d1 > tol && d2 < -tol) || (d1 < -tol && d2 > tol)) && ((d3 > tol && d4 < -tol) || (d3 < -tol && d4 > tol));
+}
+
+double fill_length(const FaceHatches& f) {
+    double l = 0;
+    for (const auto& h : f.hatches)
+        if (h.family == Family::Fill)
+            for (std::size_t i = 0; i + 1 < h.points.size(); ++i) l += tex::distance(h.points[i], h.points[i + 1]);
+    return l;
+}
+
+std::vector<double> ranks(const std::vector<double>& v) {
+    std::vector<std::size_t> idx(v.size());
+    std::iota(idx.begin(), idx.end(), 0);
+    std::sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) { return v[a] < v[b]; });
+    std::vector<double> r(v.size());
+    for (std::size_t i = 0; i < idx.size();) {
+        std::size_t j = i;
+        while (j + 1 < idx.size() && v[idx[j + 1]] == v[idx[i]]) ++j;
+        for (std::size_t k = i; k <= j; ++k) r[idx[k]] = (i + j) / 2.0;
+        i = j + 1;
+    }
+    return r;
+}
+
+double spearman(const std::vector<double>& a, const std::vector<double>& b) {
+    const auto ra = ranks(a), rb = ranks(b);
+    const double ma = std::accumulate(ra.begin(), ra.end(), 0.0) / ra.size();
+    const double mb = std::accumulate(rb.begin(), rb.end(), 0.0) / rb.size();
+    double num = 0, da = 0, db = 0;
+    for (std::size_t i = 0; i < ra.size(); ++i) {
+        num += (ra[i] - ma) * (rb[i] - mb);
+        da += (ra[i] - ma) * (ra[i] - ma);
+        db += (rb[i] - mb) * (rb[i] - mb);
+    }
+    return num / std::sqrt(da * db);
+}
+
+const RockFace& face_by_id(const Partition& p, std::int64_t id) {
+    for (const auto& f : p.faces)
+        if (f.id == id) return f;
+    throw std::runtime_error("no face");
+}
+
+}  // namespace
+
+TEST(Pipeline, SampleHasLabelledBorders) {
+    const Partition& p = sample().partition;
+    ASSERT_EQ(p.faces.size(), 20u);
+    for (const auto& f : p.faces) {
+        int ridge = 0, valley = 0, neighbours = 0;
+        for (const auto& s : f.boundary) {
+            ridge += s.kind == LineKind::Ridge;
+            valley += s.kind == LineKind::Valley;
+            neighbours += s.neighbor >= 0;
+        }
+        EXPECT_GT(ridge, 0) << "face " << f.id;
+        EXPECT_GT(valley, 0) << "face " << f.id;
+        EXPECT_GT(neighbours, 0) << "face " << f.id;
+        EXPECT_TRUE(f.orientation.has_value());
+        EXPECT_TRUE(f.density.has_value());
+    }
+}
+
+TEST(Pipeline, NoHatchCrossesARidgeOrValleyOfItsFace) {
+    for (const char* style : {"noisy", "bidirectional"}) {
+        const Drawing d = hatch(sample(), sample_options(style));
+        const Partition& p = sample().partition;
+        std::size_t checked = 0;
+        for (const auto& fh : d.faces) {
+            const RockFace& f = face_by_id(p, fh.face_id);
+            for (const auto& h : fh.hatches) {
+                if (h.family == Family::Valley) continue;  // valleys are drawn on the line itself
+                for (std::size_t i = 0; i + 1 < h.points.size(); ++i)
+                    for (const auto& s : f.boundary) {
+                        if (s.kind == LineKind::Other) continue;
+                        ASSERT_FALSE(proper_cross(h.points[i], h.points[i + 1], s.a, s.b))
+                            << style << " face " << f.id << " hatch crosses a " << kind_name(s.kind);
+                        ++checked;
+                    }
+            }
+        }
+        EXPECT_GT(checked, 100000u);
+    }
+}
+
+TEST(Pipeline, HatchDensityFollowsTheDensityField) {
+    const Drawing d = hatch(sample(), sample_options("noisy"));
+    std::vector<double> measured, wanted;
+    for (const auto& fh : d.faces) {
+        const RockFace& f = face_by_id(sample().partition, fh.face_id);
+        measured.push_back(fill_length(fh) / f.region.area());
+        wanted.push_back(*f.density);
+    }
+    EXPECT_GE(spearman(measured, wanted), 0.9);
+}
+
+TEST(Pipeline, HatchDirectionsFollowTheOrientationField) {
+    const Drawing d = hatch(sample(), sample_options("noisy"));
+    std::vector<double> errors;
+    for (const auto& fh : d.faces) {
+        const double theta = *face_by_id(sample().partition, fh.face_id).orientation;
+        for (const auto& h : fh.hatches) {
+            if (h.family != Family::Fill) continue;
+            const Point a = h.points.front(), b = h.points.back();
+            if (tex::distance(a, b) < 1e-6) continue;
+            double e = std::fmod(std::abs(std::atan2(b.y - a.y, b.x - a.x) - theta), M_PI);
+            errors.push_back(std::min(e, M_PI - e) * 180 / M_PI);
+        }
+    }
+    ASSERT_GT(errors.size(), 1000u);
+    std::nth_element(errors.begin(), errors.begin() + errors.size() / 2, errors.end());
+    EXPECT_LT(errors[errors.size() / 2], 5.0);
+}
+
+TEST(Pipeline, ChangingAFieldInAWindowChangesOnlyNearby) {
+    Prepared changed = sample();
+    // Make the terrain very rough in a 150 m box.
+    const tex::BBox win{1004300, 6540100, 1004450, 6540250};
+    Raster& r = changed.terrain.roughness;
+    for (int y = 0; y < r.height; ++y)
+        for (int x = 0; x < r.width; ++x)
+            if (win.contains(r.to_world(x + 0.5, y + 0.5))) r.at(x, y) = 0.5f;
+    const Options o = sample_options("bidirectional");
+    const Drawing before = hatch(sample(), o), after = hatch(changed, o);
+    ASSERT_EQ(before.faces.size(), after.faces.size());
+    int changed_faces = 0;
+    for (std::size_t i = 0; i < before.faces.size(); ++i) {
+        const auto& a = before.faces[i].hatches;
+        const auto& b = after.faces[i].hatches;
+        bool same = a.size() == b.size();
+        for (std::size_t k = 0; same && k < a.size(); ++k) same = a[k].points == b[k].points && a[k].family == b[k].family;
+        const RockFace& f = face_by_id(sample().partition, before.faces[i].face_id);
+        if (!same) {
+            ++changed_faces;
+            // Only faces meeting the window (plus one coarse cell of margin) may change.
+            EXPECT_TRUE(f.region.bbox().intersects(win.expanded(60))) << "face " << f.id << " changed far away";
+            // And within such a face, only hatches near the window.
+            for (const auto& h : b)
+                if (std::find_if(a.begin(), a.end(), [&](const Hatch& x) { return x.points == h.points; }) == a.end())
+                    for (const auto& q : h.points) EXPECT_TRUE(win.expanded(60).contains(q));
+        }
+    }
+    EXPECT_GT(changed_faces, 0);
+}
+
+TEST(Pipeline, TwoHalvesGiveTheSameHatchesAsTheWhole) {
+    Options o = sample_options("bidirectional");
+    const Drawing whole = hatch(sample(), o);
+    const tex::BBox b = sample().partition.bounds();
+    const double mid = b.center().x;
+    o.window = tex::BBox{b.xmin - 1, b.ymin - 1, mid, b.ymax + 1};
+    const Drawing left = hatch(sample(), o);
+    o.window = tex::BBox{mid, b.ymin - 1, b.xmax + 1, b.ymax + 1};
+    const Drawing right = hatch(sample(), o);
+    EXPECT_GT(left.faces.size(), 0u);
+    EXPECT_GT(right.faces.size(), 0u);
+    ASSERT_EQ(left.faces.size() + right.faces.size(), whole.faces.size());
+    std::map<std::int64_t, const FaceHatches*> parts;
+    for (const auto& f : left.faces) parts[f.face_id] = &f;
+    for (const auto& f : right.faces) parts[f.face_id] = &f;
+    for (const auto& f : whole.faces) {
+        ASSERT_TRUE(parts.count(f.face_id));
+        const auto& h = parts[f.face_id]->hatches;
+        ASSERT_EQ(h.size(), f.hatches.size());
+        for (std::size_t k = 0; k < h.size(); ++k) EXPECT_EQ(h[k].points, f.hatches[k].points);
+    }
+}
+
+TEST(Pipeline, SameHatchesWithOneOrTwoThreads) {
+    Options o = sample_options("bidirectional");
+    o.threads = 1;
+    const Drawing one = hatch(sample(), o);
+    o.threads = 2;
+    const Drawing two = hatch(sample(), o);
+    ASSERT_EQ(one.faces.size(), two.faces.size());
+    for (std::size_t i = 0; i < one.faces.size(); ++i) {
+        ASSERT_EQ(one.faces[i].hatches.size(), two.faces[i].hatches.size());
+        for (std::size_t k = 0; k < one.faces[i].hatches.size(); ++k)
+            EXPECT_EQ(one.faces[i].hatches[k].points, two.faces[i].hatches[k].points);
+    }
+}
+
+TEST(Pipeline, RidgeShapesFallIntoTheDarkerFace) {
+    const Drawing d = hatch(sample(), sample_options("ridge-triangles"));
+    const Partition& p = sample().partition;
+    int with_triangles = 0;
+    for (const auto& fh : d.faces) {
+        const RockFace& f = face_by_id(p, fh.face_id);
+        const bool has = std::any_of(fh.hatches.begin(), fh.hatches.end(), [](const Hatch& h) { return h.family == Family::Ridge; });
+        if (!has) continue;
+        ++with_triangles;
+        // The face is darker than the face across at least one of its ridges.
+        bool darker = false;
+        for (const auto& s : f.boundary)
+            if (s.kind == LineKind::Ridge && s.neighbor >= 0 && *f.density > *p.faces[s.neighbor].density) darker = true;
+        EXPECT_TRUE(darker) << "face " << f.id;
+    }
+    EXPECT_GT(with_triangles, 3);
+}
+
+TEST(Pipeline, StylesAndParameters) {
+    EXPECT_EQ(styles().size(), 7u);
+    EXPECT_EQ(default_style(), "bidirectional");
+    EXPECT_EQ(find_style("5.4a").name, "noisy");
+    EXPECT_EQ(find_style("c").name, "density-cells");
+    try {
+        find_style("watercolour");
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), Code::UnknownStyle);
+        EXPECT_NE(std::string(e.what()).find("'watercolour'"), std::string::npos);
+    }
+    // Millimetres on paper become ground units at the scale.
+    const ParamValues v = resolve_params(find_style("noisy"), {{"spacing_min", 0.5}}, 25000);
+    EXPECT_DOUBLE_EQ(v.at("spacing_min"), 12.5);
+    EXPECT_DOUBLE_EQ(v.at("spacing_max"), 1.5 * 25);
+    EXPECT_THROW(resolve_params(find_style("noisy"), {{"spacing_min", -1}}, 10000), Error);
+    EXPECT_THROW(resolve_params(find_style("noisy"), {{"peak_spacing", 1}}, 10000), Error);
+}

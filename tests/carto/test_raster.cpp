@@ -1,0 +1,144 @@
+// Rasters: bilinear sampling, NoData, reading errors, reprojection.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "carto/error.hpp"
+#include "carto/raster.hpp"
+#include "carto/terrain.hpp"
+
+using namespace carto;
+
+namespace {
+
+Raster plane(int w, int h, double cell, double a, double b, double c) {
+    Raster r;
+    r.width = w;
+    r.height = h;
+    r.gt = {1000, cell, 0, 2000, 0, -cell};
+    r.crs_wkt = epsg_wkt(2154);
+    r.data.resize(std::size_t(w) * h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const Point p = r.to_world(x + 0.5, y + 0.5);
+            r.at(x, y) = float(a * (p.x - 1000) + b * (p.y - 2000) + c);
+        }
+    return r;
+}
+
+std::string tmp(const std::string& name) {
+    return (std::filesystem::temp_directory_path() / ("carto_test_" + name)).string();
+}
+
+}  // namespace
+
+TEST(Raster, BilinearReproducesAPlane) {
+    const Raster r = plane(20, 10, 5, 0.5, -0.25, 100);
+    for (double x : {1003.0, 1017.3, 1050.0, 1093.1})
+        for (double y : {1953.0, 1971.7, 1990.0}) {
+            const double expected = 0.5 * (x - 1000) - 0.25 * (y - 2000) + 100;
+            EXPECT_NEAR(r.sample({x, y}), expected, 1e-4) << x << "," << y;
+        }
+    EXPECT_TRUE(std::isnan(r.sample({999, 1990})));
+    EXPECT_TRUE(std::isnan(r.sample({1050, 2001})));
+}
+
+TEST(Raster, NoDataIsLeftOutOfTheInterpolation) {
+    Raster r = plane(4, 4, 10, 0, 0, 7);
+    r.at(1, 1) = NAN;
+    const double v = r.sample(r.to_world(1.6, 1.6));
+    EXPECT_NEAR(v, 7, 1e-9);  // the three valid neighbours, renormalised
+    r.at(2, 1) = r.at(1, 2) = r.at(2, 2) = NAN;
+    EXPECT_TRUE(std::isnan(r.sample(r.to_world(2.0, 2.0))));
+    const auto [lo, hi] = r.min_max();
+    EXPECT_EQ(lo, 7);
+    EXPECT_EQ(hi, 7);
+}
+
+TEST(Raster, WriteReadRoundTripKeepsNoDataAndCrs) {
+    Raster r = plane(8, 6, 2, 1, 1, 0);
+    r.at(3, 2) = NAN;
+    const std::string path = tmp("roundtrip.tif");
+    write_geotiff(r, path);
+    const Raster back = read_raster(path, "--dem");
+    EXPECT_EQ(back.width, 8);
+    EXPECT_EQ(back.height, 6);
+    EXPECT_TRUE(std::isnan(back.at(3, 2)));
+    EXPECT_FLOAT_EQ(back.at(4, 2), r.at(4, 2));
+    EXPECT_EQ(crs_name(back.crs_wkt), "EPSG:2154");
+    std::filesystem::remove(path);
+}
+
+TEST(Raster, ReadErrorsNameTheInput) {
+    try {
+        read_raster("/nonexistent/dem.tif", "--dem");
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), Code::InputMissing);
+        EXPECT_NE(std::string(e.what()).find("--dem '/nonexistent/dem.tif'"), std::string::npos);
+    }
+    Raster r = plane(4, 4, 1, 0, 0, 1);
+    r.crs_wkt.clear();
+    const std::string path = tmp("nocrs.tif");
+    write_geotiff(r, path);
+    try {
+        read_raster(path, "--slope");
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), Code::NoCrs);
+        EXPECT_NE(std::string(e.what()).find("no CRS"), std::string::npos);
+    }
+    std::filesystem::remove(path);
+}
+
+TEST(Raster, GeographicRastersWarpToUtm) {
+    Raster g;
+    g.width = 30;
+    g.height = 20;
+    g.gt = {6.90, 1.0 / 3600, 0, 45.95, 0, -1.0 / 3600};
+    g.crs_wkt = epsg_wkt(4326);
+    g.data.assign(600, 2000.0f);
+    EXPECT_TRUE(is_geographic(g.crs_wkt));
+    EXPECT_EQ(utm_epsg(6.9, 45.9), 32632);
+    EXPECT_EQ(utm_epsg(-3.0, -10.0), 32730);
+    const Raster u = warp(g, epsg_wkt(32632), 30.0);
+    EXPECT_EQ(crs_name(u.crs_wkt), "EPSG:32632");
+    EXPECT_DOUBLE_EQ(u.cell_x(), 30.0);
+    // 30 arc-seconds east-west at 45.9 N is about 645 m: 21 to 23 cells of 30 m.
+    EXPECT_NEAR(u.width, 22, 2);
+    EXPECT_NEAR(u.sample(u.bounds().center()), 2000.0, 1e-3);
+}
+
+TEST(Terrain, SlopeAspectRoughnessOfAPlane) {
+    // z rises eastwards by 0.5 m per metre: 50% slope, downhill towards the west.
+    const Terrain t = compute_terrain(plane(12, 12, 5, 0.5, 0, 2000));
+    for (int y = 0; y < 12; ++y)
+        for (int x = 0; x < 12; ++x) {
+            EXPECT_NEAR(t.slope.at(x, y), 50.0, 1e-3);
+            EXPECT_NEAR(std::abs(t.aspect.at(x, y)), M_PI, 1e-6);
+            EXPECT_NEAR(t.roughness.at(x, y), 0.0, 1e-6);
+        }
+    // Hillshade: a west-facing slope is lit by the north-west light more than an east-facing one.
+    const Terrain east = compute_terrain(plane(12, 12, 5, -0.5, 0, 2000));
+    EXPECT_GT(t.hillshade.at(5, 5), east.hillshade.at(5, 5));
+}
+
+TEST(Terrain, NoDataStaysNoDataAndNeighboursStayFinite) {
+    Raster dem = plane(9, 9, 5, 0.3, 0.2, 1000);
+    dem.at(4, 4) = NAN;
+    const Terrain t = compute_terrain(dem);
+    EXPECT_TRUE(std::isnan(t.slope.at(4, 4)));
+    EXPECT_TRUE(std::isnan(t.roughness.at(4, 4)));
+    EXPECT_TRUE(std::isfinite(t.slope.at(3, 4)));
+    EXPECT_TRUE(std::isfinite(t.hillshade.at(5, 5)));
+}
+
+TEST(Terrain, RoughnessGrowsWithDisorder) {
+    Raster dem = plane(16, 16, 5, 0.5, 0, 1000);
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x) dem.at(x, y) += float(((x * 7 + y * 13) % 5) * 2.0);
+    const Terrain t = compute_terrain(dem);
+    EXPECT_GT(t.roughness.at(8, 8), 0.005);
+    EXPECT_LE(t.roughness.at(8, 8), 1.0);
+}

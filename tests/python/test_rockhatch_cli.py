@@ -1,0 +1,328 @@
+"""The rockhatch command as a cartographer runs it: outputs, errors, real terrain."""
+import shutil
+import subprocess
+import xml.etree.ElementTree as ET
+
+import pytest
+from osgeo import gdal, ogr, osr
+
+from conftest import SHARED_DEM
+
+gdal.UseExceptions()
+ogr.UseExceptions()
+
+FAMILIES = ["hatch_fill", "hatch_ridge", "hatch_valley", "hatch_cross"]
+
+
+def run(exe, *args, timeout=300):
+    return subprocess.run([str(exe), *map(str, args)], capture_output=True, text=True, timeout=timeout)
+
+
+def sample_args(sample_dir):
+    return ["--dem", sample_dir / "dem.tif", "--partition", sample_dir / "partition.gpkg"]
+
+
+@pytest.fixture(scope="module")
+def sample_run(rockhatch_exe, sample_dir, tmp_path_factory):
+    out = tmp_path_factory.mktemp("sample")
+    r = run(rockhatch_exe, *sample_args(sample_dir), "-o", out / "h.gpkg", "-o", out / "h.svg", "-o", out / "h.png")
+    assert r.returncode == 0, r.stderr
+    return out, r
+
+
+def test_geopackage_layers_crs_and_attributes(sample_run):
+    out, _ = sample_run
+    ds = ogr.Open(str(out / "h.gpkg"))
+    names = [ds.GetLayer(i).GetName() for i in range(ds.GetLayerCount())]
+    assert names == FAMILIES
+    for name in FAMILIES:
+        layer = ds.GetLayerByName(name)
+        assert layer.GetGeomType() == ogr.wkbLineString
+        assert layer.GetSpatialRef().GetAuthorityCode(None) == "2154"
+        defn = layer.GetLayerDefn()
+        assert [defn.GetFieldDefn(i).GetName() for i in range(defn.GetFieldCount())] == \
+            ["face_id", "family", "style", "width_mm"]
+        assert layer.GetFeatureCount() > 0, name
+        f = layer.GetNextFeature()
+        assert f["family"] == name.split("_")[1]
+        assert f["style"] == "bidirectional"
+        assert 1 <= f["face_id"] <= 20
+        assert f["width_mm"] > 0
+
+
+def test_svg_groups_scale_and_georeference(sample_run):
+    out, _ = sample_run
+    root = ET.parse(out / "h.svg").getroot()
+    ns = {"s": "http://www.w3.org/2000/svg", "rh": "https://rockhatch.invalid/ns"}
+    groups = [g.get("id") for g in root.findall("s:g", ns)]
+    assert groups == ["fill", "ridge", "valley", "cross"]
+    geo = root.find("s:metadata/rh:georeference", ns)
+    assert geo.get("crs") == "EPSG:2154"
+    assert float(geo.get("scale")) == 10000
+    # True scale: the drawing's width in mm is its ground width / 10.
+    width_m = float(geo.get("xmax")) - float(geo.get("xmin"))
+    assert float(root.get("width").removesuffix("mm")) == pytest.approx(width_m / 10, rel=1e-4)
+
+
+def test_png_preview(sample_run):
+    out, _ = sample_run
+    ds = gdal.Open(str(out / "h.png"))
+    assert ds.RasterXSize == 1600
+    band = ds.GetRasterBand(1).ReadAsArray()
+    assert band.min() < 60 and band.max() > 200  # ink and paper
+
+
+def test_figures_and_notes_on_stderr(sample_run):
+    _, r = sample_run
+    assert "rockhatch: 20 faces," in r.stderr
+    assert "working CRS EPSG:2154" in r.stderr
+    assert "orientation of 20 face(s) from layer 'orientation'" in r.stderr
+
+
+def test_same_bytes_with_one_or_two_threads(rockhatch_exe, sample_dir, tmp_path):
+    for t in (1, 2):
+        r = run(rockhatch_exe, *sample_args(sample_dir), "-q", "--threads", t, "--style", "fine-ridges",
+                "-o", tmp_path / f"t{t}.gpkg", "-o", tmp_path / f"t{t}.svg")
+        assert r.returncode == 0, r.stderr
+    assert (tmp_path / "t1.gpkg").read_bytes() == (tmp_path / "t2.gpkg").read_bytes()
+    assert (tmp_path / "t1.svg").read_bytes() == (tmp_path / "t2.svg").read_bytes()
+
+
+def test_seed_changes_the_hatches(rockhatch_exe, sample_dir, tmp_path):
+    for s in (1, 2):
+        assert run(rockhatch_exe, *sample_args(sample_dir), "-q", "--seed", s, "--style", "noisy",
+                   "-o", tmp_path / f"s{s}.svg").returncode == 0
+    assert (tmp_path / "s1.svg").read_bytes() != (tmp_path / "s2.svg").read_bytes()
+
+
+@pytest.mark.parametrize("style", ["noisy", "ridge-triangles", "density-cells", "fine-ridges", "balanced",
+                                   "high-ridges", "bidirectional"])
+def test_every_style_runs(rockhatch_exe, sample_dir, tmp_path, style):
+    r = run(rockhatch_exe, *sample_args(sample_dir), "-q", "--style", style, "-o", tmp_path / "o.gpkg")
+    assert r.returncode == 0, r.stderr
+    ds = ogr.Open(str(tmp_path / "o.gpkg"))
+    assert ds.GetLayerByName("hatch_fill").GetFeatureCount() > 1000
+    ridge = ds.GetLayerByName("hatch_ridge").GetFeatureCount()
+    assert (ridge > 0) == (style != "noisy")
+    assert (ds.GetLayerByName("hatch_cross").GetFeatureCount() > 0) == (style == "bidirectional")
+
+
+def test_list_styles_and_help(rockhatch_exe):
+    r = run(rockhatch_exe, "--list-styles")
+    assert r.returncode == 0
+    for name in ["noisy", "ridge-triangles", "density-cells", "fine-ridges", "balanced", "high-ridges",
+                 "bidirectional"]:
+        assert name in r.stdout
+    assert "spacing_min = 0.35 mm" in r.stdout
+    h = run(rockhatch_exe, "--help")
+    assert h.returncode == 0 and "--scale N" in h.stdout and "exit codes" in h.stdout
+
+
+def test_parameters_change_the_drawing(rockhatch_exe, sample_dir, tmp_path):
+    counts = []
+    for spacing in ("0.35", "0.7"):
+        out = tmp_path / f"p{spacing}.gpkg"
+        r = run(rockhatch_exe, *sample_args(sample_dir), "-q", "--style", "noisy", "--param", f"spacing_min={spacing}",
+                "--param", f"spacing_max={spacing}", "-o", out)
+        assert r.returncode == 0, r.stderr
+        ds = ogr.Open(str(out))  # keep the dataset alive while its layer is used
+        counts.append(ds.GetLayerByName("hatch_fill").GetFeatureCount())
+    assert counts[0] > 1.6 * counts[1]
+
+
+# ---- errors: one line naming the input, a distinct exit code, no output left behind
+
+def write_partition(path, polygons, lines, srs_epsg=2154, label_field="kind"):
+    drv = ogr.GetDriverByName("GPKG")
+    ds = drv.CreateDataSource(str(path))
+    srs = None
+    if srs_epsg:
+        srs = osr.SpatialReference()
+        srs.ImportFromEPSG(srs_epsg)
+    faces = ds.CreateLayer("faces", srs, ogr.wkbPolygon)
+    for wkt in polygons:
+        f = ogr.Feature(faces.GetLayerDefn())
+        f.SetGeometry(ogr.CreateGeometryFromWkt(wkt))
+        faces.CreateFeature(f)
+    ll = ds.CreateLayer("lines", srs, ogr.wkbLineString)
+    ll.CreateField(ogr.FieldDefn(label_field, ogr.OFTString))
+    for wkt, kind in lines:
+        f = ogr.Feature(ll.GetLayerDefn())
+        f.SetField(label_field, kind)
+        f.SetGeometry(ogr.CreateGeometryFromWkt(wkt))
+        ll.CreateFeature(f)
+    ds = None
+
+
+SQUARE = "POLYGON((1004000 6540000,1004200 6540000,1004200 6540200,1004000 6540200,1004000 6540000))"
+BOWTIE = "POLYGON((1004000 6540000,1004200 6540200,1004200 6540000,1004000 6540200,1004000 6540000))"
+RIDGE = ("LINESTRING(1004000 6540000,1004200 6540000)", "ridge")
+
+
+def expect_error(r, code, *fragments):
+    assert r.returncode == code, (r.returncode, r.stderr)
+    lines = [l for l in r.stderr.splitlines() if l.strip()]
+    assert len(lines) == 1, r.stderr
+    for frag in fragments:
+        assert frag in lines[0], lines[0]
+
+
+def test_missing_dem(rockhatch_exe, sample_dir, tmp_path):
+    r = run(rockhatch_exe, "-q", "--dem", tmp_path / "none.tif", "--partition", sample_dir / "partition.gpkg",
+            "-o", tmp_path / "o.gpkg")
+    expect_error(r, 3, "--dem", "none.tif", "no such file")
+    assert not list(tmp_path.glob("o.gpkg*"))
+
+
+def test_unreadable_dem(rockhatch_exe, sample_dir, tmp_path):
+    (tmp_path / "junk.tif").write_text("not a raster")
+    r = run(rockhatch_exe, "-q", "--dem", tmp_path / "junk.tif", "--partition", sample_dir / "partition.gpkg",
+            "-o", tmp_path / "o.gpkg")
+    expect_error(r, 3, "junk.tif", "not a raster")
+
+
+def test_dem_without_crs(rockhatch_exe, sample_dir, tmp_path):
+    src = gdal.Open(str(sample_dir / "dem.tif"))
+    arr = src.GetRasterBand(1).ReadAsArray()
+    drv = gdal.GetDriverByName("GTiff")
+    out = drv.Create(str(tmp_path / "nocrs.tif"), src.RasterXSize, src.RasterYSize, 1, gdal.GDT_Float32)
+    out.SetGeoTransform(src.GetGeoTransform())
+    out.GetRasterBand(1).WriteArray(arr)
+    out = None
+    r = run(rockhatch_exe, "-q", "--dem", tmp_path / "nocrs.tif", "--partition", sample_dir / "partition.gpkg",
+            "-o", tmp_path / "o.gpkg")
+    expect_error(r, 4, "nocrs.tif", "no CRS")
+
+
+def test_partition_without_crs(rockhatch_exe, sample_dir, tmp_path):
+    write_partition(tmp_path / "p.gpkg", [SQUARE], [RIDGE], srs_epsg=None)
+    r = run(rockhatch_exe, "-q", "--dem", sample_dir / "dem.tif", "--partition", tmp_path / "p.gpkg",
+            "-o", tmp_path / "o.gpkg")
+    expect_error(r, 4, "p.gpkg", "has no CRS")
+
+
+def test_partition_outside_the_dem(rockhatch_exe, sample_dir, tmp_path):
+    far = "POLYGON((1104000 6440000,1104200 6440000,1104200 6440200,1104000 6440200,1104000 6440000))"
+    write_partition(tmp_path / "p.gpkg", [far], [RIDGE])
+    r = run(rockhatch_exe, "-q", "--dem", sample_dir / "dem.tif", "--partition", tmp_path / "p.gpkg",
+            "-o", tmp_path / "o.gpkg")
+    expect_error(r, 5, "does not overlap", "dem.tif")
+    assert not list(tmp_path.glob("o.gpkg*"))
+
+
+def test_missing_label_attribute(rockhatch_exe, sample_dir, tmp_path):
+    write_partition(tmp_path / "p.gpkg", [SQUARE], [RIDGE], label_field="nature")
+    r = run(rockhatch_exe, "-q", "--dem", sample_dir / "dem.tif", "--partition", tmp_path / "p.gpkg",
+            "-o", tmp_path / "o.gpkg")
+    expect_error(r, 6, "p.gpkg", "'kind'")
+    ok = run(rockhatch_exe, "-q", "--dem", sample_dir / "dem.tif", "--partition", tmp_path / "p.gpkg",
+             "--label-field", "nature", "-o", tmp_path / "o.gpkg")
+    assert ok.returncode == 0, ok.stderr
+
+
+def test_bad_label_value(rockhatch_exe, sample_dir, tmp_path):
+    write_partition(tmp_path / "p.gpkg", [SQUARE], [("LINESTRING(1004000 6540000,1004200 6540000)", "cliff")])
+    r = run(rockhatch_exe, "-q", "--dem", sample_dir / "dem.tif", "--partition", tmp_path / "p.gpkg",
+            "-o", tmp_path / "o.gpkg")
+    expect_error(r, 6, "'cliff'", "ridge, valley or other")
+
+
+def test_unknown_style_and_parameter(rockhatch_exe, sample_dir, tmp_path):
+    r = run(rockhatch_exe, "-q", *sample_args(sample_dir), "--style", "watercolour", "-o", tmp_path / "o.gpkg")
+    expect_error(r, 7, "--style", "'watercolour'", "bidirectional")
+    r = run(rockhatch_exe, "-q", *sample_args(sample_dir), "--style", "noisy", "--param", "peak_length=3",
+            "-o", tmp_path / "o.gpkg")
+    expect_error(r, 7, "'noisy'", "'peak_length'")
+
+
+@pytest.mark.parametrize("args,fragment", [
+    (["--scale", "0"], "--scale"),
+    (["--scale", "-5000"], "--scale"),
+    (["--scale", "abc"], "--scale: 'abc' is not a number"),
+    (["--param", "spacing_min=0"], "--param spacing_min"),
+    (["--param", "spacing_min"], "expected NAME=VALUE"),
+    (["--threads", "-1"], "--threads"),
+    (["--bogus"], "unknown option '--bogus'"),
+])
+def test_bad_options(rockhatch_exe, sample_dir, tmp_path, args, fragment):
+    r = run(rockhatch_exe, "-q", *sample_args(sample_dir), *args, "-o", tmp_path / "o.gpkg")
+    expect_error(r, 2, fragment)
+    assert not list(tmp_path.glob("o.gpkg*"))
+
+
+def test_self_intersecting_polygon_repaired_or_refused(rockhatch_exe, sample_dir, tmp_path):
+    write_partition(tmp_path / "p.gpkg", [BOWTIE], [RIDGE])
+    refused = run(rockhatch_exe, "-q", "--no-repair", "--dem", sample_dir / "dem.tif", "--partition",
+                  tmp_path / "p.gpkg", "-o", tmp_path / "o.gpkg")
+    expect_error(refused, 8, "face 1", "not a valid polygon")
+    assert not list(tmp_path.glob("o.gpkg*"))
+    repaired = run(rockhatch_exe, "--dem", sample_dir / "dem.tif", "--partition", tmp_path / "p.gpkg",
+                   "-o", tmp_path / "o.gpkg")
+    assert repaired.returncode == 0, repaired.stderr
+    assert "repaired 1 invalid face polygon(s)" in repaired.stderr
+    assert "2 faces" in repaired.stderr  # the bow tie became two triangles
+
+
+def test_existing_output_is_kept(rockhatch_exe, sample_dir, tmp_path):
+    target = tmp_path / "o.svg"
+    target.write_text("precious")
+    r = run(rockhatch_exe, "-q", *sample_args(sample_dir), "-o", target)
+    expect_error(r, 9, "o.svg", "--overwrite")
+    assert target.read_text() == "precious"
+    r = run(rockhatch_exe, "-q", *sample_args(sample_dir), "--style", "noisy", "-o", target, "--overwrite")
+    assert r.returncode == 0
+    assert target.read_text().startswith("<?xml")
+
+
+def test_output_folder_missing(rockhatch_exe, sample_dir, tmp_path):
+    r = run(rockhatch_exe, "-q", *sample_args(sample_dir), "-o", tmp_path / "nope" / "o.gpkg")
+    expect_error(r, 9, "the folder does not exist")
+
+
+# ---- the real DEM (geographic CRS, NoData)
+
+@pytest.fixture(scope="module")
+def real_partition(tmp_path_factory):
+    if not SHARED_DEM.exists():
+        pytest.skip(f"{SHARED_DEM} is absent (../shared is not beside the project)")
+    import numpy as np
+    ds = gdal.Open(str(SHARED_DEM))
+    gt = ds.GetGeoTransform()
+    band = ds.GetRasterBand(1)
+    a = band.ReadAsArray().astype(float)
+    a[a == band.GetNoDataValue()] = np.nan
+    gy, gx = np.gradient(a, 30.9, 21.5)
+    slope = np.hypot(gx, gy) * 100
+    path = tmp_path_factory.mktemp("real") / "grid.gpkg"
+    polygons = []
+    step = 16
+    for r in range(0, a.shape[0] - step, step):
+        for c in range(0, a.shape[1] - step, step):
+            block = slope[r:r + step, c:c + step]
+            if np.isnan(block).any() or np.nanmean(block) < 90:
+                continue
+            x0, y0 = gt[0] + c * gt[1], gt[3] + r * gt[5]
+            x1, y1 = x0 + step * gt[1], y0 + step * gt[5]
+            polygons.append(f"POLYGON(({x0} {y0},{x1} {y0},{x1} {y1},{x0} {y1},{x0} {y0}))")
+    assert len(polygons) > 50
+    mid = gt[0] + a.shape[1] / 2 * gt[1]
+    write_partition(path, polygons, [(f"LINESTRING({mid} 45.85,{mid} 45.95)", "ridge")], srs_epsg=4326)
+    return path, len(polygons)
+
+
+def test_real_dem_geographic_with_nodata(rockhatch_exe, real_partition, tmp_path):
+    path, n = real_partition
+    r = run(rockhatch_exe, "--dem", SHARED_DEM, "--partition", path, "--no-spatial-index",
+            "-o", tmp_path / "real.gpkg", "-o", tmp_path / "real.png")
+    assert r.returncode == 0, r.stderr
+    assert "reprojected to EPSG:32632" in r.stderr
+    assert f"{n} faces" in r.stderr
+    assert "derived from the terrain" in r.stderr
+    ds = ogr.Open(str(tmp_path / "real.gpkg"))
+    layer = ds.GetLayerByName("hatch_fill")
+    assert layer.GetSpatialRef().GetAuthorityCode(None) == "32632"
+    assert layer.GetFeatureCount() > 10000
+    # Hatches stay within the DEM's footprint (in UTM 32N, about 331-346 km E, 5075-5092 km N).
+    xmin, xmax, ymin, ymax = layer.GetExtent()
+    assert 328000 < xmin < xmax < 350000
+    assert 5070000 < ymin < ymax < 5100000
