@@ -12,10 +12,10 @@ PACKAGES=(
   libtinyxml2-dev                                   # libtex: SVG import
   libgdal-dev gdal-bin libproj-dev proj-bin         # carto: rasters, vectors, CRSs
   libgeographiclib-dev                              # carto: UTM zone of geographic DEMs
-  libopenimageio-dev                                # carto: PNG previews
+  libsqlite3-dev                                    # carto: bulk-loaded GeoPackage R-tree
   libgtest-dev                                      # C++ tests
   python3 python3-pytest python3-gdal python3-numpy # Python tests (Debian's interpreter)
-  librsvg2-bin                                      # PNG previews of the SVG outputs
+  librsvg2-bin time                                 # PNG previews of SVG outputs; GNU time (benchmarks)
 )
 
 missing=()

@@ -154,7 +154,7 @@ int main(int argc, char** argv) {
         const int copies = std::max(1, int(std::floor(size / 2400.0)));
         carto::Raster dem;
         dem.width = dem.height = int(std::round(size / cell));
-        const double x0 = kSummitX - 1200, y1 = kSummitY + 1200 + (copies - 1) * 2400.0;
+        const double x0 = kSummitX - 1200, y1 = kSummitY + 1200;  // copies extend east and south
         dem.gt = {x0, cell, 0, y1, 0, -cell};
         dem.crs_wkt = carto::epsg_wkt(2154);
         dem.data.resize(std::size_t(dem.width) * dem.height);

@@ -24,6 +24,10 @@ std::vector<Polyline> keep_pieces(const Polyline& line, const std::vector<std::v
     std::vector<Polyline> out;
     Polyline cur;
     std::vector<double> ts;
+    // Inside/outside only changes where the line meets a ring, so a segment that meets none
+    // inherits the status of the previous one; the costly point-in-region test runs only on
+    // pieces next to a ring (and once at the start).
+    int status = -1;  // unknown
     for (std::size_t i = 0; i + 1 < line.size(); ++i) {
         const Point& a = line[i];
         const Point& b = line[i + 1];
@@ -32,7 +36,8 @@ std::vector<Polyline> keep_pieces(const Polyline& line, const std::vector<std::v
         sb.add(b);
         ts.clear();
         ts.push_back(0);
-        if (sb.intersects(box))
+        bool touched = false;
+        if (sb.intersects(box)) {
             for (const auto* ring : rings)
                 for (std::size_t k = 0, n = ring->size(); k < n; ++k) {
                     const Point& c = (*ring)[k];
@@ -40,16 +45,20 @@ std::vector<Polyline> keep_pieces(const Polyline& line, const std::vector<std::v
                     if (std::max(c.x, d.x) < sb.xmin || std::min(c.x, d.x) > sb.xmax ||
                         std::max(c.y, d.y) < sb.ymin || std::min(c.y, d.y) > sb.ymax)
                         continue;
+                    touched = true;
                     crossings(a, b, c, d, ts);
                 }
+        } else {
+            status = 0;  // entirely outside the region's box
+        }
         ts.push_back(1);
-        std::sort(ts.begin(), ts.end());
+        if (touched) std::sort(ts.begin(), ts.end());
         for (std::size_t k = 0; k + 1 < ts.size(); ++k) {
             const double t0 = ts[k], t1 = ts[k + 1];
             if (t1 <= t0) continue;
             const Point p0 = a + (b - a) * t0, p1 = a + (b - a) * t1;
-            const bool in = sb.intersects(box) && inside(a + (b - a) * ((t0 + t1) / 2));
-            if (in) {
+            if (touched || status < 0) status = inside(a + (b - a) * ((t0 + t1) / 2)) ? 1 : 0;
+            if (status == 1) {
                 if (cur.empty()) cur.push_back(p0);
                 cur.push_back(p1);
             } else if (!cur.empty()) {
@@ -65,10 +74,86 @@ std::vector<Polyline> keep_pieces(const Polyline& line, const std::vector<std::v
 }  // namespace
 
 std::vector<Polyline> clip_to_region(const Polyline& line, const tex::Region& region) {
-    std::vector<std::vector<Point>*> rings;
-    rings.push_back(const_cast<std::vector<Point>*>(&region.outer()));
-    for (const auto& h : region.holes()) rings.push_back(const_cast<std::vector<Point>*>(&h));
-    return keep_pieces(line, rings, region.bbox(), [&](const Point& p) { return region.contains(p); });
+    return RegionClipper(region).clip(line);
+}
+
+RegionClipper::RegionClipper(const tex::Region& region) : region_(region), box_(region.bbox()) {
+    auto add = [&](const std::vector<Point>& ring) {
+        for (std::size_t k = 0, n = ring.size(); k < n; ++k) edges_.push_back({ring[k], ring[(k + 1) % n]});
+    };
+    add(region.outer());
+    for (const auto& h : region.holes()) add(h);
+    // About four edges per cell on average.
+    const int side = std::clamp(int(std::sqrt(double(edges_.size()) / 4.0)), 1, 256);
+    nx_ = ny_ = side;
+    cw_ = std::max(box_.width(), 1e-12) / nx_;
+    ch_ = std::max(box_.height(), 1e-12) / ny_;
+    cells_.resize(std::size_t(nx_) * ny_);
+    for (std::size_t i = 0; i < edges_.size(); ++i) {
+        const Edge& e = edges_[i];
+        const int x0 = std::clamp(int((std::min(e.a.x, e.b.x) - box_.xmin) / cw_), 0, nx_ - 1);
+        const int x1 = std::clamp(int((std::max(e.a.x, e.b.x) - box_.xmin) / cw_), 0, nx_ - 1);
+        const int y0 = std::clamp(int((std::min(e.a.y, e.b.y) - box_.ymin) / ch_), 0, ny_ - 1);
+        const int y1 = std::clamp(int((std::max(e.a.y, e.b.y) - box_.ymin) / ch_), 0, ny_ - 1);
+        for (int y = y0; y <= y1; ++y)
+            for (int x = x0; x <= x1; ++x) cells_[std::size_t(y) * nx_ + x].push_back(int(i));
+    }
+}
+
+std::vector<Polyline> RegionClipper::clip(const Polyline& line) const {
+    std::vector<Polyline> out;
+    Polyline cur;
+    std::vector<double> ts;
+    std::vector<int> seen;
+    int status = -1;  // see keep_pieces: inherited between segments that meet no edge
+    for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+        const Point& a = line[i];
+        const Point& b = line[i + 1];
+        tex::BBox sb;
+        sb.add(a);
+        sb.add(b);
+        ts.clear();
+        ts.push_back(0);
+        bool touched = false;
+        if (sb.intersects(box_)) {
+            const int x0 = std::clamp(int((sb.xmin - box_.xmin) / cw_), 0, nx_ - 1);
+            const int x1 = std::clamp(int((sb.xmax - box_.xmin) / cw_), 0, nx_ - 1);
+            const int y0 = std::clamp(int((sb.ymin - box_.ymin) / ch_), 0, ny_ - 1);
+            const int y1 = std::clamp(int((sb.ymax - box_.ymin) / ch_), 0, ny_ - 1);
+            seen.clear();
+            for (int y = y0; y <= y1; ++y)
+                for (int x = x0; x <= x1; ++x)
+                    for (int id : cells_[std::size_t(y) * nx_ + x]) {
+                        const Edge& e = edges_[id];
+                        if (std::max(e.a.x, e.b.x) < sb.xmin || std::min(e.a.x, e.b.x) > sb.xmax ||
+                            std::max(e.a.y, e.b.y) < sb.ymin || std::min(e.a.y, e.b.y) > sb.ymax)
+                            continue;
+                        if (std::find(seen.begin(), seen.end(), id) != seen.end()) continue;
+                        seen.push_back(id);
+                        touched = true;
+                        crossings(a, b, e.a, e.b, ts);
+                    }
+        } else {
+            status = 0;
+        }
+        ts.push_back(1);
+        if (touched) std::sort(ts.begin(), ts.end());
+        for (std::size_t k = 0; k + 1 < ts.size(); ++k) {
+            const double t0 = ts[k], t1 = ts[k + 1];
+            if (t1 <= t0) continue;
+            const Point p0 = a + (b - a) * t0, p1 = a + (b - a) * t1;
+            if (touched || status < 0) status = region_.contains(a + (b - a) * ((t0 + t1) / 2)) ? 1 : 0;
+            if (status == 1) {
+                if (cur.empty()) cur.push_back(p0);
+                cur.push_back(p1);
+            } else if (!cur.empty()) {
+                if (cur.size() >= 2) out.push_back(std::move(cur));
+                cur.clear();
+            }
+        }
+    }
+    if (cur.size() >= 2) out.push_back(std::move(cur));
+    return out;
 }
 
 std::vector<Polyline> clip_to_convex(const Polyline& line, const std::vector<Point>& convex) {

@@ -1,6 +1,5 @@
 #include "carto/output.hpp"
 
-#include <OpenImageIO/imageio.h>
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
@@ -12,6 +11,7 @@
 #include <fstream>
 
 #include "carto/error.hpp"
+#include "gpkg_rtree.hpp"
 
 namespace fs = std::filesystem;
 
@@ -92,9 +92,9 @@ void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index) {
         for (int fam = 0; fam < kFamilies; ++fam) {
             const Family f = Family(fam);
             const std::string name = std::string("hatch_") + family_name(f);
-            // SQLite builds the R-tree row by row; with GDAL 3.6 that is most of the time spent
-            // writing a large drawing, hence the option to leave it out.
-            const char* lco[] = {spatial_index ? "SPATIAL_INDEX=YES" : "SPATIAL_INDEX=NO", nullptr};
+            // GDAL 3.6 would fill the R-tree row by row, most of the time spent writing a large
+            // drawing: the index is bulk-loaded once the file is closed (gpkg_rtree.cpp).
+            const char* lco[] = {"SPATIAL_INDEX=NO", "FID=fid", "GEOMETRY_NAME=geom", nullptr};
             OGRLayer* layer = ds->CreateLayer(name.c_str(), &srs, wkbLineString, const_cast<char**>(lco));
             if (!layer) throw Error(Code::OutputExists, "-o '" + path + "': cannot create layer " + name);
             OGRFieldDefn fid("face_id", OFTInteger64), ffam("family", OFTString), fsty("style", OFTString),
@@ -123,7 +123,25 @@ void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index) {
                 }
             ds->CommitTransaction();
         }
-        // Closing the dataset flushes it; only then is it renamed.
+        // Closing the dataset flushes it; the index is added after, then the file is renamed.
+    }
+    if (spatial_index) {
+        for (int fam = 0; fam < kFamilies; ++fam) {
+            std::vector<BoxD> boxes;
+            for (const auto& face : d.faces)
+                for (const auto& h : face.hatches) {
+                    if (h.family != Family(fam) || h.points.size() < 2) continue;
+                    BoxD b{INFINITY, -INFINITY, INFINITY, -INFINITY};
+                    for (const auto& p : h.points) {
+                        b.minx = std::min(b.minx, p.x);
+                        b.maxx = std::max(b.maxx, p.x);
+                        b.miny = std::min(b.miny, p.y);
+                        b.maxy = std::max(b.maxy, p.y);
+                    }
+                    boxes.push_back(b);
+                }
+            bulk_load_rtree(tmp.path, std::string("hatch_") + family_name(Family(fam)), "geom", "fid", boxes);
+        }
     }
     tmp.commit(path);
 }
@@ -227,12 +245,23 @@ void write_png(const Drawing& d, const std::string& path, int pixels, const Rast
         }
     std::vector<unsigned char> bytes(img.size());
     for (std::size_t i = 0; i < img.size(); ++i) bytes[i] = (unsigned char)std::lround(std::clamp(img[i], 0.0f, 1.0f) * 255);
+    // GDAL writes the PNG (through an in-memory raster): it is loaded anyway, whereas
+    // OpenImageIO would add some 150 shared libraries to every start of the program.
     TempFile tmp(path, ".png");
-    auto out = OIIO::ImageOutput::create(tmp.path);
-    if (!out) throw Error(Code::OutputExists, "-o '" + path + "': no PNG writer (OpenImageIO)");
-    OIIO::ImageSpec spec(w, h, 1, OIIO::TypeDesc::UINT8);
-    if (!out->open(tmp.path, spec) || !out->write_image(OIIO::TypeDesc::UINT8, bytes.data()) || !out->close())
-        throw Error(Code::OutputExists, "-o '" + path + "': cannot write the PNG (" + out->geterror() + ")");
+    GDALAllRegister();
+    GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
+    GDALDriver* png = GetGDALDriverManager()->GetDriverByName("PNG");
+    if (!mem || !png) throw Error(Code::Failure, "GDAL has no PNG driver");
+    std::unique_ptr<GDALDataset> src(mem->Create("", w, h, 1, GDT_Byte, nullptr));
+    if (src->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, w, h, bytes.data(), w, h, GDT_Byte, 0, 0) != CE_None)
+        throw Error(Code::OutputExists, "-o '" + path + "': cannot build the preview");
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    std::unique_ptr<GDALDataset> out(png->CreateCopy(tmp.path.c_str(), src.get(), FALSE, nullptr, nullptr, nullptr));
+    CPLPopErrorHandler();
+    if (!out) throw Error(Code::OutputExists, "-o '" + path + "': cannot write the PNG (" + CPLGetLastErrorMsg() + ")");
+    out.reset();
+    std::error_code ec;
+    std::filesystem::remove(tmp.path + ".aux.xml", ec);
     tmp.commit(path);
 }
 

@@ -169,8 +169,9 @@ void fill_face(std::vector<Hatch>& out, const ParamValues& p, const RockFace& fa
                std::uint64_t seed) {
     const double s = spacing_for(p, c.density, c.height, false);
     const double j = p.at("jitter");
+    const RegionClipper clip(face.region);
     for (auto& line : jittered_lines(face.region.bbox(), c.orientation, s, p.at("length"), j, j, seed, 1))
-        emit(out, clip_to_region(line, face.region), Family::Fill);
+        emit(out, clip.clip(line), Family::Fill);
 }
 
 // (c) coarse jittered cells, each hatched with the density at its centre.
@@ -181,6 +182,7 @@ void fill_cells(std::vector<Hatch>& out, const ParamValues& p, const RockFace& f
     // Coarse grid: lines along the hatch direction every cs, cut every 4 hatch lengths.
     const double along = 4 * len;
     const auto rows = jittered_lines(face.region.bbox(), theta, cs, along, cj * 0.5, cj * 0.5, seed, 2);
+    const RegionClipper clip(face.region);
     for (std::size_t r = 0; r + 1 < rows.size(); ++r) {
         const Polyline& lo = rows[r];
         const Polyline& hi = rows[r + 1];
@@ -196,7 +198,7 @@ void fill_cells(std::vector<Hatch>& out, const ParamValues& p, const RockFace& f
             const double s = spacing_for(p, c.density, h, linear);
             const double j = p.at("jitter");
             for (auto& line : jittered_lines(qb, theta, s, len, j, j, seed, 3))
-                for (auto& piece : clip_to_convex(line, quad)) emit(out, clip_to_region(piece, face.region), Family::Fill, gap);
+                for (auto& piece : clip_to_convex(line, quad)) emit(out, clip.clip(piece), Family::Fill, gap);
         }
     }
 }
@@ -332,6 +334,7 @@ void cross_hatch(std::vector<Hatch>& out, const ParamValues& p, const RockFace& 
     const double cs = p.at("cell_spacing");
     const double angle = c.orientation + p.at("cross_angle");
     const auto rows = jittered_lines(face.region.bbox(), c.orientation, cs, cs, 0, 0, seed, 6);
+    const RegionClipper clip(face.region);
     for (std::size_t r = 0; r + 1 < rows.size(); ++r)
         for (std::size_t k = 0; k + 1 < rows[r].size() && k + 1 < rows[r + 1].size(); ++k) {
             std::vector<Point> quad = {rows[r][k], rows[r][k + 1], rows[r + 1][k + 1], rows[r + 1][k]};
@@ -345,7 +348,7 @@ void cross_hatch(std::vector<Hatch>& out, const ParamValues& p, const RockFace& 
             const double s = p.at("cross_spacing_max") - (p.at("cross_spacing_max") - p.at("cross_spacing_min")) * t;
             for (auto& line : jittered_lines(qb, angle, s, p.at("length"), 0.5, 0.5, seed, 7))
                 for (auto& piece : clip_to_convex(line, quad))
-                    emit(out, clip_to_region(piece, face.region), Family::Cross, p.at("gap"));
+                    emit(out, clip.clip(piece), Family::Cross, p.at("gap"));
         }
 }
 

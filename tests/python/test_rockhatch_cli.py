@@ -326,3 +326,59 @@ def test_real_dem_geographic_with_nodata(rockhatch_exe, real_partition, tmp_path
     xmin, xmax, ymin, ymax = layer.GetExtent()
     assert 328000 < xmin < xmax < 350000
     assert 5070000 < ymin < ymax < 5100000
+
+
+def test_geopackage_spatial_index_is_valid_and_maintained(sample_run, tmp_path):
+    import sqlite3
+    src, _ = sample_run
+    path = tmp_path / "copy.gpkg"
+    shutil.copy(src / "h.gpkg", path)
+    con = sqlite3.connect(path)
+    for name in FAMILIES:
+        assert con.execute(f"SELECT rtreecheck('rtree_{name}_geom')").fetchone()[0] == "ok"
+        assert con.execute(f"SELECT count(*) FROM rtree_{name}_geom").fetchone()[0] == \
+            con.execute(f"SELECT count(*) FROM {name}").fetchone()[0]
+    con.close()
+    ds = ogr.Open(str(path), update=1)
+    assert ds.ExecuteSQL("SELECT HasSpatialIndex('hatch_fill', 'geom')").GetNextFeature().GetField(0) == 1
+    layer = ds.GetLayerByName("hatch_fill")
+    xmin, xmax, ymin, ymax = layer.GetExtent()
+    cx, cy = (xmin + xmax) / 2, (ymin + ymax) / 2
+    box = (cx - 150, cy - 150, cx + 150, cy + 150)
+    layer.SetSpatialFilterRect(*box)
+    found = {f.GetFID(): f.GetGeometryRef().GetEnvelope() for f in layer}
+    layer.SetSpatialFilter(None)
+    inside = set()
+    for f in layer:
+        e = f.GetGeometryRef().GetEnvelope()  # (minx, maxx, miny, maxy)
+        if e[0] > box[0] + 1 and e[1] < box[2] - 1 and e[2] > box[1] + 1 and e[3] < box[3] - 1:
+            inside.add(f.GetFID())
+    # Nothing the index should find is missing, and nothing far away comes back.
+    assert inside and inside <= set(found)
+    for e in found.values():
+        assert e[1] >= box[0] - 1 and e[0] <= box[2] + 1 and e[3] >= box[1] - 1 and e[2] <= box[3] + 1
+    # An edit after the fact goes through the index's triggers.
+    f = ogr.Feature(layer.GetLayerDefn())
+    f.SetGeometry(ogr.CreateGeometryFromWkt("LINESTRING(1000000 6500000,1000010 6500010)"))
+    layer.CreateFeature(f)
+    layer.SetSpatialFilterRect(999990, 6499990, 1000020, 6500020)
+    assert layer.GetFeatureCount() == 1
+
+
+def test_sample_generator_is_deterministic_and_repeats_the_massif(rockhatch_exe, sample_dir, tmp_path):
+    gen = rockhatch_exe.parent / "rh_make_sample"
+    r = subprocess.run([gen, "-o", tmp_path / "one"], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    for name in ("dem.tif", "partition.gpkg", "truth.gpkg"):
+        assert (tmp_path / "one" / name).read_bytes() == (sample_dir / name).read_bytes(), name
+    r = subprocess.run([gen, "-o", tmp_path / "four", "--size", "4800"], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    ds = gdal.Open(str(tmp_path / "four" / "dem.tif"))
+    gt = ds.GetGeoTransform()
+    a = ds.GetRasterBand(1).ReadAsArray()
+    # The four summits (one per 2400 m copy, east and south of the first) are at 3412 m.
+    for dx, dy in ((0, 0), (2400, 0), (0, -2400), (2400, -2400)):
+        col = int((1004100 + dx - gt[0]) / gt[1])
+        row = int((6539900 + dy - gt[3]) / gt[5])
+        assert a[row, col] == pytest.approx(3400, abs=30)
+    assert ogr.Open(str(tmp_path / "four" / "partition.gpkg")).GetLayerByName("faces").GetFeatureCount() == 80

@@ -16,6 +16,26 @@ using Polyline = std::vector<Point>;
 
 // Pieces of a polyline inside a region (polygon with holes).
 std::vector<Polyline> clip_to_region(const Polyline& line, const tex::Region& region);
+
+// The same for many lines against one region: the region's edges are indexed on a grid
+// once, so each segment only meets the edges near it.
+class RegionClipper {
+public:
+    explicit RegionClipper(const tex::Region& region);
+    std::vector<Polyline> clip(const Polyline& line) const;
+    const tex::Region& region() const { return region_; }
+
+private:
+    struct Edge {
+        Point a, b;
+    };
+    const tex::Region& region_;
+    std::vector<Edge> edges_;
+    tex::BBox box_;
+    int nx_ = 1, ny_ = 1;
+    double cw_ = 1, ch_ = 1;
+    std::vector<std::vector<int>> cells_;
+};
 // Clips a polyline to a convex polygon (counter-clockwise).
 std::vector<Polyline> clip_to_convex(const Polyline& line, const std::vector<Point>& convex);
 // Intersection of a polygon (any simple ring) with a convex polygon (Sutherland-Hodgman).

@@ -1,0 +1,134 @@
+#!/usr/bin/python3
+"""Times the rockhatch pipeline: the bundled sample per style with 1 and 2 threads, a 4x
+larger synthetic area, and the real DEM in ../shared (when present). Reports medians of
+wall time, peak memory (GNU time) and hatches per second, and writes a Markdown table.
+
+    bench/bench_carto.py BUILD_DIR [--runs N] [--markdown FILE]
+"""
+import argparse
+import pathlib
+import re
+import statistics
+import subprocess
+import sys
+import tempfile
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+SAMPLE = ROOT / "data" / "sample_montblanc"
+SHARED_DEM = ROOT.parent / "shared" / "data" / "montblanc" / "Chamonix.tif"
+STYLES = ["noisy", "ridge-triangles", "density-cells", "fine-ridges", "balanced", "high-ridges", "bidirectional"]
+
+
+def timed(cmd):
+    """Wall seconds, peak RSS in MB and hatch count of one run."""
+    r = subprocess.run(["/usr/bin/time", "-f", "RH_TIME %e %M", *map(str, cmd)], capture_output=True, text=True)
+    if r.returncode != 0:
+        sys.exit(f"bench_carto: {' '.join(map(str, cmd))} failed:\n{r.stderr}")
+    wall, rss = re.search(r"RH_TIME ([\d.]+) (\d+)", r.stderr).groups()
+    hatches = int(re.search(r"(\d+) hatches", r.stderr).group(1))
+    return float(wall), int(rss) / 1024, hatches
+
+
+def median_run(cmd, runs):
+    results = [timed(cmd) for _ in range(runs)]
+    wall = statistics.median(r[0] for r in results)
+    return wall, max(r[1] for r in results), results[0][2]
+
+
+def grid_partition(path, min_slope):
+    """A grid of faces over the steep blocks of the real DEM (as in the tests)."""
+    import numpy as np
+    from osgeo import gdal, ogr, osr
+    gdal.UseExceptions()
+    ds = gdal.Open(str(SHARED_DEM))
+    gt = ds.GetGeoTransform()
+    band = ds.GetRasterBand(1)
+    a = band.ReadAsArray().astype(float)
+    a[a == band.GetNoDataValue()] = np.nan
+    gy, gx = np.gradient(a, 30.9, 21.5)
+    slope = np.hypot(gx, gy) * 100
+    srs = osr.SpatialReference()
+    srs.ImportFromEPSG(4326)
+    out = ogr.GetDriverByName("GPKG").CreateDataSource(str(path))
+    faces = out.CreateLayer("faces", srs, ogr.wkbPolygon)
+    lines = out.CreateLayer("lines", srs, ogr.wkbLineString)
+    lines.CreateField(ogr.FieldDefn("kind", ogr.OFTString))
+    n, step = 0, 16
+    for r in range(0, a.shape[0] - step, step):
+        for c in range(0, a.shape[1] - step, step):
+            block = slope[r:r + step, c:c + step]
+            if np.isnan(block).any() or np.nanmean(block) < min_slope:
+                continue
+            x0, y0 = gt[0] + c * gt[1], gt[3] + r * gt[5]
+            x1, y1 = x0 + step * gt[1], y0 + step * gt[5]
+            f = ogr.Feature(faces.GetLayerDefn())
+            f.SetGeometry(ogr.CreateGeometryFromWkt(f"POLYGON(({x0} {y0},{x1} {y0},{x1} {y1},{x0} {y1},{x0} {y0}))"))
+            faces.CreateFeature(f)
+            n += 1
+    f = ogr.Feature(lines.GetLayerDefn())
+    f.SetField("kind", "other")
+    f.SetGeometry(ogr.CreateGeometryFromWkt(f"LINESTRING({gt[0]} {gt[3]},{gt[0] + 0.001} {gt[3]})"))
+    lines.CreateFeature(f)
+    out = None
+    return n
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("build_dir", type=pathlib.Path)
+    ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("--markdown", type=pathlib.Path)
+    args = ap.parse_args()
+    exe = args.build_dir / "carto" / "rockhatch"
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = pathlib.Path(tmp)
+
+        def case(label, dem, part, extra, threads, out_ext=".gpkg"):
+            cmd = [exe, "-q", "--overwrite", "--threads", threads, "--dem", dem, "--partition", part, *extra,
+                   "-o", tmp / f"out{out_ext}"]
+            wall, rss, hatches = median_run(cmd, args.runs)
+            rows.append((label, threads, wall, rss, hatches, hatches / wall))
+            print(f"{label:58s} {threads}t {wall:7.2f} s {rss:7.0f} MB {hatches:9d} hatches {hatches / wall:10.0f}/s",
+                  flush=True)
+            return wall
+
+        dem, part = SAMPLE / "dem.tif", SAMPLE / "partition.gpkg"
+        for style in STYLES:
+            for t in (1, 2):
+                case(f"sample (20 faces), {style}, GeoPackage", dem, part, ["--style", style], t)
+        # Scaling: the same massif four times (4x area, 80 faces).
+        big = tmp / "big"
+        subprocess.run([args.build_dir / "carto" / "rh_make_sample", "-o", big, "--size", "4800"], check=True,
+                       capture_output=True)
+        base = case("sample 2.4 km (20 faces), bidirectional, GeoPackage", dem, part, [], 2)
+        four = case("sample x4 4.8 km (80 faces), bidirectional, GeoPackage", big / "dem.tif",
+                    big / "partition.gpkg", [], 2)
+        print(f"4x area costs {four / base:.2f}x the time")
+        rows.append(("4x area / 1x area time ratio", 2, four / base, 0, 0, 0))
+        if SHARED_DEM.exists():
+            grid = tmp / "grid.gpkg"
+            n = grid_partition(grid, 90)
+            label = f"real DEM Chamonix.tif (EPSG:4326, {n} faces, slope >= 90%)"
+            for t in (1, 2):
+                case(f"{label}, GeoPackage with R-tree", SHARED_DEM, grid, [], t)
+                case(f"{label}, GeoPackage without R-tree", SHARED_DEM, grid, ["--no-spatial-index"], t)
+                case(f"{label}, SVG", SHARED_DEM, grid, [], t, ".svg")
+        else:
+            print(f"bench_carto: {SHARED_DEM} absent, real-DEM rows skipped")
+    if args.markdown:
+        with open(args.markdown, "w") as f:
+            f.write(f"<!-- written by bench/bench_carto.py; medians of {args.runs} runs; whole runs of the "
+                    "rockhatch command (read, fields, hatching, write) -->\n")
+            f.write("| case | threads | wall time (median) | peak memory | hatches | hatches / s |\n")
+            f.write("|---|---:|---:|---:|---:|---:|\n")
+            for label, t, wall, rss, hatches, rate in rows:
+                if hatches == 0:
+                    f.write(f"| {label} | {t} | {wall:.2f}x | | | |\n")
+                else:
+                    f.write(f"| {label} | {t} | {wall:.2f} s | {rss:.0f} MB | {hatches} | {rate:.0f} |\n")
+        print(f"report written to {args.markdown}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,18 @@
+// Bulk loading of a GeoPackage R-tree (see gpkg_rtree.cpp).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace carto {
+
+struct BoxD {
+    double minx, maxx, miny, maxy;  // minx > maxx: empty geometry
+};
+
+// Builds the spatial index of `table`.`geom` whose features have ids 1..boxes.size() in
+// order, in a GeoPackage that GDAL has written and closed without one.
+void bulk_load_rtree(const std::string& path, const std::string& table, const std::string& geom,
+                     const std::string& fid, const std::vector<BoxD>& boxes);
+
+}  // namespace carto
