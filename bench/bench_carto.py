@@ -14,6 +14,8 @@ import sys
 import tempfile
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "tests" / "python"))
+from realdem import grid_partition  # noqa: E402  (shared with the tests)
 SAMPLE = ROOT / "data" / "sample_montblanc"
 SHARED_DEM = ROOT.parent / "shared" / "data" / "montblanc" / "Chamonix.tif"
 STYLES = ["noisy", "ridge-triangles", "density-cells", "fine-ridges", "balanced", "high-ridges", "bidirectional"]
@@ -33,44 +35,6 @@ def median_run(cmd, runs):
     results = [timed(cmd) for _ in range(runs)]
     wall = statistics.median(r[0] for r in results)
     return wall, max(r[1] for r in results), results[0][2]
-
-
-def grid_partition(path, min_slope):
-    """A grid of faces over the steep blocks of the real DEM (as in the tests)."""
-    import numpy as np
-    from osgeo import gdal, ogr, osr
-    gdal.UseExceptions()
-    ds = gdal.Open(str(SHARED_DEM))
-    gt = ds.GetGeoTransform()
-    band = ds.GetRasterBand(1)
-    a = band.ReadAsArray().astype(float)
-    a[a == band.GetNoDataValue()] = np.nan
-    gy, gx = np.gradient(a, 30.9, 21.5)
-    slope = np.hypot(gx, gy) * 100
-    srs = osr.SpatialReference()
-    srs.ImportFromEPSG(4326)
-    out = ogr.GetDriverByName("GPKG").CreateDataSource(str(path))
-    faces = out.CreateLayer("faces", srs, ogr.wkbPolygon)
-    lines = out.CreateLayer("lines", srs, ogr.wkbLineString)
-    lines.CreateField(ogr.FieldDefn("kind", ogr.OFTString))
-    n, step = 0, 16
-    for r in range(0, a.shape[0] - step, step):
-        for c in range(0, a.shape[1] - step, step):
-            block = slope[r:r + step, c:c + step]
-            if np.isnan(block).any() or np.nanmean(block) < min_slope:
-                continue
-            x0, y0 = gt[0] + c * gt[1], gt[3] + r * gt[5]
-            x1, y1 = x0 + step * gt[1], y0 + step * gt[5]
-            f = ogr.Feature(faces.GetLayerDefn())
-            f.SetGeometry(ogr.CreateGeometryFromWkt(f"POLYGON(({x0} {y0},{x1} {y0},{x1} {y1},{x0} {y1},{x0} {y0}))"))
-            faces.CreateFeature(f)
-            n += 1
-    f = ogr.Feature(lines.GetLayerDefn())
-    f.SetField("kind", "other")
-    f.SetGeometry(ogr.CreateGeometryFromWkt(f"LINESTRING({gt[0]} {gt[3]},{gt[0] + 0.001} {gt[3]})"))
-    lines.CreateFeature(f)
-    out = None
-    return n
 
 
 def main():
@@ -108,7 +72,7 @@ def main():
         rows.append(("4x area / 1x area time ratio", 2, four / base, 0, 0, 0))
         if SHARED_DEM.exists():
             grid = tmp / "grid.gpkg"
-            n = grid_partition(grid, 90)
+            n = grid_partition(SHARED_DEM, grid, 90)
             label = f"real DEM Chamonix.tif (EPSG:4326, {n} faces, slope >= 90%)"
             for t in (1, 2):
                 case(f"{label}, GeoPackage with R-tree", SHARED_DEM, grid, [], t)

@@ -19,14 +19,16 @@ void crossings(const Point& a, const Point& b, const Point& c, const Point& d, s
     if (t > 0 && t < 1 && u >= 0 && u <= 1) ts.push_back(t);
 }
 
-std::vector<Polyline> keep_pieces(const Polyline& line, const std::vector<std::vector<Point>*>& rings,
-                                  const tex::BBox& box, const std::function<bool(const Point&)>& inside) {
+// Pieces of `line` inside a region given by its edges and a point test. `edges_near(sb, f)`
+// calls f(c, d) for (at least) every edge whose box meets sb. Inside/outside only changes
+// where the line meets an edge, so a segment that meets none inherits the status of the
+// previous one; the costly point test runs only on pieces next to an edge (and once at the
+// start).
+template <class EdgesNear, class Inside>
+std::vector<Polyline> clip_line(const Polyline& line, const tex::BBox& box, EdgesNear&& edges_near, Inside&& inside) {
     std::vector<Polyline> out;
     Polyline cur;
     std::vector<double> ts;
-    // Inside/outside only changes where the line meets a ring, so a segment that meets none
-    // inherits the status of the previous one; the costly point-in-region test runs only on
-    // pieces next to a ring (and once at the start).
     int status = -1;  // unknown
     for (std::size_t i = 0; i + 1 < line.size(); ++i) {
         const Point& a = line[i];
@@ -38,16 +40,13 @@ std::vector<Polyline> keep_pieces(const Polyline& line, const std::vector<std::v
         ts.push_back(0);
         bool touched = false;
         if (sb.intersects(box)) {
-            for (const auto* ring : rings)
-                for (std::size_t k = 0, n = ring->size(); k < n; ++k) {
-                    const Point& c = (*ring)[k];
-                    const Point& d = (*ring)[(k + 1) % n];
-                    if (std::max(c.x, d.x) < sb.xmin || std::min(c.x, d.x) > sb.xmax ||
-                        std::max(c.y, d.y) < sb.ymin || std::min(c.y, d.y) > sb.ymax)
-                        continue;
-                    touched = true;
-                    crossings(a, b, c, d, ts);
-                }
+            edges_near(sb, [&](const Point& c, const Point& d) {
+                if (std::max(c.x, d.x) < sb.xmin || std::min(c.x, d.x) > sb.xmax || std::max(c.y, d.y) < sb.ymin ||
+                    std::min(c.y, d.y) > sb.ymax)
+                    return;
+                touched = true;
+                crossings(a, b, c, d, ts);
+            });
         } else {
             status = 0;  // entirely outside the region's box
         }
@@ -101,66 +100,31 @@ RegionClipper::RegionClipper(const tex::Region& region) : region_(region), box_(
 }
 
 std::vector<Polyline> RegionClipper::clip(const Polyline& line) const {
-    std::vector<Polyline> out;
-    Polyline cur;
-    std::vector<double> ts;
     std::vector<int> seen;
-    int status = -1;  // see keep_pieces: inherited between segments that meet no edge
-    for (std::size_t i = 0; i + 1 < line.size(); ++i) {
-        const Point& a = line[i];
-        const Point& b = line[i + 1];
-        tex::BBox sb;
-        sb.add(a);
-        sb.add(b);
-        ts.clear();
-        ts.push_back(0);
-        bool touched = false;
-        if (sb.intersects(box_)) {
-            const int x0 = std::clamp(int((sb.xmin - box_.xmin) / cw_), 0, nx_ - 1);
-            const int x1 = std::clamp(int((sb.xmax - box_.xmin) / cw_), 0, nx_ - 1);
-            const int y0 = std::clamp(int((sb.ymin - box_.ymin) / ch_), 0, ny_ - 1);
-            const int y1 = std::clamp(int((sb.ymax - box_.ymin) / ch_), 0, ny_ - 1);
-            seen.clear();
-            for (int y = y0; y <= y1; ++y)
-                for (int x = x0; x <= x1; ++x)
-                    for (int id : cells_[std::size_t(y) * nx_ + x]) {
-                        const Edge& e = edges_[id];
-                        if (std::max(e.a.x, e.b.x) < sb.xmin || std::min(e.a.x, e.b.x) > sb.xmax ||
-                            std::max(e.a.y, e.b.y) < sb.ymin || std::min(e.a.y, e.b.y) > sb.ymax)
-                            continue;
-                        if (std::find(seen.begin(), seen.end(), id) != seen.end()) continue;
-                        seen.push_back(id);
-                        touched = true;
-                        crossings(a, b, e.a, e.b, ts);
-                    }
-        } else {
-            status = 0;
-        }
-        ts.push_back(1);
-        if (touched) std::sort(ts.begin(), ts.end());
-        for (std::size_t k = 0; k + 1 < ts.size(); ++k) {
-            const double t0 = ts[k], t1 = ts[k + 1];
-            if (t1 <= t0) continue;
-            const Point p0 = a + (b - a) * t0, p1 = a + (b - a) * t1;
-            if (touched || status < 0) status = region_.contains(a + (b - a) * ((t0 + t1) / 2)) ? 1 : 0;
-            if (status == 1) {
-                if (cur.empty()) cur.push_back(p0);
-                cur.push_back(p1);
-            } else if (!cur.empty()) {
-                if (cur.size() >= 2) out.push_back(std::move(cur));
-                cur.clear();
-            }
-        }
-    }
-    if (cur.size() >= 2) out.push_back(std::move(cur));
-    return out;
+    auto near = [&](const tex::BBox& sb, auto&& f) {
+        const int x0 = std::clamp(int((sb.xmin - box_.xmin) / cw_), 0, nx_ - 1);
+        const int x1 = std::clamp(int((sb.xmax - box_.xmin) / cw_), 0, nx_ - 1);
+        const int y0 = std::clamp(int((sb.ymin - box_.ymin) / ch_), 0, ny_ - 1);
+        const int y1 = std::clamp(int((sb.ymax - box_.ymin) / ch_), 0, ny_ - 1);
+        seen.clear();
+        for (int y = y0; y <= y1; ++y)
+            for (int x = x0; x <= x1; ++x)
+                for (int id : cells_[std::size_t(y) * nx_ + x]) {
+                    if (std::find(seen.begin(), seen.end(), id) != seen.end()) continue;  // edge in several cells
+                    seen.push_back(id);
+                    f(edges_[id].a, edges_[id].b);
+                }
+    };
+    return clip_line(line, box_, near, [&](const Point& p) { return region_.contains(p); });
 }
 
 std::vector<Polyline> clip_to_convex(const Polyline& line, const std::vector<Point>& convex) {
-    std::vector<std::vector<Point>*> rings{const_cast<std::vector<Point>*>(&convex)};
     tex::BBox box;
     for (const auto& p : convex) box.add(p);
-    return keep_pieces(line, rings, box, [&](const Point& p) {
+    auto all_edges = [&](const tex::BBox&, auto&& f) {
+        for (std::size_t k = 0, n = convex.size(); k < n; ++k) f(convex[k], convex[(k + 1) % n]);
+    };
+    return clip_line(line, box, all_edges, [&](const Point& p) {
         for (std::size_t k = 0, n = convex.size(); k < n; ++k)
             if (tex::cross(convex[(k + 1) % n] - convex[k], p - convex[k]) < 0) return false;
         return true;

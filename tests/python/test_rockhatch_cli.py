@@ -285,29 +285,11 @@ def test_output_folder_missing(rockhatch_exe, sample_dir, tmp_path):
 def real_partition(tmp_path_factory):
     if not SHARED_DEM.exists():
         pytest.skip(f"{SHARED_DEM} is absent (../shared is not beside the project)")
-    import numpy as np
-    ds = gdal.Open(str(SHARED_DEM))
-    gt = ds.GetGeoTransform()
-    band = ds.GetRasterBand(1)
-    a = band.ReadAsArray().astype(float)
-    a[a == band.GetNoDataValue()] = np.nan
-    gy, gx = np.gradient(a, 30.9, 21.5)
-    slope = np.hypot(gx, gy) * 100
+    from realdem import grid_partition
     path = tmp_path_factory.mktemp("real") / "grid.gpkg"
-    polygons = []
-    step = 16
-    for r in range(0, a.shape[0] - step, step):
-        for c in range(0, a.shape[1] - step, step):
-            block = slope[r:r + step, c:c + step]
-            if np.isnan(block).any() or np.nanmean(block) < 90:
-                continue
-            x0, y0 = gt[0] + c * gt[1], gt[3] + r * gt[5]
-            x1, y1 = x0 + step * gt[1], y0 + step * gt[5]
-            polygons.append(f"POLYGON(({x0} {y0},{x1} {y0},{x1} {y1},{x0} {y1},{x0} {y0}))")
-    assert len(polygons) > 50
-    mid = gt[0] + a.shape[1] / 2 * gt[1]
-    write_partition(path, polygons, [(f"LINESTRING({mid} 45.85,{mid} 45.95)", "ridge")], srs_epsg=4326)
-    return path, len(polygons)
+    n = grid_partition(SHARED_DEM, path, 90)
+    assert n > 50
+    return path, n
 
 
 def test_real_dem_geographic_with_nodata(rockhatch_exe, real_partition, tmp_path):
