@@ -74,10 +74,12 @@ def main():
             grid = tmp / "grid.gpkg"
             n = grid_partition(SHARED_DEM, grid, 90)
             label = f"real DEM Chamonix.tif (EPSG:4326, {n} faces, slope >= 90%)"
+            for style in STYLES:
+                for t in (1, 2):
+                    case(f"{label}, {style}, GeoPackage", SHARED_DEM, grid, ["--style", style], t)
             for t in (1, 2):
-                case(f"{label}, GeoPackage with R-tree", SHARED_DEM, grid, [], t)
-                case(f"{label}, GeoPackage without R-tree", SHARED_DEM, grid, ["--no-spatial-index"], t)
-                case(f"{label}, SVG", SHARED_DEM, grid, [], t, ".svg")
+                case(f"{label}, bidirectional, GeoPackage without R-tree", SHARED_DEM, grid, ["--no-spatial-index"], t)
+                case(f"{label}, bidirectional, SVG", SHARED_DEM, grid, [], t, ".svg")
         else:
             print(f"bench_carto: {SHARED_DEM} absent, real-DEM rows skipped")
     if args.markdown:

@@ -149,11 +149,15 @@ Drawing hatch(const Prepared& p, const Options& o, const Progress& progress) {
     d.style = style.name;
     d.scale = o.scale;
     d.faces.resize(todo.size());
-    const Raster& elev = p.terrain.elevation;
-    const Raster& rough = p.terrain.roughness;
-    const double zmin = p.zmin, zr = p.zmax - p.zmin;
-    Field height_field = [&](const Point& q) { return (elev.sample(q) - zmin) / zr; };
-    Field rough_field = [&](const Point& q) { return rough.sample(q); };
+    // The control fields (seed 5.3): face-wise orientation and density, elevation scaled to
+    // 0..1 over the DEM's range, roughness.
+    std::vector<double> orient, dens;
+    for (const auto& f : part.faces) {
+        orient.push_back(*f.orientation);
+        dens.push_back(*f.density);
+    }
+    ControlFields fields{face_field(part, std::move(orient)), face_field(part, std::move(dens)),
+                         raster_field(p.terrain.elevation, p.zmin, p.zmax - p.zmin), raster_field(p.terrain.roughness)};
     tex::SetThreads(o.threads);
     std::atomic<std::size_t> done{0};
     std::atomic<bool> cancelled{false};
@@ -161,25 +165,10 @@ Drawing hatch(const Prepared& p, const Options& o, const Progress& progress) {
     tex::parallel_for(todo.size(), [&](std::size_t k) {
         if (cancelled) return;
         const RockFace& f = part.faces[todo[k]];
-        FaceControls c;
-        c.orientation = *f.orientation;
-        c.density = *f.density;
-        double zmax_face = -1e300;
-        for (const auto& q : f.region.outer()) {
-            const double z = elev.sample(q);
-            if (!std::isnan(z)) zmax_face = std::max(zmax_face, z);
-        }
-        c.height = zmax_face > -1e300 ? std::clamp((zmax_face - zmin) / zr, 0.0, 1.0) : 0.5;
-        c.neighbour_density = [&](int i) {
-            const int n = f.boundary[i].neighbor;
-            return n < 0 ? std::nan("") : *part.faces[n].density;
-        };
-        c.neighbour_id = [&](int i) {
+        const FaceControls c = face_controls(f, fields, [&](int i) {
             const int n = f.boundary[i].neighbor;
             return n < 0 ? std::int64_t(-1) : part.faces[n].id;
-        };
-        c.height_field = height_field;
-        c.roughness_field = rough_field;
+        });
         d.faces[k] = {f.id, hatch_face(style, params, f, c, o.seed)};
         const std::size_t n = ++done;
         if (progress) {

@@ -354,6 +354,41 @@ void cross_hatch(std::vector<Hatch>& out, const ParamValues& p, const RockFace& 
 
 }  // namespace
 
+FaceControls face_controls(const RockFace& face, const ControlFields& f,
+                           std::function<std::int64_t(int)> neighbour_id) {
+    FaceControls c;
+    const Point inside = interior_point(face);
+    c.orientation = f.orientation(inside);
+    c.density = f.density(inside);
+    if (std::isnan(c.orientation)) c.orientation = 0;
+    if (std::isnan(c.density)) c.density = 0.5;
+    // Highest point of the face's border (seed App. E, `highest_height`).
+    double h = -1e300;
+    for (const auto& q : face.region.outer()) {
+        const double v = f.height(q);
+        if (!std::isnan(v)) h = std::max(h, v);
+    }
+    c.height = h > -1e300 ? clamp01(h) : 0.5;
+    // Density across a border segment: the field just outside its middle.
+    Field density = f.density;
+    std::vector<double> across(face.boundary.size(), std::nan(""));
+    for (std::size_t i = 0; i < face.boundary.size(); ++i) {
+        const BoundarySegment& s = face.boundary[i];
+        const Point d = s.b - s.a;
+        const double len = tex::norm(d);
+        if (len == 0 || s.kind != LineKind::Ridge) continue;  // only ridges need it
+        // Rings run with the inside on the left: outside is on the right.
+        const Point out{d.y / len, -d.x / len};
+        const double eps = std::min(0.5, 0.05 * len);
+        across[i] = density((s.a + s.b) / 2 + out * eps);
+    }
+    c.neighbour_density = [across](int i) { return across[std::size_t(i)]; };
+    c.neighbour_id = std::move(neighbour_id);
+    c.height_field = f.height;
+    c.roughness_field = f.roughness;
+    return c;
+}
+
 std::vector<Hatch> hatch_face(const StyleInfo& style, const ParamValues& p, const RockFace& face,
                               const FaceControls& c, std::uint64_t seed) {
     std::vector<Hatch> out;

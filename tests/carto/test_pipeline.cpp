@@ -255,3 +255,32 @@ TEST(Pipeline, StylesAndParameters) {
     EXPECT_THROW(resolve_params(find_style("noisy"), {{"spacing_min", -1}}, 10000), Error);
     EXPECT_THROW(resolve_params(find_style("noisy"), {{"peak_spacing", 1}}, 10000), Error);
 }
+
+TEST(Fields, FaceWiseRasterAndClosedFormFieldsDriveAStyle) {
+    const Partition& part = sample().partition;
+    std::vector<double> ids;
+    for (const auto& f : part.faces) ids.push_back(double(f.id));
+    const Field which = face_field(part, ids);
+    for (const auto& f : part.faces) EXPECT_EQ(which(interior_point(f)), double(f.id));
+    EXPECT_TRUE(std::isnan(which({0, 0})));
+    // A controlled arrangement applied to other fields: a closed-form orientation of 30
+    // degrees everywhere and a constant density.
+    const double theta = 30 * M_PI / 180;
+    const ControlFields fields{constant_field(theta), constant_field(0.8),
+                               raster_field(sample().terrain.elevation, sample().zmin, sample().zmax - sample().zmin),
+                               raster_field(sample().terrain.roughness)};
+    const StyleInfo& s = find_style("noisy");
+    const ParamValues p = resolve_params(s, {{"jitter", 0.0}}, 10000);
+    const RockFace& f = part.faces[3];
+    const FaceControls c = face_controls(f, fields, [](int) { return std::int64_t(-1); });
+    EXPECT_DOUBLE_EQ(c.orientation, theta);
+    EXPECT_DOUBLE_EQ(c.density, 0.8);
+    const auto hatches = hatch_face(s, p, f, c, 0);
+    ASSERT_GT(hatches.size(), 10u);
+    for (const auto& h : hatches) {
+        const Point d = h.points.back() - h.points.front();
+        if (tex::norm(d) < 1) continue;
+        double e = std::fmod(std::abs(std::atan2(d.y, d.x) - theta), M_PI);
+        EXPECT_LT(std::min(e, M_PI - e), 1e-6);  // no jitter: exactly along the field
+    }
+}

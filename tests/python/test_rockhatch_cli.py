@@ -364,3 +364,14 @@ def test_sample_generator_is_deterministic_and_repeats_the_massif(rockhatch_exe,
         row = int((6539900 + dy - gt[3]) / gt[5])
         assert a[row, col] == pytest.approx(3400, abs=30)
     assert ogr.Open(str(tmp_path / "four" / "partition.gpkg")).GetLayerByName("faces").GetFeatureCount() == 80
+
+
+def test_shapefiles_work_too(rockhatch_exe, sample_dir, tmp_path):
+    # A folder of shapefiles is a multi-layer OGR dataset: faces.shp, lines.shp, orientation.shp.
+    shp = tmp_path / "shp"
+    gdal.VectorTranslate(str(shp), str(sample_dir / "partition.gpkg"), format="ESRI Shapefile")
+    assert (shp / "faces.shp").exists() and (shp / "lines.shp").exists()
+    r = run(rockhatch_exe, "--dem", sample_dir / "dem.tif", "--partition", shp, "--style", "noisy",
+            "-o", tmp_path / "o.svg")
+    assert r.returncode == 0, r.stderr
+    assert "20 faces" in r.stderr

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "carto/fields.hpp"
 #include "carto/hatching.hpp"
 #include "carto/partition.hpp"
 
@@ -49,10 +50,17 @@ const std::string& default_style();
 // Throws carto::Error(UnknownStyle) listing the known names.
 const StyleInfo& find_style(const std::string& name);
 
-// A point -> value function (seed 5.3.1).
-using Field = std::function<double(const Point&)>;
+// The control fields f1..fn a style is applied to (seed 5.3: a style is the controlled
+// arrangement f1..fn -> arrangement).
+struct ControlFields {
+    Field orientation;  // hatch direction, radians (axial); face-wise constant in practice
+    Field density;      // 0..1, 1 = darkest; face-wise constant in practice
+    Field height;       // 0..1 normalised elevation
+    Field roughness;    // 0..1
+};
 
-// Everything a style reads about one face.
+// What a style reads about one face, evaluated from the fields inside the face and just
+// across its border (the seed reads orientation and density at the face's centroid).
 struct FaceControls {
     double orientation;  // hatch direction, radians (axial)
     double density;      // 0..1, 1 = darkest
@@ -68,6 +76,10 @@ struct FaceControls {
 // Style parameters resolved to ground units (mm x scale / 1000 for "mm" parameters).
 using ParamValues = std::map<std::string, double>;
 ParamValues resolve_params(const StyleInfo& s, const std::map<std::string, double>& overrides, double scale);
+
+// Evaluates the fields for one face; neighbour_id comes from the partition's adjacency.
+FaceControls face_controls(const RockFace& face, const ControlFields& f,
+                           std::function<std::int64_t(int)> neighbour_id);
 
 // The hatches of one face.
 std::vector<Hatch> hatch_face(const StyleInfo& style, const ParamValues& p, const RockFace& face,

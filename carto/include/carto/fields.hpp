@@ -1,0 +1,27 @@
+// Control fields (seed 5.3.1): functions from a point of the plane to a value. A style is a
+// controlled arrangement: it receives the fields and reads them only inside and at the border
+// of the face it hatches, which is what makes edits local and tiling exact.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "carto/partition.hpp"
+#include "carto/raster.hpp"
+
+namespace carto {
+
+using Field = std::function<double(const Point&)>;
+
+// Bilinear, NoData-aware raster field, mapped through value -> (value - offset) / range.
+Field raster_field(const Raster& r, double offset = 0.0, double range = 1.0);
+// Face-wise constant field: the value of the face containing the point (NaN outside all
+// faces). values[i] belongs to p.faces[i].
+Field face_field(const Partition& p, std::vector<double> values);
+// Closed-form fields are plain lambdas; a constant one for convenience.
+Field constant_field(double v);
+
+// A point inside a face (its centroid when that lies inside, else a point near the border).
+Point interior_point(const RockFace& f);
+
+}  // namespace carto
