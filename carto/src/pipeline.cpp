@@ -134,7 +134,7 @@ Drawing hatch(const Prepared& p, const Options& o, const Progress& progress) {
     const StyleInfo& style = find_style(o.style.empty() ? default_style() : o.style);
     const ParamValues params = resolve_params(style, o.params, o.scale);
     const Partition& part = p.partition;
-    std::vector<int> todo;
+    std::vector<int> selected;
     for (std::size_t i = 0; i < part.faces.size(); ++i) {
         if (o.window) {
             const Point c = part.faces[i].region.bbox().center();
@@ -142,13 +142,13 @@ Drawing hatch(const Prepared& p, const Options& o, const Progress& progress) {
             // Half-open window: a face on the shared border of two tiles goes to one tile.
             if (!(c.x >= w.xmin && c.x < w.xmax && c.y >= w.ymin && c.y < w.ymax)) continue;
         }
-        todo.push_back(int(i));
+        selected.push_back(int(i));
     }
     Drawing d;
     d.crs_wkt = part.crs_wkt;
     d.style = style.name;
     d.scale = o.scale;
-    d.faces.resize(todo.size());
+    d.faces.resize(selected.size());
     // The control fields (seed 5.3): face-wise orientation and density, elevation scaled to
     // 0..1 over the DEM's range, roughness.
     std::vector<double> orient, dens;
@@ -162,9 +162,9 @@ Drawing hatch(const Prepared& p, const Options& o, const Progress& progress) {
     std::atomic<std::size_t> done{0};
     std::atomic<bool> cancelled{false};
     std::mutex progress_mutex;
-    tex::parallel_for(todo.size(), [&](std::size_t k) {
+    tex::parallel_for(selected.size(), [&](std::size_t k) {
         if (cancelled) return;
-        const RockFace& f = part.faces[todo[k]];
+        const RockFace& f = part.faces[selected[k]];
         const FaceControls c = face_controls(f, fields, [&](int i) {
             const int n = f.boundary[i].neighbor;
             return n < 0 ? std::int64_t(-1) : part.faces[n].id;
@@ -173,11 +173,11 @@ Drawing hatch(const Prepared& p, const Options& o, const Progress& progress) {
         const std::size_t n = ++done;
         if (progress) {
             std::lock_guard lock(progress_mutex);
-            if (!progress(0.2 + 0.7 * double(n) / double(todo.size()), "hatching")) cancelled = true;
+            if (!progress(0.2 + 0.7 * double(n) / double(selected.size()), "hatching")) cancelled = true;
         }
     });
     if (cancelled) throw Error(Code::Cancelled, "cancelled during hatching");
-    for (std::size_t k = 0; k < todo.size(); ++k) d.bounds.add(part.faces[todo[k]].region.bbox());
+    for (std::size_t k = 0; k < selected.size(); ++k) d.bounds.add(part.faces[selected[k]].region.bbox());
     return d;
 }
 
