@@ -48,7 +48,7 @@ void write_geotiff(const Raster& r, const std::string& path, double nodata = -99
 bool is_geographic(const std::string& wkt);
 // WKT of an EPSG code.
 std::string epsg_wkt(int code);
-// Short "EPSG:xxxx" name when the CRS has one, else its name.
+// Short "AUTHORITY:CODE" name (e.g. EPSG:2154) when the CRS has one, else its name.
 std::string crs_name(const std::string& wkt);
 // True when both describe the same CRS.
 bool same_crs(const std::string& a, const std::string& b);
