@@ -1,9 +1,12 @@
 // rockhatch: rock hatching from a DEM and a labelled partition (thesis Chapter 5).
 //
-// main only parses the command line, installs a progress bar and maps errors to exit
-// codes; the work is carto::run, which Python and QGIS call too.
+// main only parses the command line (carto/cli.hpp), installs a progress bar and maps
+// errors to exit codes; the work is carto::run, which Python and QGIS call too. With
+// --script the command hands over to the Python module, which runs the same carto::run
+// with the script's style.
 #include <cmath>
 #include <cstdio>
+#include <cerrno>
 #include <cstring>
 #include <cstdlib>
 #include <functional>
@@ -12,6 +15,9 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
+#include "carto/cli.hpp"
 #include "carto/error.hpp"
 #include "carto/pipeline.hpp"
 
@@ -19,121 +25,6 @@ namespace {
 
 using carto::Code;
 using carto::Error;
-
-struct Option {
-    const char* name;   // "--dem"
-    const char* arg;    // "PATH", or nullptr for a flag
-    const char* help;
-    std::function<void(const std::string&)> set;
-};
-
-double parse_double(const std::string& opt, const std::string& v) {
-    char* end = nullptr;
-    const double d = std::strtod(v.c_str(), &end);
-    if (v.empty() || *end != 0 || !std::isfinite(d)) throw Error(Code::Usage, opt + ": '" + v + "' is not a number");
-    return d;
-}
-
-unsigned long long parse_uint(const std::string& opt, const std::string& v) {
-    if (v.empty() || v.find_first_not_of("0123456789") != std::string::npos)
-        throw Error(Code::Usage, opt + ": '" + v + "' is not a non-negative integer");
-    return std::strtoull(v.c_str(), nullptr, 10);
-}
-
-std::vector<Option> options(carto::Options& o, bool& quiet, bool& list_styles, bool& help) {
-    return {
-        {"--dem", "PATH", "DEM raster (any GDAL format and CRS; geographic DEMs are reprojected to UTM)",
-         [&](const std::string& v) { o.dem = v; }},
-        {"--partition", "PATH", "partition of the rock areas (GeoPackage, shapefile...): faces + labelled lines",
-         [&](const std::string& v) { o.partition.path = v; }},
-        {"-o", "PATH", "output: .gpkg (one layer per hatch family), .svg (true scale) or .png (preview); repeatable",
-         [&](const std::string& v) { o.outputs.push_back(v); }},
-        {"--slope", "PATH", "slope raster in percent (default: computed from the DEM)",
-         [&](const std::string& v) { o.slope = v; }},
-        {"--roughness", "PATH", "roughness raster in 0..1 (default: computed from the DEM)",
-         [&](const std::string& v) { o.roughness = v; }},
-        {"--style", "NAME", "hatching style (see --list-styles; default: the final design, bidirectional)",
-         [&](const std::string& v) { o.style = v; }},
-        {"--param", "NAME=VALUE", "set a style parameter (units as listed by --list-styles); repeatable",
-         [&](const std::string& v) {
-             const auto eq = v.find('=');
-             if (eq == std::string::npos || eq == 0) throw Error(Code::Usage, "--param: expected NAME=VALUE, got '" + v + "'");
-             o.params[v.substr(0, eq)] = parse_double("--param " + v.substr(0, eq), v.substr(eq + 1));
-         }},
-        {"--scale", "N", "map scale denominator; style parameters are millimetres on paper at 1:N (default 10000)",
-         [&](const std::string& v) { o.scale = parse_double("--scale", v); }},
-        {"--seed", "N", "random seed (default 0); same inputs and seed give the same bytes",
-         [&](const std::string& v) { o.seed = parse_uint("--seed", v); }},
-        {"--threads", "N", "worker threads (default 0: all cores); does not change the output",
-         [&](const std::string& v) { o.threads = unsigned(parse_uint("--threads", v)); }},
-        {"--faces-layer", "NAME", "polygon layer of the faces (default: the first polygon layer)",
-         [&](const std::string& v) { o.partition.faces_layer = v; }},
-        {"--lines-layer", "NAME", "line layer with the ridge / valley labels (default: the first with the label field, "
-                                  "else layers named ridges / valleys)",
-         [&](const std::string& v) { o.partition.lines_layer = v; }},
-        {"--label-field", "NAME", "label attribute of the lines: ridge, valley (thalweg) or other (default kind)",
-         [&](const std::string& v) { o.partition.label_field = v; }},
-        {"--id-field", "NAME", "face id attribute (default: feature ids)", [&](const std::string& v) { o.partition.id_field = v; }},
-        {"--orientation-field", "NAME", "face attribute: hatch azimuth in degrees (default orientation)",
-         [&](const std::string& v) { o.partition.orientation_field = v; }},
-        {"--orientation-layer", "NAME", "line layer, one line per face along its hatches (default: a layer named orient*)",
-         [&](const std::string& v) { o.partition.orientation_layer = v; }},
-        {"--density-field", "NAME", "face attribute: hatch density 0 (light) .. 1 (dark) (default density)",
-         [&](const std::string& v) { o.partition.density_field = v; }},
-        {"--density-layer", "NAME", "point or polygon layer carrying the density field",
-         [&](const std::string& v) { o.partition.density_layer = v; }},
-        {"--snap", "UNITS", "tolerance matching face borders to lines, in ground units (default 0.5)",
-         [&](const std::string& v) { o.partition.snap = parse_double("--snap", v); }},
-        {"--no-repair", nullptr, "refuse invalid face polygons instead of repairing them",
-         [&](const std::string&) { o.partition.repair = false; }},
-        {"--window", "XMIN,YMIN,XMAX,YMAX", "hatch only the faces centred in this box (working CRS), for tiling",
-         [&](const std::string& v) {
-             std::stringstream ss(v);
-             std::string part;
-             std::vector<double> n;
-             while (std::getline(ss, part, ',')) n.push_back(parse_double("--window", part));
-             if (n.size() != 4 || !(n[0] < n[2]) || !(n[1] < n[3]))
-                 throw Error(Code::Usage, "--window: expected XMIN,YMIN,XMAX,YMAX with XMIN < XMAX and YMIN < YMAX");
-             o.window = tex::BBox{n[0], n[1], n[2], n[3]};
-         }},
-        {"--png-size", "PIXELS", "width of PNG previews (default 1600)",
-         [&](const std::string& v) { o.png_pixels = int(parse_uint("--png-size", v)); }},
-        {"--no-spatial-index", nullptr, "write the GeoPackage without its R-tree (much faster for millions of hatches)",
-         [&](const std::string&) { o.spatial_index = false; }},
-        {"--overwrite", nullptr, "replace existing outputs", [&](const std::string&) { o.overwrite = true; }},
-        {"-q", nullptr, "quiet: no progress bar", [&](const std::string&) { quiet = true; }},
-        {"--list-styles", nullptr, "list the styles, their parameters and defaults", [&](const std::string&) { list_styles = true; }},
-        {"--help", nullptr, "this help", [&](const std::string&) { help = true; }},
-    };
-}
-
-void print_styles(std::ostream& os) {
-    for (const auto& s : carto::styles()) {
-        os << "  " << s.name << " (Fig. " << s.figure << ")" << (s.name == carto::default_style() ? " [default]" : "")
-           << ": " << s.title << "\n";
-        for (const auto& p : s.params) {
-            std::ostringstream v;
-            v << p.value;
-            os << "      " << p.name << " = " << v.str() << " " << p.unit << "  " << p.help << "\n";
-        }
-    }
-}
-
-void print_help(const std::vector<Option>& opts) {
-    std::cout << "usage: rockhatch --dem DEM.tif --partition faces.gpkg [options] -o hatching.gpkg|.svg|.png\n\n"
-                 "Draws rock hatching from a DEM and a partition of the rock areas whose borders are\n"
-                 "labelled ridge / valley / other (thesis Chapter 5).\n\noptions:\n";
-    for (const auto& o : opts) {
-        std::string head = std::string(o.name) + (o.arg ? std::string(" ") + o.arg : "");
-        std::cout << "  " << head << (head.size() < 26 ? std::string(26 - head.size(), ' ') : "\n" + std::string(28, ' '))
-                  << o.help << "\n";
-    }
-    std::cout << "\nstyles (parameters in mm on paper at the map scale, ratios, or degrees):\n";
-    print_styles(std::cout);
-    std::cout << "\nexit codes: 0 ok, 1 failure, 2 usage, 3 missing input, 4 no CRS, 5 no overlap,\n"
-                 "6 bad layer or attribute, 7 unknown style or parameter, 8 invalid geometry,\n"
-                 "9 output exists or cannot be written, 10 cancelled\n";
-}
 
 class ProgressBar {
 public:
@@ -164,44 +55,47 @@ private:
     std::string stage_;
 };
 
+
+// Runs `python3 -m rockhatch` with the same arguments (the Python module parses them with
+// the same option table). The build's package folder comes first on PYTHONPATH.
+int run_script(char** argv) {
+    const char* env = std::getenv("RH_PYTHON");
+    const std::string python = env && *env ? env : "/usr/bin/python3";
+#ifdef RH_PYTHON_DIR
+    if (access(RH_PYTHON_DIR "/rockhatch/__init__.py", R_OK) == 0) {
+        const char* old = std::getenv("PYTHONPATH");
+        const std::string path = std::string(RH_PYTHON_DIR) + (old && *old ? std::string(":") + old : "");
+        setenv("PYTHONPATH", path.c_str(), 1);
+    }
+#endif
+    std::vector<char*> args = {const_cast<char*>(python.c_str()), const_cast<char*>("-m"),
+                               const_cast<char*>("rockhatch")};
+    for (char** a = argv + 1; *a; ++a) args.push_back(*a);
+    args.push_back(nullptr);
+    execv(python.c_str(), args.data());
+    std::fprintf(stderr, "rockhatch: --script needs Python and the rockhatch module: cannot run %s (%s)\n",
+                 python.c_str(), std::strerror(errno));
+    return 1;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    carto::Options o;
-    bool quiet = false, list_styles = false, help = false;
-    const std::vector<Option> opts = options(o, quiet, list_styles, help);
     ProgressBar bar(false);
     try {
-        for (int i = 1; i < argc; ++i) {
-            const std::string a = argv[i];
-            const Option* match = nullptr;
-            std::string value;
-            for (const auto& op : opts) {
-                if (a == op.name) match = &op;
-                else if (op.arg && a.rfind(std::string(op.name) + "=", 0) == 0 && a.size() > 2 && a[1] == '-') {
-                    match = &op;
-                    value = a.substr(std::strlen(op.name) + 1);
-                }
-                if (match) break;
-            }
-            if (!match) throw Error(Code::Usage, "unknown option '" + a + "' (see --help)");
-            if (match->arg && value.empty()) {
-                if (i + 1 >= argc) throw Error(Code::Usage, std::string(match->name) + " needs a value (" + match->arg + ")");
-                value = argv[++i];
-            }
-            match->set(value);
-        }
-        if (help) {
-            print_help(opts);
+        const carto::CommandLine cl = carto::parse_command_line(std::vector<std::string>(argv + 1, argv + argc));
+        if (cl.help) {
+            std::cout << carto::help_text();
             return 0;
         }
-        if (list_styles) {
-            print_styles(std::cout);
+        if (cl.list_styles) {
+            std::cout << carto::styles_text();
             return 0;
         }
-        bar = ProgressBar(!quiet);
-        const carto::Stats s = carto::run(o, [&](double f, const std::string& stage) { return bar(f, stage); });
-        if (!quiet)
+        if (!cl.script.empty()) return run_script(argv);
+        bar = ProgressBar(!cl.quiet);
+        const carto::Stats s = carto::run(cl.options, [&](double f, const std::string& stage) { return bar(f, stage); });
+        if (!cl.quiet)
             for (const auto& n : s.notes) std::fprintf(stderr, "rockhatch: note: %s\n", n.c_str());
         std::fprintf(stderr, "rockhatch: %zu faces, %zu hatches, %.2f s, working CRS %s\n", s.faces, s.hatches, s.seconds,
                      s.crs.c_str());

@@ -35,11 +35,15 @@ void for_face_samples(const RockFace& f, double cell, F&& fn) {
 
 }  // namespace
 
+Style selected_style(const Options& o) {
+    if (o.custom_style) return *o.custom_style;
+    return builtin_style(o.style.empty() ? default_style() : o.style);
+}
+
 void validate(const Options& o) {
     if (!(o.scale > 0) || !std::isfinite(o.scale))
         throw Error(Code::Usage, "--scale: " + std::to_string(o.scale) + " is not a positive number");
-    const StyleInfo& s = find_style(o.style.empty() ? default_style() : o.style);
-    resolve_params(s, o.params, o.scale);
+    resolve_params(selected_style(o).info, o.params, o.scale);
     if (o.dem.empty()) throw Error(Code::Usage, "--dem is required");
     if (o.partition.path.empty()) throw Error(Code::Usage, "--partition is required");
     if (o.outputs.empty()) throw Error(Code::Usage, "-o is required (.gpkg, .svg or .png)");
@@ -131,8 +135,8 @@ Prepared prepare(const Options& o, const Progress& progress) {
 }
 
 Drawing hatch(const Prepared& p, const Options& o, const Progress& progress) {
-    const StyleInfo& style = find_style(o.style.empty() ? default_style() : o.style);
-    const ParamValues params = resolve_params(style, o.params, o.scale);
+    const Style style = selected_style(o);
+    const ParamValues params = resolve_params(style.info, o.params, o.scale);
     const Partition& part = p.partition;
     std::vector<int> selected;
     for (std::size_t i = 0; i < part.faces.size(); ++i) {
@@ -146,7 +150,7 @@ Drawing hatch(const Prepared& p, const Options& o, const Progress& progress) {
     }
     Drawing d;
     d.crs_wkt = part.crs_wkt;
-    d.style = style.name;
+    d.style = style.info.name;
     d.scale = o.scale;
     d.faces.resize(selected.size());
     // The control fields (seed 5.3): face-wise orientation and density, elevation scaled to
@@ -158,6 +162,7 @@ Drawing hatch(const Prepared& p, const Options& o, const Progress& progress) {
     }
     ControlFields fields{face_field(part, std::move(orient)), face_field(part, std::move(dens)),
                          raster_field(p.terrain.elevation, p.zmin, p.zmax - p.zmin), raster_field(p.terrain.roughness)};
+    const FaceHatcher hatcher = style.bind(fields, params, o.seed);
     tex::SetThreads(o.threads);
     std::atomic<std::size_t> done{0};
     std::atomic<bool> cancelled{false};
@@ -165,11 +170,11 @@ Drawing hatch(const Prepared& p, const Options& o, const Progress& progress) {
     tex::parallel_for(selected.size(), [&](std::size_t k) {
         if (cancelled) return;
         const RockFace& f = part.faces[selected[k]];
-        const FaceControls c = face_controls(f, fields, [&](int i) {
-            const int n = f.boundary[i].neighbor;
-            return n < 0 ? std::int64_t(-1) : part.faces[n].id;
-        });
-        d.faces[k] = {f.id, hatch_face(style, params, f, c, o.seed)};
+        const NeighbourId neighbour_id = [&](int i) {
+            const int n = f.boundary[std::size_t(i)].neighbor;
+            return n < 0 ? std::int64_t(-1) : part.faces[std::size_t(n)].id;
+        };
+        d.faces[k] = {f.id, hatcher(f, neighbour_id)};
         const std::size_t n = ++done;
         if (progress) {
             std::lock_guard lock(progress_mutex);

@@ -407,4 +407,15 @@ std::vector<Hatch> hatch_face(const StyleInfo& style, const ParamValues& p, cons
     return out;
 }
 
+Style builtin_style(const std::string& name) {
+    const StyleInfo& info = find_style(name);
+    Style s{info, {}};
+    s.bind = [&info](const ControlFields& fields, const ParamValues& params, std::uint64_t seed) -> FaceHatcher {
+        return [&info, fields, params, seed](const RockFace& face, const NeighbourId& neighbour_id) {
+            return hatch_face(info, params, face, face_controls(face, fields, neighbour_id), seed);
+        };
+    };
+    return s;
+}
+
 }  // namespace carto

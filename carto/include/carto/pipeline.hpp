@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,6 +21,8 @@ struct Options {
     PartitionOptions partition;          // --partition and its layer / field options
     std::string slope, roughness;        // optional rasters (percent, 0..1)
     std::string style;                   // "" = default style
+    // A style defined outside the built-ins (a Python style script); replaces `style`.
+    std::shared_ptr<const Style> custom_style;
     std::map<std::string, double> params;  // --param name=value
     double scale = 10000;                // --scale (1:scale)
     std::uint64_t seed = 0;              // --seed
@@ -51,6 +54,8 @@ struct Prepared {
     std::vector<std::string> notes;
 };
 
+// The style the options select: custom_style, else the built-in named by `style`.
+Style selected_style(const Options& o);
 // Validates the options that need no file (style, parameters, scale, outputs).
 void validate(const Options& o);
 // Reads the DEM (reprojected to a projected working CRS when geographic), the optional

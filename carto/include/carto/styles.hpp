@@ -85,4 +85,20 @@ FaceControls face_controls(const RockFace& face, const ControlFields& f,
 std::vector<Hatch> hatch_face(const StyleInfo& style, const ParamValues& p, const RockFace& face,
                               const FaceControls& c, std::uint64_t seed);
 
+// Feature id of the face across boundary segment i of a face (-1: none).
+using NeighbourId = std::function<std::int64_t(int)>;
+// A style bound to its fields, parameters and seed: the hatches of one face. It is called
+// for several faces at once, from several threads.
+using FaceHatcher = std::function<std::vector<Hatch>(const RockFace&, const NeighbourId&)>;
+
+// A style as the seed's controlled arrangement (f1..fn) -> arrangement: its description
+// (name, parameters and their defaults) and the function binding it to the control
+// fields. Built-in styles and styles written in Python (rockhatch --script) share it.
+struct Style {
+    StyleInfo info;
+    std::function<FaceHatcher(const ControlFields&, const ParamValues&, std::uint64_t seed)> bind;
+};
+// The built-in style of that name (see find_style) as a Style.
+Style builtin_style(const std::string& name);
+
 }  // namespace carto

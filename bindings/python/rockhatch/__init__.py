@@ -1,0 +1,24 @@
+"""rockhatch: programmable element arrangements and rock hatching for topographic maps.
+
+The compiled part (rockhatch._rockhatch) is re-exported by two modules:
+
+- rockhatch.tex: the arrangement operators of the thesis (partitions, mappers, merges,
+  table 3.4 built-ins), under their names, for scripts starting with
+  ``from rockhatch.tex import *``;
+- rockhatch.carto: rasters as numpy arrays, control fields, the partition of rock areas,
+  the hatching building blocks, styles and the pipeline of the rockhatch command.
+"""
+from . import _rockhatch
+from ._rockhatch import Lines, Points, RockhatchError, TexError
+
+__version__ = "0.1.0"
+__all__ = ["tex", "carto", "Points", "Lines", "TexError", "RockhatchError", "__version__"]
+
+
+def __getattr__(name):
+    # rockhatch.tex and rockhatch.carto load on first use.
+    if name in ("tex", "carto", "cli"):
+        import importlib
+
+        return importlib.import_module(f".{name}", __name__)
+    raise AttributeError(f"module 'rockhatch' has no attribute '{name}'")

@@ -1,0 +1,135 @@
+"""Rock hatching from Python: rasters as numpy arrays, control fields, the partition, the
+hatching building blocks, styles, and the pipeline of the rockhatch command.
+
+The pipeline is the one the command runs (carto::run in C++)::
+
+    from rockhatch import carto
+    stats = carto.run(dem="dem.tif", partition="partition.gpkg",
+                      outputs=["out.gpkg", "out.svg"], style="noisy",
+                      progress=lambda f, stage: print(f, stage))
+
+``style`` is a built-in name (see ``carto.styles()``), a style script (``styles/*.py``),
+a module with the script attributes, or a Style from ``python_style``.
+"""
+import importlib.util
+import os
+import sys
+
+from ._rockhatch import RockhatchError
+from ._rockhatch.carto import *  # noqa: F401,F403
+from ._rockhatch import carto as _carto
+
+__all__ = [n for n in dir(_carto) if not n.startswith("_")] + [
+    "run", "prepare", "hatch", "make_options", "load_style", "as_style", "error"]
+
+
+def error(code, message):
+    """A RockhatchError with the exit code of the rockhatch command."""
+    e = RockhatchError(message)
+    e.code = code
+    return e
+
+
+def load_style(path):
+    """Loads a style script: a Python file defining NAME, PARAMS and style(fields, params,
+    seed). Its folder is on sys.path while it loads, so a script may build on another."""
+    if not os.path.isfile(path):
+        raise error(3, f"--script '{path}': no such file")
+    name = "rockhatch_style_" + os.path.splitext(os.path.basename(path))[0].replace("-", "_")
+    folder = os.path.dirname(os.path.abspath(path))
+    added = folder not in sys.path
+    if added:
+        sys.path.insert(0, folder)
+    try:
+        spec = importlib.util.spec_from_file_location(name, path)
+        module = importlib.util.module_from_spec(spec)
+        sys.modules[name] = module
+        spec.loader.exec_module(module)
+    finally:
+        if added:
+            sys.path.remove(folder)
+    return style_of_module(module, path)
+
+
+def style_of_module(module, where=None):
+    """The Style defined by a script module (NAME, FIGURE, TITLE, PARAMS, style)."""
+    where = where or getattr(module, "__file__", repr(module))
+    fn = getattr(module, "style", None)
+    if not callable(fn):
+        raise error(7, f"--script '{where}': defines no style(fields, params, seed) function")
+    params = []
+    for p in getattr(module, "PARAMS", []):
+        if isinstance(p, StyleParam):  # noqa: F405
+            params.append(p)
+        else:
+            params.append(StyleParam(*p))  # noqa: F405
+    info = StyleInfo(getattr(module, "NAME", os.path.splitext(os.path.basename(str(where)))[0]),  # noqa: F405
+                     getattr(module, "FIGURE", ""), getattr(module, "TITLE", ""), params)
+    return python_style(info, fn)  # noqa: F405
+
+
+def as_style(style):
+    """A Style, or None for a built-in name (the C++ style is used then)."""
+    if style is None or isinstance(style, Style):  # noqa: F405
+        return style
+    if isinstance(style, str):
+        if style.endswith(".py"):
+            return load_style(style)
+        return None
+    if hasattr(style, "style"):
+        return style_of_module(style)
+    raise TypeError(f"style: expected a name, a script path, a module or a Style, got {type(style).__name__}")
+
+
+_PARTITION_KEYS = ("faces_layer", "lines_layer", "label_field", "id_field", "orientation_field",
+                   "orientation_layer", "density_field", "density_layer", "repair", "snap")
+
+
+def make_options(dem, partition, outputs=(), style=None, params=None, scale=10000.0, seed=0, threads=0,
+                 overwrite=False, slope="", roughness="", window=None, png_pixels=1600, spatial_index=True,
+                 **partition_options):
+    """The Options of the rockhatch command from keyword arguments (same names as its
+    options, partition layer and field options included)."""
+    o = Options()  # noqa: F405
+    o.dem = os.fspath(dem)
+    o.partition.path = os.fspath(partition)
+    for key, value in partition_options.items():
+        if key not in _PARTITION_KEYS:
+            raise TypeError(f"unknown option '{key}'")
+        setattr(o.partition, key, value)
+    o.outputs = [os.fspath(p) for p in ([outputs] if isinstance(outputs, (str, os.PathLike)) else outputs)]
+    custom = as_style(style)
+    if custom is not None:
+        o.custom_style = custom
+    elif style:
+        o.style = style
+    o.params = dict(params or {})
+    o.scale = float(scale)
+    o.seed = int(seed)
+    o.threads = int(threads)
+    o.overwrite = bool(overwrite)
+    o.slope = os.fspath(slope) if slope else ""
+    o.roughness = os.fspath(roughness) if roughness else ""
+    if window is not None:
+        o.window = BBox(*window)  # noqa: F405
+    o.png_pixels = int(png_pixels)
+    o.spatial_index = bool(spatial_index)
+    return o
+
+
+def run(dem, partition, outputs, progress=None, **kwargs):
+    """Everything the rockhatch command does; returns Stats. progress(fraction, stage) may
+    return False to cancel (RockhatchError with code 10)."""
+    return _carto.run(make_options(dem, partition, outputs, **kwargs), progress)
+
+
+def prepare(dem, partition, progress=None, **kwargs):
+    """Reads the DEM (reprojected when geographic), its terrain fields and the partition."""
+    o = make_options(dem, partition, **kwargs)
+    return _carto.prepare(o, progress)
+
+
+def hatch(prepared, progress=None, **kwargs):
+    """Hatches a prepared partition; returns a Drawing (write it with write_gpkg / write_svg)."""
+    o = make_options(kwargs.pop("dem", "-"), kwargs.pop("partition", "-"), **kwargs)
+    return _carto.hatch(prepared, o, progress)

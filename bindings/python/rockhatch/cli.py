@@ -1,0 +1,73 @@
+"""The rockhatch command in Python: the same option table as the C++ program
+(carto.parse_command_line), plus the styles written in Python (--script, or a style
+script run on its own)."""
+import sys
+import traceback
+
+from . import carto
+from ._rockhatch import RockhatchError, TexError
+
+
+class _Bar:
+    def __init__(self, on):
+        self.on, self.last, self.open = on, None, False
+
+    def __call__(self, fraction, stage):
+        if self.on:
+            pct = int(fraction * 100 + 0.5)
+            if (pct, stage) != self.last:
+                self.last = (pct, stage)
+                sys.stderr.write("\r[%-25s] %3d%% %-24s" % ("#" * (pct // 4), pct, stage))
+                self.open = pct < 100
+                if pct >= 100:
+                    sys.stderr.write("\n")
+                sys.stderr.flush()
+        return True
+
+    def finish(self):
+        if self.open:
+            sys.stderr.write("\n")
+            self.open = False
+
+
+def main(argv=None, style=None):
+    """Runs the command; returns its exit code. style: a script module to use instead of
+    --script (a style script run on its own passes itself)."""
+    argv = sys.argv[1:] if argv is None else list(argv)
+    bar = _Bar(False)
+    try:
+        cl = carto.parse_command_line(argv)
+        if cl.help:
+            sys.stdout.write(carto.help_text())
+            return 0
+        if cl.list_styles:
+            sys.stdout.write(carto.styles_text())
+            return 0
+        options = cl.options
+        chosen = style if style is not None else (cl.script or None)
+        if chosen is not None:
+            if options.style:
+                raise carto.error(2, "--style and --script (or a style script) exclude each other")
+            options.custom_style = carto.as_style(chosen) if not isinstance(chosen, str) else carto.load_style(chosen)
+        bar = _Bar(not cl.quiet)
+        stats = carto._carto.run(options, bar)
+        bar.finish()
+        if not cl.quiet:
+            for note in stats.notes:
+                sys.stderr.write(f"rockhatch: note: {note}\n")
+        sys.stderr.write("rockhatch: %d faces, %d hatches, %.2f s, working CRS %s\n"
+                         % (stats.faces, stats.hatches, stats.seconds, stats.crs))
+        return 0
+    except RockhatchError as e:
+        bar.finish()
+        sys.stderr.write(f"rockhatch: {e}\n")
+        return getattr(e, "code", 1)
+    except TexError as e:
+        bar.finish()
+        sys.stderr.write(f"rockhatch: {e}\n")
+        return 1
+    except Exception:  # an error in a style script: its traceback helps its author
+        bar.finish()
+        traceback.print_exc()
+        sys.stderr.write("rockhatch: the style script failed (traceback above)\n")
+        return 1

@@ -1,0 +1,518 @@
+// rockhatch.carto: rasters as numpy arrays, control fields, the partition, the hatching
+// building blocks and styles, and the pipeline the rockhatch command runs.
+#include <cmath>
+#include <cstring>
+
+#include "carto/cli.hpp"
+#include "carto/error.hpp"
+#include "carto/fields.hpp"
+#include "carto/hatching.hpp"
+#include "carto/output.hpp"
+#include "carto/partition.hpp"
+#include "carto/pipeline.hpp"
+#include "carto/raster.hpp"
+#include "carto/terrain.hpp"
+#include "common.hpp"
+
+namespace rhpy {
+namespace {
+
+using namespace carto;
+using RasterPtr = std::shared_ptr<Raster>;
+
+// The terrain rasters, each shared with Python (fields built on them keep them alive).
+struct PyTerrain {
+    RasterPtr elevation, slope, aspect, roughness, hillshade;
+};
+
+PyTerrain share(Terrain t) {
+    auto own = [](Raster& r) { return std::make_shared<Raster>(std::move(r)); };
+    return {own(t.elevation), own(t.slope), own(t.aspect), own(t.roughness), own(t.hillshade)};
+}
+
+// A field and what it reads, kept alive as long as the field.
+struct PyField {
+    Field fn;
+    std::string kind;  // "python", "raster", "constant", "faces", "c++"
+};
+
+// A face as a style sees it: its geometry and labels, and the ids of its neighbours.
+struct StyleFace {
+    RockFace face;
+    std::vector<std::int64_t> neighbour_ids;  // per boundary segment (-1: none)
+    std::int64_t neighbour_id(int i) const {
+        if (i < 0 || std::size_t(i) >= neighbour_ids.size()) throw py::index_error("boundary segment index out of range");
+        return neighbour_ids[std::size_t(i)];
+    }
+};
+
+std::string wkt_of(const std::string& crs) {
+    if (crs.rfind("EPSG:", 0) == 0 || crs.rfind("epsg:", 0) == 0) return epsg_wkt(std::stoi(crs.substr(5)));
+    return crs;
+}
+
+RasterPtr raster_from_array(const py::array_t<double, py::array::c_style | py::array::forcecast>& a,
+                            const std::vector<double>& gt, const std::string& crs, std::optional<double> nodata) {
+    if (a.ndim() != 2) throw py::value_error("Raster.from_array: a 2-D array is needed, got " + std::to_string(a.ndim()) + "-D");
+    if (gt.size() != 6) throw py::value_error("Raster.from_array: the geotransform needs 6 numbers");
+    auto r = std::make_shared<Raster>();
+    r->height = int(a.shape(0));
+    r->width = int(a.shape(1));
+    if (r->width < 1 || r->height < 1) throw py::value_error("Raster.from_array: the array is empty");
+    std::copy(gt.begin(), gt.end(), r->gt.begin());
+    if (gt[1] == 0 || gt[5] == 0) throw py::value_error("Raster.from_array: the geotransform has a zero cell size");
+    r->crs_wkt = wkt_of(crs);
+    r->data.resize(std::size_t(r->width) * r->height);
+    const double* src = a.data();
+    for (std::size_t i = 0; i < r->data.size(); ++i) {
+        const double v = src[i];
+        r->data[i] = (nodata && v == *nodata) || !std::isfinite(v) ? NAN : float(v);
+    }
+    return r;
+}
+
+Field python_field(py::object fn) {
+    PyRef ref(std::move(fn));
+    return [ref](const Point& p) -> double {
+        py::gil_scoped_acquire gil;
+        py::object v = ref.get()(p);
+        if (v.is_none()) return NAN;
+        return v.cast<double>();
+    };
+}
+
+// Anything usable as a field: a Field, a Raster, a number or a Python callable of a Point.
+PyField to_field(const py::object& o) {
+    if (py::isinstance<PyField>(o)) return o.cast<PyField>();
+    if (py::isinstance<Raster>(o)) {
+        RasterPtr r = o.cast<RasterPtr>();
+        return {[r](const Point& q) { return r->sample(q); }, "raster"};
+    }
+    if (py::isinstance<py::float_>(o) || py::isinstance<py::int_>(o)) return {constant_field(o.cast<double>()), "constant"};
+    if (PyCallable_Check(o.ptr())) return {python_field(o), "python"};
+    throw py::type_error("a field is a Field, a Raster, a number or a callable f(Point) -> float; got " + type_name(o));
+}
+
+Progress to_progress(const py::object& cb) {
+    if (cb.is_none()) return {};
+    PyRef ref(cb);
+    return [ref](double f, const std::string& stage) {
+        py::gil_scoped_acquire gil;
+        py::object r = ref.get()(f, stage);
+        return r.is_none() || r.cast<bool>();
+    };
+}
+
+std::vector<Hatch> to_hatches(const py::object& r, const std::string& style) {
+    if (py::isinstance<std::vector<Hatch>>(r)) return r.cast<const std::vector<Hatch>&>();
+    if (py::isinstance<py::list>(r) || py::isinstance<py::tuple>(r)) {
+        std::vector<Hatch> out;
+        for (const auto& h : r) {
+            if (!py::isinstance<Hatch>(h))
+                throw py::type_error("style '" + style + "': a face function returned a list holding " + type_name(h) +
+                                     "; it must hold Hatch objects");
+            out.push_back(h.cast<const Hatch&>());
+        }
+        return out;
+    }
+    throw py::type_error("style '" + style + "': a face function returned " + type_name(r) +
+                         "; it must return Hatches or a list of Hatch");
+}
+
+// A Python style: fn(fields, params, seed) returns the function hatching one face.
+std::shared_ptr<const Style> python_style(StyleInfo info, py::object fn) {
+    auto s = std::make_shared<Style>();
+    s->info = std::move(info);
+    PyRef ref(std::move(fn));
+    const std::string name = s->info.name;
+    s->bind = [ref, name](const ControlFields& fields, const ParamValues& params, std::uint64_t seed) -> FaceHatcher {
+        PyRef face_fn;
+        {
+            py::gil_scoped_acquire gil;
+            py::dict p;
+            for (const auto& [k, v] : params) p[py::str(k)] = v;
+            py::object f = ref.get()(fields, p, seed);
+            if (!PyCallable_Check(f.ptr()))
+                throw py::type_error("style '" + name + "': it returned " + type_name(f) +
+                                     "; a style returns the function hatching one face");
+            face_fn = PyRef(f);
+        }
+        return [face_fn, name](const RockFace& face, const NeighbourId& nid) {
+            StyleFace sf{face, {}};
+            for (std::size_t i = 0; i < face.boundary.size(); ++i) sf.neighbour_ids.push_back(nid(int(i)));
+            py::gil_scoped_acquire gil;
+            return to_hatches(face_fn.get()(std::move(sf)), name);
+        };
+    };
+    return s;
+}
+
+}  // namespace
+
+void bind_carto(py::module_& m) {
+    // ---- Rasters ----
+    py::class_<Raster, RasterPtr>(m, "Raster",
+                                  "A single-band grid: float values with NaN for NoData, a GDAL geotransform and a CRS")
+        .def_static("from_array", &raster_from_array, py::arg("array"), py::arg("geotransform"), py::arg("crs") = "",
+                    py::arg("nodata") = py::none(),
+                    "a raster from a 2-D array (row 0 at the top for a north-up geotransform); cells equal to "
+                    "nodata, and non-finite cells, become NoData (NaN); crs is WKT or 'EPSG:n'")
+        .def_readonly("width", &Raster::width)
+        .def_readonly("height", &Raster::height)
+        .def_property_readonly("geotransform", [](const Raster& r) { return std::vector<double>(r.gt.begin(), r.gt.end()); })
+        .def_readonly("crs", &Raster::crs_wkt, "WKT ('' when the raster has none)")
+        .def_property_readonly("crs_name", [](const Raster& r) { return r.crs_wkt.empty() ? "" : crs_name(r.crs_wkt); })
+        .def_property_readonly("nodata", [](const Raster&) { return NAN; }, "NoData cells are NaN in the array")
+        .def_property_readonly(
+            "array",
+            [](const RasterPtr& r) {
+                return py::array_t<float>({r->height, r->width},
+                                          {ssize_t(r->width * sizeof(float)), ssize_t(sizeof(float))}, r->data.data(),
+                                          py::cast(r));
+            },
+            "the values as a float32 (height, width) array sharing the raster's memory; NaN = NoData")
+        .def(
+            "to_array",
+            [](const Raster& r, std::optional<double> nodata) {
+                py::array_t<double> a({r.height, r.width});
+                double* dst = a.mutable_data();
+                for (std::size_t i = 0; i < r.data.size(); ++i)
+                    dst[i] = std::isnan(r.data[i]) && nodata ? *nodata : double(r.data[i]);
+                return a;
+            },
+            py::arg("nodata") = py::none(), "a float64 copy, NoData as NaN or as the given value")
+        .def("bounds", &Raster::bounds)
+        .def("sample", &Raster::sample, "bilinear value at a world point (NaN outside or NoData)")
+        .def("nearest", &Raster::nearest)
+        .def("to_world", &Raster::to_world, py::arg("col"), py::arg("row"))
+        .def("min_max", &Raster::min_max)
+        .def("cell_size", [](const Raster& r) { return py::make_tuple(r.cell_x(), r.cell_y()); });
+    m.def(
+        "read_raster", [](const std::string& path, const std::string& what) { return std::make_shared<Raster>(read_raster(path, what)); },
+        py::arg("path"), py::arg("what") = "raster", py::call_guard<py::gil_scoped_release>());
+    m.def("write_geotiff", &write_geotiff, py::arg("raster"), py::arg("path"), py::arg("nodata") = -9999.0,
+          py::call_guard<py::gil_scoped_release>());
+    m.def(
+        "warp", [](const Raster& r, const std::string& crs, double cell) { return std::make_shared<Raster>(warp(r, wkt_of(crs), cell)); },
+        py::arg("raster"), py::arg("crs"), py::arg("cell") = 0.0, py::call_guard<py::gil_scoped_release>());
+    m.def(
+        "resample_like", [](const Raster& r, const Raster& like) { return std::make_shared<Raster>(resample_like(r, like)); },
+        py::arg("raster"), py::arg("like"), py::call_guard<py::gil_scoped_release>());
+    m.def("is_geographic", &is_geographic);
+    m.def("epsg_wkt", &epsg_wkt);
+    m.def("crs_name", &crs_name);
+    m.def("same_crs", &same_crs);
+    m.def("utm_epsg", &utm_epsg, py::arg("lon"), py::arg("lat"));
+
+    py::class_<PyTerrain>(m, "Terrain", "Terrain fields of a DEM (Horn's gradient)")
+        .def_readonly("elevation", &PyTerrain::elevation, "metres")
+        .def_readonly("slope", &PyTerrain::slope, "percent (100 x tan)")
+        .def_readonly("aspect", &PyTerrain::aspect, "downhill direction, radians, math angle")
+        .def_readonly("roughness", &PyTerrain::roughness, "0..1, vector ruggedness")
+        .def_readonly("hillshade", &PyTerrain::hillshade, "0..1, lit from the north-west");
+    m.def(
+        "compute_terrain", [](const Raster& dem) { return share(compute_terrain(dem)); }, py::arg("dem"),
+        py::call_guard<py::gil_scoped_release>(), "slope, aspect, roughness and hillshade of a DEM in a projected CRS");
+
+    // ---- Control fields (seed 5.3) ----
+    py::class_<PyField>(m, "Field", "A control field: a function from a point of the plane to a value")
+        .def(py::init([](const py::object& o) { return to_field(o); }), py::arg("source"),
+             "from a callable f(Point) -> float, a Raster (bilinear) or a number")
+        .def_static("constant", [](double v) { return PyField{constant_field(v), "constant"}; })
+        .def_static(
+            "from_raster",
+            [](const RasterPtr& r, double offset, double range) {
+                return PyField{[r, offset, range](const Point& q) { return (r->sample(q) - offset) / range; }, "raster"};
+            },
+            py::arg("raster"), py::arg("offset") = 0.0, py::arg("range") = 1.0,
+            "bilinear, NoData-aware: (value - offset) / range")
+        .def_static(
+            "from_array",
+            [](const py::array_t<double, py::array::c_style | py::array::forcecast>& a, const std::vector<double>& gt,
+               const std::string& crs, std::optional<double> nodata) {
+                RasterPtr r = raster_from_array(a, gt, crs, nodata);
+                return PyField{[r](const Point& q) { return r->sample(q); }, "raster"};
+            },
+            py::arg("array"), py::arg("geotransform"), py::arg("crs") = "", py::arg("nodata") = py::none())
+        .def_readonly("kind", &PyField::kind)
+        .def("__call__", [](const PyField& f, const Point& p) { return f.fn(p); })
+        .def("__call__", [](const PyField& f, double x, double y) { return f.fn({x, y}); })
+        .def(
+            "sample",
+            [](const PyField& f, const py::array_t<double, py::array::c_style | py::array::forcecast>& xs,
+               const py::array_t<double, py::array::c_style | py::array::forcecast>& ys) {
+                if (xs.size() != ys.size()) throw py::value_error("Field.sample: xs and ys differ in size");
+                py::array_t<double> out(xs.size());
+                const double *x = xs.data(), *y = ys.data();
+                double* o = out.mutable_data();
+                const py::ssize_t n = xs.size();
+                py::gil_scoped_release release;  // a Python field takes the GIL back itself
+                for (py::ssize_t i = 0; i < n; ++i) o[i] = f.fn({x[i], y[i]});
+                return out;
+            },
+            py::arg("xs"), py::arg("ys"), "values at many points (1-D arrays)");
+    py::implicitly_convertible<py::function, PyField>();
+    py::implicitly_convertible<Raster, PyField>();
+
+    py::class_<ControlFields>(m, "ControlFields", "The control fields a style is applied to")
+        .def(py::init([](const py::object& o, const py::object& d, const py::object& h, const py::object& r) {
+                 return ControlFields{to_field(o).fn, to_field(d).fn, to_field(h).fn, to_field(r).fn};
+             }),
+             py::arg("orientation"), py::arg("density"), py::arg("height"), py::arg("roughness"))
+        .def_property(
+            "orientation", [](const ControlFields& c) { return PyField{c.orientation, "c++"}; },
+            [](ControlFields& c, const py::object& o) { c.orientation = to_field(o).fn; }, "hatch direction (radians)")
+        .def_property(
+            "density", [](const ControlFields& c) { return PyField{c.density, "c++"}; },
+            [](ControlFields& c, const py::object& o) { c.density = to_field(o).fn; }, "0..1, 1 = darkest")
+        .def_property(
+            "height", [](const ControlFields& c) { return PyField{c.height, "c++"}; },
+            [](ControlFields& c, const py::object& o) { c.height = to_field(o).fn; }, "0..1 normalised elevation")
+        .def_property(
+            "roughness", [](const ControlFields& c) { return PyField{c.roughness, "c++"}; },
+            [](ControlFields& c, const py::object& o) { c.roughness = to_field(o).fn; }, "0..1");
+
+    // ---- Partition ----
+    py::enum_<LineKind>(m, "LineKind")
+        .value("OTHER", LineKind::Other)
+        .value("RIDGE", LineKind::Ridge)
+        .value("VALLEY", LineKind::Valley);
+    py::class_<BoundarySegment>(m, "BoundarySegment", "A segment of a face's border, its label and the face across it")
+        .def_readonly("a", &BoundarySegment::a)
+        .def_readonly("b", &BoundarySegment::b)
+        .def_readonly("kind", &BoundarySegment::kind)
+        .def_readonly("neighbor", &BoundarySegment::neighbor, "index of the face across (-1: none)");
+    py::class_<RockFace>(m, "RockFace", "A face of the partition of rock areas")
+        .def_readonly("id", &RockFace::id)
+        .def_readonly("region", &RockFace::region)
+        .def_readonly("boundary", &RockFace::boundary)
+        .def_readonly("orientation", &RockFace::orientation, "hatch direction (radians) or None")
+        .def_readonly("density", &RockFace::density, "0..1 or None");
+    py::class_<LabelledLine>(m, "LabelledLine")
+        .def_readonly("points", &LabelledLine::points)
+        .def_readonly("kind", &LabelledLine::kind);
+    py::class_<Partition>(m, "Partition", "Faces to hatch separately and their labelled ridge / valley lines")
+        .def_readonly("faces", &Partition::faces)
+        .def_readonly("lines", &Partition::lines)
+        .def_readonly("crs", &Partition::crs_wkt)
+        .def_readonly("notes", &Partition::notes)
+        .def("bounds", &Partition::bounds);
+    py::class_<PartitionOptions>(m, "PartitionOptions", "Where the partition's faces, labels and attributes are")
+        .def(py::init<>())
+        .def_readwrite("path", &PartitionOptions::path)
+        .def_readwrite("faces_layer", &PartitionOptions::faces_layer)
+        .def_readwrite("lines_layer", &PartitionOptions::lines_layer)
+        .def_readwrite("label_field", &PartitionOptions::label_field)
+        .def_readwrite("id_field", &PartitionOptions::id_field)
+        .def_readwrite("orientation_field", &PartitionOptions::orientation_field)
+        .def_readwrite("orientation_layer", &PartitionOptions::orientation_layer)
+        .def_readwrite("density_field", &PartitionOptions::density_field)
+        .def_readwrite("density_layer", &PartitionOptions::density_layer)
+        .def_readwrite("repair", &PartitionOptions::repair)
+        .def_readwrite("snap", &PartitionOptions::snap);
+    m.def(
+        "load_partition",
+        [](const PartitionOptions& o, const std::string& crs) { return load_partition(o, wkt_of(crs)); },
+        py::arg("options"), py::arg("working_crs"), py::call_guard<py::gil_scoped_release>(),
+        "reads and reprojects a partition to the working CRS (WKT or 'EPSG:n')");
+    m.def(
+        "face_field",
+        [](const Partition& p, std::vector<double> values) {
+            if (values.size() != p.faces.size())
+                throw py::value_error("face_field: " + std::to_string(values.size()) + " values for " +
+                                      std::to_string(p.faces.size()) + " faces");
+            return PyField{face_field(p, std::move(values)), "faces"};
+        },
+        py::arg("partition"), py::arg("values"), py::keep_alive<0, 1>(), "value i on face i, NaN outside the faces");
+    m.def("interior_point", &interior_point);
+
+    py::class_<StyleFace>(m, "StyleFace", "A face handed to a style: the face and the ids of its neighbours")
+        .def_property_readonly("face", [](const StyleFace& s) { return s.face; })
+        .def_property_readonly("id", [](const StyleFace& s) { return s.face.id; })
+        .def_property_readonly("region", [](const StyleFace& s) { return s.face.region; })
+        .def_property_readonly("boundary", [](const StyleFace& s) { return s.face.boundary; })
+        .def("neighbour_id", &StyleFace::neighbour_id, "feature id of the face across boundary segment i (-1: none)");
+
+    py::class_<FaceControls>(m, "FaceControls", "What a style reads about one face from the control fields")
+        .def_readonly("orientation", &FaceControls::orientation)
+        .def_readonly("density", &FaceControls::density)
+        .def_readonly("height", &FaceControls::height)
+        .def("neighbour_density", [](const FaceControls& c, int i) { return c.neighbour_density(i); })
+        .def("neighbour_id", [](const FaceControls& c, int i) { return c.neighbour_id(i); })
+        .def_property_readonly("height_field", [](const FaceControls& c) { return PyField{c.height_field, "c++"}; })
+        .def_property_readonly("roughness_field", [](const FaceControls& c) { return PyField{c.roughness_field, "c++"}; });
+    m.def(
+        "face_controls",
+        [](const StyleFace& f, const ControlFields& fields) {
+            const std::vector<std::int64_t> ids = f.neighbour_ids;
+            return face_controls(f.face, fields, [ids](int i) { return ids[std::size_t(i)]; });
+        },
+        py::arg("face"), py::arg("fields"),
+        "orientation and density at an interior point, height on the border, density across the ridges");
+
+    // ---- Hatches and their building blocks ----
+    py::enum_<Family>(m, "Family")
+        .value("FILL", Family::Fill)
+        .value("RIDGE", Family::Ridge)
+        .value("VALLEY", Family::Valley)
+        .value("CROSS", Family::Cross);
+    py::class_<Hatch>(m, "Hatch", "One stroke (or closed shape) of a hatch family")
+        .def(py::init([](std::vector<Point> pts, bool closed, Family f) { return Hatch{std::move(pts), closed, f}; }),
+             py::arg("points"), py::arg("closed") = false, py::arg("family") = Family::Fill)
+        .def("__repr__", [](const Hatch& h) {
+            return std::string("Hatch(") + family_name(h.family) + ", " + std::to_string(h.points.size()) + " points" +
+                   (h.closed ? ", closed)" : ")");
+        })
+        .def_readwrite("points", &Hatch::points)
+        .def_readwrite("closed", &Hatch::closed)
+        .def_readwrite("family", &Hatch::family)
+        .def("__eq__", [](const Hatch& a, const Hatch& b) {
+            return a.points == b.points && a.closed == b.closed && a.family == b.family;
+        });
+    py::bind_vector<std::vector<Hatch>>(m, "Hatches", "A list of hatches kept as a C++ vector")
+        .def(
+            "add_lines",
+            [](std::vector<Hatch>& out, std::vector<std::vector<Point>>& lines, Family f) {
+                for (auto& l : lines) out.push_back({std::move(l), false, f});
+            },
+            py::arg("lines"), py::arg("family"), "appends every line as an open hatch (the lines are moved)");
+
+    m.def("jittered_lines", &jittered_lines, py::arg("box"), py::arg("angle"), py::arg("spacing"), py::arg("length"),
+          py::arg("jitter_across"), py::arg("jitter_along"), py::arg("seed"), py::arg("stream"),
+          "hatch lines at angle covering box, broken every length, break points jittered (anchored to the plane)");
+    py::class_<RegionClipper>(m, "RegionClipper", "Clips many polylines to one region (edges indexed once)")
+        .def(py::init<const tex::Region&>(), py::arg("region"), py::keep_alive<1, 2>())
+        .def("clip", &RegionClipper::clip, py::arg("line"));
+    m.def("clip_to_region", &clip_to_region, py::arg("line"), py::arg("region"));
+    m.def("clip_to_convex", &clip_to_convex, py::arg("line"), py::arg("convex"));
+    m.def("clip_polygon_convex", &clip_polygon_convex, py::arg("subject"), py::arg("convex"));
+    m.def("jitter_at", &jitter_at, py::arg("p"), py::arg("seed"), py::arg("stream"));
+    m.def("split_strokes", &split_strokes, py::arg("line"), py::arg("gap"));
+    m.def("ring_centroid", &ring_centroid);
+    m.def("scale_ring", &scale_ring, py::arg("ring"), py::arg("s"));
+
+    // ---- Styles ----
+    py::class_<StyleParam>(m, "StyleParam")
+        .def(py::init([](std::string n, double v, std::string u, std::string h) { return StyleParam{n, v, u, h}; }),
+             py::arg("name"), py::arg("value"), py::arg("unit"), py::arg("help") = "")
+        .def_readonly("name", &StyleParam::name)
+        .def_readonly("value", &StyleParam::value)
+        .def_readonly("unit", &StyleParam::unit)
+        .def_readonly("help", &StyleParam::help);
+    py::class_<StyleInfo>(m, "StyleInfo")
+        .def(py::init([](std::string n, std::string f, std::string t, std::vector<StyleParam> p) {
+                 return StyleInfo{n, f, t, p};
+             }),
+             py::arg("name"), py::arg("figure") = "", py::arg("title") = "", py::arg("params") = std::vector<StyleParam>{})
+        .def_readonly("name", &StyleInfo::name)
+        .def_readonly("figure", &StyleInfo::figure)
+        .def_readonly("title", &StyleInfo::title)
+        .def_readonly("params", &StyleInfo::params);
+    m.def("styles", &styles, "the built-in styles, Fig. 5.4 (a) to (g)");
+    m.def("default_style", &default_style);
+    m.def("find_style", &find_style, py::arg("name"));
+    m.def("resolve_params", &resolve_params, py::arg("style"), py::arg("overrides"), py::arg("scale"),
+          "parameters in ground units ('mm' x scale / 1000, 'deg' to radians)");
+    m.def(
+        "hatch_face",
+        [](const StyleInfo& s, const ParamValues& p, const StyleFace& f, const FaceControls& c, std::uint64_t seed) {
+            return hatch_face(s, p, f.face, c, seed);
+        },
+        py::arg("style"), py::arg("params"), py::arg("face"), py::arg("controls"), py::arg("seed"),
+        "the hatches of one face by a built-in style");
+    py::class_<Style, std::shared_ptr<Style>>(m, "Style", "A style: its description and its controlled arrangement")
+        .def_property_readonly("info", [](const Style& s) { return s.info; })
+        .def_property_readonly("name", [](const Style& s) { return s.info.name; });
+    m.def(
+        "python_style",
+        [](const StyleInfo& info, py::object fn) { return std::const_pointer_cast<Style>(python_style(info, std::move(fn))); },
+        py::arg("info"), py::arg("fn"),
+        "a style from fn(fields, params, seed) -> (face -> hatches); params are in ground units");
+    m.def("builtin_style", [](const std::string& n) { return std::make_shared<Style>(builtin_style(n)); });
+
+    // ---- Pipeline ----
+    py::class_<Options>(m, "Options", "Everything the rockhatch command takes")
+        .def(py::init<>())
+        .def_readwrite("dem", &Options::dem)
+        .def_readwrite("partition", &Options::partition)
+        .def_readwrite("slope", &Options::slope)
+        .def_readwrite("roughness", &Options::roughness)
+        .def_readwrite("style", &Options::style)
+        .def_property(
+            "custom_style", [](const Options& o) { return std::const_pointer_cast<Style>(o.custom_style); },
+            [](Options& o, std::shared_ptr<Style> s) { o.custom_style = std::move(s); })
+        .def_readwrite("params", &Options::params)
+        .def_readwrite("scale", &Options::scale)
+        .def_readwrite("seed", &Options::seed)
+        .def_readwrite("threads", &Options::threads)
+        .def_readwrite("outputs", &Options::outputs)
+        .def_readwrite("overwrite", &Options::overwrite)
+        .def_readwrite("png_pixels", &Options::png_pixels)
+        .def_readwrite("spatial_index", &Options::spatial_index)
+        .def_readwrite("window", &Options::window);
+    py::class_<Stats>(m, "Stats")
+        .def_readonly("faces", &Stats::faces)
+        .def_readonly("hatches", &Stats::hatches)
+        .def_readonly("seconds", &Stats::seconds)
+        .def_readonly("crs", &Stats::crs)
+        .def_readonly("notes", &Stats::notes)
+        .def("__repr__", [](const Stats& s) {
+            return "Stats(faces=" + std::to_string(s.faces) + ", hatches=" + std::to_string(s.hatches) + ")";
+        });
+    py::class_<Prepared>(m, "Prepared", "The inputs read and prepared: terrain in the working CRS and the partition")
+        .def_property_readonly("terrain", [](const Prepared& p) { return share(p.terrain); })
+        .def_readonly("partition", &Prepared::partition)
+        .def_readonly("zmin", &Prepared::zmin)
+        .def_readonly("zmax", &Prepared::zmax)
+        .def_readonly("notes", &Prepared::notes);
+    py::class_<FaceHatches>(m, "FaceHatches")
+        .def_readonly("face_id", &FaceHatches::face_id)
+        .def_readonly("hatches", &FaceHatches::hatches);
+    py::class_<Drawing>(m, "Drawing", "Hatches of every face, in the working CRS")
+        .def_readonly("faces", &Drawing::faces)
+        .def_readonly("crs", &Drawing::crs_wkt)
+        .def_readonly("style", &Drawing::style)
+        .def_readonly("scale", &Drawing::scale)
+        .def_readonly("bounds", &Drawing::bounds)
+        .def("hatch_count", [](const Drawing& d) {
+            std::size_t n = 0;
+            for (const auto& f : d.faces) n += f.hatches.size();
+            return n;
+        });
+    m.def("validate", &validate, py::arg("options"));
+    m.def(
+        "prepare", [](const Options& o, const py::object& cb) { return prepare(o, to_progress(cb)); }, py::arg("options"),
+        py::arg("progress") = py::none(), py::call_guard<py::gil_scoped_release>());
+    m.def(
+        "hatch", [](const Prepared& p, const Options& o, const py::object& cb) { return hatch(p, o, to_progress(cb)); },
+        py::arg("prepared"), py::arg("options"), py::arg("progress") = py::none(),
+        py::call_guard<py::gil_scoped_release>(), "hatches the faces (in parallel; Python styles take turns on the GIL)");
+    m.def(
+        "run", [](const Options& o, const py::object& cb) { return run(o, to_progress(cb)); }, py::arg("options"),
+        py::arg("progress") = py::none(), py::call_guard<py::gil_scoped_release>(),
+        "everything the rockhatch command does: validate, prepare, hatch, write");
+    m.def("write_gpkg", &write_gpkg, py::arg("drawing"), py::arg("path"), py::arg("spatial_index") = true,
+          py::call_guard<py::gil_scoped_release>());
+    m.def("write_svg", &write_svg, py::arg("drawing"), py::arg("path"), py::call_guard<py::gil_scoped_release>());
+    m.def(
+        "write_png",
+        [](const Drawing& d, const std::string& path, int pixels, const Raster* hillshade) {
+            write_png(d, path, pixels, hillshade);
+        },
+        py::arg("drawing"), py::arg("path"), py::arg("pixels") = 1600, py::arg("hillshade") = nullptr,
+        py::call_guard<py::gil_scoped_release>());
+    m.def("check_output", &check_output, py::arg("path"), py::arg("overwrite"));
+
+    // ---- Command line ----
+    py::class_<CommandLine>(m, "CommandLine")
+        .def_readonly("options", &CommandLine::options)
+        .def_readonly("script", &CommandLine::script)
+        .def_readonly("quiet", &CommandLine::quiet)
+        .def_readonly("list_styles", &CommandLine::list_styles)
+        .def_readonly("help", &CommandLine::help);
+    m.def("parse_command_line", &parse_command_line, py::arg("args"), "the rockhatch option table");
+    m.def("help_text", &help_text);
+    m.def("styles_text", &styles_text);
+}
+
+}  // namespace rhpy

@@ -1,0 +1,27 @@
+// The rockhatch command line: one option table shared by the C++ program and the Python
+// entry point (`python3 -m rockhatch`, style scripts run on their own), so both accept the
+// same options with the same messages.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "carto/pipeline.hpp"
+
+namespace carto {
+
+struct CommandLine {
+    Options options;
+    std::string script;  // --script: a Python style script (run by the Python module)
+    bool quiet = false;
+    bool list_styles = false;
+    bool help = false;
+};
+
+// Parses the arguments (without the program name). Throws Error(Usage) naming the option.
+CommandLine parse_command_line(const std::vector<std::string>& args);
+// The --help text, and the style list of --list-styles.
+std::string help_text();
+std::string styles_text();
+
+}  // namespace carto

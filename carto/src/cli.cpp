@@ -1,0 +1,169 @@
+// The rockhatch option table, its parser and its help text.
+#include "carto/cli.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <functional>
+#include <sstream>
+
+#include "carto/error.hpp"
+#include "carto/styles.hpp"
+
+namespace carto {
+namespace {
+
+struct Option {
+    const char* name;   // "--dem"
+    const char* arg;    // "PATH", or nullptr for a flag
+    const char* help;
+    std::function<void(const std::string&)> set;
+};
+
+double parse_double(const std::string& opt, const std::string& v) {
+    char* end = nullptr;
+    const double d = std::strtod(v.c_str(), &end);
+    if (v.empty() || *end != 0 || !std::isfinite(d)) throw Error(Code::Usage, opt + ": '" + v + "' is not a number");
+    return d;
+}
+
+unsigned long long parse_uint(const std::string& opt, const std::string& v) {
+    if (v.empty() || v.find_first_not_of("0123456789") != std::string::npos)
+        throw Error(Code::Usage, opt + ": '" + v + "' is not a non-negative integer");
+    return std::strtoull(v.c_str(), nullptr, 10);
+}
+
+std::vector<Option> options(CommandLine& cl) {
+    Options& o = cl.options;
+    return {
+        {"--dem", "PATH", "DEM raster (any GDAL format and CRS; geographic DEMs are reprojected to UTM)",
+         [&](const std::string& v) { o.dem = v; }},
+        {"--partition", "PATH", "partition of the rock areas (GeoPackage, shapefile...): faces + labelled lines",
+         [&](const std::string& v) { o.partition.path = v; }},
+        {"-o", "PATH", "output: .gpkg (one layer per hatch family), .svg (true scale) or .png (preview); repeatable",
+         [&](const std::string& v) { o.outputs.push_back(v); }},
+        {"--slope", "PATH", "slope raster in percent (default: computed from the DEM)",
+         [&](const std::string& v) { o.slope = v; }},
+        {"--roughness", "PATH", "roughness raster in 0..1 (default: computed from the DEM)",
+         [&](const std::string& v) { o.roughness = v; }},
+        {"--style", "NAME", "hatching style (see --list-styles; default: the final design, bidirectional)",
+         [&](const std::string& v) { o.style = v; }},
+        {"--script", "PATH", "a Python style script (see styles/); its parameters are set with --param",
+         [&](const std::string& v) { cl.script = v; }},
+        {"--param", "NAME=VALUE", "set a style parameter (units as listed by --list-styles); repeatable",
+         [&](const std::string& v) {
+             const auto eq = v.find('=');
+             if (eq == std::string::npos || eq == 0) throw Error(Code::Usage, "--param: expected NAME=VALUE, got '" + v + "'");
+             o.params[v.substr(0, eq)] = parse_double("--param " + v.substr(0, eq), v.substr(eq + 1));
+         }},
+        {"--scale", "N", "map scale denominator; style parameters are millimetres on paper at 1:N (default 10000)",
+         [&](const std::string& v) { o.scale = parse_double("--scale", v); }},
+        {"--seed", "N", "random seed (default 0); same inputs and seed give the same bytes",
+         [&](const std::string& v) { o.seed = parse_uint("--seed", v); }},
+        {"--threads", "N", "worker threads (default 0: all cores); does not change the output",
+         [&](const std::string& v) { o.threads = unsigned(parse_uint("--threads", v)); }},
+        {"--faces-layer", "NAME", "polygon layer of the faces (default: the first polygon layer)",
+         [&](const std::string& v) { o.partition.faces_layer = v; }},
+        {"--lines-layer", "NAME", "line layer with the ridge / valley labels (default: the first with the label field, "
+                                  "else layers named ridges / valleys)",
+         [&](const std::string& v) { o.partition.lines_layer = v; }},
+        {"--label-field", "NAME", "label attribute of the lines: ridge, valley (thalweg) or other (default kind)",
+         [&](const std::string& v) { o.partition.label_field = v; }},
+        {"--id-field", "NAME", "face id attribute (default: feature ids)", [&](const std::string& v) { o.partition.id_field = v; }},
+        {"--orientation-field", "NAME", "face attribute: hatch azimuth in degrees (default orientation)",
+         [&](const std::string& v) { o.partition.orientation_field = v; }},
+        {"--orientation-layer", "NAME", "line layer, one line per face along its hatches (default: a layer named orient*)",
+         [&](const std::string& v) { o.partition.orientation_layer = v; }},
+        {"--density-field", "NAME", "face attribute: hatch density 0 (light) .. 1 (dark) (default density)",
+         [&](const std::string& v) { o.partition.density_field = v; }},
+        {"--density-layer", "NAME", "point or polygon layer carrying the density field",
+         [&](const std::string& v) { o.partition.density_layer = v; }},
+        {"--snap", "UNITS", "tolerance matching face borders to lines, in ground units (default 0.5)",
+         [&](const std::string& v) { o.partition.snap = parse_double("--snap", v); }},
+        {"--no-repair", nullptr, "refuse invalid face polygons instead of repairing them",
+         [&](const std::string&) { o.partition.repair = false; }},
+        {"--window", "XMIN,YMIN,XMAX,YMAX", "hatch only the faces centred in this box (working CRS), for tiling",
+         [&](const std::string& v) {
+             std::stringstream ss(v);
+             std::string part;
+             std::vector<double> n;
+             while (std::getline(ss, part, ',')) n.push_back(parse_double("--window", part));
+             if (n.size() != 4 || !(n[0] < n[2]) || !(n[1] < n[3]))
+                 throw Error(Code::Usage, "--window: expected XMIN,YMIN,XMAX,YMAX with XMIN < XMAX and YMIN < YMAX");
+             o.window = tex::BBox{n[0], n[1], n[2], n[3]};
+         }},
+        {"--png-size", "PIXELS", "width of PNG previews (default 1600)",
+         [&](const std::string& v) { o.png_pixels = int(parse_uint("--png-size", v)); }},
+        {"--no-spatial-index", nullptr, "write the GeoPackage without its R-tree (much faster for millions of hatches)",
+         [&](const std::string&) { o.spatial_index = false; }},
+        {"--overwrite", nullptr, "replace existing outputs", [&](const std::string&) { o.overwrite = true; }},
+        {"-q", nullptr, "quiet: no progress bar", [&](const std::string&) { cl.quiet = true; }},
+        {"--list-styles", nullptr, "list the styles, their parameters and defaults", [&](const std::string&) { cl.list_styles = true; }},
+        {"--help", nullptr, "this help", [&](const std::string&) { cl.help = true; }},
+    };
+}
+
+}  // namespace
+
+std::string styles_text() {
+    std::ostringstream os;
+    for (const auto& s : carto::styles()) {
+        os << "  " << s.name << " (Fig. " << s.figure << ")" << (s.name == carto::default_style() ? " [default]" : "")
+           << ": " << s.title << "\n";
+        for (const auto& p : s.params) {
+            std::ostringstream v;
+            v << p.value;
+            os << "      " << p.name << " = " << v.str() << " " << p.unit << "  " << p.help << "\n";
+        }
+    }
+    return os.str();
+}
+
+std::string help_text() {
+    CommandLine dummy;
+    const std::vector<Option> opts = options(dummy);
+    std::ostringstream out;
+    out << "usage: rockhatch --dem DEM.tif --partition faces.gpkg [options] -o hatching.gpkg|.svg|.png\n\n"
+                 "Draws rock hatching from a DEM and a partition of the rock areas whose borders are\n"
+                 "labelled ridge / valley / other (thesis Chapter 5).\n\noptions:\n";
+    for (const auto& o : opts) {
+        std::string head = std::string(o.name) + (o.arg ? std::string(" ") + o.arg : "");
+        out << "  " << head << (head.size() < 26 ? std::string(26 - head.size(), ' ') : "\n" + std::string(28, ' '))
+                  << o.help << "\n";
+    }
+    out << "\nstyles (parameters in mm on paper at the map scale, ratios, or degrees):\n";
+    out << styles_text();
+    out << "\nexit codes: 0 ok, 1 failure, 2 usage, 3 missing input, 4 no CRS, 5 no overlap,\n"
+                 "6 bad layer or attribute, 7 unknown style or parameter, 8 invalid geometry,\n"
+                 "9 output exists or cannot be written, 10 cancelled\n";
+    return out.str();
+}
+
+CommandLine parse_command_line(const std::vector<std::string>& args) {
+    CommandLine cl;
+    const std::vector<Option> opts = options(cl);
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        const Option* match = nullptr;
+        std::string value;
+        for (const auto& op : opts) {
+            if (a == op.name) match = &op;
+            else if (op.arg && a.rfind(std::string(op.name) + "=", 0) == 0 && a.size() > 2 && a[1] == '-') {
+                match = &op;
+                value = a.substr(std::strlen(op.name) + 1);
+            }
+            if (match) break;
+        }
+        if (!match) throw Error(Code::Usage, "unknown option '" + a + "' (see --help)");
+        if (match->arg && value.empty()) {
+            if (i + 1 >= args.size()) throw Error(Code::Usage, std::string(match->name) + " needs a value (" + match->arg + ")");
+            value = args[++i];
+        }
+        match->set(value);
+    }
+    return cl;
+}
+
+}  // namespace carto
+
+
