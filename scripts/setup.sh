@@ -14,7 +14,8 @@ PACKAGES=(
   libgeographiclib-dev                              # carto: UTM zone of geographic DEMs
   libsqlite3-dev                                    # carto: bulk-loaded GeoPackage R-tree
   libgtest-dev                                      # C++ tests
-  python3 python3-pytest python3-gdal python3-numpy # Python tests (Debian's interpreter)
+  python3 python3-dev pybind11-dev                  # the Python module, for /usr/bin/python3
+  python3-pytest python3-gdal python3-numpy         # Python tests (Debian's interpreter)
   librsvg2-bin time                                 # PNG previews of SVG outputs; GNU time (benchmarks)
 )
 
@@ -34,3 +35,15 @@ fi
 BUILD_DIR="${RH_BUILD_DIR:-build}"
 cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release
 cmake --build "$BUILD_DIR" --parallel "$(nproc)"
+
+# Make `import rockhatch` work for Debian's interpreter: a .pth file in its site folder
+# names this build's package folder (like an editable install; rerun to point elsewhere).
+PY_DIR="$(cd "$BUILD_DIR" && pwd)/python"
+if [ -d "$PY_DIR/rockhatch" ]; then
+  SITE="$(/usr/bin/python3 -c 'import site; print(site.getsitepackages()[0])')"
+  if mkdir -p "$SITE" 2>/dev/null && echo "$PY_DIR" > "$SITE/rockhatch.pth" 2>/dev/null; then
+    echo "setup: rockhatch Python module installed for /usr/bin/python3 ($SITE/rockhatch.pth -> $PY_DIR)"
+  else
+    echo "setup: cannot write $SITE/rockhatch.pth; use PYTHONPATH=$PY_DIR" >&2
+  fi
+fi

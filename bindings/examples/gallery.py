@@ -201,10 +201,66 @@ def overview(elements):
     return MapToFaces(map_arrangement_to, MapToFaces(map_blob_to, init_tex))
 
 
+def squares(elements, theta, width):
+    square = load(elements, "square.svg")
+    grid_tex = GridPartition(StripesProperties(theta, width), StripesProperties(theta + pi / 2, width), KEEP_OUTSIDE)
+
+    def face_to_square(f):
+        # Fitted to the face's box, halved so that turned squares never overlap.
+        return Rotate(Scale(MatchFace(square, f), 0.45), Random(f, 0.0, 2 * pi, 1))
+
+    return MapToFaces(face_to_square, grid_tex)
+
+
+def waves(elements, theta, width):
+    wave = load(elements, "wave.svg")
+
+    def line_to_curve(e):
+        if IsBoundary(e):
+            return Nothing()
+        return MatchPoints(wave, PointLabeled(wave, "start"), PointLabeled(wave, "end"),
+                           Location(SourceVertex(e)), Location(TargetVertex(e)))
+
+    return MapToEdges(line_to_curve, StripesPartition(StripesProperties(theta, width)))
+
+
+def circles(elements, density):
+    circle = load(elements, "circle.svg")
+
+    def face_to_circle(f):
+        return Scale(MatchPoint(circle, BBoxCenter(circle), Centroid(f)), Random(f, 0.5, 1.5, 0))
+
+    return MapToFaces(face_to_circle, UniformPartition(IrregularProperties(density), KEEP_OUTSIDE))
+
+
+CIRCLES = 8.5e-5
+
+
+def combine_d(elements):
+    return Union(squares(elements, pi / 4, 400), waves(elements, pi / 6, 80))
+
+
+def combine_e(elements):
+    return Inside(waves(elements, pi / 6, 80), squares(elements, pi / 4, 400), CROP)
+
+
+def combine_f(elements):
+    return Inside(circles(elements, CIRCLES), squares(elements, pi / 4, 400), KEEP_OUTSIDE)
+
+
+def combine_g(elements):
+    return Outside(circles(elements, CIRCLES), squares(elements, pi / 4, 400), CROP)
+
+
+def combine_h(elements):
+    return Outside(circles(elements, CIRCLES), squares(elements, pi / 4, 400), KEEP_INSIDE)
+
+
 EXAMPLES = {
     "stripes": stripes, "grid": grid, "uniform": uniform, "random": random_, "puzzle": puzzle,
     "rosettes": rosettes, "cracks": cracks, "bimodal": bimodal, "crosses": crosses, "curves": curves,
-    "clusters": clusters, "overview": overview,
+    "clusters": clusters, "overview": overview, "combine_d": combine_d, "combine_e": combine_e,
+    "combine_f": combine_f, "combine_g": combine_g, "combine_h": combine_h,
 }
 
 

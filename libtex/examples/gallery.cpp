@@ -179,6 +179,54 @@ Arrangement overview(const std::string& dir) {
     return MapToFaces(map_arrangement_to, MapToFaces(map_blob_to, init_tex));
 }
 
+// The "Combining" examples: three textures and their merges.
+Arrangement squares(const std::string& dir, double theta, double width) {
+    const Curves square = load(dir, "square.svg");
+    Arrangement grid_tex = GridPartition(StripesProperties(theta, width), StripesProperties(theta + pi / 2, width),
+                                         KEEP_OUTSIDE);
+    // A rounded square in each face (fitted to its box, then halved, so that squares
+    // turned at random never overlap), turned at random.
+    auto face_to_square = [square](const Face& f) {
+        return Rotate(Scale(MatchFace(square, f), 0.45), Random(f, 0.0, 2 * pi, 1));
+    };
+    return MapToFaces(face_to_square, grid_tex);
+}
+
+Arrangement waves(const std::string& dir, double theta, double width) {
+    const Curves wave = load(dir, "wave.svg");
+    // Each inner line of the stripes becomes a wave; the outline goes.
+    auto line_to_curve = [wave](const Edge& e) {
+        if (IsBoundary(e)) return Nothing();
+        return MatchPoints(wave, PointLabeled(wave, "start"), PointLabeled(wave, "end"), Location(SourceVertex(e)),
+                           Location(TargetVertex(e)));
+    };
+    return MapToEdges(line_to_curve, StripesPartition(StripesProperties(theta, width)));
+}
+
+Arrangement circles(const std::string& dir, double density) {
+    const Curves circle = load(dir, "circle.svg");
+    auto face_to_circle = [circle](const Face& f) {
+        return Scale(MatchPoint(circle, BBoxCenter(circle), Centroid(f)), Random(f, 0.5, 1.5, 0));
+    };
+    return MapToFaces(face_to_circle, UniformPartition(IrregularProperties(density), KEEP_OUTSIDE));
+}
+
+constexpr double kCircles = 8.5e-5;
+
+Arrangement combine_union(const std::string& dir) { return Union(squares(dir, pi / 4, 400), waves(dir, pi / 6, 80)); }
+Arrangement combine_inside_crop(const std::string& dir) {
+    return Inside(waves(dir, pi / 6, 80), squares(dir, pi / 4, 400), CROP);
+}
+Arrangement combine_inside_keep(const std::string& dir) {
+    return Inside(circles(dir, kCircles), squares(dir, pi / 4, 400), KEEP_OUTSIDE);
+}
+Arrangement combine_outside_crop(const std::string& dir) {
+    return Outside(circles(dir, kCircles), squares(dir, pi / 4, 400), CROP);
+}
+Arrangement combine_outside_keep(const std::string& dir) {
+    return Outside(circles(dir, kCircles), squares(dir, pi / 4, 400), KEEP_INSIDE);
+}
+
 }  // namespace
 
 const std::vector<Example>& examples() {
@@ -195,6 +243,11 @@ const std::vector<Example>& examples() {
         {"curves", "By example limitations: regular curves", 4, curves},
         {"clusters", "By example limitations: clusters", 42, clusters},
         {"overview", "Overview (Fig. 3.1)", -1, overview},
+        {"combine_d", "Combining d: Union(squares, waves)", 4, combine_union},
+        {"combine_e", "Combining e: waves Inside squares (CROP)", 3, combine_inside_crop},
+        {"combine_f", "Combining f: circles Inside squares (KEEP_OUTSIDE)", 15, combine_inside_keep},
+        {"combine_g", "Combining g: circles Outside squares (CROP)", 15, combine_outside_crop},
+        {"combine_h", "Combining h: circles Outside squares (KEEP_INSIDE)", 15, combine_outside_keep},
     };
     return all;
 }
