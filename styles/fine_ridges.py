@@ -27,8 +27,8 @@ import sys
 from density_cells import COARSE, fill_cells
 from noisy import emit, fill_params
 from ridge_triangles import dark_ridges
-from rockhatch.carto import (Family, Hatch, Hatches, clip_polygon_convex, clip_to_convex, face_controls, jitter_at,
-                             jittered_lines)
+from rockhatch.carto import (Family, Hatch, Hatches, RegionClipper, clip_polygon_convex, clip_to_convex,
+                             face_controls, jitter_at, jittered_lines)
 from rockhatch.tex import BBox, Point, cos, dot, signed_area, sin
 
 NAME = "fine-ridges"
@@ -59,6 +59,7 @@ def ridge_peaks(out, p, face, c, seed, height_gain):
     n = Point(-d.y, d.x)
     spacing, fill = p["peak_spacing"], p["peak_fill"]
     probe = 0.05 * spacing
+    clip = None
     for ri in ridges:
         seg = boundary[ri]
         ta, tb = dot(seg.a, n), dot(seg.b, n)
@@ -94,8 +95,11 @@ def ridge_peaks(out, p, face, c, seed, height_gain):
             box = BBox()
             for q in shape:
                 box.add(q)
+            # The fine hatching stays inside the shape: the triangle and the face.
+            clip = clip or RegionClipper(region)
             for line in jittered_lines(box, theta, fill, 4 * fill, 0.2, 0.2, seed, 5):
-                emit(out, clip_to_convex(line, tri), Family.RIDGE)
+                for piece in clip_to_convex(line, tri):
+                    emit(out, clip.clip(piece), Family.RIDGE)
 
 
 def style(fields, params, seed):

@@ -97,7 +97,11 @@ def ridge_triangles(out, p, face, c):
         piece = clip_polygon_convex(outer, cell)
         if len(piece) < 3 or abs(signed_area(piece)) < 1e-9 or not touches(piece, ridges):
             continue
-        out.append(Hatch(scale_ring(piece, 0.98), True, Family.RIDGE))
+        # Drawn slightly shrunk so that neighbours stay apart; the cell is shrunk before the
+        # cut, so the shape stays inside the face.
+        shape = clip_polygon_convex(outer, scale_ring(cell, 0.98))
+        if len(shape) >= 3 and abs(signed_area(shape)) >= 1e-9:
+            out.append(Hatch(shape, True, Family.RIDGE))
 
 
 def style(fields, params, seed):

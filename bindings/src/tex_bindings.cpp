@@ -51,6 +51,12 @@ void bind_cell(py::module_& m, const char* name, const char* doc) {
 
 Curves polyline(const std::vector<Point>& pts, bool closed) { return Polyline(pts, closed); }
 
+double number(const py::handle& o, const char* op, const char* what) {
+    if (!py::isinstance<py::float_>(o) && !py::isinstance<py::int_>(o) && !py::hasattr(o, "__float__"))
+        throw py::type_error(std::string(op) + ": " + what + " must be a number, got " + type_name(o));
+    return py::float_(py::reinterpret_borrow<py::object>(o)).cast<double>();
+}
+
 std::vector<std::string> string_args(const py::args& args, const char* op) {
     std::vector<std::string> out;
     for (const auto& a : args) {
@@ -70,7 +76,7 @@ std::vector<WeightedLabel> weighted_args(const py::args& args, const char* op) {
     for (std::size_t i = 0; i < args.size(); i += 2) {
         if (!py::isinstance<py::str>(args[i]))
             throw py::type_error(std::string(op) + ": argument " + std::to_string(i + 2) + " must be a label string");
-        out.push_back({args[i].cast<std::string>(), args[i + 1].cast<double>()});
+        out.push_back({args[i].cast<std::string>(), number(args[i + 1], op, "a weight")});
     }
     return out;
 }
@@ -323,9 +329,9 @@ void bind_tex(py::module_& m) {
             std::vector<double> w;
             for (const auto& x : widths) {
                 if (py::isinstance<py::list>(x) || py::isinstance<py::tuple>(x)) {
-                    for (const auto& y : x) w.push_back(y.cast<double>());
+                    for (const auto& y : x) w.push_back(number(y, "StripesProperties", "a width"));
                 } else {
-                    w.push_back(x.cast<double>());
+                    w.push_back(number(x, "StripesProperties", "a width"));
                 }
             }
             return StripesProperties(angle, w);

@@ -1,5 +1,9 @@
 #include "carto/hatching.hpp"
 
+#include <sstream>
+
+#include "carto/error.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -161,8 +165,8 @@ std::vector<Polyline> jittered_lines(const tex::BBox& box, double angle, double 
                                      double jitter_across, double jitter_along, std::uint64_t seed,
                                      std::uint64_t stream) {
     const Point d{std::cos(angle), std::sin(angle)}, n{-d.y, d.x};
-    const tex::BBox b = box.expanded(std::max(spacing, length));
-    const Point corners[4] = {{b.xmin, b.ymin}, {b.xmax, b.ymin}, {b.xmax, b.ymax}, {b.xmin, b.ymax}};
+    // Lines one spacing beyond the box across, break points one length beyond it along.
+    const Point corners[4] = {{box.xmin, box.ymin}, {box.xmax, box.ymin}, {box.xmax, box.ymax}, {box.xmin, box.ymax}};
     double tlo = 1e300, thi = -1e300, slo = 1e300, shi = -1e300;
     for (const auto& c : corners) {
         tlo = std::min(tlo, tex::dot(c, n));
@@ -170,10 +174,16 @@ std::vector<Polyline> jittered_lines(const tex::BBox& box, double angle, double 
         slo = std::min(slo, tex::dot(c, d));
         shi = std::max(shi, tex::dot(c, d));
     }
-    const long long k0 = (long long)std::floor(tlo / spacing), k1 = (long long)std::ceil(thi / spacing);
-    const long long j0 = (long long)std::floor(slo / length), j1 = (long long)std::ceil(shi / length);
+    const double k0d = std::floor(tlo / spacing) - 1, k1d = std::ceil(thi / spacing) + 1;
+    const double j0d = std::floor(slo / length) - 1, j1d = std::ceil(shi / length) + 1;
+    if (!((k1d - k0d + 1) * (j1d - j0d + 1) <= 50e6)) {
+        std::ostringstream m;
+        m << "hatch spacing " << spacing << " and length " << length << " are too small for an area of "
+          << box.width() << " x " << box.height() << " (more than 50 million break points)";
+        throw Error(Code::Usage, m.str());
+    }
+    const long long k0 = (long long)k0d, k1 = (long long)k1d, j0 = (long long)j0d, j1 = (long long)j1d;
     std::vector<Polyline> out;
-    if ((k1 - k0 + 1) * (j1 - j0 + 1) > 50'000'000) return out;  // absurd density: nothing
     out.reserve(std::size_t(k1 - k0 + 1));
     for (long long k = k0; k <= k1; ++k) {
         Polyline line;

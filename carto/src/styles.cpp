@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "carto/error.hpp"
@@ -256,7 +257,12 @@ void ridge_triangles(std::vector<Hatch>& out, const ParamValues& p, const RockFa
         std::vector<Point> piece = clip_polygon_convex(face.region.outer(), cell);
         if (piece.size() < 3 || std::abs(tex::signed_area(piece)) < 1e-9) continue;
         if (!touches_dark_ridge(piece)) continue;
-        out.push_back({scale_ring(piece, 0.98), true, Family::Ridge});
+        // Drawn slightly shrunk, so that neighbouring shapes stay apart; the cell is shrunk
+        // before the cut, so that the shape stays inside the face (a cut piece may be
+        // concave, and shrinking it about its centroid could leave the face).
+        std::vector<Point> shape = clip_polygon_convex(face.region.outer(), scale_ring(cell, 0.98));
+        if (shape.size() < 3 || std::abs(tex::signed_area(shape)) < 1e-9) continue;
+        out.push_back({std::move(shape), true, Family::Ridge});
     }
 }
 
@@ -270,6 +276,7 @@ void ridge_peaks(std::vector<Hatch>& out, const ParamValues& p, const RockFace& 
     const double theta = c.orientation;
     const Point d{std::cos(theta), std::sin(theta)}, n{-d.y, d.x};
     const double spacing = p.at("peak_spacing"), fill = p.at("peak_fill");
+    std::optional<RegionClipper> clip;
     for (int ri : ridges) {
         const BoundarySegment& seg = face.boundary[ri];
         const double ta = tex::dot(seg.a, n), tb = tex::dot(seg.b, n);
@@ -298,8 +305,10 @@ void ridge_peaks(std::vector<Hatch>& out, const ParamValues& p, const RockFace& 
             out.push_back({shape, true, Family::Ridge});
             tex::BBox sb;
             for (const auto& q : shape) sb.add(q);
+            // The fine hatching stays inside the shape: the triangle and the face.
+            if (!clip) clip.emplace(face.region);
             for (auto& line : jittered_lines(sb, theta, fill, 4 * fill, 0.2, 0.2, seed, 5))
-                emit(out, clip_to_convex(line, tri), Family::Ridge);
+                for (auto& piece : clip_to_convex(line, tri)) emit(out, clip->clip(piece), Family::Ridge);
         }
     }
 }

@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "carto/error.hpp"
 #include "carto/hatching.hpp"
 
 using namespace carto;
@@ -60,6 +61,29 @@ TEST(Hatching, JitteredLinesAreAnchoredAndKeyedByPosition) {
     // Another seed moves the points.
     const auto lc = jittered_lines(a, 0.3, 7, 20, 0.5, 0.5, 43, 1);
     EXPECT_NE(la[3][3], lc[3][3]);
+}
+
+// Regression: the box used to be widened by the hatch length across the lines too, so a
+// length much larger than the area gave so many lines that nothing was drawn at all.
+TEST(Hatching, JitteredLinesCoverTheBoxWhateverTheLength) {
+    const tex::BBox box{0, 0, 100, 100};
+    for (double length : {20.0, 1e3, 1e9}) {
+        const auto lines = jittered_lines(box, 0.0, 10, length, 0, 0, 1, 1);
+        ASSERT_FALSE(lines.empty()) << "length " << length;
+        tex::Region r = tex::Region::rectangle(0, 0, 100, 100);
+        std::size_t inside = 0;
+        for (const auto& l : lines) inside += clip_to_region(l, r).size();
+        EXPECT_GE(inside, 10u) << "length " << length;  // lines at y = 0, 10, ..., 100
+        EXPECT_LE(lines.size(), 14u) << "length " << length;
+    }
+    // Absurd densities are refused with a message instead of drawing nothing.
+    try {
+        jittered_lines(box, 0.0, 1e-6, 1e-6, 0, 0, 1, 1);
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), Code::Usage);
+        EXPECT_NE(std::string(e.what()).find("too small"), std::string::npos) << e.what();
+    }
 }
 
 TEST(Hatching, StrokesWithGaps) {

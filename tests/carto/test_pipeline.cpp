@@ -121,6 +121,34 @@ TEST(Pipeline, NoHatchCrossesARidgeOrValleyOfItsFace) {
     }
 }
 
+// Regression: the fine hatching of ridge shapes was clipped to the shape's triangle only,
+// so it could spill out of the face where the face is narrower than the triangle.
+TEST(Pipeline, EveryHatchStaysInsideItsFace) {
+    for (const char* style : {"ridge-triangles", "fine-ridges", "bidirectional"}) {
+        const Drawing d = hatch(sample(), sample_options(style));
+        const Partition& p = sample().partition;
+        std::size_t checked = 0;
+        for (const auto& fh : d.faces) {
+            const RockFace& f = face_by_id(p, fh.face_id);
+            for (const auto& h : fh.hatches)
+                for (const auto& q : h.points) {
+                    // On the border or inside (0.01 m of slack for the clipping arithmetic).
+                    bool ok = f.region.contains(q);
+                    for (const auto& s : f.boundary) {
+                        if (ok) break;
+                        const tex::Point e = s.b - s.a;
+                        const double t = std::clamp(tex::dot(q - s.a, e) / tex::dot(e, e), 0.0, 1.0);
+                        ok = tex::distance(q, s.a + e * t) < 0.01;
+                    }
+                    ASSERT_TRUE(ok) << style << " face " << f.id << " " << family_name(h.family) << " point "
+                                    << q.x << "," << q.y << " lies outside its face";
+                    ++checked;
+                }
+        }
+        EXPECT_GT(checked, 1000u) << style;
+    }
+}
+
 TEST(Pipeline, HatchDensityFollowsTheDensityField) {
     const Drawing d = hatch(sample(), sample_options("noisy"));
     std::vector<double> measured, wanted;

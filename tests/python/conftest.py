@@ -1,6 +1,7 @@
-"""Shared fixtures: where the built programs are."""
+"""Shared fixtures: where the built programs and the Python module are."""
 import os
 import pathlib
+import sys
 
 import pytest
 
@@ -9,6 +10,20 @@ ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 def build_dir() -> pathlib.Path:
     return pathlib.Path(os.environ.get("RH_BUILD_DIR", ROOT / "build"))
+
+
+# The module of this build comes first, whatever another set-up installed.
+PYTHON_DIR = build_dir() / "python"
+sys.path.insert(0, str(PYTHON_DIR))
+STYLES = ROOT / "styles"
+GALLERY_PY = ROOT / "bindings" / "examples" / "gallery.py"
+
+
+def python_env() -> dict:
+    """Environment for a child /usr/bin/python3 that must import this build's module."""
+    env = dict(os.environ)
+    env["PYTHONPATH"] = str(PYTHON_DIR) + (os.pathsep + env["PYTHONPATH"] if env.get("PYTHONPATH") else "")
+    return env
 
 
 @pytest.fixture(scope="session")

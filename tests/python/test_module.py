@@ -1,0 +1,246 @@
+"""The Python module: its shape, the operators under the thesis's names, cells, mappers,
+Random, threads and the GIL, and the errors it raises."""
+import pathlib
+import threading
+import time
+import traceback
+
+import pytest
+
+import rockhatch
+from rockhatch import tex
+from rockhatch.tex import *  # noqa: F401,F403  (the way the thesis's scripts start)
+
+# Tables 3.2 to 3.6 of the thesis, plus what its scripts use.
+SEED_NAMES = """
+StripesProperties SetEdgeLabels SetFaceLabels IrregularProperties SetWeightedVertexLabels
+SetWeightedEdgeLabels SetWeightedFaceLabels StripesPartition GridPartition UniformPartition RandomPartition
+CROP CROP_ADD_BOUNDARY KEEP_INSIDE KEEP_OUTSIDE
+MapToVertices MapToEdges MapToFaces
+IncidentFaces IncidentEdges IncidentVertices SourceVertex TargetVertex LeftFace RightFace MatchFace
+Location LocationAt Centroid Contour ToCurve HasLabel IsBoundary Random
+Union Inside Outside
+ImportSVG ExportSVG Nothing Append BBoxWidth BBoxHeight BBoxCenter Scale Rotate Translate MatchPoint MatchPoints
+PointLabeled CurveLabeled Point pi cos sin SetSeed SetThreads
+""".split()
+
+BOX = Region.rectangle(0, 0, 1000, 1000)
+
+
+def test_package_shape():
+    compiled = pathlib.Path(rockhatch._rockhatch.__file__)
+    assert compiled.suffix == ".so" and compiled.name.startswith("_rockhatch")
+    assert pathlib.Path(rockhatch.__file__).name == "__init__.py"
+    assert rockhatch.__version__
+    assert issubclass(rockhatch.TexError, ValueError)
+    assert issubclass(rockhatch.RockhatchError, RuntimeError)
+    import rockhatch.carto as carto
+
+    assert callable(carto.run) and callable(carto.compute_terrain)
+
+
+@pytest.mark.parametrize("name", SEED_NAMES)
+def test_every_operator_by_its_seed_name(name):
+    assert name in globals(), f"{name} is not exported by 'from rockhatch.tex import *'"
+    assert name in tex.__all__
+
+
+def test_point_arithmetic():
+    a, b = Point(1, 2), Point(3, -4)
+    assert a + b == Point(4, -2)
+    assert a - b == Point(-2, 6)
+    assert a * 2 == 2 * a == Point(2, 4)
+    assert b / 2 == Point(1.5, -2)
+    assert -a == Point(-1, -2)
+    assert tuple(a) == (1, 2)
+    assert hash(Point(1, 2)) == hash(a)
+    assert Point((5, 6)) == Point(5, 6)
+    assert dot(a, b) == -5 and cross(a, b) == -10
+
+
+def grid_map():
+    h, v = StripesProperties(0, 100), StripesProperties(pi / 2, 100)
+    SetEdgeLabels(h, "h1", "h2")
+    SetEdgeLabels(v, "v1", "v2")
+    SetFaceLabels(h, "row_even", "row_odd")
+    return GridPartition(h, v, KEEP_INSIDE).induce(BOX)
+
+
+def test_cells_are_equal_when_they_are_the_same_cell():
+    m = grid_map()
+    faces = m.faces()
+    assert len(faces) == 100
+    for f in faces[:10]:
+        edges = IncidentEdges(f)
+        assert len(edges) == 4
+        # Each edge of a face has that face on one side: face == LeftFace(e) or RightFace(e).
+        assert all(f == LeftFace(e) or f == RightFace(e) for e in edges)
+        assert sum(f == RightFace(e) for e in edges) + sum(f == LeftFace(e) for e in edges) == 4
+    assert faces[0] != faces[1]
+    assert faces[0] == m.faces()[0] and hash(faces[0]) == hash(m.faces()[0])
+    assert len({f for f in faces} | {f for f in m.faces()}) == 100
+    assert faces[0] != "a face"
+
+
+def test_incidence_and_labels_seen_by_python_mappers():
+    seen = {}
+
+    def vertex_mapper(v):
+        seen.setdefault("degrees", []).append(len(IncidentEdges(v)))
+        return Nothing()
+
+    def edge_mapper(e):
+        horizontal = HasLabel(e, "h1") or HasLabel(e, "h2")
+        vertical = HasLabel(e, "v1") or HasLabel(e, "v2")
+        assert horizontal != vertical
+        a, b = Location(SourceVertex(e)), Location(TargetVertex(e))
+        assert (a.y == b.y) == horizontal
+        return ToCurve(e) if HasLabel(e, "h1") else Nothing()
+
+    def face_mapper(f):
+        assert len(IncidentVertices(f)) == 4
+        c = Centroid(f)
+        row = int(c.y // 100)
+        assert HasLabel(f, "row_even") == (row % 2 == 0)
+        return Scale(Contour(f), 0.5)
+
+    h, v = StripesProperties(0, 100), StripesProperties(pi / 2, 100)
+    SetEdgeLabels(h, "h1", "h2")
+    SetEdgeLabels(v, "v1", "v2")
+    SetFaceLabels(h, "row_even", "row_odd")
+    grid = GridPartition(h, v, KEEP_INSIDE)
+    MapToVertices(vertex_mapper, grid)(BOX)
+    degrees = seen["degrees"]
+    assert len(degrees) == 121 and degrees.count(4) == 81 and degrees.count(2) == 4
+    edges = MapToEdges(edge_mapper, grid)(BOX)
+    # h1 lines are y = 0, 200, ..., 1000: 6 lines of 10 edges.
+    assert len(edges) == 60
+    faces = MapToFaces(face_mapper, grid)(BOX)
+    assert len(faces) == 100
+    assert abs(BBoxWidth(faces) - 950) < 1e-9
+
+
+def python_jitter_texture():
+    def jitter(e):
+        d = Point(Random(-5, 5), Random(-5, 5))  # unkeyed: keyed by the visited cell
+        return Translate(ToCurve(e), d + Point(Random(e, -1, 1, 7), 0))
+
+    return MapToEdges(jitter, UniformPartition(IrregularProperties(300 / 1e6), KEEP_OUTSIDE))
+
+
+def test_random_is_deterministic_with_python_mappers_on_any_thread_count():
+    outputs = {}
+    try:
+        for threads in (1, 2, 1, 2):
+            SetThreads(threads)
+            SetSeed(7)
+            outputs.setdefault(threads, []).append(ToSVG(python_jitter_texture()(BOX), 1000))
+        SetSeed(8)
+        other = ToSVG(python_jitter_texture()(BOX), 1000)
+    finally:
+        SetThreads(0)
+        SetSeed(0)
+    assert outputs[1][0] == outputs[1][1] == outputs[2][0] == outputs[2][1]
+    assert other != outputs[1][0]
+
+
+def test_python_mappers_run_on_the_engine_threads():
+    idents = set()
+
+    def mapper(f):
+        idents.add(threading.get_ident())
+        time.sleep(0.001)  # lets the other worker take the GIL
+        return Contour(f)
+
+    SetThreads(2)
+    try:
+        out = MapToFaces(mapper, GridPartition(StripesProperties(0, 50), StripesProperties(pi / 2, 50),
+                                              KEEP_INSIDE))(BOX)
+    finally:
+        SetThreads(0)
+    assert len(out) == 400
+    assert len(idents) == 2, "the two workers should both have run the Python mapper"
+
+
+def test_the_gil_is_released_during_cpp_work():
+    # A heavy evaluation runs in a thread; the main thread keeps counting meanwhile.
+    dense = UniformPartition(IrregularProperties(20000 / 1e6), KEEP_OUTSIDE)
+    result = {}
+    worker = threading.Thread(target=lambda: result.setdefault("c", dense(BOX)))
+    ticks = 0
+    worker.start()
+    while worker.is_alive():
+        ticks += 1
+    worker.join()
+    assert len(result["c"]) > 10000
+    assert ticks > 1000, f"the main thread ran only {ticks} times during the C++ evaluation"
+
+
+def test_operator_errors_are_python_exceptions():
+    with pytest.raises(rockhatch.TexError, match="StripesProperties.*-1") as e:
+        StripesProperties(0, -1)
+    assert e.value.op == "StripesProperties"
+    with pytest.raises(TypeError):
+        StripesProperties(0, "wide")
+    with pytest.raises(TypeError, match="SetEdgeLabels: labels must be strings"):
+        SetEdgeLabels(StripesProperties(0, 1), "a", 3)
+    with pytest.raises(TypeError, match="label, weight pairs"):
+        SetWeightedFaceLabels(IrregularProperties(1e-4), "a", 0.5, "b")
+    with pytest.raises(rockhatch.TexError, match="no_such_file.svg"):
+        ImportSVG("no_such_file.svg")
+    with pytest.raises(rockhatch.TexError, match="'end'"):
+        PointLabeled(Polyline([Point(0, 0), Point(1, 1)]), "end")
+    with pytest.raises(rockhatch.TexError, match="Region"):
+        Region([Point(0, 0), Point(1, 1)])
+
+
+def test_a_mapper_returning_the_wrong_type_is_a_type_error():
+    with pytest.raises(TypeError, match=r"MapToEdges: the mapper returned int; a mapper must return Curves"):
+        MapToEdges(lambda e: 3, StripesPartition(StripesProperties(0, 100)))(BOX)
+    with pytest.raises(TypeError, match=r"MapToFaces: the mapper returned NoneType"):
+        MapToFaces(lambda f: None, StripesPartition(StripesProperties(0, 100)))(BOX)
+
+
+def test_an_exception_in_a_mapper_propagates_with_its_traceback():
+    def faulty_mapper(v):
+        if Location(v).x > 500:
+            raise KeyError("vertex too far east")
+        return Nothing()
+
+    for threads in (1, 2):
+        SetThreads(threads)
+        try:
+            with pytest.raises(KeyError, match="vertex too far east") as e:
+                MapToVertices(faulty_mapper, GridPartition(StripesProperties(0, 100), StripesProperties(pi / 2, 100),
+                                                           KEEP_INSIDE))(BOX)
+        finally:
+            SetThreads(0)
+        frames = [f.name for f in traceback.extract_tb(e.value.__traceback__)]
+        assert "faulty_mapper" in frames
+
+
+def test_nested_arrangements_inside_python_mappers():
+    # A mapper evaluating a sub-scale arrangement on its face (the thesis's clusters).
+    def face_to_dots(f):
+        sub = UniformPartition(IrregularProperties(20 / (BBoxWidth(f) * BBoxHeight(f))), CROP_ADD_BOUNDARY)
+        return MapToFaces(lambda g: Scale(Contour(g), 0.3), sub)(f)
+
+    SetThreads(2)
+    try:
+        out = MapToFaces(face_to_dots, StripesPartition(StripesProperties(pi / 2, 250)))(BOX)
+    finally:
+        SetThreads(0)
+    assert len(out) > 4 * 15
+
+
+def test_svg_round_trip_and_curves_api(tmp_path):
+    c = Append(Polyline([Point(0, 0), Point(10, 0)]), Polyline([Point(0, 0), Point(0, 5), Point(5, 5)], True))
+    assert len(c) == 2 and BBoxWidth(c) == 10 and BBoxHeight(c) == 5 and BBoxCenter(c) == Point(5, 2.5)
+    path = tmp_path / "c.svg"
+    ExportSVG(c, 20, str(path))
+    back = ImportSVG(str(path))
+    assert len(back) == 2
+    assert [len(x.points) for x in back.curves] == [2, 3]
+    assert back.curves[1].closed
+    m = MatchPoints(c, Point(0, 0), Point(10, 0), Point(0, 0), Point(0, 20))
+    assert abs(m.curves[0].points[1].x) < 1e-12 and abs(m.curves[0].points[1].y - 20) < 1e-12

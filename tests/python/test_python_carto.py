@@ -1,0 +1,213 @@
+"""rockhatch.carto: rasters as numpy arrays with NoData, geotransform and CRS; control
+fields from numpy, rasters and callables; the pipeline from Python, with progress,
+cancellation, Python styles and their errors."""
+import math
+import subprocess
+import traceback
+
+import numpy as np
+import pytest
+
+import rockhatch
+from rockhatch import carto
+from rockhatch.tex import Point, Region
+
+GT = [1000.0, 5.0, 0.0, 2000.0, 0.0, -5.0]
+
+
+def test_numpy_round_trip_with_nodata():
+    a = np.arange(12, dtype=np.float64).reshape(3, 4)
+    a[1, 2] = -9999
+    r = carto.Raster.from_array(a, GT, "EPSG:2154", nodata=-9999)
+    assert (r.width, r.height) == (4, 3)
+    assert r.geotransform == GT
+    assert r.crs_name == "EPSG:2154"
+    view = r.array
+    assert view.dtype == np.float32 and view.shape == (3, 4)
+    assert math.isnan(view[1, 2]) and np.isnan(view).sum() == 1
+    np.testing.assert_array_equal(r.to_array(nodata=-9999), a)
+    # The view shares the raster's memory.
+    view[0, 0] = 42
+    assert r.nearest(Point(1002.5, 1997.5)) == 42
+
+
+def test_geotiff_round_trip(tmp_path):
+    a = np.random.default_rng(1).normal(1000, 50, (20, 30)).astype(np.float32)
+    a[3, 4] = np.nan
+    r = carto.Raster.from_array(a, GT, "EPSG:32632")
+    path = str(tmp_path / "r.tif")
+    carto.write_geotiff(r, path)
+    back = carto.read_raster(path)
+    assert back.geotransform == GT and carto.same_crs(back.crs, r.crs)
+    np.testing.assert_array_equal(np.isnan(back.array), np.isnan(a))
+    np.testing.assert_allclose(np.nan_to_num(back.array), np.nan_to_num(a))
+
+
+def test_terrain_fields_are_numpy_arrays_with_nodata():
+    # A plane rising 1 m per metre eastwards: slope 100 %, downhill to the west.
+    x = np.arange(40) * 5.0
+    a = np.tile(x, (30, 1))
+    a[10, 10] = np.nan
+    t = carto.compute_terrain(carto.Raster.from_array(a, GT, "EPSG:2154"))
+    slope, aspect = t.slope.array, t.aspect.array
+    assert slope.shape == (30, 40) and t.slope.geotransform == GT and t.slope.crs_name == "EPSG:2154"
+    assert math.isnan(slope[10, 10]) and np.isnan(slope).sum() == 1
+    ok = ~np.isnan(slope)
+    np.testing.assert_allclose(slope[ok], 100.0, rtol=1e-5)
+    np.testing.assert_allclose(np.abs(aspect[ok]), math.pi, atol=1e-5)
+    assert np.nanmax(t.roughness.array) < 1e-6
+    assert 0 <= np.nanmin(t.hillshade.array) <= np.nanmax(t.hillshade.array) <= 1
+
+
+def test_fields_from_numpy_rasters_numbers_and_callables():
+    a = np.array([[1.0, 2.0], [3.0, -1.0]])
+    f = carto.Field.from_array(a, GT, nodata=-1)
+    assert f(Point(1002.5, 1997.5)) == 1.0 and f(1007.5, 1992.5) != f(1007.5, 1992.5)  # NaN at NoData
+    assert f.kind == "raster"
+    r = carto.Raster.from_array(a, GT)
+    assert carto.Field(r)(1002.5, 1992.5) == 3.0
+    assert carto.Field.from_raster(r, offset=1, range=2)(1002.5, 1992.5) == 1.0
+    assert carto.Field(0.25)(0, 0) == 0.25
+    g = carto.Field(lambda p: p.x + 2 * p.y)
+    assert g(Point(1, 2)) == 5 and g.kind == "python"
+    xs, ys = np.array([0.0, 1.0, 2.0]), np.array([1.0, 1.0, 1.0])
+    np.testing.assert_array_equal(g.sample(xs, ys), [2, 3, 4])
+    fields = carto.ControlFields(orientation=0.5, density=g, height=r, roughness=f)
+    assert fields.orientation(Point(0, 0)) == 0.5 and fields.density(Point(1, 1)) == 3
+    with pytest.raises(TypeError, match="a field is"):
+        carto.Field("steep")
+    with pytest.raises(ValueError, match="2-D"):
+        carto.Raster.from_array(np.zeros(3), GT)
+
+
+def test_run_from_python_equals_the_command(rockhatch_exe, sample_dir, tmp_path):
+    cli = tmp_path / "cli.gpkg"
+    r = subprocess.run([str(rockhatch_exe), "-q", "--dem", str(sample_dir / "dem.tif"), "--partition",
+                        str(sample_dir / "partition.gpkg"), "--style", "balanced", "--seed", "3", "-o", str(cli)],
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    stages = []
+
+    def progress(fraction, stage):
+        stages.append((fraction, stage))
+
+    py = tmp_path / "py.gpkg"
+    stats = carto.run(sample_dir / "dem.tif", sample_dir / "partition.gpkg", [py], style="balanced", seed=3,
+                      progress=progress)
+    assert py.read_bytes() == cli.read_bytes()
+    assert stats.faces == 20 and stats.hatches > 1000 and stats.crs == "EPSG:2154"
+    fractions = [f for f, _ in stages]
+    assert fractions == sorted(fractions) and fractions[-1] == 1.0
+    assert {"reading the DEM", "hatching", "writing", "done"} <= {s for _, s in stages}
+
+
+def test_cancelling_from_the_progress_callback(sample_dir, tmp_path):
+    out = tmp_path / "never.svg"
+    with pytest.raises(rockhatch.RockhatchError, match="cancelled during hatching") as e:
+        carto.run(sample_dir / "dem.tif", sample_dir / "partition.gpkg", [out],
+                  progress=lambda f, stage: stage != "hatching")
+    assert e.value.code == 10
+    assert not out.exists() and list(tmp_path.iterdir()) == []
+
+
+def test_pipeline_errors_carry_the_exit_code(sample_dir, tmp_path):
+    with pytest.raises(rockhatch.RockhatchError, match="--dem 'missing.tif'") as e:
+        carto.run("missing.tif", sample_dir / "partition.gpkg", [tmp_path / "x.svg"])
+    assert e.value.code == 3
+    with pytest.raises(rockhatch.RockhatchError, match="unknown style 'nope'") as e:
+        carto.run(sample_dir / "dem.tif", sample_dir / "partition.gpkg", [tmp_path / "x.svg"], style="nope")
+    assert e.value.code == 7
+    with pytest.raises(TypeError, match="unknown option 'colour'"):
+        carto.run(sample_dir / "dem.tif", sample_dir / "partition.gpkg", [tmp_path / "x.svg"], colour="red")
+
+
+def test_prepare_hatch_write_in_steps(sample_dir, tmp_path):
+    prepared = carto.prepare(sample_dir / "dem.tif", sample_dir / "partition.gpkg")
+    assert len(prepared.partition.faces) == 20
+    dem = prepared.terrain.elevation
+    assert dem.array.shape == (dem.height, dem.width)
+    drawing = carto.hatch(prepared, style="noisy")
+    assert drawing.style == "noisy" and len(drawing.faces) == 20 and drawing.hatch_count() > 500
+    carto.write_svg(drawing, str(tmp_path / "d.svg"))
+    assert (tmp_path / "d.svg").stat().st_size > 10000
+
+
+def stripes_style(fields, params, seed):
+    """A minimal Python style: horizontal hatches clipped to the face."""
+
+    def face_fn(face):
+        out = carto.Hatches()
+        clip = carto.RegionClipper(face.region)
+        for line in carto.jittered_lines(face.region.bbox(), 0.0, params["spacing"], 5 * params["spacing"], 0, 0, seed, 1):
+            out.add_lines(clip.clip(line), carto.Family.FILL)
+        return out
+
+    return face_fn
+
+
+def make_style(fn, name="test-stripes"):
+    return carto.python_style(carto.StyleInfo(name, "", "test", [carto.StyleParam("spacing", 1.0, "mm")]), fn)
+
+
+def test_a_python_style_on_any_thread_count(sample_dir, tmp_path):
+    outs = []
+    for threads in (1, 2):
+        out = tmp_path / f"t{threads}.svg"
+        s = carto.run(sample_dir / "dem.tif", sample_dir / "partition.gpkg", [out], style=make_style(stripes_style),
+                      threads=threads)
+        assert s.hatches > 100
+        outs.append(out.read_bytes())
+    assert outs[0] == outs[1]
+    with pytest.raises(rockhatch.RockhatchError, match="has no parameter 'gap'"):
+        carto.run(sample_dir / "dem.tif", sample_dir / "partition.gpkg", [tmp_path / "x.svg"],
+                  style=make_style(stripes_style), params={"gap": 1})
+
+
+def test_errors_inside_a_python_style(sample_dir, tmp_path):
+    def failing_style(fields, params, seed):
+        def face_fn(face):
+            if face.id == 7:
+                raise ZeroDivisionError("face 7 is cursed")
+            return []
+
+        return face_fn
+
+    with pytest.raises(ZeroDivisionError, match="face 7 is cursed") as e:
+        carto.run(sample_dir / "dem.tif", sample_dir / "partition.gpkg", [tmp_path / "x.svg"],
+                  style=make_style(failing_style), threads=2)
+    assert "face_fn" in [f.name for f in traceback.extract_tb(e.value.__traceback__)]
+    assert not (tmp_path / "x.svg").exists()
+
+    def wrong_type(fields, params, seed):
+        return lambda face: "hatches"
+
+    with pytest.raises(TypeError, match="style 'test-stripes': a face function returned str"):
+        carto.run(sample_dir / "dem.tif", sample_dir / "partition.gpkg", [tmp_path / "x.svg"],
+                  style=make_style(wrong_type))
+
+    with pytest.raises(TypeError, match="a style returns the function hatching one face"):
+        carto.run(sample_dir / "dem.tif", sample_dir / "partition.gpkg", [tmp_path / "x.svg"],
+                  style=make_style(lambda fields, params, seed: 42))
+
+
+def test_faces_and_controls_seen_by_a_python_style(sample_dir, tmp_path):
+    seen = {}
+
+    def probe(fields, params, seed):
+        def face_fn(face):
+            c = carto.face_controls(face, fields)
+            ridges = [i for i, s in enumerate(face.boundary) if s.kind == carto.LineKind.RIDGE]
+            seen[face.id] = (c.orientation, c.density, c.height, len(ridges),
+                             [face.neighbour_id(i) for i in range(len(face.boundary))])
+            assert face.region.contains(carto.interior_point(face.face))
+            return carto.Hatches()
+
+        return face_fn
+
+    carto.run(sample_dir / "dem.tif", sample_dir / "partition.gpkg", [tmp_path / "x.svg"], style=make_style(probe))
+    assert len(seen) == 20
+    assert all(0 <= d <= 1 and 0 <= h <= 1 for _, d, h, _, _ in seen.values())
+    assert sum(r for *_, r, _ in seen.values()) > 0, "some faces border ridges"
+    ids = set(seen)
+    for fid, (*_, neighbours) in seen.items():
+        assert all(n == -1 or (n in ids and n != fid) for n in neighbours)
