@@ -190,6 +190,14 @@ void bind_carto(py::module_& m) {
     m.def(
         "read_raster", [](const std::string& path, const std::string& what) { return std::make_shared<Raster>(read_raster(path, what)); },
         py::arg("path"), py::arg("what") = "raster", py::call_guard<py::gil_scoped_release>());
+    m.def(
+        "load_dem",
+        [](const std::string& path) {
+            std::vector<std::string> notes;
+            auto r = std::make_shared<Raster>(load_dem(path, &notes));
+            return py::make_tuple(r, notes);
+        },
+        py::arg("path"), "the DEM as the pipeline reads it (geographic DEMs reprojected to UTM): (raster, notes)");
     m.def("write_geotiff", &write_geotiff, py::arg("raster"), py::arg("path"), py::arg("nodata") = -9999.0,
           py::call_guard<py::gil_scoped_release>());
     m.def(

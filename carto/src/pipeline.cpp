@@ -35,6 +35,24 @@ void for_face_samples(const RockFace& f, double cell, F&& fn) {
 
 }  // namespace
 
+Raster load_dem(const std::string& path, std::vector<std::string>* notes) {
+    Raster dem = read_raster(path, "--dem");
+    if (dem.min_max().first != dem.min_max().first)
+        throw Error(Code::BadLayer, "--dem '" + path + "': every cell is NoData");
+    if (is_geographic(dem.crs_wkt)) {
+        // Slopes need ground distances: reproject to the UTM zone of the DEM's centre with
+        // square cells of the DEM's north-south ground size.
+        const tex::BBox b = dem.bounds();
+        const int epsg = utm_epsg(b.center().x, b.center().y);
+        const double cell = dem.cell_y() * 111320.0;
+        dem = warp(dem, epsg_wkt(epsg), cell);
+        if (notes)
+            notes->push_back("DEM in a geographic CRS: reprojected to EPSG:" + std::to_string(epsg) + " (UTM, " +
+                             std::to_string(int(std::round(cell))) + " m cells)");
+    }
+    return dem;
+}
+
 Style selected_style(const Options& o) {
     if (o.custom_style) return *o.custom_style;
     return builtin_style(o.style.empty() ? default_style() : o.style);
@@ -60,19 +78,7 @@ void validate(const Options& o) {
 Prepared prepare(const Options& o, const Progress& progress) {
     Prepared p;
     tick(progress, 0.0, "reading the DEM");
-    Raster dem = read_raster(o.dem, "--dem");
-    if (dem.min_max().first != dem.min_max().first)
-        throw Error(Code::BadLayer, "--dem '" + o.dem + "': every cell is NoData");
-    if (is_geographic(dem.crs_wkt)) {
-        // Slopes need ground distances: reproject to the UTM zone of the DEM's centre with
-        // square cells of the DEM's north-south ground size.
-        const tex::BBox b = dem.bounds();
-        const int epsg = utm_epsg(b.center().x, b.center().y);
-        const double cell = dem.cell_y() * 111320.0;
-        dem = warp(dem, epsg_wkt(epsg), cell);
-        p.notes.push_back("DEM in a geographic CRS: reprojected to EPSG:" + std::to_string(epsg) + " (UTM, " +
-                          std::to_string(int(std::round(cell))) + " m cells)");
-    }
+    Raster dem = load_dem(o.dem, &p.notes);
     tick(progress, 0.08, "terrain fields");
     p.terrain = compute_terrain(dem);
     auto load_like = [&](const std::string& path, const char* what, Raster& target) {

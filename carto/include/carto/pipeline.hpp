@@ -54,6 +54,9 @@ struct Prepared {
     std::vector<std::string> notes;
 };
 
+// Reads a DEM for the pipeline: refuses one without valid cells, and reprojects a
+// geographic DEM to the UTM zone of its centre (notes say so).
+Raster load_dem(const std::string& path, std::vector<std::string>* notes = nullptr);
 // The style the options select: custom_style, else the built-in named by `style`.
 Style selected_style(const Options& o);
 // Validates the options that need no file (style, parameters, scale, outputs).
