@@ -24,6 +24,7 @@ import sys
 
 from noisy import emit, fill_params, spacing_for
 from ridge_triangles import TRIANGLES, ridge_triangles
+from rockhatch import Points
 from rockhatch.carto import (Family, Hatches, RegionClipper, clip_to_convex, face_controls, jittered_lines,
                              ring_centroid)
 from rockhatch.tex import BBox, signed_area
@@ -45,9 +46,10 @@ def grid_cells(rows, within):
     for r in range(len(rows) - 1):
         lo, hi = rows[r], rows[r + 1]
         for k in range(min(len(lo), len(hi)) - 1):
-            quad = [lo[k], lo[k + 1], hi[k + 1], hi[k]]
+            # A C++ vector, so the calls below do not convert a Python list each time.
+            quad = Points([lo[k], lo[k + 1], hi[k + 1], hi[k]])
             if signed_area(quad) < 0:
-                quad.reverse()
+                quad = quad[::-1]
             box = BBox()
             for q in quad:
                 box.add(q)

@@ -27,6 +27,7 @@ import sys
 from density_cells import COARSE, fill_cells
 from noisy import emit, fill_params
 from ridge_triangles import dark_ridges
+from rockhatch import Points
 from rockhatch.carto import (Family, Hatch, Hatches, RegionClipper, clip_polygon_convex, clip_to_convex,
                              face_controls, jitter_at, jittered_lines)
 from rockhatch.tex import BBox, Point, cos, dot, signed_area, sin
@@ -83,9 +84,9 @@ def ridge_peaks(out, p, face, c, seed, height_gain):
             jt = jitter_at(apex, seed, 4)
             length = p["peak_length"] * (1 + height_gain * h) * (0.85 + 0.15 * jt.x)
             half = p["peak_width"] / 2 * (1 + 0.5 * height_gain * h)
-            tri = [apex, apex + down * length + n * half, apex + down * length - n * half]
+            tri = Points([apex, apex + down * length + n * half, apex + down * length - n * half])
             if signed_area(tri) < 0:
-                tri.reverse()
+                tri = tri[::-1]
             shape = clip_polygon_convex(outer, tri)
             if len(shape) < 3 or abs(signed_area(shape)) < 1e-9:
                 continue

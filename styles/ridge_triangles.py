@@ -49,20 +49,29 @@ def dark_ridges(boundary, c):
 
 
 def touches(poly, segments):
-    """True when an edge of the polygon lies on one of the segments."""
-    n = len(poly)
+    """True when an edge of the polygon lies on one of the segments (its middle within
+    1e-6 x (1 + length) of the segment)."""
+    pts = [(q.x, q.y) for q in poly]
+    xs, ys = [x for x, _ in pts], [y for _, y in pts]
+    n = len(pts)
     for seg in segments:
-        e = seg.b - seg.a
-        l2 = dot(e, e)
+        ax, ay, bx, by = seg.a.x, seg.a.y, seg.b.x, seg.b.y
+        ex, ey = bx - ax, by - ay
+        l2 = ex * ex + ey * ey
+        if l2 == 0:
+            continue
+        tol = 1e-6 * (1 + math.sqrt(l2))
+        # Quick rejection: the polygon's box must reach the segment's box.
+        if (min(xs) > max(ax, bx) + 2 * tol or max(xs) < min(ax, bx) - 2 * tol or min(ys) > max(ay, by) + 2 * tol
+                or max(ys) < min(ay, by) - 2 * tol):
+            continue
         for k in range(n):
-            a, b = poly[k], poly[(k + 1) % n]
-            m = (a + b) / 2
-            if l2 == 0 or distance(a, b) < 1e-9:
-                continue
-            t = dot(m - seg.a, e) / l2
+            (px, py), (qx, qy) = pts[k], pts[(k + 1) % n]
+            mx, my = (px + qx) / 2, (py + qy) / 2
+            t = ((mx - ax) * ex + (my - ay) * ey) / l2
             if t < 0 or t > 1:
                 continue
-            if abs(cross(e, m - seg.a)) / math.sqrt(l2) < 1e-6 * (1 + math.sqrt(l2)):
+            if abs(ex * (my - ay) - ey * (mx - ax)) / math.sqrt(l2) < tol and distance(poly[k], poly[(k + 1) % n]) >= 1e-9:
                 return True
     return False
 
