@@ -16,11 +16,13 @@ def test_list_names_every_example(gallery_exe):
     assert r.returncode == 0
     names = [line.split("\t")[0] for line in r.stdout.splitlines()]
     assert names == ["stripes", "grid", "uniform", "random", "puzzle", "rosettes", "cracks",
-                     "bimodal", "crosses", "curves", "clusters", "overview"]
+                     "bimodal", "crosses", "curves", "clusters", "overview", "combine_d", "combine_e",
+                     "combine_f", "combine_g", "combine_h"]
 
 
 @pytest.mark.parametrize("name,minimum", [("puzzle", 400), ("rosettes", 300), ("cracks", 1000),
-                                          ("clusters", 400), ("overview", 1000)])
+                                          ("clusters", 400), ("overview", 1000),
+                                          ("combine_e", 500), ("combine_g", 5000)])
 def test_outputs_are_svg_drawings(gallery_exe, tmp_path, name, minimum):
     r = run(gallery_exe, "--out", tmp_path, "--only", name)
     assert r.returncode == 0, r.stderr
