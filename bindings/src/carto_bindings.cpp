@@ -385,6 +385,16 @@ void bind_carto(py::module_& m) {
             },
             py::arg("lines"), py::arg("family"), "appends every line as an open hatch (the lines are moved)");
 
+    m.def(
+        "hatches_from_curves",
+        [](const tex::Curves& c, Family f) {
+            std::vector<Hatch> out;
+            out.reserve(c.curves.size());
+            for (const auto& curve : c.curves)
+                if (curve.points.size() >= 2) out.push_back({curve.points, curve.closed, f});
+            return out;
+        },
+        py::arg("curves"), py::arg("family"), "libtex curves (an evaluated arrangement) as hatches of one family");
     m.def("jittered_lines", &jittered_lines, py::arg("box"), py::arg("angle"), py::arg("spacing"), py::arg("length"),
           py::arg("jitter_across"), py::arg("jitter_along"), py::arg("seed"), py::arg("stream"),
           "hatch lines at angle covering box, broken every length, break points jittered (anchored to the plane)");

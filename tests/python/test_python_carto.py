@@ -211,3 +211,23 @@ def test_faces_and_controls_seen_by_a_python_style(sample_dir, tmp_path):
     ids = set(seen)
     for fid, (*_, neighbours) in seen.items():
         assert all(n == -1 or (n in ids and n != fid) for n in neighbours)
+
+
+def test_a_style_built_from_libtex_operators(sample_dir, tmp_path):
+    """bindings/examples/appendix_e_noisy.py: grid partition, jitter mapper and Inside merge,
+    controlled by the face's fields, as in the thesis's Appendix E."""
+    from conftest import ROOT
+
+    script = str(ROOT / "bindings" / "examples" / "appendix_e_noisy.py")
+    prepared = carto.prepare(sample_dir / "dem.tif", sample_dir / "partition.gpkg")
+    drawings = [carto.hatch(prepared, style=script, threads=t, seed=4) for t in (1, 2)]
+    assert drawings[0].hatch_count() > 5000
+    for a, b in zip(drawings[0].faces, drawings[1].faces):
+        assert a.face_id == b.face_id and list(a.hatches) == list(b.hatches)
+    faces = {f.id: f for f in prepared.partition.faces}
+    for fh in drawings[0].faces:
+        region = faces[fh.face_id].region
+        box = region.bbox().expanded(0.01)
+        assert all(box.contains(q) for h in fh.hatches for q in h.points)
+        inside = sum(region.contains((h.points[0] + h.points[1]) / 2) for h in fh.hatches)
+        assert inside >= 0.99 * len(fh.hatches)

@@ -1,0 +1,68 @@
+#!/usr/bin/python3
+"""Noisy hatching written with the libtex operators, the way the thesis's Appendix E
+writes it: a controlled arrangement whose grid partition is laid along the face's
+orientation, with a jitter mapper moving every vertex, cropped to the face.
+
+It is slower than styles/noisy.py (each face induces a planar map of its hatch grid) and
+does not draw the same hatches (the jitter is keyed by the grid's vertices, not by plane
+positions), but it shows a style built from partitions, mappers and merges.
+
+Parameters (--param NAME=VALUE; "mm" are millimetres on paper at --scale):
+    spacing_min  0.35 mm     hatch spacing in the darkest faces
+    spacing_max  1.5  mm     hatch spacing in the lightest faces
+    length       3.0  mm     length of a hatch between two jittered vertices
+    jitter       1.0  ratio  jitter of the vertices (fraction of spacing and length)
+
+    build/carto/rockhatch --script bindings/examples/appendix_e_noisy.py --dem DEM.tif --partition P.gpkg -o out.svg
+"""
+import sys
+
+from rockhatch.carto import Family, face_controls, hatches_from_curves
+from rockhatch.tex import *  # noqa: F401,F403
+
+NAME = "appendix-e-noisy"
+TITLE = "noisy hatching with libtex operators (thesis Appendix E)"
+PARAMS = [
+    ("spacing_min", 0.35, "mm", "hatch spacing in the darkest faces"),
+    ("spacing_max", 1.5, "mm", "hatch spacing in the lightest faces"),
+    ("length", 3.0, "mm", "length of a hatch between two jittered vertices"),
+    ("jitter", 1.0, "ratio", "jitter of the vertices, as a fraction of spacing and length"),
+]
+
+
+def style(fields, params, seed):
+    SetSeed(seed)
+    randomization = params["jitter"]
+    length = params["length"]
+
+    def arrangement(face):
+        c = face_controls(face, fields)
+        angle = c.orientation
+        spacing = params["spacing_min"] + (params["spacing_max"] - params["spacing_min"]) * (1 - c.density)
+        hatch_lines = StripesProperties(angle, spacing)
+        SetEdgeLabels(hatch_lines, "hatches")
+        grid = GridPartition(hatch_lines, StripesProperties(angle + pi / 2, length), KEEP_OUTSIDE)
+        along, across = Point(cos(angle), sin(angle)), Point(-sin(angle), cos(angle))
+
+        def jitter(v):
+            dx = Random(v, -spacing * randomization / 2, spacing * randomization / 2, 0)
+            dy = Random(v, -length * randomization / 2, length * randomization / 2, 1)
+            return Location(v) + across * dx + along * dy
+
+        def randomize_hatches(e):
+            if not HasLabel(e, "hatches"):
+                return Nothing()
+            s, t = SourceVertex(e), TargetVertex(e)
+            return MatchPoints(ToCurve(e), Location(s), Location(t), jitter(s), jitter(t))
+
+        outline = Constant(face.region.boundary())
+        hatches = Inside(MapToEdges(randomize_hatches, grid), outline, CROP)
+        return hatches_from_curves(hatches(face.region), Family.FILL)
+
+    return arrangement
+
+
+if __name__ == "__main__":
+    from rockhatch.cli import main
+
+    sys.exit(main(style=sys.modules[__name__]))
