@@ -166,7 +166,10 @@ private:
 
 }  // namespace
 
+int partition_main(int argc, char** argv);  // apps/partition_cmd.cpp
+
 int main(int argc, char** argv) {
+    if (argc > 1 && std::string(argv[1]) == "partition") return partition_main(argc - 1, argv + 1);
     carto::Options o;
     bool quiet = false, list_styles = false, help = false;
     const std::vector<Option> opts = options(o, quiet, list_styles, help);

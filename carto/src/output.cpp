@@ -12,34 +12,12 @@
 
 #include "carto/error.hpp"
 #include "gpkg_rtree.hpp"
+#include "temp_file.hpp"
 
 namespace fs = std::filesystem;
 
 namespace carto {
 namespace {
-
-// Temporary name next to the target, removed on any failure.
-struct TempFile {
-    std::string path;
-    bool keep = false;
-    explicit TempFile(const std::string& target, const std::string& ext)
-        : path(target + ".part" + ext) {
-        std::error_code ec;
-        fs::remove(path, ec);
-    }
-    void commit(const std::string& target) {
-        std::error_code ec;
-        fs::rename(path, target, ec);
-        if (ec) throw Error(Code::OutputExists, "-o '" + target + "': cannot move the result in place (" + ec.message() + ")");
-        keep = true;
-    }
-    ~TempFile() {
-        if (!keep) {
-            std::error_code ec;
-            fs::remove(path, ec);
-        }
-    }
-};
 
 void num(std::string& s, double v) {
     char buf[64];
