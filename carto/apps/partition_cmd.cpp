@@ -26,15 +26,16 @@ const char* kUsage =
     "read unchanged by `rockhatch --dem DEM.tif --partition faces.gpkg -o out.svg`.\n\n"
     "options:\n"
     "  --dem PATH              DEM raster (any GDAL format and CRS; geographic DEMs are reprojected to UTM)\n"
-    "  -o PATH                 output GeoPackage: layers faces, lines, mask\n"
+    "  -o PATH                 output GeoPackage: layers faces, lines (their labelled borders), mask,\n"
+    "                          network (all traced ridges and thalwegs in the rock)\n"
     "  --mask PATH             polygon layer: rock only inside its polygons\n"
     "  --min-slope PCT         rock where the slope (3x3 mean) reaches PCT percent (default 70, 35 deg)\n"
     "  --min-roughness R       ... and the vector ruggedness (3x3 mean) reaches R (default 0.001)\n"
     "  --min-area MM2          rock specks, enclosed gaps and faces smaller than MM2 square millimetres\n"
     "                          on paper at the map scale are dropped, filled or merged (default 16)\n"
     "  --scale N               map scale denominator (default 10000)\n"
-    "  --thalweg-area M2       contributing area that starts a thalweg, m2 (default 20000)\n"
-    "  --ridge-area M2         contributing area on the inverted DEM that starts a ridge, m2 (default 20000)\n"
+    "  --thalweg-area M2       contributing area that starts a thalweg, m2 (default 6000, at least 150 cells)\n"
+    "  --ridge-area M2         contributing area on the inverted DEM that starts a ridge, m2 (default 20000, at least 300 cells)\n"
     "  --max-fill M            depressions and summits up to M metres deep/high are flowed across (default 30)\n"
     "  --simplify CELLS        border simplification tolerance in DEM cells (default 0.5)\n"
     "  --png PATH              also write a preview: hillshade, faces, ridges red, thalwegs blue\n"
@@ -120,7 +121,7 @@ int partition_main(int argc, char** argv) {
         });
         if (open_line) std::fprintf(stderr, "\n");
         open_line = false;
-        carto::write_partition_gpkg(r.partition, out, overwrite);
+        carto::write_partition_gpkg(r.partition, out, overwrite, &r.network);
         if (!png.empty()) carto::write_partition_png(r, png, png_size);
         if (!quiet)
             for (const auto& n : r.notes) std::fprintf(stderr, "rockhatch partition: note: %s\n", n.c_str());

@@ -153,7 +153,9 @@ std::vector<char> rasterize_mask(const std::string& path, const Raster& grid) {
 }
 
 // Flow on a surface: every cell's D8 direction (index of the steepest lower neighbour, -1
-// for sinks) and its contributing area along those directions.
+// for sinks), used to trace lines, and its contributing area by multiple flow directions
+// (Freeman: shared among the lower neighbours in proportion to slope^1.1), which follows the
+// true gradient on planar flanks instead of D8's straight parallel paths.
 //
 // Depressions are found by priority flood from the edges and the NoData border. Those at most
 // `max_fill` deep are filled and drain through their spill point along the flood's order;
@@ -229,32 +231,55 @@ Flow flow(const Grid& g, const std::vector<float>& z, double dx, double dy, doub
     for (std::size_t i : idx) {
         f.area[i] += cell_area;
         const int c = int(i % g.w), r = int(i / g.w);
-        double best = 0;
+        double best = 0, wsum = 0, w[8];
         for (int k = 0; k < 8; ++k) {
+            w[k] = 0;
             const int cc = c + kDc[k], rr = r + kDr[k];
             if (!g.inside(cc, rr)) continue;
             const std::size_t j = g.at(cc, rr);
             if (std::isnan(z[j]) || !(s[j] < s[i])) continue;
             const double dist = (kDc[k] && kDr[k]) ? diag : (kDc[k] ? dx : dy);
             const double slope = (double(s[i]) - s[j]) / dist;
+            w[k] = std::pow(slope, 1.1);
+            wsum += w[k];
             if (slope > best) {
                 best = slope;
                 f.down[i] = int(j);
             }
         }
-        // A flat (or a filled depression) drains out through its flooder.
-        if (f.down[i] < 0 && flooder[i] >= 0 && !(dep[i] >= 0 && depth[dep[i]] > max_fill) && s[flooder[i]] <= s[i])
-            f.down[i] = flooder[i];
-        if (f.down[i] >= 0) f.area[std::size_t(f.down[i])] += f.area[i];
+        if (wsum > 0) {
+            for (int k = 0; k < 8; ++k)
+                if (w[k] > 0) f.area[g.at(c + kDc[k], r + kDr[k])] += f.area[i] * w[k] / wsum;
+        } else if (flooder[i] >= 0 && !(dep[i] >= 0 && depth[dep[i]] > max_fill) && s[flooder[i]] <= s[i]) {
+            f.down[i] = flooder[i];  // a flat (or a filled depression) draining out
+            f.area[std::size_t(flooder[i])] += f.area[i];
+        }
     }
     return f;
 }
 
-// The channel network: cells whose contributing area reaches the threshold (a D8 tree of
-// 1-cell wide paths).
-std::vector<char> channels(const Flow& f, double threshold) {
-    std::vector<char> ch(f.area.size(), 0);
-    for (std::size_t i = 0; i < f.area.size(); ++i) ch[i] = f.area[i] >= threshold;
+// The channel network: cells whose contributing area reaches the threshold and is largest
+// across the flow (not smaller than both neighbours perpendicular to the D8 direction), each
+// followed down its D8 path while the area stays above the threshold: 1-cell wide lines.
+std::vector<char> channels(const Grid& g, const Flow& f, double threshold) {
+    std::vector<char> ch(g.size(), 0);
+    for (int r = 0; r < g.h; ++r)
+        for (int c = 0; c < g.w; ++c) {
+            const std::size_t i = g.at(c, r);
+            if (!(f.area[i] >= threshold) || f.down[i] < 0 || ch[i]) continue;
+            const int dc = f.down[i] % g.w - c, dr = f.down[i] / g.w - r;
+            bool crest = true;
+            for (int side : {-1, 1}) {  // the neighbours across the flow
+                const int cc = c - side * dr, rr = r + side * dc;
+                if (g.inside(cc, rr) && f.area[g.at(cc, rr)] > f.area[i]) crest = false;
+            }
+            if (!crest) continue;
+            for (std::size_t j = i; f.area[j] >= threshold && !ch[j];) {
+                ch[j] = 1;
+                if (f.down[j] < 0) break;
+                j = std::size_t(f.down[j]);
+            }
+        }
     return ch;
 }
 
@@ -443,6 +468,37 @@ std::vector<Chain> trace_chains(const Grid& g, const std::vector<int>& face, con
             for (int d = 0; d < 4; ++d)
                 if (edge_exists(i, j, d) && !seen(i, j, d)) trace(i, j, d);
     return chains;
+}
+
+// The network cells inside the rock traced into polylines: from each head down the D8
+// directions to a junction (included) or out of the rock; simplified.
+std::vector<LabelledLine> trace_network(const Grid& g, const Flow& f, const std::vector<char>& ch,
+                                        const std::vector<char>& rock, LineKind kind, const Raster& grid, double tol) {
+    std::vector<char> has_up(g.size(), 0), done(g.size(), 0);
+    for (std::size_t i = 0; i < g.size(); ++i)
+        if (ch[i] && rock[i] && f.down[i] >= 0) has_up[f.down[i]] = 1;
+    std::vector<LabelledLine> out;
+    auto run = [&](std::size_t start) {
+        std::vector<Point> pts;
+        for (std::size_t j = start;;) {
+            pts.push_back({j % g.w + 0.5, j / g.w + 0.5});
+            if (done[j]) break;
+            done[j] = 1;
+            const int d = f.down[j];
+            if (d < 0 || !ch[d] || !rock[d]) break;
+            j = std::size_t(d);
+        }
+        if (pts.size() < 2) return;
+        LabelledLine l;
+        l.kind = kind;
+        for (const Point& q : simplify(pts, false, tol)) l.points.push_back(grid.to_world(q.x, q.y));
+        out.push_back(std::move(l));
+    };
+    for (std::size_t i = 0; i < g.size(); ++i)
+        if (ch[i] && rock[i] && !has_up[i]) run(i);
+    for (std::size_t i = 0; i < g.size(); ++i)  // loops without a head (none expected)
+        if (ch[i] && rock[i] && !done[i]) run(i);
+    return out;
 }
 
 struct OrientedChain {
@@ -668,19 +724,24 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
     step(progress, 0.3, "thalwegs");
     // Flow runs on the DEM smoothed twice over 3x3 cells, so that noise does not start channels.
     std::vector<float> z = box_mean(g, box_mean(g, dem.data, 1), 1);
+    // Thresholds: the options, but at least 150 (thalwegs) and 300 (ridges) cells, so that a
+    // coarse DEM does not start a line in every hollow it can barely resolve.
+    const double thalweg_area = std::max(o.thalweg_area, 150 * cell_area);
+    const double ridge_area = std::max(o.ridge_area, 300 * cell_area);
     const Flow valley_flow = flow(g, z, dx, dy, o.max_fill);
-    std::vector<char> valley = channels(valley_flow, o.thalweg_area);
+    std::vector<char> valley = channels(g, valley_flow, thalweg_area);
     step(progress, 0.45, "ridges");
     for (float& v : z) v = -v;
     const Flow ridge_flow = flow(g, z, dx, dy, o.max_fill);
-    std::vector<char> ridge = channels(ridge_flow, o.ridge_area);
-    // Heads prolonged to the other network or out of the rock, over at most 150 m.
-    const int reach = std::max(3, int(std::lround(150.0 / dx)));
+    std::vector<char> ridge = channels(g, ridge_flow, ridge_area);
+    // Thalweg heads prolonged up the couloir to a ridge or out of the rock, over at most
+    // 500 m (ridges are not: going down a flank they would cut facets that are not there).
+    const int reach = std::max(3, int(std::lround(500.0 / dx)));
     std::vector<char> stop(g.size());
     for (std::size_t i = 0; i < g.size(); ++i) stop[i] = ridge[i] || !rock[i];
     extend_heads(g, valley_flow, valley, stop, reach);
-    for (std::size_t i = 0; i < g.size(); ++i) stop[i] = valley[i] || !rock[i];
-    extend_heads(g, ridge_flow, ridge, stop, reach);
+    res.network = trace_network(g, ridge_flow, ridge, rock, LineKind::Ridge, dem, 1.0);
+    for (auto& l : trace_network(g, valley_flow, valley, rock, LineKind::Valley, dem, 1.0)) res.network.push_back(std::move(l));
     res.line_cells.assign(g.size(), 0);
     for (std::size_t i = 0; i < g.size(); ++i) res.line_cells[i] = ridge[i] ? 1 : (valley[i] ? 2 : 0);
 
@@ -849,7 +910,8 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
     return res;
 }
 
-void write_partition_gpkg(const Partition& p, const std::string& path, bool overwrite) {
+void write_partition_gpkg(const Partition& p, const std::string& path, bool overwrite,
+                          const std::vector<LabelledLine>* network) {
     check_output(path, overwrite);
     GDALAllRegister();
     CPLSetConfigOption("OGR_CURRENT_DATE", "2000-01-01T00:00:00.000Z");
@@ -880,6 +942,7 @@ void write_partition_gpkg(const Partition& p, const std::string& path, bool over
                                 {{"id", OFTInteger64}, {"orientation", OFTReal}, {"density", OFTReal}, {"area", OFTReal}});
         OGRLayer* lines = layer("lines", wkbLineString, {{"kind", OFTString}});
         OGRLayer* mask = layer("mask", wkbMultiPolygon, {});
+        OGRLayer* net = network ? layer("network", wkbLineString, {{"kind", OFTString}}) : nullptr;
         ds->StartTransaction();
         OGRMultiPolygon all;
         for (const RockFace& rf : p.faces) {
@@ -893,14 +956,18 @@ void write_partition_gpkg(const Partition& p, const std::string& path, bool over
             f.SetGeometryDirectly(poly.release());
             put(faces, f);
         }
-        for (const LabelledLine& l : p.lines) {
-            OGRFeature f(lines->GetLayerDefn());
-            f.SetField("kind", kind_name(l.kind));
-            auto ls = std::make_unique<OGRLineString>();
-            for (const Point& q : l.points) ls->addPoint(q.x, q.y);
-            f.SetGeometryDirectly(ls.release());
-            put(lines, f);
-        }
+        auto put_lines = [&](OGRLayer* target, const std::vector<LabelledLine>& ls) {
+            for (const LabelledLine& l : ls) {
+                OGRFeature f(target->GetLayerDefn());
+                f.SetField("kind", kind_name(l.kind));
+                auto geom = std::make_unique<OGRLineString>();
+                for (const Point& q : l.points) geom->addPoint(q.x, q.y);
+                f.SetGeometryDirectly(geom.release());
+                put(target, f);
+            }
+        };
+        put_lines(lines, p.lines);
+        if (net) put_lines(net, *network);
         std::unique_ptr<OGRGeometry> u(all.UnionCascaded());
         if (u) {
             OGRFeature f(mask->GetLayerDefn());

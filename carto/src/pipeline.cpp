@@ -7,6 +7,7 @@
 #include <mutex>
 
 #include "carto/error.hpp"
+#include "carto/extract.hpp"
 #include "carto/fields.hpp"
 #include "libtex/parallel.hpp"
 
@@ -73,7 +74,16 @@ Prepared prepare(const Options& o, const Progress& progress) {
     if (!(p.zmax > p.zmin)) p.zmax = p.zmin + 1;
 
     tick(progress, 0.15, "reading the partition");
-    p.partition = load_partition(o.partition, dem.crs_wkt);
+    if (o.partition.path == "auto") {
+        // No partition: extract one from the DEM (carto/extract.hpp) with its defaults.
+        ExtractOptions eo;
+        eo.raster = dem;
+        eo.scale = o.scale;
+        eo.what = "--dem '" + o.dem + "'";
+        p.partition = extract_partition(eo).partition;
+    } else {
+        p.partition = load_partition(o.partition, dem.crs_wkt);
+    }
     for (const auto& n : p.partition.notes) p.notes.push_back(n);
     if (!p.partition.bounds().intersects(dem.bounds()))
         throw Error(Code::NoOverlap, "--partition '" + o.partition.path + "' does not overlap --dem '" + o.dem + "'");

@@ -41,8 +41,8 @@ struct ExtractOptions {
     double min_roughness = 0.001;   // vector ruggedness 0..1
     double min_area_mm2 = 16;       // on paper at 1:scale: specks, gaps and faces below it
     double scale = 10000;           // map scale denominator
-    double thalweg_area = 20000;    // m2 of contributing area that starts a thalweg
-    double ridge_area = 20000;      // m2 of "inverted" contributing area that starts a ridge
+    double thalweg_area = 6000;     // m2 of contributing area that starts a thalweg (>= 150 cells)
+    double ridge_area = 20000;      // m2 of "inverted" contributing area that starts a ridge (>= 300 cells)
     double max_fill = 30;           // m: deeper depressions (and prominences) stop the flow
     double simplify = 0.5;          // Douglas-Peucker tolerance in cells
     std::string what = "--dem";     // how error messages name the DEM
@@ -54,6 +54,9 @@ struct ExtractResult {
     Raster rock;                    // the rock mask on the working grid: 1 rock, 0 not, NaN NoData
     Raster faces;                   // face index per cell (-1 outside the faces)
     std::vector<int> line_cells;    // per cell: 0 none, 1 ridge, 2 thalweg (whole DEM)
+    // The traced ridge and thalweg network inside the rock, whether or not it borders faces
+    // (lines ending inside a face do not cut it), simplified to about a cell.
+    std::vector<LabelledLine> network;
     std::vector<std::string> notes;
 };
 
@@ -66,7 +69,9 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
 // density, area in m2), `lines` (kind = ridge / valley / other) and `mask` (the union of the
 // faces) to a GeoPackage, atomically (temporary file renamed at the end) and with a
 // fixed timestamp, so the same partition gives the same bytes.
-void write_partition_gpkg(const Partition& p, const std::string& path, bool overwrite);
+// With `network`, also a layer `network` (kind = ridge / valley) of the traced lines.
+void write_partition_gpkg(const Partition& p, const std::string& path, bool overwrite,
+                          const std::vector<LabelledLine>* network = nullptr);
 
 // A PNG preview `pixels` wide: the hillshade, each face tinted, its borders drawn in red
 // (ridge), blue (valley) or grey (other). Written atomically.
