@@ -258,23 +258,41 @@ Flow flow(const Grid& g, const std::vector<float>& z, double dx, double dy, doub
     return f;
 }
 
-// The channel network: cells whose contributing area reaches the threshold and is largest
-// across the flow (not smaller than both neighbours perpendicular to the D8 direction), each
-// followed down its D8 path while the area stays above the threshold: 1-cell wide lines.
-std::vector<char> channels(const Grid& g, const Flow& f, double threshold) {
+// Contributing area of a cell over the mean of its two neighbours across its D8 direction:
+// 1 on a planar flank (where MFD area only grows with the flow length), larger in a hollow.
+double convergence(const Grid& g, const Flow& f, std::size_t i) {
+    if (f.down[i] < 0) return 0;
+    const int c = int(i % g.w), r = int(i / g.w);
+    const int dc = f.down[i] % g.w - c, dr = f.down[i] / g.w - r;
+    double sides = 0;
+    for (int side : {-1, 1}) {
+        const int cc = c - side * dr, rr = r + side * dc;
+        sides += g.inside(cc, rr) ? f.area[g.at(cc, rr)] : 0.0;
+    }
+    return sides > 0 ? 2 * f.area[i] / sides : 1e9;
+}
+
+// The channel network: cells whose contributing area reaches the threshold and where flow
+// converges (the area is at least `converge` x the mean of the two neighbours across the D8
+// direction: on a planar flank, where MFD area only grows with the flow length, it is equal),
+// each followed down its D8 path while the area stays above the threshold: 1-cell wide lines.
+std::vector<char> channels(const Grid& g, const Flow& f, double threshold, double converge,
+                           const std::vector<char>& edge, int near) {
     std::vector<char> ch(g.size(), 0);
     for (int r = 0; r < g.h; ++r)
         for (int c = 0; c < g.w; ++c) {
             const std::size_t i = g.at(c, r);
-            if (!(f.area[i] >= threshold) || f.down[i] < 0 || ch[i]) continue;
-            const int dc = f.down[i] % g.w - c, dr = f.down[i] / g.w - r;
-            bool crest = true;
-            for (int side : {-1, 1}) {  // the neighbours across the flow
-                const int cc = c - side * dr, rr = r + side * dc;
-                if (g.inside(cc, rr) && f.area[g.at(cc, rr)] > f.area[i]) crest = false;
-            }
+            if (!(f.area[i] >= threshold) || f.down[i] < 0 || ch[i] || edge[i]) continue;
+            bool crest = convergence(g, f, i) >= converge;
+            // Not a side line along a bigger one: no cell within `near` carries twice the area.
+            for (int rr = std::max(0, r - near); crest && rr <= std::min(g.h - 1, r + near); ++rr)
+                for (int cc = std::max(0, c - near); crest && cc <= std::min(g.w - 1, c + near); ++cc)
+                    if (f.area[g.at(cc, rr)] > 2 * f.area[i]) crest = false;
             if (!crest) continue;
-            for (std::size_t j = i; f.area[j] >= threshold && !ch[j];) {
+            // Into the border band for a few cells only: the line reaches the edge of the DEM
+            // without running along it.
+            int band = 0;
+            for (std::size_t j = i; f.area[j] >= threshold && !ch[j] && (band += edge[j]) <= 3;) {
                 ch[j] = 1;
                 if (f.down[j] < 0) break;
                 j = std::size_t(f.down[j]);
@@ -283,35 +301,131 @@ std::vector<char> channels(const Grid& g, const Flow& f, double threshold) {
     return ch;
 }
 
-// Prolongs each head of a network up its main tributary (largest area, first on ties) for at
-// most `max_cells`, kept only when it reaches a cell of `stop` (the other lines, or non-rock),
-// so that the line cuts the rock area instead of dangling in it.
-void extend_heads(const Grid& g, const Flow& f, std::vector<char>& ch, const std::vector<char>& stop, int max_cells) {
+// Removes first-order branches (from a head down to the first junction with another line)
+// that are shorter than `min_cells`, or that run for most of their length within `near`
+// cells of a line draining more: the short or parallel paths drawn on a wall beside a thalweg.
+void prune_spurs(const Grid& g, const Flow& f, std::vector<char>& ch, int min_cells, int near) {
+    std::vector<int> ups(g.size(), 0);
+    for (std::size_t i = 0; i < g.size(); ++i)
+        if (ch[i] && f.down[i] >= 0 && ch[f.down[i]]) ++ups[f.down[i]];
+    std::vector<std::size_t> heads;
+    for (std::size_t i = 0; i < g.size(); ++i)
+        if (ch[i] && ups[i] == 0) heads.push_back(i);
+    std::vector<int> owner(g.size(), -1);
+    std::vector<std::vector<std::size_t>> paths;
+    for (std::size_t h : heads) {
+        std::vector<std::size_t> path;
+        for (std::size_t j = h;;) {
+            path.push_back(j);
+            const int d = f.down[j];
+            if (d < 0 || !ch[d] || ups[d] > 1) break;
+            j = std::size_t(d);
+        }
+        for (std::size_t j : path) owner[j] = int(paths.size());
+        paths.push_back(std::move(path));
+    }
+    std::vector<std::size_t> drop;
+    for (std::size_t k = 0; k < paths.size(); ++k) {
+        const auto& path = paths[k];
+        bool remove = int(path.size()) < min_cells;
+        if (!remove) {
+            std::size_t beside = 0;
+            for (std::size_t i : path) {
+                const int c = int(i % g.w), r = int(i / g.w);
+                bool found = false;
+                for (int rr = std::max(0, r - near); !found && rr <= std::min(g.h - 1, r + near); ++rr)
+                    for (int cc = std::max(0, c - near); !found && cc <= std::min(g.w - 1, c + near); ++cc) {
+                        const std::size_t j = g.at(cc, rr);
+                        found = ch[j] && owner[j] != int(k) && f.area[j] > f.area[i];
+                    }
+                beside += found;
+            }
+            remove = 10 * beside > 7 * path.size();
+        }
+        if (remove) drop.insert(drop.end(), path.begin(), path.end());
+    }
+    for (std::size_t i : drop) ch[i] = 0;
+}
+
+// Cross-profile concavity of a surface at each cell: its height minus the mean of the two
+// points `dist` away along the contour line (across the fall line). Negative on a valley
+// floor, positive on a crest, about 0 on a planar flank.
+std::vector<float> concavity(const Grid& g, const std::vector<float>& z, double dx, double dy, double dist) {
+    std::vector<float> out(g.size(), NAN);
+    auto at = [&](double c, double r) -> double {  // bilinear at cell coordinates (centres at .5)
+        const double fx = c - 0.5, fy = r - 0.5;
+        const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
+        const double tx = fx - x0, ty = fy - y0;
+        double s = 0;
+        for (int k = 0; k < 4; ++k) {
+            const int x = x0 + (k & 1), y = y0 + (k >> 1);
+            if (!g.inside(x, y) || std::isnan(z[g.at(x, y)])) return NAN;
+            s += z[g.at(x, y)] * ((k & 1) ? tx : 1 - tx) * ((k >> 1) ? ty : 1 - ty);
+        }
+        return s;
+    };
+    for (int r = 1; r + 1 < g.h; ++r)
+        for (int c = 1; c + 1 < g.w; ++c) {
+            const double gx = (double(z[g.at(c + 1, r)]) - z[g.at(c - 1, r)]) / (2 * dx);
+            const double gy = (double(z[g.at(c, r + 1)]) - z[g.at(c, r - 1)]) / (2 * dy);
+            const double n = std::hypot(gx, gy);
+            if (!(n > 0)) continue;
+            // Contour direction in cell units (perpendicular to the gradient).
+            const double ux = -gy / n * dist / dx, uy = gx / n * dist / dy;
+            const double a = at(c + 0.5 + ux, r + 0.5 + uy), b = at(c + 0.5 - ux, r + 0.5 - uy);
+            out[g.at(c, r)] = float(z[g.at(c, r)] - (a + b) / 2);
+        }
+    return out;
+}
+
+// Prolongs each head of a network upstream along its valley floor: to the higher neighbour
+// (8 around) that is most concave, while concave by at least `depth` (two cells' tolerance),
+// for at most `max_cells`; where the floor fades (near a col or a summit) the walk finishes
+// by steepest ascent over at most `finish` cells. Kept only when it reaches a cell of `stop`
+// (the other lines, or non-rock), so the line cuts the rock area instead of dangling in it.
+// Kept steps are linked downstream in `down`, so the network can be traced along them.
+void extend_heads(const Grid& g, std::vector<int>& down, std::vector<char>& ch, const std::vector<float>& z,
+                  const std::vector<float>& conc, double depth, const std::vector<char>& stop, int max_cells,
+                  int finish) {
     std::vector<char> has_up(g.size(), 0);
     for (std::size_t i = 0; i < g.size(); ++i)
-        if (ch[i] && f.down[i] >= 0) has_up[f.down[i]] = 1;
-    auto main_tributary = [&](std::size_t i) {
-        const int c = int(i % g.w), r = int(i / g.w);
-        int best = -1;
-        for (int k = 0; k < 8; ++k) {
-            const int cc = c + kDc[k], rr = r + kDr[k];
-            if (!g.inside(cc, rr)) continue;
-            const std::size_t j = g.at(cc, rr);
-            if (f.down[j] == int(i) && (best < 0 || f.area[j] > f.area[best])) best = int(j);
-        }
-        return best;
-    };
+        if (ch[i] && down[i] >= 0) has_up[down[i]] = 1;
     std::vector<std::size_t> heads;
     for (std::size_t i = 0; i < g.size(); ++i)
         if (ch[i] && !has_up[i]) heads.push_back(i);
     for (std::size_t h : heads) {
-        std::vector<std::size_t> path;
-        for (int j = main_tributary(h); j >= 0 && int(path.size()) < max_cells; j = main_tributary(std::size_t(j))) {
-            if (stop[j]) {
-                for (std::size_t k : path) ch[k] = 1;
+        std::vector<std::size_t> path{h};
+        int weak = 0, finishing = -1;
+        while (int(path.size()) <= max_cells) {
+            const std::size_t i = path.back();
+            const int c = int(i % g.w), r = int(i / g.w);
+            int best = -1;
+            double key = 0;
+            for (int k = 0; k < 8; ++k) {
+                const int cc = c + kDc[k], rr = r + kDr[k];
+                if (!g.inside(cc, rr)) continue;
+                const std::size_t j = g.at(cc, rr);
+                if (!(z[j] > z[i]) || std::isnan(conc[j])) continue;
+                // Along the floor: the most concave; finishing: the steepest.
+                const double v = finishing < 0 ? conc[j] : -(z[j] - z[i]) / ((kDc[k] && kDr[k]) ? 1.4142 : 1.0);
+                if (best < 0 || v < key) best = int(j), key = v;
+            }
+            if (best < 0) break;
+            if (stop[best]) {
+                path.push_back(std::size_t(best));
+                for (std::size_t k = 1; k + 1 < path.size(); ++k) {
+                    ch[path[k]] = 1;
+                    down[path[k]] = int(path[k - 1]);
+                }
                 break;
             }
-            path.push_back(std::size_t(j));
+            if (finishing < 0) {
+                weak = conc[best] <= -depth ? 0 : weak + 1;
+                if (weak > 2) finishing = 0;
+            } else if (++finishing > finish) {
+                break;
+            }
+            path.push_back(std::size_t(best));
         }
     }
 }
@@ -472,11 +586,11 @@ std::vector<Chain> trace_chains(const Grid& g, const std::vector<int>& face, con
 
 // The network cells inside the rock traced into polylines: from each head down the D8
 // directions to a junction (included) or out of the rock; simplified.
-std::vector<LabelledLine> trace_network(const Grid& g, const Flow& f, const std::vector<char>& ch,
+std::vector<LabelledLine> trace_network(const Grid& g, const std::vector<int>& down, const std::vector<char>& ch,
                                         const std::vector<char>& rock, LineKind kind, const Raster& grid, double tol) {
     std::vector<char> has_up(g.size(), 0), done(g.size(), 0);
     for (std::size_t i = 0; i < g.size(); ++i)
-        if (ch[i] && rock[i] && f.down[i] >= 0) has_up[f.down[i]] = 1;
+        if (ch[i] && rock[i] && down[i] >= 0) has_up[down[i]] = 1;
     std::vector<LabelledLine> out;
     auto run = [&](std::size_t start) {
         std::vector<Point> pts;
@@ -484,7 +598,7 @@ std::vector<LabelledLine> trace_network(const Grid& g, const Flow& f, const std:
             pts.push_back({j % g.w + 0.5, j / g.w + 0.5});
             if (done[j]) break;
             done[j] = 1;
-            const int d = f.down[j];
+            const int d = down[j];
             if (d < 0 || !ch[d] || !rock[d]) break;
             j = std::size_t(d);
         }
@@ -632,6 +746,8 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
     positive(o.thalweg_area, "--thalweg-area", false);
     positive(o.ridge_area, "--ridge-area", false);
     positive(o.max_fill, "--max-fill", true);
+    positive(o.smooth, "--smooth", true);
+    positive(o.converge, "--converge", true);
     positive(o.simplify, "--simplify", true);
     if (o.min_roughness > 1) throw Error(Code::Usage, "--min-roughness: must lie in 0..1");
     if (o.simplify > 2) throw Error(Code::Usage, "--simplify: at most 2 cells (faces would cross)");
@@ -722,26 +838,46 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
 
     // ---- 2. Thalwegs and ridges
     step(progress, 0.3, "thalwegs");
-    // Flow runs on the DEM smoothed twice over 3x3 cells, so that noise does not start channels.
-    std::vector<float> z = box_mean(g, box_mean(g, dem.data, 1), 1);
+    // Flow runs on the DEM smoothed by three box filters (about a Gaussian of `smooth` metres,
+    // at least one cell), so that small bumps and hollows do not start or divert lines.
+    const int sr = std::max(1, int(std::lround(o.smooth / dx / std::sqrt(2.0))));
+    std::vector<float> z = dem.data;
+    for (int pass = 0; pass < 3 && o.smooth > 0; ++pass) z = box_mean(g, z, sr);
     // Thresholds: the options, but at least 150 (thalwegs) and 300 (ridges) cells, so that a
     // coarse DEM does not start a line in every hollow it can barely resolve.
     const double thalweg_area = std::max(o.thalweg_area, 150 * cell_area);
     const double ridge_area = std::max(o.ridge_area, 300 * cell_area);
+    // Flow along the DEM's edges and NoData border is an artefact of the cut: no lines within
+    // two cells of them.
+    std::vector<char> edge(g.size(), 0);
+    for (int r = 0; r < g.h; ++r)
+        for (int c = 0; c < g.w; ++c)
+            for (int dr = -2; dr <= 2; ++dr)
+                for (int dc = -2; dc <= 2; ++dc)
+                    if (!g.inside(c + dc, r + dr) || std::isnan(dem.data[g.at(c + dc, r + dr)])) edge[g.at(c, r)] = 1;
+    const int near = std::max(1, int(std::lround(15.0 / dx)));
     const Flow valley_flow = flow(g, z, dx, dy, o.max_fill);
-    std::vector<char> valley = channels(g, valley_flow, thalweg_area);
+    std::vector<char> valley = channels(g, valley_flow, thalweg_area, o.converge, edge, near);
     step(progress, 0.45, "ridges");
     for (float& v : z) v = -v;
     const Flow ridge_flow = flow(g, z, dx, dy, o.max_fill);
-    std::vector<char> ridge = channels(g, ridge_flow, ridge_area);
-    // Thalweg heads prolonged up the couloir to a ridge or out of the rock, over at most
-    // 500 m (ridges are not: going down a flank they would cut facets that are not there).
-    const int reach = std::max(3, int(std::lround(500.0 / dx)));
+    std::vector<char> ridge = channels(g, ridge_flow, ridge_area, o.converge, edge, near);
+    // Spurs shorter than 100 m (at least 3 cells) go.
+    const int spur = std::max(3, int(std::lround(100.0 / dx)));
+    prune_spurs(g, valley_flow, valley, spur, near);
+    prune_spurs(g, ridge_flow, ridge, spur, near);
+    // Thalweg heads prolonged up their couloir to a ridge or out of the rock, over at most
+    // 1000 m, along cells at least 5 % of 20 m (two cells at least) below both sides.
+    const int reach = std::max(3, int(std::lround(1000.0 / dx)));
+    const double across = std::max(2 * dx, 20.0);
     std::vector<char> stop(g.size());
     for (std::size_t i = 0; i < g.size(); ++i) stop[i] = ridge[i] || !rock[i];
-    extend_heads(g, valley_flow, valley, stop, reach);
-    res.network = trace_network(g, ridge_flow, ridge, rock, LineKind::Ridge, dem, 1.0);
-    for (auto& l : trace_network(g, valley_flow, valley, rock, LineKind::Valley, dem, 1.0)) res.network.push_back(std::move(l));
+    for (float& v : z) v = -v;  // back to the (smoothed) DEM
+    std::vector<int> valley_down = valley_flow.down;
+    const std::vector<float> conc = concavity(g, z, dx, dy, across);
+    extend_heads(g, valley_down, valley, z, conc, 0.05 * across, stop, reach, std::max(4, int(std::lround(150.0 / dx))));
+    res.network = trace_network(g, ridge_flow.down, ridge, rock, LineKind::Ridge, dem, 1.0);
+    for (auto& l : trace_network(g, valley_down, valley, rock, LineKind::Valley, dem, 1.0)) res.network.push_back(std::move(l));
     res.line_cells.assign(g.size(), 0);
     for (std::size_t i = 0; i < g.size(); ++i) res.line_cells[i] = ridge[i] ? 1 : (valley[i] ? 2 : 0);
 
