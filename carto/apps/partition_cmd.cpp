@@ -34,12 +34,13 @@ const char* kUsage =
     "  --min-area MM2          rock specks, enclosed gaps and faces smaller than MM2 square millimetres\n"
     "                          on paper at the map scale are dropped, filled or merged (default 16)\n"
     "  --scale N               map scale denominator (default 10000)\n"
-    "  --thalweg-area M2       contributing area that starts a thalweg, m2 (default 6000, at least 150 cells)\n"
-    "  --ridge-area M2         contributing area on the inverted DEM that starts a ridge, m2 (default 20000, at least 300 cells)\n"
+    "  --thalweg-area M2       contributing area that starts a thalweg, m2 (default 6000, at least 50 cells)\n"
+    "  --ridge-area M2         contributing area on the inverted DEM that starts a ridge, m2 (default 20000, at least 100 cells)\n"
     "  --max-fill M            depressions and summits up to M metres deep/high are flowed across (default 30)\n"
     "  --smooth M              smoothing of the DEM before flow routing, metres (default 10, 0: none)\n"
     "  --converge K            a line starts where the contributing area is at least K times the mean\n"
     "                          of the cells beside it across the flow (default 1.2; 1: no test)\n"
+    "  --no-ridge-extension    do not prolong ridge feet down their crest to a thalweg\n"
     "  --simplify CELLS        border simplification tolerance in DEM cells (default 0.5)\n"
     "  --png PATH              also write a preview: hillshade, faces, ridges red, thalwegs blue\n"
     "  --png-size PIXELS       preview width (default 1600)\n"
@@ -92,6 +93,7 @@ int partition_main(int argc, char** argv) {
             else if (a == "--max-fill") o.max_fill = number(a, value());
             else if (a == "--smooth") o.smooth = number(a, value());
             else if (a == "--converge") o.converge = number(a, value());
+            else if (a == "--no-ridge-extension") o.extend_ridges = false;
             else if (a == "--simplify") o.simplify = number(a, value());
             else if (a == "--png") png = value();
             else if (a == "--png-size") png_size = int(number(a, value()));

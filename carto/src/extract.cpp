@@ -843,10 +843,10 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
     const int sr = std::max(1, int(std::lround(o.smooth / dx / std::sqrt(2.0))));
     std::vector<float> z = dem.data;
     for (int pass = 0; pass < 3 && o.smooth > 0; ++pass) z = box_mean(g, z, sr);
-    // Thresholds: the options, but at least 150 (thalwegs) and 300 (ridges) cells, so that a
+    // Thresholds: the options, but at least 50 (thalwegs) and 100 (ridges) cells, so that a
     // coarse DEM does not start a line in every hollow it can barely resolve.
-    const double thalweg_area = std::max(o.thalweg_area, 150 * cell_area);
-    const double ridge_area = std::max(o.ridge_area, 300 * cell_area);
+    const double thalweg_area = std::max(o.thalweg_area, 50 * cell_area);
+    const double ridge_area = std::max(o.ridge_area, 100 * cell_area);
     // Flow along the DEM's edges and NoData border is an artefact of the cut: no lines within
     // two cells of them.
     std::vector<char> edge(g.size(), 0);
@@ -866,17 +866,25 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
     const int spur = std::max(3, int(std::lround(100.0 / dx)));
     prune_spurs(g, valley_flow, valley, spur, near);
     prune_spurs(g, ridge_flow, ridge, spur, near);
-    // Thalweg heads prolonged up their couloir to a ridge or out of the rock, over at most
-    // 1000 m, along cells at least 5 % of 20 m (two cells at least) below both sides.
+    // Line heads prolonged along their floor (thalwegs up their couloir, ridges down their
+    // crest, which is the same walk on the inverted DEM) to a line of the other kind or out of
+    // the rock, over at most 1000 m, along cells at least 5 % of 20 m (two cells at least)
+    // below (above) both sides, finishing by steepest ascent (descent) over at most 150 m.
     const int reach = std::max(3, int(std::lround(1000.0 / dx)));
+    const int finish = std::max(4, int(std::lround(150.0 / dx)));
     const double across = std::max(2 * dx, 20.0);
     std::vector<char> stop(g.size());
-    for (std::size_t i = 0; i < g.size(); ++i) stop[i] = ridge[i] || !rock[i];
+    std::vector<int> ridge_down = ridge_flow.down, valley_down = valley_flow.down;
+    std::vector<float> conc = concavity(g, z, dx, dy, across);  // of the inverted DEM
+    if (o.extend_ridges) {
+        for (std::size_t i = 0; i < g.size(); ++i) stop[i] = valley[i] || !rock[i];
+        extend_heads(g, ridge_down, ridge, z, conc, 0.05 * across, stop, reach, finish);
+    }
     for (float& v : z) v = -v;  // back to the (smoothed) DEM
-    std::vector<int> valley_down = valley_flow.down;
-    const std::vector<float> conc = concavity(g, z, dx, dy, across);
-    extend_heads(g, valley_down, valley, z, conc, 0.05 * across, stop, reach, std::max(4, int(std::lround(150.0 / dx))));
-    res.network = trace_network(g, ridge_flow.down, ridge, rock, LineKind::Ridge, dem, 1.0);
+    for (float& v : conc) v = -v;
+    for (std::size_t i = 0; i < g.size(); ++i) stop[i] = ridge[i] || !rock[i];
+    extend_heads(g, valley_down, valley, z, conc, 0.05 * across, stop, reach, finish);
+    res.network = trace_network(g, ridge_down, ridge, rock, LineKind::Ridge, dem, 1.0);
     for (auto& l : trace_network(g, valley_down, valley, rock, LineKind::Valley, dem, 1.0)) res.network.push_back(std::move(l));
     res.line_cells.assign(g.size(), 0);
     for (std::size_t i = 0; i < g.size(); ++i) res.line_cells[i] = ridge[i] ? 1 : (valley[i] ? 2 : 0);

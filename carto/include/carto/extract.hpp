@@ -41,10 +41,11 @@ struct ExtractOptions {
     double min_roughness = 0.001;   // vector ruggedness 0..1
     double min_area_mm2 = 16;       // on paper at 1:scale: specks, gaps and faces below it
     double scale = 10000;           // map scale denominator
-    double thalweg_area = 6000;     // m2 of contributing area that starts a thalweg (>= 150 cells)
-    double ridge_area = 20000;      // m2 of "inverted" contributing area that starts a ridge (>= 300 cells)
+    double thalweg_area = 6000;     // m2 of contributing area that starts a thalweg (>= 50 cells)
+    double ridge_area = 20000;      // m2 of "inverted" contributing area that starts a ridge (>= 100 cells)
     double smooth = 10;             // m: smoothing of the DEM the flow runs on (0: none)
     double converge = 1.2;          // a line starts where the area is >= this x that beside it
+    bool extend_ridges = true;      // prolong ridge feet down their crest to a thalweg
     double max_fill = 30;           // m: deeper depressions (and prominences) stop the flow
     double simplify = 0.5;          // Douglas-Peucker tolerance in cells
     std::string what = "--dem";     // how error messages name the DEM
