@@ -5,6 +5,7 @@ import pytest
 from osgeo import ogr
 
 from conftest import SHARED_DEM
+from partition_quality import precision_recall
 
 ogr.UseExceptions()
 
@@ -47,6 +48,9 @@ def test_two_commands_from_a_bare_dem(rockhatch_exe, sample_dir, tmp_path):
     assert len(polys) > 10
     assert kinds.get("ridge", 0) > 5 and kinds.get("valley", 0) > 2
     assert_no_overlap(polys)
+    # Ridges and thalwegs within two cells (10 m) of the generator's true lines.
+    for kind, (p, r, _, _) in precision_recall(faces, sample_dir / "truth.gpkg").items():
+        assert p >= 0.8 and r >= 0.8, (kind, p, r)
     out = tmp_path / "out.svg"
     r = run(rockhatch_exe, "-q", "--dem", sample_dir / "dem.tif", "--partition", faces, "-o", out)
     assert r.returncode == 0, r.stderr
