@@ -1178,22 +1178,7 @@ void write_partition_png(const ExtractResult& r, const std::string& path, int pi
         }
     std::vector<unsigned char> bytes(rgb.size());
     for (std::size_t i = 0; i < rgb.size(); ++i) bytes[i] = (unsigned char)std::lround(std::clamp(rgb[i], 0.0f, 1.0f) * 255);
-    TempFile tmp(path, ".png");
-    GDALAllRegister();
-    GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
-    GDALDriver* png = GetGDALDriverManager()->GetDriverByName("PNG");
-    if (!mem || !png) throw Error(Code::Failure, "GDAL has no PNG driver");
-    std::unique_ptr<GDALDataset> src(mem->Create("", w, h, 3, GDT_Byte, nullptr));
-    if (src->RasterIO(GF_Write, 0, 0, w, h, bytes.data(), w, h, GDT_Byte, 3, nullptr, 3, std::size_t(w) * 3, 1, nullptr) != CE_None)
-        throw Error(Code::OutputExists, "--png '" + path + "': cannot build the preview");
-    CPLPushErrorHandler(CPLQuietErrorHandler);
-    std::unique_ptr<GDALDataset> out(png->CreateCopy(tmp.path.c_str(), src.get(), FALSE, nullptr, nullptr, nullptr));
-    CPLPopErrorHandler();
-    if (!out) throw Error(Code::OutputExists, "--png '" + path + "': cannot write the PNG (" + CPLGetLastErrorMsg() + ")");
-    out.reset();
-    std::error_code ec;
-    std::filesystem::remove(tmp.path + ".aux.xml", ec);
-    tmp.commit(path);
+    write_png_pixels(bytes, w, h, 3, path, "--png");
 }
 
 }  // namespace carto

@@ -1,9 +1,10 @@
-// An output written atomically: to a temporary name next to the target, renamed over it at
+// Outputs written atomically: to a temporary name next to the target, renamed over it at
 // the end, removed on any failure (internal to carto).
 #pragma once
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "carto/error.hpp"
 
@@ -31,5 +32,10 @@ struct TempFile {
         }
     }
 };
+
+// Writes 8-bit pixels (`bands` interleaved per pixel, 1 grey or 3 RGB) as a PNG, atomically,
+// through GDAL's in-memory and PNG drivers; `what` names the output in error messages.
+void write_png_pixels(const std::vector<unsigned char>& pixels, int w, int h, int bands, const std::string& path,
+                      const std::string& what);
 
 }  // namespace carto

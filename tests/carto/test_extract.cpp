@@ -30,17 +30,25 @@ const ExtractResult& sample() {
     return r;
 }
 
+// The face as an OGR polygon, through its WKT.
 std::unique_ptr<OGRPolygon> polygon(const tex::Region& r) {
-    auto p = std::make_unique<OGRPolygon>();
-    auto add = [&](const std::vector<Point>& ring) {
-        OGRLinearRing lr;
-        for (const Point& q : ring) lr.addPoint(q.x, q.y);
-        lr.closeRings();
-        p->addRing(&lr);
-    };
-    add(r.outer());
-    for (const auto& h : r.holes()) add(h);
-    return p;
+    std::string wkt = "POLYGON (";
+    std::vector<std::vector<Point>> rings{r.outer()};
+    rings.insert(rings.end(), r.holes().begin(), r.holes().end());
+    for (std::size_t k = 0; k < rings.size(); ++k) {
+        wkt += k ? ",(" : "(";
+        for (std::size_t i = 0; i <= rings[k].size(); ++i) {
+            const Point& q = rings[k][i % rings[k].size()];
+            char buf[80];
+            std::snprintf(buf, sizeof buf, "%s%.17g %.17g", i ? "," : "", q.x, q.y);
+            wkt += buf;
+        }
+        wkt += ")";
+    }
+    wkt += ")";
+    OGRGeometry* g = nullptr;
+    OGRGeometryFactory::createFromWkt(wkt.c_str(), nullptr, &g);
+    return std::unique_ptr<OGRPolygon>(g->toPolygon());
 }
 
 std::string bytes(const std::string& path) {
