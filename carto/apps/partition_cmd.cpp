@@ -29,13 +29,14 @@ const char* kUsage =
     "  -o PATH                 output GeoPackage: layers faces, lines (their labelled borders), mask,\n"
     "                          network (all traced ridges and thalwegs in the rock)\n"
     "  --mask PATH             polygon layer: rock only inside its polygons\n"
-    "  --min-slope PCT         rock where the slope (3x3 mean) reaches PCT percent (default 70, 35 deg)\n"
-    "  --min-roughness R       ... and the vector ruggedness (3x3 mean) reaches R (default 0.001)\n"
+    "  --min-slope PCT         rock where the slope (mean over ~25 m) reaches PCT percent (default 70, 35 deg)\n"
+    "  --min-roughness R       ... and the vector ruggedness (same mean) reaches R (default 0.001)\n"
     "  --min-area MM2          rock specks, enclosed gaps and faces smaller than MM2 square millimetres\n"
     "                          on paper at the map scale are dropped, filled or merged (default 16)\n"
     "  --scale N               map scale denominator (default 10000)\n"
     "  --thalweg-area M2       contributing area that starts a thalweg, m2 (default 6000, at least 50 cells)\n"
-    "  --ridge-area M2         contributing area on the inverted DEM that starts a ridge, m2 (default 20000, at least 100 cells)\n"
+    "  --ridge-area M2         contributing area on the inverted DEM that starts a ridge, m2 (default 20000, at least "
+    "100 cells)\n"
     "  --max-fill M            depressions and summits up to M metres deep/high are flowed across (default 30)\n"
     "  --smooth M              smoothing of the DEM before flow routing, metres (default 10, 0: none)\n"
     "  --converge K            a line starts where the contributing area is at least K times the mean\n"
@@ -81,25 +82,44 @@ int partition_main(int argc, char** argv) {
             if (a == "--help" || a == "-h") {
                 std::cout << kUsage;
                 return 0;
-            } else if (a == "--dem") o.dem = value();
-            else if (a == "-o") out = value();
-            else if (a == "--mask") o.mask = value();
-            else if (a == "--min-slope") o.min_slope = number(a, value());
-            else if (a == "--min-roughness") o.min_roughness = number(a, value());
-            else if (a == "--min-area") o.min_area_mm2 = number(a, value());
-            else if (a == "--scale") o.scale = number(a, value());
-            else if (a == "--thalweg-area") o.thalweg_area = number(a, value());
-            else if (a == "--ridge-area") o.ridge_area = number(a, value());
-            else if (a == "--max-fill") o.max_fill = number(a, value());
-            else if (a == "--smooth") o.smooth = number(a, value());
-            else if (a == "--converge") o.converge = number(a, value());
-            else if (a == "--no-ridge-extension") o.extend_ridges = false;
-            else if (a == "--simplify") o.simplify = number(a, value());
-            else if (a == "--png") png = value();
-            else if (a == "--png-size") png_size = int(number(a, value()));
-            else if (a == "--overwrite") overwrite = true;
-            else if (a == "-q") quiet = true;
-            else throw Error(Code::Usage, "unknown option '" + a + "' (see --help)");
+            } else if (a == "--dem")
+                o.dem = value();
+            else if (a == "-o")
+                out = value();
+            else if (a == "--mask")
+                o.mask = value();
+            else if (a == "--min-slope")
+                o.min_slope = number(a, value());
+            else if (a == "--min-roughness")
+                o.min_roughness = number(a, value());
+            else if (a == "--min-area")
+                o.min_area_mm2 = number(a, value());
+            else if (a == "--scale")
+                o.scale = number(a, value());
+            else if (a == "--thalweg-area")
+                o.thalweg_area = number(a, value());
+            else if (a == "--ridge-area")
+                o.ridge_area = number(a, value());
+            else if (a == "--max-fill")
+                o.max_fill = number(a, value());
+            else if (a == "--smooth")
+                o.smooth = number(a, value());
+            else if (a == "--converge")
+                o.converge = number(a, value());
+            else if (a == "--no-ridge-extension")
+                o.extend_ridges = false;
+            else if (a == "--simplify")
+                o.simplify = number(a, value());
+            else if (a == "--png")
+                png = value();
+            else if (a == "--png-size")
+                png_size = int(number(a, value()));
+            else if (a == "--overwrite")
+                overwrite = true;
+            else if (a == "-q")
+                quiet = true;
+            else
+                throw Error(Code::Usage, "unknown option '" + a + "' (see --help)");
         }
         if (o.dem.empty()) throw Error(Code::Usage, "--dem is required");
         if (out.empty()) throw Error(Code::Usage, "-o is required (a .gpkg file)");
@@ -108,7 +128,8 @@ int partition_main(int argc, char** argv) {
         if (png_size < 16 || png_size > 20000) throw Error(Code::Usage, "--png-size must be in 16..20000");
         carto::check_output(out, overwrite);
         if (!png.empty()) {
-            if (std::filesystem::path(png).extension() != ".png") throw Error(Code::Usage, "--png '" + png + "': not a .png file");
+            if (std::filesystem::path(png).extension() != ".png")
+                throw Error(Code::Usage, "--png '" + png + "': not a .png file");
             try {
                 carto::check_output(png, overwrite);
             } catch (const Error& e) {

@@ -131,7 +131,8 @@ std::vector<char> rasterize_mask(const std::string& path, const Raster& grid) {
         if (ct) g->transform(ct.get());
         geoms.push_back(std::move(g));
     }
-    if (geoms.empty()) throw Error(Code::BadLayer, what + ": layer '" + std::string(layer->GetName()) + "' holds no polygon");
+    if (geoms.empty())
+        throw Error(Code::BadLayer, what + ": layer '" + std::string(layer->GetName()) + "' holds no polygon");
     GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
     std::unique_ptr<GDALDataset> ras(mem->Create("", grid.width, grid.height, 1, GDT_Byte, nullptr));
     ras->SetGeoTransform(const_cast<double*>(grid.gt.data()));
@@ -142,8 +143,8 @@ std::vector<char> rasterize_mask(const std::string& path, const Raster& grid) {
         burn.push_back(1.0);
     }
     int band = 1;
-    if (GDALRasterizeGeometries(GDALDataset::ToHandle(ras.get()), 1, &band, int(handles.size()), handles.data(), nullptr,
-                                nullptr, burn.data(), nullptr, nullptr, nullptr) != CE_None)
+    if (GDALRasterizeGeometries(GDALDataset::ToHandle(ras.get()), 1, &band, int(handles.size()), handles.data(),
+                                nullptr, nullptr, burn.data(), nullptr, nullptr, nullptr) != CE_None)
         throw Error(Code::BadLayer, what + ": cannot rasterize the polygons");
     std::vector<char> out(std::size_t(grid.width) * grid.height);
     if (ras->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, grid.width, grid.height, out.data(), grid.width, grid.height,
@@ -221,9 +222,8 @@ Flow flow(const Grid& g, const std::vector<float>& z, double dx, double dy, doub
     idx.reserve(n);
     for (std::size_t i = 0; i < n; ++i)
         if (!std::isnan(z[i])) idx.push_back(i);
-    std::sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) {
-        return s[a] != s[b] ? s[a] > s[b] : order[a] > order[b];
-    });
+    std::sort(idx.begin(), idx.end(),
+              [&](std::size_t a, std::size_t b) { return s[a] != s[b] ? s[a] > s[b] : order[a] > order[b]; });
     Flow f;
     f.down.assign(n, -1);
     f.area.assign(n, 0.0);
@@ -437,11 +437,11 @@ constexpr int kCx[4] = {1, 0, -1, 0};
 constexpr int kCy[4] = {0, 1, 0, -1};
 
 struct Chain {
-    std::vector<Point> raw;         // corner coordinates (col, row)
-    std::vector<Point> simple;      // simplified
-    int right = -1, left = -1;      // faces on either side (-1: outside)
+    std::vector<Point> raw;     // corner coordinates (col, row)
+    std::vector<Point> simple;  // simplified
+    int right = -1, left = -1;  // faces on either side (-1: outside)
     int first_dir = 0, last_dir = 0;
-    long long start = -1, end = -1; // corner ids (closed chains: start == end)
+    long long start = -1, end = -1;  // corner ids (closed chains: start == end)
     bool closed = false;
     bool use_raw = false;
     LineKind kind = LineKind::Other;
@@ -501,10 +501,18 @@ std::vector<Chain> trace_chains(const Grid& g, const std::vector<int>& face, con
     // Edge from corner (i, j) in direction d exists when the two cells across it differ.
     auto cells = [&](int i, int j, int d, int& right, int& left, int& rc, int& rr, int& lc, int& lr) {
         switch (d) {
-            case 0: rc = i, rr = j - 1, lc = i, lr = j; break;          // E
-            case 1: rc = i, rr = j, lc = i - 1, lr = j; break;          // S
-            case 2: rc = i - 1, rr = j, lc = i - 1, lr = j - 1; break;  // W
-            default: rc = i - 1, rr = j - 1, lc = i, lr = j - 1; break; // N
+            case 0:
+                rc = i, rr = j - 1, lc = i, lr = j;
+                break;  // E
+            case 1:
+                rc = i, rr = j, lc = i - 1, lr = j;
+                break;  // S
+            case 2:
+                rc = i - 1, rr = j, lc = i - 1, lr = j - 1;
+                break;  // W
+            default:
+                rc = i - 1, rr = j - 1, lc = i, lr = j - 1;
+                break;  // N
         }
         right = label(rc, rr);
         left = label(lc, lr);
@@ -520,10 +528,14 @@ std::vector<Chain> trace_chains(const Grid& g, const std::vector<int>& face, con
     std::vector<char> hseen(std::size_t(W) * H, 0), vseen(std::size_t(W) * H, 0);
     auto seen = [&](int i, int j, int d) -> char& {
         switch (d) {
-            case 0: return hseen[std::size_t(j) * W + i];
-            case 2: return hseen[std::size_t(j) * W + i - 1];
-            case 1: return vseen[std::size_t(j) * W + i];
-            default: return vseen[std::size_t(j - 1) * W + i];
+            case 0:
+                return hseen[std::size_t(j) * W + i];
+            case 2:
+                return hseen[std::size_t(j) * W + i - 1];
+            case 1:
+                return vseen[std::size_t(j) * W + i];
+            default:
+                return vseen[std::size_t(j - 1) * W + i];
         }
     };
     auto degree = [&](int i, int j) {
@@ -566,8 +578,10 @@ std::vector<Chain> trace_chains(const Grid& g, const std::vector<int>& face, con
         }
         ch.end = (long long)j * W + i;
         if (ch.right >= 0 && ch.left >= 0) {
-            if (2 * ridge > total && ridge >= valley) ch.kind = LineKind::Ridge;
-            else if (2 * valley > total) ch.kind = LineKind::Valley;
+            if (2 * ridge > total && ridge >= valley)
+                ch.kind = LineKind::Ridge;
+            else if (2 * valley > total)
+                ch.kind = LineKind::Valley;
         }
         chains.push_back(std::move(ch));
     };
@@ -709,8 +723,10 @@ std::vector<FacePolygon> face_polygons(const std::vector<Chain>& chains, const s
     std::vector<FacePolygon> out;
     std::vector<std::vector<Point>> holes;
     for (auto& ring : rings) {
-        if (tex::signed_area(ring) > 0) out.push_back({std::move(ring), {}});
-        else holes.push_back(std::move(ring));
+        if (tex::signed_area(ring) > 0)
+            out.push_back({std::move(ring), {}});
+        else
+            holes.push_back(std::move(ring));
     }
     for (auto& h : holes) {
         // A hole touches its shell at most at corners: test the middle of its first edge.
@@ -786,7 +802,8 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
         const int rc = std::max(1, int(std::lround(15.0 / dx)));
         auto grow = [&](const std::vector<char>& on, bool dilate) {
             std::vector<float> v(g.size());
-            for (std::size_t i = 0; i < g.size(); ++i) v[i] = std::isnan(dem.data[i]) ? (dilate ? 0.0f : 1.0f) : float(on[i]);
+            for (std::size_t i = 0; i < g.size(); ++i)
+                v[i] = std::isnan(dem.data[i]) ? (dilate ? 0.0f : 1.0f) : float(on[i]);
             // box_mean skips NaN only: give every cell a value, then threshold the window mean.
             const std::vector<float> m = box_mean(g, v, rc);
             std::vector<char> out(g.size());
@@ -833,8 +850,7 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
         throw Error(Code::BadLayer, what + buf);
     }
     res.rock = dem;
-    for (std::size_t i = 0; i < g.size(); ++i)
-        res.rock.data[i] = std::isnan(dem.data[i]) ? NAN : float(rock[i]);
+    for (std::size_t i = 0; i < g.size(); ++i) res.rock.data[i] = std::isnan(dem.data[i]) ? NAN : float(rock[i]);
 
     // ---- 2. Thalwegs and ridges
     step(progress, 0.3, "thalwegs");
@@ -885,7 +901,8 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
     for (std::size_t i = 0; i < g.size(); ++i) stop[i] = ridge[i] || !rock[i];
     extend_heads(g, valley_down, valley, z, conc, 0.05 * across, stop, reach, finish);
     res.network = trace_network(g, ridge_down, ridge, rock, LineKind::Ridge, dem, 1.0);
-    for (auto& l : trace_network(g, valley_down, valley, rock, LineKind::Valley, dem, 1.0)) res.network.push_back(std::move(l));
+    for (auto& l : trace_network(g, valley_down, valley, rock, LineKind::Valley, dem, 1.0))
+        res.network.push_back(std::move(l));
     res.line_cells.assign(g.size(), 0);
     for (std::size_t i = 0; i < g.size(); ++i) res.line_cells[i] = ridge[i] ? 1 : (valley[i] ? 2 : 0);
 
@@ -1082,8 +1099,9 @@ void write_partition_gpkg(const Partition& p, const std::string& path, bool over
         auto put = [&](OGRLayer* l, OGRFeature& f) {
             if (l->CreateFeature(&f) != OGRERR_NONE) throw Error(Code::OutputExists, "-o '" + path + "': write failed");
         };
-        OGRLayer* faces = layer("faces", wkbPolygon,
-                                {{"id", OFTInteger64}, {"orientation", OFTReal}, {"density", OFTReal}, {"area", OFTReal}});
+        OGRLayer* faces =
+            layer("faces", wkbPolygon,
+                  {{"id", OFTInteger64}, {"orientation", OFTReal}, {"density", OFTReal}, {"area", OFTReal}});
         OGRLayer* lines = layer("lines", wkbLineString, {{"kind", OFTString}});
         OGRLayer* mask = layer("mask", wkbMultiPolygon, {});
         OGRLayer* net = network ? layer("network", wkbLineString, {{"kind", OFTString}}) : nullptr;
@@ -1177,7 +1195,8 @@ void write_partition_png(const ExtractResult& r, const std::string& path, int pi
             }
         }
     std::vector<unsigned char> bytes(rgb.size());
-    for (std::size_t i = 0; i < rgb.size(); ++i) bytes[i] = (unsigned char)std::lround(std::clamp(rgb[i], 0.0f, 1.0f) * 255);
+    for (std::size_t i = 0; i < rgb.size(); ++i)
+        bytes[i] = (unsigned char)std::lround(std::clamp(rgb[i], 0.0f, 1.0f) * 255);
     write_png_pixels(bytes, w, h, 3, path, "--png");
 }
 

@@ -14,15 +14,16 @@ namespace carto {
 struct TempFile {
     std::string path;
     bool keep = false;
-    explicit TempFile(const std::string& target, const std::string& ext)
-        : path(target + ".part" + ext) {
+    explicit TempFile(const std::string& target, const std::string& ext) : path(target + ".part" + ext) {
         std::error_code ec;
         std::filesystem::remove(path, ec);
     }
     void commit(const std::string& target) {
         std::error_code ec;
         std::filesystem::rename(path, target, ec);
-        if (ec) throw Error(Code::OutputExists, "-o '" + target + "': cannot move the result in place (" + ec.message() + ")");
+        if (ec)
+            throw Error(Code::OutputExists,
+                        "-o '" + target + "': cannot move the result in place (" + ec.message() + ")");
         keep = true;
     }
     ~TempFile() {

@@ -1,7 +1,7 @@
 // Partition from the DEM alone (carto::extract_partition): data model, labels, topology,
 // determinism, error cases, and ridge / thalweg quality against the sample's true lines.
-#include <gtest/gtest.h>
 #include <gdal_priv.h>
+#include <gtest/gtest.h>
 #include <ogrsf_frmts.h>
 
 #include <cmath>
@@ -113,8 +113,8 @@ OGRMultiLineString collect(const std::vector<LabelledLine>& ls, LineKind kind) {
 
 OGRMultiLineString truth(const std::string& layer) {
     GDALAllRegister();
-    std::unique_ptr<GDALDataset> ds(
-        GDALDataset::FromHandle(GDALOpenEx((kSample + "/truth.gpkg").c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr)));
+    std::unique_ptr<GDALDataset> ds(GDALDataset::FromHandle(
+        GDALOpenEx((kSample + "/truth.gpkg").c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr)));
     OGRMultiLineString m;
     for (auto& f : *ds->GetLayerByName(layer.c_str())) m.addGeometry(f->GetGeometryRef());
     return m;
@@ -161,8 +161,8 @@ TEST(Extract, FacesTileTheRockMask) {
         all.addGeometry(poly.get());
     }
     std::unique_ptr<OGRGeometry> u(all.UnionCascaded());
-    const double ua = wkbFlatten(u->getGeometryType()) == wkbPolygon ? u->toPolygon()->get_Area()
-                                                                      : u->toMultiPolygon()->get_Area();
+    const double ua =
+        wkbFlatten(u->getGeometryType()) == wkbPolygon ? u->toPolygon()->get_Area() : u->toMultiPolygon()->get_Area();
     // No overlaps: the union is as large as the sum of the faces.
     EXPECT_NEAR(ua, sum, 1e-6 * sum);
     // No gaps: the union covers the rock cells (borders are simplified by half a cell).
@@ -180,8 +180,10 @@ TEST(Extract, FacesTileTheRockMask) {
             for (const RockFace& f : r.partition.faces)
                 if (f.region.bbox().contains(c) && f.region.contains(c)) ++n;
             twice += n > 1;
-            if (r.rock.at(x, y) == 1.0f) ++rock_n, rock_out += n == 0;
-            else ++other_n, other_in += n > 0;
+            if (r.rock.at(x, y) == 1.0f)
+                ++rock_n, rock_out += n == 0;
+            else
+                ++other_n, other_in += n > 0;
         }
     EXPECT_EQ(twice, 0u);
     EXPECT_LT(double(rock_out), 0.01 * rock_n);
