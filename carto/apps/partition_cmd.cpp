@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -79,47 +80,34 @@ int partition_main(int argc, char** argv) {
                 if (i + 1 >= argc) throw Error(Code::Usage, a + " needs a value");
                 return argv[++i];
             };
+            double png_width = png_size;
+            // Options taking a number, then paths and flags.
+            const std::pair<const char*, double*> numbers[] = {
+                {"--min-slope", &o.min_slope},       {"--min-roughness", &o.min_roughness},
+                {"--min-area", &o.min_area_mm2},     {"--scale", &o.scale},
+                {"--thalweg-area", &o.thalweg_area}, {"--ridge-area", &o.ridge_area},
+                {"--max-fill", &o.max_fill},         {"--smooth", &o.smooth},
+                {"--converge", &o.converge},         {"--simplify", &o.simplify},
+                {"--png-size", &png_width}};
+            const std::pair<const char*, std::string*> paths[] = {
+                {"--dem", &o.dem}, {"-o", &out}, {"--mask", &o.mask}, {"--png", &png}};
+            const std::pair<const char*, std::function<void()>> flags[] = {
+                {"--overwrite", [&] { overwrite = true; }},
+                {"-q", [&] { quiet = true; }},
+                {"--no-ridge-extension", [&] { o.extend_ridges = false; }}};
             if (a == "--help" || a == "-h") {
                 std::cout << kUsage;
                 return 0;
-            } else if (a == "--dem")
-                o.dem = value();
-            else if (a == "-o")
-                out = value();
-            else if (a == "--mask")
-                o.mask = value();
-            else if (a == "--min-slope")
-                o.min_slope = number(a, value());
-            else if (a == "--min-roughness")
-                o.min_roughness = number(a, value());
-            else if (a == "--min-area")
-                o.min_area_mm2 = number(a, value());
-            else if (a == "--scale")
-                o.scale = number(a, value());
-            else if (a == "--thalweg-area")
-                o.thalweg_area = number(a, value());
-            else if (a == "--ridge-area")
-                o.ridge_area = number(a, value());
-            else if (a == "--max-fill")
-                o.max_fill = number(a, value());
-            else if (a == "--smooth")
-                o.smooth = number(a, value());
-            else if (a == "--converge")
-                o.converge = number(a, value());
-            else if (a == "--no-ridge-extension")
-                o.extend_ridges = false;
-            else if (a == "--simplify")
-                o.simplify = number(a, value());
-            else if (a == "--png")
-                png = value();
-            else if (a == "--png-size")
-                png_size = int(number(a, value()));
-            else if (a == "--overwrite")
-                overwrite = true;
-            else if (a == "-q")
-                quiet = true;
-            else
-                throw Error(Code::Usage, "unknown option '" + a + "' (see --help)");
+            }
+            bool known = false;
+            for (const auto& [name, target] : numbers)
+                if (a == name) *target = number(a, value()), known = true;
+            for (const auto& [name, target] : paths)
+                if (a == name) *target = value(), known = true;
+            for (const auto& [name, set] : flags)
+                if (a == name) set(), known = true;
+            if (!known) throw Error(Code::Usage, "unknown option '" + a + "' (see --help)");
+            png_size = int(png_width);
         }
         if (o.dem.empty()) throw Error(Code::Usage, "--dem is required");
         if (out.empty()) throw Error(Code::Usage, "-o is required (a .gpkg file)");
