@@ -2,8 +2,12 @@
 """Times the rockhatch pipeline: the bundled sample per style with 1 and 2 threads, a 4x
 larger synthetic area, and the real DEM in ../shared (when present). Reports medians of
 wall time, peak memory (GNU time) and hatches per second, and writes a Markdown table.
+Then times `rockhatch partition` (the partition from the DEM alone) on the sample and the
+real DEM, with the precision and recall of its lines against the sample's true lines.
 
-    bench/bench_carto.py BUILD_DIR [--runs N] [--markdown FILE]
+    bench/bench_carto.py BUILD_DIR [--runs N] [--markdown FILE] [--only partition]
+
+With --only partition, only the partition section of the Markdown file is rewritten.
 """
 import argparse
 import pathlib
@@ -16,6 +20,7 @@ import tempfile
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests" / "python"))
 from realdem import grid_partition  # noqa: E402  (shared with the tests)
+from partition_quality import precision_recall  # noqa: E402
 SAMPLE = ROOT / "data" / "sample_montblanc"
 SHARED_DEM = ROOT.parent / "shared" / "data" / "montblanc" / "Chamonix.tif"
 STYLES = ["noisy", "ridge-triangles", "density-cells", "fine-ridges", "balanced", "high-ridges", "bidirectional"]
@@ -37,12 +42,69 @@ def median_run(cmd, runs):
     return wall, max(r[1] for r in results), results[0][2]
 
 
+PARTITION_MARK = "<!-- partition: written by bench/bench_carto.py -->"
+
+
+def partition_section(build_dir, runs, tmp):
+    """Markdown of the `rockhatch partition` timings and quality."""
+    exe = build_dir / "carto" / "rockhatch"
+    lines = [PARTITION_MARK, "", "### Partition from the DEM alone (`rockhatch partition`)", "",
+             f"Whole command runs (read, reproject, terrain, flow, faces, write), median of {runs} runs.", "",
+             "| case | wall time (median) | peak memory | faces | ridge / valley borders |",
+             "|---|---:|---:|---:|---:|"]
+    cases = [("sample 2.4 km, 5 m cells (EPSG:2154)", SAMPLE / "dem.tif", [])]
+    if SHARED_DEM.exists():
+        cases.append(("real DEM Chamonix.tif (EPSG:4326 -> UTM 32N, 31 m cells), defaults", SHARED_DEM, []))
+        cases.append(("real DEM Chamonix.tif (EPSG:4326 -> UTM 32N, 31 m cells), --scale 25000", SHARED_DEM,
+                      ["--scale", "25000"]))
+    else:
+        print(f"bench_carto: {SHARED_DEM} absent, real-DEM partition row skipped")
+    sample_out = None
+    for label, dem, extra in cases:
+        out = tmp / f"partition{len(lines)}.gpkg"
+        walls, rss = [], 0
+        for _ in range(runs):
+            r = subprocess.run(["/usr/bin/time", "-f", "RH_TIME %e %M", str(exe), "partition", "--dem", str(dem),
+                                "-o", str(out), "--overwrite", "-q", *extra], capture_output=True, text=True)
+            if r.returncode != 0:
+                sys.exit(f"bench_carto: rockhatch partition on {dem} failed:\n{r.stderr}")
+            wall, mem = re.search(r"RH_TIME ([\d.]+) (\d+)", r.stderr).groups()
+            walls.append(float(wall))
+            rss = max(rss, int(mem) / 1024)
+        faces, ridges, valleys = map(int, re.search(r"(\d+) faces, (\d+) ridge and (\d+) valley", r.stderr).groups())
+        wall = statistics.median(walls)
+        print(f"partition {label:70s} {wall:6.2f} s {rss:6.0f} MB {faces} faces", flush=True)
+        lines.append(f"| {label} | {wall:.2f} s | {rss:.0f} MB | {faces} | {ridges} / {valleys} |")
+        if sample_out is None:
+            sample_out = tmp / "sample_partition.gpkg"
+            out.rename(sample_out)
+    lines += ["", "Quality on the sample against the generator's true lines (`truth.gpkg`), tolerance 10 m "
+              "(two cells), measured inside the rock mask and the convex hull of the true lines "
+              "(tests/python/partition_quality.py):", "",
+              "| lines | kind | precision | recall | extracted | true |", "|---|---|---:|---:|---:|---:|"]
+    for layer, what in (("network", "traced network (`network` layer)"), ("lines", "face borders (`lines` layer)")):
+        for kind, (p, r, ext, true) in precision_recall(sample_out, SAMPLE / "truth.gpkg", layer).items():
+            print(f"{what:34s} {kind:6s} precision {p:.3f} recall {r:.3f}")
+            lines.append(f"| {what} | {kind} | {p:.3f} | {r:.3f} | {ext:.0f} m | {true:.0f} m |")
+    return "\n".join(lines) + "\n"
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("build_dir", type=pathlib.Path)
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--markdown", type=pathlib.Path)
+    ap.add_argument("--only", choices=["partition"], help="run only this section (the rest of the report is kept)")
     args = ap.parse_args()
+    if args.only == "partition":
+        with tempfile.TemporaryDirectory() as tmp:
+            section = partition_section(args.build_dir, max(args.runs, 5), pathlib.Path(tmp))
+        if args.markdown:
+            old = args.markdown.read_text() if args.markdown.exists() else ""
+            head = old.split(PARTITION_MARK)[0].rstrip("\n")
+            args.markdown.write_text((head + "\n\n" if head else "") + section)
+            print(f"report written to {args.markdown}")
+        return
     exe = args.build_dir / "carto" / "rockhatch"
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
@@ -82,6 +144,7 @@ def main():
                 case(f"{label}, bidirectional, SVG", SHARED_DEM, grid, [], t, ".svg")
         else:
             print(f"bench_carto: {SHARED_DEM} absent, real-DEM rows skipped")
+        partition = partition_section(args.build_dir, max(args.runs, 5), tmp)
     if args.markdown:
         with open(args.markdown, "w") as f:
             f.write(f"<!-- written by bench/bench_carto.py; medians of {args.runs} runs; whole runs of the "
@@ -93,6 +156,7 @@ def main():
                     f.write(f"| {label} | {t} | {wall:.2f}x | | | |\n")
                 else:
                     f.write(f"| {label} | {t} | {wall:.2f} s | {rss:.0f} MB | {hatches} | {rate:.0f} |\n")
+            f.write("\n" + partition)
         print(f"report written to {args.markdown}")
 
 

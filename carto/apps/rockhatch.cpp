@@ -80,7 +80,10 @@ int run_script(char** argv) {
 
 }  // namespace
 
+int partition_main(int argc, char** argv);  // apps/partition_cmd.cpp
+
 int main(int argc, char** argv) {
+    if (argc > 1 && std::string(argv[1]) == "partition") return partition_main(argc - 1, argv + 1);
     ProgressBar bar(false);
     try {
         const carto::CommandLine cl = carto::parse_command_line(std::vector<std::string>(argv + 1, argv + argc));

@@ -79,4 +79,50 @@ Point interior_point(const RockFace& f) {
     return (a + b) / 2;
 }
 
+namespace {
+
+// Sample points inside a face (a lattice of about 400 points, no finer than the cells).
+template <class F>
+void for_face_samples(const RockFace& f, double cell, F&& fn) {
+    const tex::BBox& b = f.region.bbox();
+    const double step = std::max(cell, std::max(b.width(), b.height()) / 20);
+    for (double y = b.ymin + step / 2; y < b.ymax; y += step)
+        for (double x = b.xmin + step / 2; x < b.xmax; x += step)
+            if (f.region.contains({x, y})) fn(Point{x, y});
+}
+
+}  // namespace
+
+std::pair<std::size_t, std::size_t> derive_face_controls(Partition& p, const Terrain& t) {
+    std::size_t derived_o = 0, derived_d = 0;
+    const double cell = t.elevation.cell_x();
+    for (RockFace& f : p.faces) {
+        if (!f.orientation) {
+            double sx = 0, sy = 0;
+            for_face_samples(f, cell, [&](const Point& q) {
+                const double a = t.aspect.sample(q), s = t.slope.nearest(q);
+                if (std::isnan(a) || std::isnan(s)) return;
+                sx += s * std::cos(a);
+                sy += s * std::sin(a);
+            });
+            f.orientation = (sx == 0 && sy == 0) ? 0.0 : std::atan2(sy, sx);
+            ++derived_o;
+        }
+        if (!f.density) {
+            double sum = 0;
+            int n = 0;
+            for_face_samples(f, cell, [&](const Point& q) {
+                const double h = t.hillshade.sample(q);
+                if (!std::isnan(h)) {
+                    sum += h;
+                    ++n;
+                }
+            });
+            f.density = n ? std::clamp(1.0 - sum / n, 0.0, 1.0) : 0.5;
+            ++derived_d;
+        }
+    }
+    return {derived_o, derived_d};
+}
+
 }  // namespace carto

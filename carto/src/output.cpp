@@ -12,34 +12,12 @@
 
 #include "carto/error.hpp"
 #include "gpkg_rtree.hpp"
+#include "temp_file.hpp"
 
 namespace fs = std::filesystem;
 
 namespace carto {
 namespace {
-
-// Temporary name next to the target, removed on any failure.
-struct TempFile {
-    std::string path;
-    bool keep = false;
-    explicit TempFile(const std::string& target, const std::string& ext)
-        : path(target + ".part" + ext) {
-        std::error_code ec;
-        fs::remove(path, ec);
-    }
-    void commit(const std::string& target) {
-        std::error_code ec;
-        fs::rename(path, target, ec);
-        if (ec) throw Error(Code::OutputExists, "-o '" + target + "': cannot move the result in place (" + ec.message() + ")");
-        keep = true;
-    }
-    ~TempFile() {
-        if (!keep) {
-            std::error_code ec;
-            fs::remove(path, ec);
-        }
-    }
-};
 
 void num(std::string& s, double v) {
     char buf[64];
@@ -245,6 +223,11 @@ void write_png(const Drawing& d, const std::string& path, int pixels, const Rast
         }
     std::vector<unsigned char> bytes(img.size());
     for (std::size_t i = 0; i < img.size(); ++i) bytes[i] = (unsigned char)std::lround(std::clamp(img[i], 0.0f, 1.0f) * 255);
+    write_png_pixels(bytes, w, h, 1, path, "-o");
+}
+
+void write_png_pixels(const std::vector<unsigned char>& pixels, int w, int h, int bands, const std::string& path,
+                      const std::string& what) {
     // GDAL writes the PNG (through an in-memory raster): it is loaded anyway, whereas
     // OpenImageIO would add some 150 shared libraries to every start of the program.
     TempFile tmp(path, ".png");
@@ -252,13 +235,15 @@ void write_png(const Drawing& d, const std::string& path, int pixels, const Rast
     GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
     GDALDriver* png = GetGDALDriverManager()->GetDriverByName("PNG");
     if (!mem || !png) throw Error(Code::Failure, "GDAL has no PNG driver");
-    std::unique_ptr<GDALDataset> src(mem->Create("", w, h, 1, GDT_Byte, nullptr));
-    if (src->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, w, h, bytes.data(), w, h, GDT_Byte, 0, 0) != CE_None)
-        throw Error(Code::OutputExists, "-o '" + path + "': cannot build the preview");
+    std::unique_ptr<GDALDataset> src(mem->Create("", w, h, bands, GDT_Byte, nullptr));
+    std::vector<unsigned char> buf(pixels);
+    if (src->RasterIO(GF_Write, 0, 0, w, h, buf.data(), w, h, GDT_Byte, bands, nullptr, bands,
+                      std::size_t(w) * bands, 1, nullptr) != CE_None)
+        throw Error(Code::OutputExists, what + " '" + path + "': cannot build the preview");
     CPLPushErrorHandler(CPLQuietErrorHandler);
     std::unique_ptr<GDALDataset> out(png->CreateCopy(tmp.path.c_str(), src.get(), FALSE, nullptr, nullptr, nullptr));
     CPLPopErrorHandler();
-    if (!out) throw Error(Code::OutputExists, "-o '" + path + "': cannot write the PNG (" + CPLGetLastErrorMsg() + ")");
+    if (!out) throw Error(Code::OutputExists, what + " '" + path + "': cannot write the PNG (" + CPLGetLastErrorMsg() + ")");
     out.reset();
     std::error_code ec;
     std::filesystem::remove(tmp.path + ".aux.xml", ec);

@@ -7,6 +7,8 @@
 #include <mutex>
 
 #include "carto/error.hpp"
+#include "carto/extract.hpp"
+#include "carto/fields.hpp"
 #include "libtex/parallel.hpp"
 
 namespace carto {
@@ -23,33 +25,15 @@ bool tick(const Progress& p, double f, const std::string& stage) {
     return true;
 }
 
-// Mean of a raster over sample points inside a face (a lattice of about 400 points).
-template <class F>
-void for_face_samples(const RockFace& f, double cell, F&& fn) {
-    const tex::BBox& b = f.region.bbox();
-    const double step = std::max(cell, std::max(b.width(), b.height()) / 20);
-    for (double y = b.ymin + step / 2; y < b.ymax; y += step)
-        for (double x = b.xmin + step / 2; x < b.xmax; x += step)
-            if (f.region.contains({x, y})) fn(Point{x, y});
-}
-
 }  // namespace
 
 Raster load_dem(const std::string& path, std::vector<std::string>* notes) {
     Raster dem = read_raster(path, "--dem");
     if (dem.min_max().first != dem.min_max().first)
         throw Error(Code::BadLayer, "--dem '" + path + "': every cell is NoData");
-    if (is_geographic(dem.crs_wkt)) {
-        // Slopes need ground distances: reproject to the UTM zone of the DEM's centre with
-        // square cells of the DEM's north-south ground size.
-        const tex::BBox b = dem.bounds();
-        const int epsg = utm_epsg(b.center().x, b.center().y);
-        const double cell = dem.cell_y() * 111320.0;
-        dem = warp(dem, epsg_wkt(epsg), cell);
-        if (notes)
-            notes->push_back("DEM in a geographic CRS: reprojected to EPSG:" + std::to_string(epsg) + " (UTM, " +
-                             std::to_string(int(std::round(cell))) + " m cells)");
-    }
+    std::string reprojected;
+    dem = to_working_crs(std::move(dem), &reprojected);
+    if (notes && !reprojected.empty()) notes->push_back(reprojected);
     return dem;
 }
 
@@ -99,40 +83,22 @@ Prepared prepare(const Options& o, const Progress& progress) {
     if (!(p.zmax > p.zmin)) p.zmax = p.zmin + 1;
 
     tick(progress, 0.15, "reading the partition");
-    p.partition = load_partition(o.partition, dem.crs_wkt);
+    if (o.partition.path == "auto") {
+        // No partition: extract one from the DEM (carto/extract.hpp) with its defaults.
+        ExtractOptions eo;
+        eo.raster = dem;
+        eo.scale = o.scale;
+        eo.what = "--dem '" + o.dem + "'";
+        p.partition = extract_partition(eo).partition;
+    } else {
+        p.partition = load_partition(o.partition, dem.crs_wkt);
+    }
     for (const auto& n : p.partition.notes) p.notes.push_back(n);
     if (!p.partition.bounds().intersects(dem.bounds()))
         throw Error(Code::NoOverlap, "--partition '" + o.partition.path + "' does not overlap --dem '" + o.dem + "'");
 
     // Resolve orientation and density of every face (neighbours need them too).
-    std::size_t derived_o = 0, derived_d = 0;
-    const double cell = dem.cell_x();
-    for (RockFace& f : p.partition.faces) {
-        if (!f.orientation) {
-            double sx = 0, sy = 0;
-            for_face_samples(f, cell, [&](const Point& q) {
-                const double a = p.terrain.aspect.sample(q), s = p.terrain.slope.nearest(q);
-                if (std::isnan(a) || std::isnan(s)) return;
-                sx += s * std::cos(a);
-                sy += s * std::sin(a);
-            });
-            f.orientation = (sx == 0 && sy == 0) ? 0.0 : std::atan2(sy, sx);
-            ++derived_o;
-        }
-        if (!f.density) {
-            double sum = 0;
-            int n = 0;
-            for_face_samples(f, cell, [&](const Point& q) {
-                const double h = p.terrain.hillshade.sample(q);
-                if (!std::isnan(h)) {
-                    sum += h;
-                    ++n;
-                }
-            });
-            f.density = n ? std::clamp(1.0 - sum / n, 0.0, 1.0) : 0.5;
-            ++derived_d;
-        }
-    }
+    const auto [derived_o, derived_d] = derive_face_controls(p.partition, p.terrain);
     if (derived_o)
         p.notes.push_back("orientation of " + std::to_string(derived_o) + " face(s) derived from the terrain (mean fall line)");
     if (derived_d)

@@ -250,6 +250,17 @@ Raster warp(const Raster& src, const std::string& dst_wkt, double cell) {
 
 namespace carto {
 
+Raster to_working_crs(Raster dem, std::string* note) {
+    if (!is_geographic(dem.crs_wkt)) return dem;
+    const BBox b = dem.bounds();
+    const int epsg = utm_epsg(b.center().x, b.center().y);
+    const double cell = dem.cell_y() * 111320.0;
+    if (note)
+        *note = "DEM in a geographic CRS: reprojected to EPSG:" + std::to_string(epsg) + " (UTM, " +
+                std::to_string(int(std::round(cell))) + " m cells)";
+    return warp(dem, epsg_wkt(epsg), cell);
+}
+
 Raster resample_like(const Raster& src0, const Raster& like) {
     const Raster src = same_crs(src0.crs_wkt, like.crs_wkt) ? src0 : warp(src0, like.crs_wkt);
     Raster out = like;

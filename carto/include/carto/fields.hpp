@@ -8,6 +8,7 @@
 
 #include "carto/partition.hpp"
 #include "carto/raster.hpp"
+#include "carto/terrain.hpp"
 
 namespace carto {
 
@@ -23,5 +24,10 @@ Field constant_field(double v);
 
 // A point inside a face (its centroid when that lies inside, else a point near the border).
 Point interior_point(const RockFace& f);
+
+// Fills in the orientation (the mean fall line: downhill aspect weighted by slope) and the
+// density (1 - mean hillshade) of the faces that lack them, from samples inside each face.
+// Returns how many orientations and densities were derived.
+std::pair<std::size_t, std::size_t> derive_face_controls(Partition& p, const Terrain& t);
 
 }  // namespace carto

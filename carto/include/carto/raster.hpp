@@ -57,6 +57,10 @@ int utm_epsg(double lon, double lat);
 // Reprojects a raster (bilinear, NoData kept) to a CRS, with square cells of `cell` units
 // (0: chosen by GDAL to keep the resolution).
 Raster warp(const Raster& src, const std::string& dst_wkt, double cell = 0.0);
+// A DEM in a projected CRS, as slopes need ground distances: a geographic DEM is reprojected
+// to the UTM zone of its centre with square cells of its north-south ground size, and `note`
+// (when given) says so; a projected one is returned unchanged.
+Raster to_working_crs(Raster dem, std::string* note = nullptr);
 // Resamples `src` onto the grid of `like` (same CRS assumed or reprojected).
 Raster resample_like(const Raster& src, const Raster& like);
 

@@ -1,0 +1,161 @@
+// `rockhatch partition`: the partition of the rock areas from a bare DEM (carto::extract_partition),
+// written as the GeoPackage `rockhatch --partition` reads.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <functional>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "carto/error.hpp"
+#include "carto/extract.hpp"
+#include "carto/output.hpp"
+
+namespace {
+
+using carto::Code;
+using carto::Error;
+
+const char* kUsage =
+    "usage: rockhatch partition --dem DEM.tif -o faces.gpkg [options]\n\n"
+    "Extracts the partition of the rock areas from the DEM alone: the rock mask (steep and\n"
+    "rough terrain), ridges and thalwegs (flow accumulation on the inverted and on the plain\n"
+    "DEM), the faces between them with borders labelled ridge / valley / other, and a hatching\n"
+    "orientation (mean fall line) and density (1 - mean hillshade) per face. The output is\n"
+    "read unchanged by `rockhatch --dem DEM.tif --partition faces.gpkg -o out.svg`.\n\n"
+    "options:\n"
+    "  --dem PATH              DEM raster (any GDAL format and CRS; geographic DEMs are reprojected to UTM)\n"
+    "  -o PATH                 output GeoPackage: layers faces, lines (their labelled borders), mask,\n"
+    "                          network (all traced ridges and thalwegs in the rock)\n"
+    "  --mask PATH             polygon layer: rock only inside its polygons\n"
+    "  --min-slope PCT         rock where the slope (mean over ~25 m) reaches PCT percent (default 70, 35 deg)\n"
+    "  --min-roughness R       ... and the vector ruggedness (same mean) reaches R (default 0.001)\n"
+    "  --min-area MM2          rock specks, enclosed gaps and faces smaller than MM2 square millimetres\n"
+    "                          on paper at the map scale are dropped, filled or merged (default 16)\n"
+    "  --scale N               map scale denominator (default 10000)\n"
+    "  --thalweg-area M2       contributing area that starts a thalweg, m2 (default 6000, at least 50 cells)\n"
+    "  --ridge-area M2         contributing area on the inverted DEM that starts a ridge, m2 (default 20000, at least "
+    "100 cells)\n"
+    "  --max-fill M            depressions and summits up to M metres deep/high are flowed across (default 30)\n"
+    "  --smooth M              smoothing of the DEM before flow routing, metres (default 10, 0: none)\n"
+    "  --converge K            a line starts where the contributing area is at least K times the mean\n"
+    "                          of the cells beside it across the flow (default 1.2; 1: no test)\n"
+    "  --no-ridge-extension    do not prolong ridge feet down their crest to a thalweg\n"
+    "  --simplify CELLS        border simplification tolerance in DEM cells (default 0.5)\n"
+    "  --png PATH              also write a preview: hillshade, faces, ridges red, thalwegs blue\n"
+    "  --png-size PIXELS       preview width (default 1600)\n"
+    "  --overwrite             replace existing outputs\n"
+    "  -q                      quiet: no progress\n"
+    "  --help                  this help\n\n"
+    "exit codes: 0 ok, 1 failure, 2 usage, 3 missing input, 4 no CRS, 6 bad layer or no rock,\n"
+    "9 output exists or cannot be written, 10 cancelled\n";
+
+double number(const std::string& opt, const std::string& v) {
+    char* end = nullptr;
+    const double d = std::strtod(v.c_str(), &end);
+    if (v.empty() || *end != 0 || !std::isfinite(d)) throw Error(Code::Usage, opt + ": '" + v + "' is not a number");
+    return d;
+}
+
+}  // namespace
+
+int partition_main(int argc, char** argv) {
+    carto::ExtractOptions o;
+    std::string out, png;
+    int png_size = 1600;
+    bool overwrite = false, quiet = false, open_line = false;
+    try {
+        for (int i = 1; i < argc; ++i) {
+            std::string a = argv[i], v;
+            const auto eq = a.find('=');
+            const bool inline_value = a.rfind("--", 0) == 0 && eq != std::string::npos;
+            if (inline_value) {
+                v = a.substr(eq + 1);
+                a = a.substr(0, eq);
+            }
+            auto value = [&]() -> std::string {
+                if (inline_value) return v;
+                if (i + 1 >= argc) throw Error(Code::Usage, a + " needs a value");
+                return argv[++i];
+            };
+            double png_width = png_size;
+            // Options taking a number, then paths and flags.
+            const std::pair<const char*, double*> numbers[] = {
+                {"--min-slope", &o.min_slope},       {"--min-roughness", &o.min_roughness},
+                {"--min-area", &o.min_area_mm2},     {"--scale", &o.scale},
+                {"--thalweg-area", &o.thalweg_area}, {"--ridge-area", &o.ridge_area},
+                {"--max-fill", &o.max_fill},         {"--smooth", &o.smooth},
+                {"--converge", &o.converge},         {"--simplify", &o.simplify},
+                {"--png-size", &png_width}};
+            const std::pair<const char*, std::string*> paths[] = {
+                {"--dem", &o.dem}, {"-o", &out}, {"--mask", &o.mask}, {"--png", &png}};
+            const std::pair<const char*, std::function<void()>> flags[] = {
+                {"--overwrite", [&] { overwrite = true; }},
+                {"-q", [&] { quiet = true; }},
+                {"--no-ridge-extension", [&] { o.extend_ridges = false; }}};
+            if (a == "--help" || a == "-h") {
+                std::cout << kUsage;
+                return 0;
+            }
+            bool known = false;
+            for (const auto& [name, target] : numbers)
+                if (a == name) *target = number(a, value()), known = true;
+            for (const auto& [name, target] : paths)
+                if (a == name) *target = value(), known = true;
+            for (const auto& [name, set] : flags)
+                if (a == name) set(), known = true;
+            if (!known) throw Error(Code::Usage, "unknown option '" + a + "' (see --help)");
+            png_size = int(png_width);
+        }
+        if (o.dem.empty()) throw Error(Code::Usage, "--dem is required");
+        if (out.empty()) throw Error(Code::Usage, "-o is required (a .gpkg file)");
+        if (std::filesystem::path(out).extension() != ".gpkg")
+            throw Error(Code::Usage, "-o '" + out + "': the partition is written as a GeoPackage (.gpkg)");
+        if (png_size < 16 || png_size > 20000) throw Error(Code::Usage, "--png-size must be in 16..20000");
+        carto::check_output(out, overwrite);
+        if (!png.empty()) {
+            if (std::filesystem::path(png).extension() != ".png")
+                throw Error(Code::Usage, "--png '" + png + "': not a .png file");
+            try {
+                carto::check_output(png, overwrite);
+            } catch (const Error& e) {
+                throw Error(e.code(), "--png" + std::string(e.what()).substr(2));
+            }
+        }
+        int last = -1;
+        const carto::ExtractResult r = carto::extract_partition(o, [&](double f, const std::string& stage) {
+            const int pct = int(f * 100 + 0.5);
+            if (!quiet && pct != last) {
+                std::fprintf(stderr, "\rrockhatch partition: %3d%% %-28s", pct, stage.c_str());
+                std::fflush(stderr);
+                open_line = true;
+                last = pct;
+            }
+            return true;
+        });
+        if (open_line) std::fprintf(stderr, "\n");
+        open_line = false;
+        carto::write_partition_gpkg(r.partition, out, overwrite, &r.network);
+        if (!png.empty()) carto::write_partition_png(r, png, png_size);
+        if (!quiet)
+            for (const auto& n : r.notes) std::fprintf(stderr, "rockhatch partition: note: %s\n", n.c_str());
+        std::size_t ridges = 0, valleys = 0;
+        for (const auto& l : r.partition.lines) {
+            ridges += l.kind == carto::LineKind::Ridge;
+            valleys += l.kind == carto::LineKind::Valley;
+        }
+        std::fprintf(stderr, "rockhatch partition: %zu faces, %zu ridge and %zu valley lines, working CRS %s\n",
+                     r.partition.faces.size(), ridges, valleys, carto::crs_name(r.partition.crs_wkt).c_str());
+        return 0;
+    } catch (const Error& e) {
+        if (open_line) std::fprintf(stderr, "\n");
+        std::fprintf(stderr, "rockhatch partition: %s\n", e.what());
+        return e.exit_code();
+    } catch (const std::exception& e) {
+        if (open_line) std::fprintf(stderr, "\n");
+        std::fprintf(stderr, "rockhatch partition: %s\n", e.what());
+        return 1;
+    }
+}

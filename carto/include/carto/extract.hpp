@@ -1,0 +1,90 @@
+// A partition of the rock areas from the DEM alone (issue 6): the rock mask, the ridge and
+// thalweg network, the faces between them with labelled borders, and a hatching orientation
+// and density per face, in the data model `rockhatch --partition` reads.
+//
+// Everything runs on the DEM's grid (in a projected working CRS) and is deterministic: no
+// random numbers, no threads, ties broken by cell index.
+//
+//  1. rock mask: cells whose slope and roughness (averaged over about 25 m) reach the
+//     thresholds, optionally inside a user's polygon layer; closed over about 15 m (crests
+//     and couloir floors are less steep than the walls); rock specks smaller than the minimum
+//     area are dropped and enclosed gaps smaller than it are filled;
+//  2. thalwegs: contributing area by multiple flow directions on the smoothed DEM
+//     (depressions up to `max_fill` deep crossed by priority flood); a line starts where the
+//     area reaches `thalweg_area` and the flow converges, and follows its D8 path down;
+//     ridges: the same on the inverted DEM with `ridge_area`. Short branches and branches
+//     alongside a bigger line are pruned. Thalweg heads are prolonged up their couloir floor
+//     and ridge feet down their crest (cross-profile concavity) until they meet a line of the
+//     other kind or leave the rock, so that lines split the rock instead of dangling in it;
+//  3. faces: the rock cells cut by the line cells (4-connected pieces), line cells given to a
+//     neighbouring face, faces smaller than the minimum area merged into the neighbour they
+//     share most border with;
+//  4. polygons: the borders between faces are traced once as chains of cell edges, simplified
+//     (Douglas-Peucker, half a cell) and shared by the two faces, so faces tile the mask
+//     exactly; a chain is a ridge or valley when most of its length runs along ridge or
+//     thalweg cells, else other;
+//  5. per face: orientation from the mean fall line, density from 1 - mean hillshade.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "carto/partition.hpp"
+#include "carto/pipeline.hpp"
+#include "carto/raster.hpp"
+#include "carto/terrain.hpp"
+
+namespace carto {
+
+struct ExtractOptions {
+    std::string dem;               // DEM path, read when `raster` is not set
+    std::optional<Raster> raster;  // or an in-memory DEM (any CRS; geographic is reprojected)
+    std::string mask;              // optional polygon layer: rock only inside its polygons
+    double min_slope = 70;         // percent (70 % = 35 degrees)
+    double min_roughness = 0.001;  // vector ruggedness 0..1
+    double min_area_mm2 = 16;      // on paper at 1:scale: specks, gaps and faces below it
+    double scale = 10000;          // map scale denominator
+    double thalweg_area = 6000;    // m2 of contributing area that starts a thalweg (>= 50 cells)
+    double ridge_area = 20000;     // m2 of "inverted" contributing area that starts a ridge (>= 100 cells)
+    double smooth = 10;            // m: smoothing of the DEM the flow runs on (0: none)
+    double converge = 1.2;         // a line starts where the area is >= this x that beside it
+    bool extend_ridges = true;     // prolong ridge feet down their crest to a thalweg
+    double max_fill = 30;          // m: deeper depressions (and prominences) stop the flow
+    double simplify = 0.5;         // Douglas-Peucker tolerance in cells
+    std::string what = "--dem";    // how error messages name the DEM
+};
+
+struct ExtractResult {
+    Partition partition;          // faces (orientation and density set) and labelled lines
+    Terrain terrain;              // of the working DEM
+    Raster rock;                  // the rock mask on the working grid: 1 rock, 0 not, NaN NoData
+    Raster faces;                 // face index per cell (-1 outside the faces)
+    std::vector<int> line_cells;  // per cell: 0 none, 1 ridge, 2 thalweg (whole DEM)
+    // The traced ridge and thalweg network inside the rock, whether or not it borders faces
+    // (lines ending inside a face do not cut it), simplified to about a cell.
+    std::vector<LabelledLine> network;
+    std::vector<std::string> notes;
+};
+
+// Throws carto::Error: InputMissing (no such DEM or mask), NoCrs (DEM or mask without a
+// CRS), BadLayer (all-NoData DEM, mask without polygons, no rock under the thresholds),
+// Usage (bad option value), Cancelled (progress returned false).
+ExtractResult extract_partition(const ExtractOptions& o, const Progress& progress = {});
+
+// Writes layers `faces` (polygons: id, orientation = azimuth of the fall line in degrees,
+// density, area in m2), `lines` (kind = ridge / valley / other) and `mask` (the union of the
+// faces) to a GeoPackage, atomically (temporary file renamed at the end) and with a
+// fixed timestamp, so the same partition gives the same bytes.
+// With `network`, also a layer `network` (kind = ridge / valley) of the traced lines.
+void write_partition_gpkg(const Partition& p, const std::string& path, bool overwrite,
+                          const std::vector<LabelledLine>* network = nullptr);
+
+// A PNG preview `pixels` wide: the hillshade, each face tinted, its borders drawn in red
+// (ridge), blue (valley) or grey (other). Written atomically.
+void write_partition_png(const ExtractResult& r, const std::string& path, int pixels);
+
+// Azimuth in degrees (0 = north, clockwise, in [0, 360)) of a math angle (0 = east, counter-clockwise).
+double azimuth_degrees(double math_angle);
+
+}  // namespace carto

@@ -1,0 +1,42 @@
+// Outputs written atomically: to a temporary name next to the target, renamed over it at
+// the end, removed on any failure (internal to carto).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "carto/error.hpp"
+
+namespace carto {
+
+// Temporary name next to the target, removed on any failure.
+struct TempFile {
+    std::string path;
+    bool keep = false;
+    explicit TempFile(const std::string& target, const std::string& ext) : path(target + ".part" + ext) {
+        std::error_code ec;
+        std::filesystem::remove(path, ec);
+    }
+    void commit(const std::string& target) {
+        std::error_code ec;
+        std::filesystem::rename(path, target, ec);
+        if (ec)
+            throw Error(Code::OutputExists,
+                        "-o '" + target + "': cannot move the result in place (" + ec.message() + ")");
+        keep = true;
+    }
+    ~TempFile() {
+        if (!keep) {
+            std::error_code ec;
+            std::filesystem::remove(path, ec);
+        }
+    }
+};
+
+// Writes 8-bit pixels (`bands` interleaved per pixel, 1 grey or 3 RGB) as a PNG, atomically,
+// through GDAL's in-memory and PNG drivers; `what` names the output in error messages.
+void write_png_pixels(const std::vector<unsigned char>& pixels, int w, int h, int bands, const std::string& path,
+                      const std::string& what);
+
+}  // namespace carto

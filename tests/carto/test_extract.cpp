@@ -1,0 +1,307 @@
+// Partition from the DEM alone (carto::extract_partition): data model, labels, topology,
+// determinism, error cases, and ridge / thalweg quality against the sample's true lines.
+#include <gdal_priv.h>
+#include <gtest/gtest.h>
+#include <ogrsf_frmts.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <memory>
+
+#include "carto/error.hpp"
+#include "carto/extract.hpp"
+#include "carto/pipeline.hpp"
+
+using namespace carto;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kSample = RH_SAMPLE_DIR;
+
+const ExtractResult& sample() {
+    static const ExtractResult r = [] {
+        ExtractOptions o;
+        o.dem = kSample + "/dem.tif";
+        return extract_partition(o);
+    }();
+    return r;
+}
+
+// The face as an OGR polygon, through its WKT.
+std::unique_ptr<OGRPolygon> polygon(const tex::Region& r) {
+    std::string wkt = "POLYGON (";
+    std::vector<std::vector<Point>> rings{r.outer()};
+    rings.insert(rings.end(), r.holes().begin(), r.holes().end());
+    for (std::size_t k = 0; k < rings.size(); ++k) {
+        wkt += k ? ",(" : "(";
+        for (std::size_t i = 0; i <= rings[k].size(); ++i) {
+            const Point& q = rings[k][i % rings[k].size()];
+            char buf[80];
+            std::snprintf(buf, sizeof buf, "%s%.17g %.17g", i ? "," : "", q.x, q.y);
+            wkt += buf;
+        }
+        wkt += ")";
+    }
+    wkt += ")";
+    OGRGeometry* g = nullptr;
+    OGRGeometryFactory::createFromWkt(wkt.c_str(), nullptr, &g);
+    return std::unique_ptr<OGRPolygon>(g->toPolygon());
+}
+
+std::string bytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+std::string temp(const std::string& name) {
+    const fs::path dir = fs::temp_directory_path() / "rh_test_extract";
+    fs::create_directories(dir);
+    return (dir / name).string();
+}
+
+Raster tilted_plane(double slope_pct, bool with_crs) {
+    Raster r;
+    r.width = r.height = 80;
+    r.gt = {1000000, 5, 0, 6500000, 0, -5};
+    if (with_crs) r.crs_wkt = epsg_wkt(2154);
+    r.data.resize(std::size_t(r.width) * r.height);
+    for (int y = 0; y < r.height; ++y)
+        for (int x = 0; x < r.width; ++x) r.at(x, y) = float(2000 + slope_pct / 100 * 5 * x);
+    return r;
+}
+
+Code code_of(const ExtractOptions& o) {
+    try {
+        extract_partition(o);
+    } catch (const Error& e) {
+        return e.code();
+    }
+    return Code(0);
+}
+
+// Length of `lines` (of one kind) lying within `tol` of `other`, and their total length.
+std::pair<double, double> near_length(const OGRMultiLineString& lines, const OGRGeometry& other, double tol,
+                                      const OGRGeometry* within = nullptr) {
+    std::unique_ptr<OGRGeometry> zone(other.Buffer(tol, 8));
+    std::unique_ptr<OGRGeometry> base(within ? lines.Intersection(within) : lines.clone());
+    std::unique_ptr<OGRGeometry> hit(base->Intersection(zone.get()));
+    auto length = [](const OGRGeometry* g) {
+        const auto t = wkbFlatten(g->getGeometryType());
+        if (t == wkbLineString) return g->toLineString()->get_Length();
+        double l = 0;
+        if (t == wkbMultiLineString || t == wkbGeometryCollection)
+            for (const auto* part : *g->toGeometryCollection())
+                if (wkbFlatten(part->getGeometryType()) == wkbLineString) l += part->toLineString()->get_Length();
+        return l;
+    };
+    return {length(hit.get()), length(base.get())};
+}
+
+OGRMultiLineString collect(const std::vector<LabelledLine>& ls, LineKind kind) {
+    OGRMultiLineString m;
+    for (const auto& l : ls) {
+        if (l.kind != kind) continue;
+        OGRLineString s;
+        for (const Point& q : l.points) s.addPoint(q.x, q.y);
+        m.addGeometry(&s);
+    }
+    return m;
+}
+
+OGRMultiLineString truth(const std::string& layer) {
+    GDALAllRegister();
+    std::unique_ptr<GDALDataset> ds(GDALDataset::FromHandle(
+        GDALOpenEx((kSample + "/truth.gpkg").c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr)));
+    OGRMultiLineString m;
+    for (auto& f : *ds->GetLayerByName(layer.c_str())) m.addGeometry(f->GetGeometryRef());
+    return m;
+}
+
+}  // namespace
+
+TEST(Extract, FacesCarryOrientationDensityAndLabelledBorders) {
+    const Partition& p = sample().partition;
+    ASSERT_GT(p.faces.size(), 10u);
+    for (const RockFace& f : p.faces) {
+        ASSERT_TRUE(f.orientation.has_value());
+        ASSERT_TRUE(f.density.has_value());
+        EXPECT_GE(*f.density, 0.0);
+        EXPECT_LE(*f.density, 1.0);
+        EXPECT_FALSE(f.boundary.empty());
+    }
+    // Borders lie on the lines exactly: every ridge / valley line labels face borders.
+    std::size_t ridge_segs = 0, valley_segs = 0, with_neighbour = 0, total = 0;
+    for (const RockFace& f : p.faces)
+        for (const auto& s : f.boundary) {
+            ridge_segs += s.kind == LineKind::Ridge;
+            valley_segs += s.kind == LineKind::Valley;
+            with_neighbour += s.neighbor >= 0;
+            ++total;
+        }
+    EXPECT_GT(ridge_segs, 20u);
+    EXPECT_GT(valley_segs, 5u);
+    EXPECT_GT(with_neighbour, total / 10);
+    // A ridge or valley border separates two faces; the mask outline is "other".
+    for (const RockFace& f : p.faces)
+        for (const auto& s : f.boundary)
+            if (s.kind != LineKind::Other) EXPECT_GE(s.neighbor, 0);
+}
+
+TEST(Extract, FacesTileTheRockMask) {
+    const ExtractResult& r = sample();
+    OGRMultiPolygon all;
+    double sum = 0;
+    for (const RockFace& f : r.partition.faces) {
+        auto poly = polygon(f.region);
+        ASSERT_TRUE(poly->IsValid()) << "face " << f.id;
+        sum += poly->get_Area();
+        all.addGeometry(poly.get());
+    }
+    std::unique_ptr<OGRGeometry> u(all.UnionCascaded());
+    const double ua =
+        wkbFlatten(u->getGeometryType()) == wkbPolygon ? u->toPolygon()->get_Area() : u->toMultiPolygon()->get_Area();
+    // No overlaps: the union is as large as the sum of the faces.
+    EXPECT_NEAR(ua, sum, 1e-6 * sum);
+    // No gaps: the union covers the rock cells (borders are simplified by half a cell).
+    double rock = 0;
+    for (float v : r.rock.data) rock += v == 1.0f;
+    rock *= r.rock.cell_x() * r.rock.cell_y();
+    EXPECT_NEAR(ua, rock, 0.01 * rock);
+    // Cell centres: none in two faces; rock ones in a face, others not (but for the few
+    // within half a cell of a simplified border).
+    std::size_t twice = 0, rock_out = 0, rock_n = 0, other_in = 0, other_n = 0;
+    for (int y = 0; y < r.rock.height; y += 2)
+        for (int x = 0; x < r.rock.width; x += 2) {
+            const Point c = r.rock.to_world(x + 0.5, y + 0.5);
+            int n = 0;
+            for (const RockFace& f : r.partition.faces)
+                if (f.region.bbox().contains(c) && f.region.contains(c)) ++n;
+            twice += n > 1;
+            if (r.rock.at(x, y) == 1.0f)
+                ++rock_n, rock_out += n == 0;
+            else
+                ++other_n, other_in += n > 0;
+        }
+    EXPECT_EQ(twice, 0u);
+    EXPECT_LT(double(rock_out), 0.01 * rock_n);
+    EXPECT_LT(double(other_in), 0.01 * other_n);
+}
+
+TEST(Extract, RidgesAndThalwegsMatchTheSyntheticTruth) {
+    // Where the generator knows the truth: inside the rock mask and inside the convex hull of
+    // its lines (they stop 1200 m from the summit; the DEM's corners go further). Precision:
+    // share of the extracted network's length there within 2 cells (10 m) of a true line of
+    // its kind; recall: share of the true lines' length there within 10 m of an extracted one.
+    const ExtractResult& r = sample();
+    OGRMultiPolygon mask;
+    for (const RockFace& f : r.partition.faces) mask.addGeometry(polygon(f.region).get());
+    std::unique_ptr<OGRGeometry> m(mask.UnionCascaded());
+    OGRMultiLineString all_truth;
+    for (const char* name : {"ridges", "thalwegs"}) {
+        const OGRMultiLineString t = truth(name);
+        for (const auto* l : t) all_truth.addGeometry(l);
+    }
+    std::unique_ptr<OGRGeometry> hull(all_truth.ConvexHull());
+    std::unique_ptr<OGRGeometry> zone(m->Intersection(hull.get()));
+    const double tol = 10;
+    for (auto [kind, name] : {std::pair{LineKind::Ridge, "ridges"}, std::pair{LineKind::Valley, "thalwegs"}}) {
+        const OGRMultiLineString extracted = collect(r.network, kind), t = truth(name);
+        const auto [p_hit, p_all] = near_length(extracted, t, tol, zone.get());
+        const auto [r_hit, r_all] = near_length(t, extracted, tol, zone.get());
+        std::printf("%s: precision %.3f recall %.3f (extracted %.0f m, true %.0f m)\n", name, p_hit / p_all,
+                    r_hit / r_all, p_all, r_all);
+        EXPECT_GE(p_hit / p_all, 0.8) << name << " precision";
+        EXPECT_GE(r_hit / r_all, 0.8) << name << " recall";
+    }
+}
+
+TEST(Extract, GeoPackageIsReadBackByRockhatchAndDeterministic) {
+    const std::string a = temp("a.gpkg"), b = temp("b.gpkg");
+    write_partition_gpkg(sample().partition, a, true, &sample().network);
+    ExtractOptions o;
+    o.dem = kSample + "/dem.tif";
+    const ExtractResult again = extract_partition(o);
+    write_partition_gpkg(again.partition, b, true, &again.network);
+    EXPECT_EQ(bytes(a), bytes(b));
+    EXPECT_THROW(write_partition_gpkg(again.partition, b, false), Error);
+
+    PartitionOptions po;
+    po.path = a;
+    const Partition back = load_partition(po, sample().partition.crs_wkt);
+    ASSERT_EQ(back.faces.size(), sample().partition.faces.size());
+    std::size_t ridge = 0, valley = 0;
+    for (const auto& f : back.faces) {
+        ASSERT_TRUE(f.orientation && f.density);
+        for (const auto& s : f.boundary) {
+            ridge += s.kind == LineKind::Ridge;
+            valley += s.kind == LineKind::Valley;
+        }
+    }
+    EXPECT_GT(ridge, 20u);
+    EXPECT_GT(valley, 5u);
+    // The orientation round-trips through the azimuth attribute.
+    EXPECT_NEAR(std::cos(*back.faces[0].orientation - *sample().partition.faces[0].orientation), 1.0, 1e-6);
+}
+
+TEST(Extract, ErrorCases) {
+    ExtractOptions o;
+    o.raster = tilted_plane(150, false);
+    EXPECT_EQ(code_of(o), Code::NoCrs);
+    Raster empty = tilted_plane(150, true);
+    for (float& v : empty.data) v = NAN;
+    o.raster = empty;
+    EXPECT_EQ(code_of(o), Code::BadLayer);
+    o.raster = tilted_plane(0, true);  // flat: no rock
+    try {
+        extract_partition(o);
+        FAIL() << "a flat DEM has no rock";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), Code::BadLayer);
+        EXPECT_NE(std::string(e.what()).find("no rock"), std::string::npos) << e.what();
+    }
+    o.raster.reset();
+    o.dem = kSample + "/missing.tif";
+    EXPECT_EQ(code_of(o), Code::InputMissing);
+    o.dem = kSample + "/dem.tif";
+    o.min_slope = -1;
+    EXPECT_EQ(code_of(o), Code::Usage);
+    o.min_slope = 70;
+    o.mask = kSample + "/missing.gpkg";
+    EXPECT_EQ(code_of(o), Code::InputMissing);
+    o.mask.clear();
+    bool asked = false;
+    try {
+        extract_partition(o, [&](double f, const std::string&) {
+            asked = true;
+            return f < 0.5;
+        });
+        FAIL() << "not cancelled";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), Code::Cancelled);
+    }
+    EXPECT_TRUE(asked);
+}
+
+TEST(Extract, MaskLayerLimitsTheRock) {
+    // The sample's hand-drawn faces as the mask: no extracted face leaves them.
+    ExtractOptions o;
+    o.dem = kSample + "/dem.tif";
+    o.mask = kSample + "/partition.gpkg";
+    const ExtractResult r = extract_partition(o);
+    double in = 0, all = 0;
+    for (float v : r.rock.data) all += v == 1.0f;
+    for (float v : sample().rock.data) in += v == 1.0f;
+    EXPECT_LT(all, in);
+    EXPECT_GT(all, 0.3 * in);
+}
+
+TEST(Extract, AutoPartitionInThePipeline) {
+    Options o;
+    o.dem = kSample + "/dem.tif";
+    o.partition.path = "auto";
+    const Prepared p = prepare(o);
+    EXPECT_EQ(p.partition.faces.size(), sample().partition.faces.size());
+}

@@ -1,0 +1,109 @@
+"""`rockhatch partition`: a partition from the DEM alone, read back by `rockhatch`."""
+import subprocess
+
+import pytest
+from osgeo import ogr
+
+from conftest import SHARED_DEM
+from partition_quality import precision_recall
+
+ogr.UseExceptions()
+
+
+def run(exe, *args):
+    return subprocess.run([str(exe), *map(str, args)], capture_output=True, text=True, timeout=300)
+
+
+def layer_stats(path):
+    ds = ogr.Open(str(path))
+    faces = ds.GetLayerByName("faces")
+    lines = ds.GetLayerByName("lines")
+    kinds = {}
+    for f in lines:
+        kinds[f.GetField("kind")] = kinds.get(f.GetField("kind"), 0) + 1
+    polys = []
+    for f in faces:
+        assert f.GetField("orientation") is not None and 0 <= f.GetField("orientation") < 360
+        assert 0 <= f.GetField("density") <= 1
+        polys.append(f.GetGeometryRef().Clone())
+    return polys, kinds
+
+
+def assert_no_overlap(polys):
+    union = ogr.Geometry(ogr.wkbMultiPolygon)
+    total = 0.0
+    for p in polys:
+        assert p.IsValid()
+        total += p.GetArea()
+        union.AddGeometry(p)
+    assert union.UnionCascaded().GetArea() == pytest.approx(total, rel=1e-6)
+
+
+def test_two_commands_from_a_bare_dem(rockhatch_exe, sample_dir, tmp_path):
+    faces = tmp_path / "faces.gpkg"
+    r = run(rockhatch_exe, "partition", "--dem", sample_dir / "dem.tif", "-o", faces, "--png", tmp_path / "p.png", "-q")
+    assert r.returncode == 0, r.stderr
+    assert (tmp_path / "p.png").stat().st_size > 1000
+    polys, kinds = layer_stats(faces)
+    assert len(polys) > 10
+    assert kinds.get("ridge", 0) > 5 and kinds.get("valley", 0) > 2
+    assert_no_overlap(polys)
+    # Ridges and thalwegs within two cells (10 m) of the generator's true lines.
+    for kind, (p, r, _, _) in precision_recall(faces, sample_dir / "truth.gpkg").items():
+        assert p >= 0.8 and r >= 0.8, (kind, p, r)
+    out = tmp_path / "out.svg"
+    r = run(rockhatch_exe, "-q", "--dem", sample_dir / "dem.tif", "--partition", faces, "-o", out)
+    assert r.returncode == 0, r.stderr
+    assert f"{len(polys)} faces" in r.stderr
+    # Same input, same bytes.
+    again = tmp_path / "again.gpkg"
+    assert run(rockhatch_exe, "partition", "--dem", sample_dir / "dem.tif", "-o", again, "-q").returncode == 0
+    assert again.read_bytes() == faces.read_bytes()
+
+
+def test_one_option_on_the_main_command(rockhatch_exe, sample_dir, tmp_path):
+    r = run(rockhatch_exe, "-q", "--dem", sample_dir / "dem.tif", "--partition", "auto", "-o", tmp_path / "o.gpkg")
+    assert r.returncode == 0, r.stderr
+    assert " faces," in r.stderr
+
+
+def test_errors(rockhatch_exe, sample_dir, tmp_path):
+    from osgeo import gdal
+    gdal.UseExceptions()
+    out = tmp_path / "f.gpkg"
+    r = run(rockhatch_exe, "partition", "-q", "--dem", tmp_path / "none.tif", "-o", out)
+    assert r.returncode == 3 and "none.tif" in r.stderr and r.stderr.count("\n") == 1
+    assert r.stderr.startswith("rockhatch partition: ")
+    # No CRS.
+    nocrs = tmp_path / "nocrs.tif"
+    ds = gdal.GetDriverByName("GTiff").Create(str(nocrs), 20, 20, 1, gdal.GDT_Float32)
+    ds.SetGeoTransform([0, 5, 0, 0, 0, -5])
+    ds = None
+    r = run(rockhatch_exe, "partition", "--dem", nocrs, "-o", out)
+    assert r.returncode == 4 and "nocrs.tif" in r.stderr
+    # Flat DEM: no rock.
+    flat = tmp_path / "flat.tif"
+    gdal.Translate(str(flat), str(sample_dir / "dem.tif"), scaleParams=[[0, 5000, 1000, 1000]], outputType=gdal.GDT_Float32)
+    r = run(rockhatch_exe, "partition", "--dem", flat, "-o", out)
+    assert r.returncode == 6 and "no rock" in r.stderr and "flat.tif" in r.stderr
+    assert not out.exists() and not list(tmp_path.glob("*.part*"))
+    # Usage and existing outputs.
+    assert run(rockhatch_exe, "partition", "--dem", sample_dir / "dem.tif").returncode == 2
+    assert run(rockhatch_exe, "partition", "--dem", sample_dir / "dem.tif", "-o", tmp_path / "x.shp").returncode == 2
+    assert run(rockhatch_exe, "partition", "--bogus").returncode == 2
+    out.write_bytes(b"keep")
+    r = run(rockhatch_exe, "partition", "--dem", sample_dir / "dem.tif", "-o", out)
+    assert r.returncode == 9 and out.read_bytes() == b"keep"
+    assert run(rockhatch_exe, "partition", "--help").returncode == 0
+
+
+@pytest.mark.skipif(not SHARED_DEM.exists(), reason=f"{SHARED_DEM} absent (real DEM kept outside the project)")
+def test_real_dem(rockhatch_exe, tmp_path):
+    out = tmp_path / "cham.gpkg"
+    r = run(rockhatch_exe, "partition", "--dem", SHARED_DEM, "-o", out, "--scale", "25000", "-q")
+    assert r.returncode == 0, r.stderr
+    assert "EPSG:32632" in r.stderr
+    polys, kinds = layer_stats(out)
+    assert len(polys) > 50
+    assert kinds.get("ridge", 0) > 10 and kinds.get("valley", 0) > 10
+    assert_no_overlap(polys)
