@@ -45,14 +45,14 @@ class HatchStyler(QgsProcessingLayerPostProcessorInterface):
         layer.triggerRepaint()
 
 
-# QGIS keeps a plain pointer to the post-processor: the Python objects must outlive the run.
+# The layer details take ownership of their post-processor: one new per loaded layer, its
+# Python side kept alive here until the next run loads the same layer.
 _STYLERS = {}
 
 
-def styler(family):
-    if family not in _STYLERS:
-        _STYLERS[family] = HatchStyler(family)
-    return _STYLERS[family]
+def styler(uri, family):
+    _STYLERS[uri] = HatchStyler(family)
+    return _STYLERS[uri]
 
 
 def gpkg_layers(path):
@@ -271,7 +271,7 @@ class RockHatching(RockhatchAlgorithm):
             uris.append(uri)
             if count:
                 details = QgsProcessingContext.LayerDetails(family, context.project(), self.OUTPUT)
-                details.setPostProcessor(styler(family))
+                details.setPostProcessor(styler(uri, family))
                 context.addLayerToLoadOnCompletion(uri, details)
         return {self.OUTPUT: output, self.SVG: svg or None, "LAYERS": uris,
                 "FACES_HATCHED": stats.faces, "HATCHES": stats.hatches}
