@@ -13,7 +13,7 @@ import zipfile
 import pytest
 
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
-qgis_core = pytest.importorskip("qgis.core", reason="python3-qgis is not installed (scripts/setup.sh installs it)")
+import qgis.core as qgis_core  # noqa: E402  (python3-qgis: scripts/setup.sh installs it)
 
 from conftest import PYTHON_DIR, ROOT, python_env  # noqa: E402
 from osgeo import gdal, ogr  # noqa: E402

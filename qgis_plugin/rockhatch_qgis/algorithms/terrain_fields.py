@@ -42,8 +42,7 @@ class TerrainFields(RockhatchAlgorithm):
         return ("The terrain fields the rock hatching pipeline computes from a DEM and hatches with: "
                 "slope (percent), roughness (0..1, vector ruggedness) and hillshade (0..1, lit from the "
                 "north-west). Each output is a Float32 GeoTIFF on the DEM's grid and CRS (UTM when the DEM "
-                f"is geographic) with NoData {NODATA:g}; cells next to the DEM's NoData or its edge are "
-                "NoData. Use them to check a DEM before hatching, or edit them and pass them to Rock "
+                f"is geographic) with NoData {NODATA:g} where the DEM has NoData. Use them to check a DEM before hatching, or edit them and pass them to Rock "
                 "hatching as its slope / roughness rasters.")
 
     def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
