@@ -1,16 +1,12 @@
 """The Processing provider "Rock hatching" (id rockhatch)."""
-import os
-
 from qgis.core import QgsProcessingProvider
-from qgis.PyQt.QtGui import QIcon
 
 from .algorithms.rock_hatching import RockHatching
 from .algorithms.terrain_fields import TerrainFields
+from .icon import WithIcon
 
-ICON = os.path.join(os.path.dirname(__file__), "icon.svg")
 
-
-class RockhatchProvider(QgsProcessingProvider):
+class RockhatchProvider(WithIcon, QgsProcessingProvider):
     def id(self):
         return "rockhatch"
 
@@ -19,12 +15,6 @@ class RockhatchProvider(QgsProcessingProvider):
 
     def longName(self):  # noqa: N802
         return "Rock hatching (rockhatch, Loi 2015 chapter 5)"
-
-    def icon(self):
-        return QIcon(ICON)
-
-    def svgIconPath(self):  # noqa: N802
-        return ICON
 
     def supportedOutputRasterLayerExtensions(self):  # noqa: N802
         return ["tif"]

@@ -3,7 +3,6 @@ plugin loading, the provider's algorithms through processing.run, errors, cancel
 qgis_process on the command line with a throwaway profile."""
 import json
 import os
-import pathlib
 import shutil
 import subprocess
 import sys
@@ -87,6 +86,7 @@ def test_plugin_loads_and_registers_provider(qgis):
     registry = QgsApplication.processingRegistry()
     provider = registry.providerById("rockhatch")
     assert provider is not None and provider.name() == "Rock hatching"
+    assert os.path.isfile(provider.svgIconPath()) and provider.svgIconPath().endswith("icon.svg")
     assert sorted(a.id() for a in provider.algorithms()) == ["rockhatch:rockhatching", "rockhatch:terrainfields"]
     for alg_id in ("rockhatch:rockhatching", "rockhatch:terrainfields"):
         alg = registry.algorithmById(alg_id)

@@ -1,16 +1,12 @@
 """What both algorithms share: the rockhatch module, file paths of layers, progress, errors."""
-import os
-
 from qgis.core import (QgsProcessingAlgorithm, QgsProcessingException, QgsProcessingUtils, QgsRasterFileWriter,
                        QgsRasterPipe)
-from qgis.PyQt.QtGui import QIcon
 
 from .. import module
+from ..icon import WithIcon
 
-ICON = os.path.join(os.path.dirname(os.path.dirname(__file__)), "icon.svg")
 
-
-class RockhatchAlgorithm(QgsProcessingAlgorithm):
+class RockhatchAlgorithm(WithIcon, QgsProcessingAlgorithm):
     """Base of the provider's algorithms."""
 
     def createInstance(self):  # noqa: N802 (QGIS's names)
@@ -21,12 +17,6 @@ class RockhatchAlgorithm(QgsProcessingAlgorithm):
 
     def groupId(self):  # noqa: N802
         return ""
-
-    def icon(self):
-        return QIcon(ICON)
-
-    def svgIconPath(self):  # noqa: N802
-        return ICON
 
     def canExecute(self):  # noqa: N802
         return module.available()
