@@ -14,6 +14,7 @@ import sys
 import tempfile
 
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+os.environ.setdefault("GDAL_PAM_ENABLED", "NO")  # no dem.tif.aux.xml in data/
 HERE = pathlib.Path(__file__).resolve().parent
 SAMPLE = HERE.parent / "data" / "sample_montblanc"
 sys.path.insert(0, str(HERE))

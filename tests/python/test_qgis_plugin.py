@@ -12,6 +12,8 @@ import zipfile
 import pytest
 
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+# QGIS computes raster statistics: keep them out of data/ (no dem.tif.aux.xml).
+os.environ["GDAL_PAM_ENABLED"] = "NO"
 import qgis.core as qgis_core  # noqa: E402  (python3-qgis: scripts/setup.sh installs it)
 
 from conftest import PYTHON_DIR, ROOT, python_env  # noqa: E402
@@ -333,7 +335,8 @@ def test_qgis_process_runs_rock_hatching(sample_dir, reference, tmp_path):
     """The install command into a throwaway profile, then qgis_process as a cartographer runs it."""
     config = tmp_path / "config"
     env = python_env()
-    env.update(QGIS_CUSTOM_CONFIG_PATH=str(config), QT_QPA_PLATFORM="offscreen", XDG_RUNTIME_DIR=str(tmp_path))
+    env.update(QGIS_CUSTOM_CONFIG_PATH=str(config), QT_QPA_PLATFORM="offscreen", XDG_RUNTIME_DIR=str(tmp_path),
+               GDAL_PAM_ENABLED="NO")
     subprocess.run(["bash", str(ROOT / "scripts" / "install_qgis_plugin.sh"), "--module-path", str(PYTHON_DIR)],
                    check=True, env=env)
     assert (config / "profiles" / "default" / "python" / "plugins" / "rockhatch_qgis").is_symlink()
@@ -353,3 +356,7 @@ def test_qgis_process_runs_rock_hatching(sample_dir, reference, tmp_path):
                         f"OUTPUT={tmp_path / 'bad.gpkg'}"], env=env, capture_output=True, text=True, timeout=120)
     assert p.returncode != 0 and "no line layer with a 'nope' field" in p.stdout + p.stderr
     shutil.rmtree(config)
+
+
+def test_sample_folder_untouched(qgis, sample_dir):
+    assert not list(sample_dir.glob("*.aux.xml"))
