@@ -1,0 +1,362 @@
+"""The QGIS plugin (qgis_plugin/rockhatch_qgis) in a real headless QGIS from Debian's packages:
+plugin loading, the provider's algorithms through processing.run, errors, cancellation, and
+qgis_process on the command line with a throwaway profile."""
+import json
+import os
+import shutil
+import subprocess
+import sys
+import time
+import zipfile
+
+import pytest
+
+os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+# QGIS computes raster statistics: keep them out of data/ (no dem.tif.aux.xml).
+os.environ["GDAL_PAM_ENABLED"] = "NO"
+import qgis.core as qgis_core  # noqa: E402  (python3-qgis: scripts/setup.sh installs it)
+
+from conftest import PYTHON_DIR, ROOT, python_env  # noqa: E402
+from osgeo import gdal, ogr  # noqa: E402
+
+from qgis.core import (QgsApplication, QgsProcessingException, QgsProcessingFeedback, QgsProject,  # noqa: E402
+                       QgsRasterLayer, QgsVectorLayer)
+
+PLUGINS = ROOT / "qgis_plugin"
+QGIS_PROCESS = "/usr/bin/qgis_process.bin"  # Debian's /usr/bin/qgis_process wrapper is broken, see the README
+FAMILIES = ["hatch_fill", "hatch_ridge", "hatch_valley", "hatch_cross"]
+
+
+@pytest.fixture(scope="session")
+def qgis(tmp_path_factory):
+    """A headless QgsApplication with Processing and the plugin started by QGIS's own plugin
+    machinery (as qgis_process does), in a throwaway settings folder."""
+    config = tmp_path_factory.mktemp("qgis_config")
+    os.environ["QGIS_CUSTOM_CONFIG_PATH"] = str(config)
+    os.environ.setdefault("XDG_RUNTIME_DIR", str(config))
+    QgsApplication.setPrefixPath("/usr", True)
+    app = QgsApplication([], False)
+    app.initQgis()
+    sys.path.append("/usr/share/qgis/python/plugins")
+    from processing.core.Processing import Processing
+    Processing.initialize()
+    import qgis.utils
+    qgis.utils.plugin_paths.insert(0, str(PLUGINS))
+    sys.path.insert(0, str(PLUGINS))
+    qgis.utils.updateAvailablePlugins()
+    assert qgis.utils.loadPlugin("rockhatch_qgis")
+    assert qgis.utils.startProcessingPlugin("rockhatch_qgis")
+    yield app
+    qgis.utils.unloadPlugin("rockhatch_qgis")
+
+
+def run(alg, params, feedback=None):
+    import processing
+    return processing.run(alg, params, feedback=feedback or QgsProcessingFeedback())
+
+
+def layer_counts(gpkg):
+    ds = ogr.Open(str(gpkg))
+    return {ds.GetLayer(i).GetName(): ds.GetLayer(i).GetFeatureCount() for i in range(ds.GetLayerCount())}
+
+
+@pytest.fixture(scope="session")
+def reference(rockhatch_exe, sample_dir, tmp_path_factory):
+    """The rockhatch command's outputs on the sample (default style, seed 0)."""
+    out = tmp_path_factory.mktemp("reference")
+    subprocess.run([str(rockhatch_exe), "-q", "--dem", str(sample_dir / "dem.tif"), "--partition",
+                    str(sample_dir / "partition.gpkg"), "-o", str(out / "ref.gpkg"), "-o", str(out / "ref.svg")],
+                   check=True)
+    counts = layer_counts(out / "ref.gpkg")
+    assert sum(counts.values()) > 10000
+    return {"gpkg": out / "ref.gpkg", "svg": out / "ref.svg", "counts": counts}
+
+
+def sample_params(sample_dir, output, **extra):
+    return {"DEM": str(sample_dir / "dem.tif"), "FACES": f"{sample_dir / 'partition.gpkg'}|layername=faces",
+            "OUTPUT": str(output), **extra}
+
+
+# ---- loading
+
+
+def test_plugin_loads_and_registers_provider(qgis):
+    import qgis.utils
+    assert "rockhatch_qgis" in qgis.utils.active_plugins
+    assert qgis.utils.pluginMetadata("rockhatch_qgis", "qgisMinimumVersion") == "3.22"
+    assert qgis.utils.pluginMetadata("rockhatch_qgis", "hasProcessingProvider") == "yes"
+    registry = QgsApplication.processingRegistry()
+    provider = registry.providerById("rockhatch")
+    assert provider is not None and provider.name() == "Rock hatching"
+    assert os.path.isfile(provider.svgIconPath()) and provider.svgIconPath().endswith("icon.svg")
+    assert sorted(a.id() for a in provider.algorithms()) == ["rockhatch:rockhatching", "rockhatch:terrainfields"]
+    for alg_id in ("rockhatch:rockhatching", "rockhatch:terrainfields"):
+        alg = registry.algorithmById(alg_id)
+        assert alg.canExecute()[0]
+        assert "default" in alg.shortHelpString().lower() or "NoData" in alg.shortHelpString()
+        for p in alg.parameterDefinitions():
+            assert p.help(), f"{alg_id} {p.name()} has no help"
+
+
+def test_style_choices_are_the_modules(qgis):
+    from rockhatch import carto
+    alg = QgsApplication.processingRegistry().algorithmById("rockhatch:rockhatching")
+    style = alg.parameterDefinition("STYLE")
+    assert style.options() == [s.name for s in carto.styles()]
+    assert style.defaultValue() == carto.default_style()
+    for s in carto.styles():
+        assert s.name in alg.shortHelpString()
+
+
+# ---- rock hatching
+
+
+def test_rock_hatching_equals_the_command(qgis, sample_dir, reference, tmp_path):
+    t = time.perf_counter()
+    result = run("rockhatch:rockhatching", sample_params(sample_dir, tmp_path / "h.gpkg", SVG=str(tmp_path / "h.svg")))
+    seconds = time.perf_counter() - t
+    print(f"rock hatching on the sample through processing.run: {seconds:.2f} s")
+    assert layer_counts(tmp_path / "h.gpkg") == reference["counts"]
+    assert (tmp_path / "h.svg").read_bytes() == reference["svg"].read_bytes()
+    assert result["HATCHES"] == sum(reference["counts"].values()) and result["FACES_HATCHED"] == 20
+    assert result["LAYERS"] == [f"{tmp_path / 'h.gpkg'}|layername={f}" for f in FAMILIES]
+    for uri in result["LAYERS"]:
+        layer = QgsVectorLayer(uri, "h", "ogr")
+        assert layer.isValid() and layer.crs().authid() == "EPSG:2154"
+        assert [f.name() for f in layer.fields()][1:] == ["face_id", "family", "style", "width_mm"]
+
+
+def test_two_files_and_memory_layers(qgis, sample_dir, reference, tmp_path):
+    """Faces, lines and orientation from three files, or the faces as a memory layer: the
+    layers are copied into one GeoPackage and the hatches stay the command's."""
+    gpkg = sample_dir / "partition.gpkg"
+    for name in ("faces", "lines", "orientation"):
+        gdal.VectorTranslate(str(tmp_path / f"{name}.shp"), str(gpkg), layers=[name])
+    params = {"DEM": str(sample_dir / "dem.tif"), "FACES": str(tmp_path / "faces.shp"),
+              "LINES": str(tmp_path / "lines.shp"), "ORIENTATION_LAYER": str(tmp_path / "orientation.shp"),
+              "OUTPUT": str(tmp_path / "a.gpkg")}
+    run("rockhatch:rockhatching", params)
+    assert layer_counts(tmp_path / "a.gpkg") == reference["counts"]
+
+    faces = QgsVectorLayer(f"{gpkg}|layername=faces", "faces", "ogr").materialize(
+        qgis_core.QgsFeatureRequest())
+    assert faces.providerType() == "memory"
+    QgsProject.instance().addMapLayer(faces)
+    try:
+        run("rockhatch:rockhatching", {**params, "FACES": faces.id(), "OUTPUT": str(tmp_path / "b.gpkg")})
+        assert layer_counts(tmp_path / "b.gpkg") == reference["counts"]
+        with pytest.raises(QgsProcessingException, match="give the labelled lines layer"):
+            run("rockhatch:rockhatching", {"DEM": params["DEM"], "FACES": faces.id(),
+                                           "OUTPUT": str(tmp_path / "c.gpkg")})
+    finally:
+        QgsProject.instance().removeMapLayer(faces.id())
+
+
+def test_style_seed_params_and_script(qgis, sample_dir, tmp_path):
+    from rockhatch import carto
+    kwargs = dict(style="noisy", seed=3, scale=5000, params={"spacing_min": 0.5})
+    carto.run(str(sample_dir / "dem.tif"), str(sample_dir / "partition.gpkg"), [str(tmp_path / "m.svg")], **kwargs)
+    run("rockhatch:rockhatching", sample_params(sample_dir, tmp_path / "q.gpkg", STYLE="noisy", SEED=3, SCALE=5000,
+                                                PARAMS="spacing_min=0.5", SVG=str(tmp_path / "q.svg")))
+    assert (tmp_path / "q.svg").read_bytes() == (tmp_path / "m.svg").read_bytes()
+    # The style script twin of a built-in gives its hatches.
+    run("rockhatch:rockhatching", sample_params(sample_dir, tmp_path / "s.gpkg", STYLE_SCRIPT=str(
+        ROOT / "styles" / "noisy.py"), SEED=3, SCALE=5000, PARAMS="spacing_min=0.5"))
+    assert layer_counts(tmp_path / "s.gpkg") == layer_counts(tmp_path / "q.gpkg")
+
+
+def test_layers_load_styled(qgis, sample_dir, tmp_path):
+    """runAndLoadResults (what the Toolbox does on completion): every non-empty family is
+    loaded with black lines as wide as width_mm."""
+    import processing
+    project = QgsProject.instance()
+    before = set(project.mapLayers())
+    processing.runAndLoadResults("rockhatch:rockhatching", sample_params(sample_dir, tmp_path / "l.gpkg"),
+                                 feedback=QgsProcessingFeedback())
+    loaded = [project.mapLayer(i) for i in set(project.mapLayers()) - before]
+    try:
+        counts = layer_counts(tmp_path / "l.gpkg")
+        assert sorted(lay.name() for lay in loaded) == sorted(f for f in FAMILIES if counts[f])
+        for lay in loaded:
+            symbol = lay.renderer().symbol()
+            assert symbol.color().name() == "#000000"
+            prop = symbol.symbolLayer(0).dataDefinedProperties().property(qgis_core.QgsSymbolLayer.PropertyStrokeWidth)
+            assert prop.isActive() and "width_mm" in prop.expressionString()
+    finally:
+        project.removeMapLayers([lay.id() for lay in loaded])
+
+
+# ---- terrain fields
+
+
+def test_terrain_fields(qgis, sample_dir, tmp_path):
+    import numpy as np
+    from rockhatch import carto
+    outs = {k: str(tmp_path / f"{k.lower()}.tif") for k in ("SLOPE", "ROUGHNESS", "HILLSHADE")}
+    result = run("rockhatch:terrainfields", {"DEM": str(sample_dir / "dem.tif"), **outs})
+    assert result == outs
+    terrain = carto.compute_terrain(carto.load_dem(str(sample_dir / "dem.tif"))[0])
+    for key, path in outs.items():
+        layer = QgsRasterLayer(path, key)
+        assert layer.isValid() and (layer.width(), layer.height()) == (480, 480)
+        assert layer.crs().authid() == "EPSG:2154"
+        assert layer.dataProvider().sourceNoDataValue(1) == -9999
+        values = gdal.Open(path).ReadAsArray().astype("float32")
+        values[values == -9999] = np.nan
+        expected = getattr(terrain, key.lower()).array
+        assert np.isnan(values).sum() > 0
+        assert np.array_equal(np.isnan(values), np.isnan(expected))
+        assert np.allclose(values[~np.isnan(values)], expected[~np.isnan(expected)])
+
+
+# ---- errors
+
+
+def no_crs_dem(sample_dir, tmp_path):
+    path = str(tmp_path / "nocrs.tif")
+    src = gdal.Open(str(sample_dir / "dem.tif"))
+    dst = gdal.GetDriverByName("GTiff").CreateCopy(path, src)
+    dst.SetProjection("")
+    dst = None
+    assert not gdal.Open(path).GetProjection()
+    return path
+
+
+def shifted_dem(sample_dir, tmp_path):
+    path = str(tmp_path / "far.tif")
+    dst = gdal.GetDriverByName("GTiff").CreateCopy(path, gdal.Open(str(sample_dir / "dem.tif")))
+    gt = list(dst.GetGeoTransform())
+    gt[0] += 50000
+    dst.SetGeoTransform(gt)
+    dst = None
+    return path
+
+
+def script(tmp_path, body):
+    path = tmp_path / "bad_style.py"
+    path.write_text(body)
+    return str(path)
+
+
+BAD = {
+    "dem without CRS": lambda s, t: ({"DEM": no_crs_dem(s, t)}, {"dem": no_crs_dem(s, t)}),
+    "partition outside the DEM": lambda s, t: ({"DEM": shifted_dem(s, t)}, {"dem": shifted_dem(s, t)}),
+    "unknown label field": lambda s, t: ({"LINES": f"{s / 'partition.gpkg'}|layername=lines", "LABEL_FIELD": "nope"},
+                                         {"lines_layer": "lines", "label_field": "nope"}),
+    "script without style()": lambda s, t: ({"STYLE_SCRIPT": script(t, "NAME = 'x'\n")},
+                                            {"style": script(t, "NAME = 'x'\n")}),
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAD))
+def test_bad_inputs_raise_the_pipelines_message(qgis, sample_dir, tmp_path, case):
+    from rockhatch import RockhatchError, carto
+    qgis_params, run_kwargs = BAD[case](sample_dir, tmp_path)
+    kwargs = {"dem": str(sample_dir / "dem.tif"), "partition": str(sample_dir / "partition.gpkg"),
+              "faces_layer": "faces", **run_kwargs}
+    with pytest.raises(RockhatchError) as expected:
+        carto.run(outputs=[str(tmp_path / "direct.gpkg")], **kwargs)
+    with pytest.raises(QgsProcessingException) as raised:
+        run("rockhatch:rockhatching", {**sample_params(sample_dir, tmp_path / "x.gpkg"), **qgis_params})
+    assert str(expected.value) in str(raised.value)
+    assert not (tmp_path / "x.gpkg").exists()
+
+
+def test_style_script_error_raises(qgis, sample_dir, tmp_path):
+    body = ("NAME = 'broken'\nPARAMS = []\n\ndef style(fields, params, seed):\n"
+            "    raise ValueError('this style is broken')\n")
+    with pytest.raises(QgsProcessingException, match="ValueError: this style is broken"):
+        run("rockhatch:rockhatching", sample_params(sample_dir, tmp_path / "x.gpkg",
+                                                    STYLE_SCRIPT=script(tmp_path, body)))
+    with pytest.raises(QgsProcessingException, match="PARAMS: 'spacing_min' is not NAME=NUMBER"):
+        run("rockhatch:rockhatching", sample_params(sample_dir, tmp_path / "x.gpkg", PARAMS="spacing_min"))
+    with pytest.raises(QgsProcessingException, match="no CRS"):
+        run("rockhatch:terrainfields", {"DEM": no_crs_dem(sample_dir, tmp_path),
+                                        "SLOPE": str(tmp_path / "s.tif")})
+
+
+def test_missing_module_gives_a_clear_error(qgis, sample_dir, tmp_path, monkeypatch):
+    from rockhatch_qgis import module
+    monkeypatch.setattr(module, "_carto", None)
+    monkeypatch.setitem(sys.modules, "rockhatch.carto", None)
+    alg = QgsApplication.processingRegistry().createAlgorithmById("rockhatch:terrainfields")
+    ok, message = alg.canExecute()
+    assert not ok and "rockhatch Python module cannot be imported" in message and "ROCKHATCH_PYTHONPATH" in message
+    with pytest.raises(QgsProcessingException, match="rockhatch Python module cannot be imported"):
+        run(alg, {"DEM": str(sample_dir / "dem.tif"), "SLOPE": str(tmp_path / "s.tif")})
+
+
+# ---- cancellation
+
+
+class CancelAt(QgsProcessingFeedback):
+    """Cancels at the first progress report of at least `percent`."""
+
+    def __init__(self, percent):
+        super().__init__()
+        self.percent = percent
+        self.cancelled_at = None
+
+    def setProgress(self, progress):  # noqa: N802
+        super().setProgress(progress)
+        if self.cancelled_at is None and progress >= self.percent:
+            self.cancelled_at = time.perf_counter()
+            self.cancel()
+
+
+@pytest.mark.parametrize("percent", [0, 30])
+def test_cancel_stops_quickly_and_leaves_no_output(qgis, sample_dir, tmp_path, percent):
+    """Cancelled at the first progress report, or in the middle of the hatching of a dense
+    run (1:5000, fine spacing: several seconds uncancelled)."""
+    params = sample_params(sample_dir, tmp_path / "c.gpkg", SVG=str(tmp_path / "c.svg"), SCALE=5000,
+                           PARAMS="spacing_min=0.15; spacing_max=0.3")
+    feedback = CancelAt(percent)
+    with pytest.raises(QgsProcessingException, match="cancel"):
+        run("rockhatch:rockhatching", params, feedback)
+    stopped = time.perf_counter() - feedback.cancelled_at
+    print(f"run cancelled at {percent}% stopped {stopped:.2f} s after the cancel")
+    assert stopped < 1.5
+    assert not list(tmp_path.iterdir())
+
+
+# ---- install command and qgis_process
+
+
+def test_install_zip(tmp_path):
+    out = tmp_path / "rockhatch_qgis.zip"
+    subprocess.run(["bash", str(ROOT / "scripts" / "install_qgis_plugin.sh"), "--zip", str(out)], check=True)
+    names = zipfile.ZipFile(out).namelist()
+    assert "rockhatch_qgis/metadata.txt" in names and "rockhatch_qgis/algorithms/rock_hatching.py" in names
+    assert not [n for n in names if "__pycache__" in n or not n.startswith("rockhatch_qgis/")]
+
+
+@pytest.mark.skipif(not os.path.exists(QGIS_PROCESS), reason="qgis_process is not installed")
+def test_qgis_process_runs_rock_hatching(sample_dir, reference, tmp_path):
+    """The install command into a throwaway profile, then qgis_process as a cartographer runs it."""
+    config = tmp_path / "config"
+    env = python_env()
+    env.update(QGIS_CUSTOM_CONFIG_PATH=str(config), QT_QPA_PLATFORM="offscreen", XDG_RUNTIME_DIR=str(tmp_path),
+               GDAL_PAM_ENABLED="NO")
+    subprocess.run(["bash", str(ROOT / "scripts" / "install_qgis_plugin.sh"), "--module-path", str(PYTHON_DIR)],
+                   check=True, env=env)
+    assert (config / "profiles" / "default" / "python" / "plugins" / "rockhatch_qgis").is_symlink()
+    out = tmp_path / "qp.gpkg"
+    t = time.perf_counter()
+    p = subprocess.run([QGIS_PROCESS, "--json", "run", "rockhatch:rockhatching", "--",
+                        f"DEM={sample_dir / 'dem.tif'}", f"FACES={sample_dir / 'partition.gpkg'}|layername=faces",
+                        "STYLE=bidirectional", f"OUTPUT={out}"], env=env, capture_output=True, text=True, timeout=120)
+    print(f"qgis_process run: {time.perf_counter() - t:.2f} s")
+    assert p.returncode == 0, p.stderr + p.stdout
+    results = json.loads(p.stdout[p.stdout.index("{"):])["results"]
+    assert results["OUTPUT"] == str(out)
+    assert layer_counts(out) == reference["counts"]
+    # Bad input: a non-zero exit with the pipeline's message.
+    p = subprocess.run([QGIS_PROCESS, "run", "rockhatch:rockhatching", "--", f"DEM={sample_dir / 'dem.tif'}",
+                        f"FACES={sample_dir / 'partition.gpkg'}|layername=faces", "LABEL_FIELD=nope",
+                        f"OUTPUT={tmp_path / 'bad.gpkg'}"], env=env, capture_output=True, text=True, timeout=120)
+    assert p.returncode != 0 and "no line layer with a 'nope' field" in p.stdout + p.stderr
+    shutil.rmtree(config)
+
+
+def test_sample_folder_untouched(qgis, sample_dir):
+    assert not list(sample_dir.glob("*.aux.xml"))
