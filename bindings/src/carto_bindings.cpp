@@ -5,6 +5,7 @@
 
 #include "carto/cli.hpp"
 #include "carto/error.hpp"
+#include "carto/extract.hpp"
 #include "carto/fields.hpp"
 #include "carto/hatching.hpp"
 #include "carto/output.hpp"
@@ -93,8 +94,11 @@ PyField to_field(const py::object& o) {
     throw py::type_error("a field is a Field, a Raster, a number or a callable f(Point) -> float; got " + type_name(o));
 }
 
+// Called with or without the GIL (inside bindings that release it): takes it to keep a
+// reference to the callback.
 Progress to_progress(const py::object& cb) {
     if (cb.is_none()) return {};
+    py::gil_scoped_acquire gil;
     PyRef ref(cb);
     return [ref](double f, const std::string& stage) {
         py::gil_scoped_acquire gil;
@@ -509,8 +513,14 @@ void bind_carto(py::module_& m) {
         "run", [](const Options& o, const py::object& cb) { return run(o, to_progress(cb)); }, py::arg("options"),
         py::arg("progress") = py::none(), py::call_guard<py::gil_scoped_release>(),
         "everything the rockhatch command does: validate, prepare, hatch, write");
-    m.def("write_gpkg", &write_gpkg, py::arg("drawing"), py::arg("path"), py::arg("spatial_index") = true,
-          py::call_guard<py::gil_scoped_release>());
+    m.def(
+        "write_gpkg",
+        [](const Drawing& d, const std::string& path, bool spatial_index, const py::object& cb) {
+            const Progress p = to_progress(cb);
+            write_gpkg(d, path, spatial_index, [&p](double f) { return !p || p(f, "writing"); });
+        },
+        py::arg("drawing"), py::arg("path"), py::arg("spatial_index") = true, py::arg("progress") = py::none(),
+        py::call_guard<py::gil_scoped_release>());
     m.def("write_svg", &write_svg, py::arg("drawing"), py::arg("path"), py::call_guard<py::gil_scoped_release>());
     m.def(
         "write_png",
@@ -520,6 +530,54 @@ void bind_carto(py::module_& m) {
         py::arg("drawing"), py::arg("path"), py::arg("pixels") = 1600, py::arg("hillshade") = nullptr,
         py::call_guard<py::gil_scoped_release>());
     m.def("check_output", &check_output, py::arg("path"), py::arg("overwrite"));
+
+    // ---- The partition from the DEM alone ----
+    py::class_<ExtractOptions>(m, "ExtractOptions", "Options of rockhatch partition (see its --help for units)")
+        .def(py::init<>())
+        .def_readwrite("dem", &ExtractOptions::dem)
+        .def_property(
+            "raster", [](const ExtractOptions& o) { return o.raster ? std::make_shared<Raster>(*o.raster) : nullptr; },
+            [](ExtractOptions& o, const RasterPtr& r) {
+                if (r) o.raster = *r;
+                else o.raster.reset();
+            },
+            "an in-memory DEM used instead of the dem path")
+        .def_readwrite("mask", &ExtractOptions::mask)
+        .def_readwrite("min_slope", &ExtractOptions::min_slope, "percent")
+        .def_readwrite("min_roughness", &ExtractOptions::min_roughness, "vector ruggedness 0..1")
+        .def_readwrite("min_area_mm2", &ExtractOptions::min_area_mm2, "mm2 on paper at the scale")
+        .def_readwrite("scale", &ExtractOptions::scale)
+        .def_readwrite("thalweg_area", &ExtractOptions::thalweg_area, "m2")
+        .def_readwrite("ridge_area", &ExtractOptions::ridge_area, "m2")
+        .def_readwrite("smooth", &ExtractOptions::smooth, "m")
+        .def_readwrite("converge", &ExtractOptions::converge)
+        .def_readwrite("extend_ridges", &ExtractOptions::extend_ridges)
+        .def_readwrite("max_fill", &ExtractOptions::max_fill, "m")
+        .def_readwrite("simplify", &ExtractOptions::simplify, "cells")
+        .def_readwrite("what", &ExtractOptions::what);
+    py::class_<ExtractResult>(m, "ExtractResult", "An extracted partition, its rock mask and terrain")
+        .def_readonly("partition", &ExtractResult::partition)
+        .def_property_readonly("terrain", [](const ExtractResult& r) { return share(r.terrain); })
+        .def_property_readonly("rock", [](const ExtractResult& r) { return std::make_shared<Raster>(r.rock); },
+                               "1 rock, 0 not, NaN NoData, on the working grid")
+        .def_property_readonly("faces", [](const ExtractResult& r) { return std::make_shared<Raster>(r.faces); },
+                               "face index per cell (-1 outside)")
+        .def_readonly("network", &ExtractResult::network, "all traced ridges and thalwegs in the rock")
+        .def_readonly("notes", &ExtractResult::notes);
+    m.def(
+        "extract_partition",
+        [](const ExtractOptions& o, const py::object& cb) { return extract_partition(o, to_progress(cb)); },
+        py::arg("options"), py::arg("progress") = py::none(), py::call_guard<py::gil_scoped_release>(),
+        "the partition of the rock areas from the DEM alone (rockhatch partition)");
+    m.def(
+        "write_partition_gpkg",
+        [](const Partition& p, const std::string& path, bool overwrite, const std::vector<LabelledLine>* network) {
+            write_partition_gpkg(p, path, overwrite, network);
+        },
+        py::arg("partition"), py::arg("path"), py::arg("overwrite") = false, py::arg("network") = nullptr,
+        py::call_guard<py::gil_scoped_release>(), "layers faces, lines, mask (and network), as rockhatch reads them");
+    m.def("write_partition_png", &write_partition_png, py::arg("result"), py::arg("path"), py::arg("pixels") = 1600,
+          py::call_guard<py::gil_scoped_release>());
 
     // ---- Command line ----
     py::class_<CommandLine>(m, "CommandLine")

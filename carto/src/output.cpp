@@ -51,7 +51,14 @@ void check_output(const std::string& path, bool overwrite) {
         throw Error(Code::OutputExists, "-o '" + path + "': the file exists (use --overwrite to replace it)");
 }
 
-void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index) {
+void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index,
+                const std::function<bool(double)>& keep_going) {
+    std::size_t total = 0, written = 0;
+    for (const auto& face : d.faces) total += face.hatches.size();
+    auto check = [&] {
+        if (keep_going && ++written % 4096 == 0 && !keep_going(double(written) / double(2 * total)))
+            throw Error(Code::Cancelled, "cancelled while writing '" + path + "'");
+    };
     GDALAllRegister();
     // A fixed timestamp in gpkg_contents, so that the same run writes the same bytes.
     CPLSetConfigOption("OGR_CURRENT_DATE", "2000-01-01T00:00:00.000Z");
@@ -89,6 +96,7 @@ void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index) {
             for (const auto& face : d.faces)
                 for (const auto& h : face.hatches) {
                     if (h.family != f || h.points.size() < 2) continue;
+                    check();
                     feat.SetFID(OGRNullFID);
                     feat.SetField(0, GIntBig(face.face_id));
                     auto* ls = new OGRLineString();
@@ -109,6 +117,7 @@ void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index) {
             for (const auto& face : d.faces)
                 for (const auto& h : face.hatches) {
                     if (h.family != Family(fam) || h.points.size() < 2) continue;
+                    check();
                     BoxD b{INFINITY, -INFINITY, INFINITY, -INFINITY};
                     for (const auto& p : h.points) {
                         b.minx = std::min(b.minx, p.x);

@@ -166,7 +166,9 @@ Stats run(const Options& o, const Progress& progress) {
     tick(progress, 0.92, "writing");
     for (const auto& out : o.outputs) {
         const std::string e = extension(out);
-        if (e == ".gpkg") write_gpkg(d, out, o.spatial_index);
+        if (e == ".gpkg")
+            write_gpkg(d, out, o.spatial_index,
+                       [&](double f) { return !progress || progress(0.92 + 0.07 * f, "writing"); });
         else if (e == ".svg") write_svg(d, out);
         else write_png(d, out, o.png_pixels, &p.terrain.hillshade);
     }

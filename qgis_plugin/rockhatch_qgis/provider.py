@@ -2,6 +2,7 @@
 from qgis.core import QgsProcessingProvider
 
 from .algorithms.rock_hatching import RockHatching
+from .algorithms.rock_partition import RockPartition
 from .algorithms.terrain_fields import TerrainFields
 from .icon import WithIcon
 
@@ -25,3 +26,4 @@ class RockhatchProvider(WithIcon, QgsProcessingProvider):
     def loadAlgorithms(self):  # noqa: N802
         self.addAlgorithm(RockHatching())
         self.addAlgorithm(TerrainFields())
+        self.addAlgorithm(RockPartition())

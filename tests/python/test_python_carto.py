@@ -231,3 +231,12 @@ def test_a_style_built_from_libtex_operators(sample_dir, tmp_path):
         assert all(box.contains(q) for h in fh.hatches for q in h.points)
         inside = sum(region.contains((h.points[0] + h.points[1]) / 2) for h in fh.hatches)
         assert inside >= 0.99 * len(fh.hatches)
+
+
+def test_cancelling_while_the_geopackage_is_written(sample_dir, tmp_path):
+    drawing = carto.hatch(carto.prepare(sample_dir / "dem.tif", sample_dir / "partition.gpkg"))
+    calls = []
+    with pytest.raises(rockhatch.RockhatchError, match="cancelled while writing") as e:
+        carto.write_gpkg(drawing, str(tmp_path / "w.gpkg"), progress=lambda f, s: calls.append(f) or len(calls) < 3)
+    assert e.value.code == 10 and len(calls) == 3 and calls == sorted(calls)
+    assert list(tmp_path.iterdir()) == []

@@ -89,8 +89,9 @@ def test_plugin_loads_and_registers_provider(qgis):
     provider = registry.providerById("rockhatch")
     assert provider is not None and provider.name() == "Rock hatching"
     assert os.path.isfile(provider.svgIconPath()) and provider.svgIconPath().endswith("icon.svg")
-    assert sorted(a.id() for a in provider.algorithms()) == ["rockhatch:rockhatching", "rockhatch:terrainfields"]
-    for alg_id in ("rockhatch:rockhatching", "rockhatch:terrainfields"):
+    ids = ["rockhatch:rockhatching", "rockhatch:rockpartition", "rockhatch:terrainfields"]
+    assert sorted(a.id() for a in provider.algorithms()) == ids
+    for alg_id in ids:
         alg = registry.algorithmById(alg_id)
         assert alg.canExecute()[0]
         assert "default" in alg.shortHelpString().lower() or "NoData" in alg.shortHelpString()
@@ -184,6 +185,57 @@ def test_layers_load_styled(qgis, sample_dir, tmp_path):
             assert prop.isActive() and "width_mm" in prop.expressionString()
     finally:
         project.removeMapLayers([lay.id() for lay in loaded])
+
+
+# ---- partition from the DEM
+
+
+def test_rock_partition_equals_the_command(qgis, rockhatch_exe, sample_dir, tmp_path):
+    """rockhatch:rockpartition writes what `rockhatch partition` writes, loads faces and lines
+    (ridges red, valleys blue), and its output feeds rockhatch:rockhatching."""
+    import processing
+    cli = tmp_path / "cli.gpkg"
+    subprocess.run([str(rockhatch_exe), "partition", "-q", "--dem", str(sample_dir / "dem.tif"), "-o", str(cli)],
+                   check=True)
+    project = QgsProject.instance()
+    before = set(project.mapLayers())
+    out = tmp_path / "p.gpkg"
+    result = processing.runAndLoadResults("rockhatch:rockpartition", {
+        "DEM": str(sample_dir / "dem.tif"), "OUTPUT": str(out), "PREVIEW": str(tmp_path / "p.png")},
+        feedback=QgsProcessingFeedback())
+    loaded = {project.mapLayer(i).name(): project.mapLayer(i) for i in set(project.mapLayers()) - before}
+    try:
+        assert out.read_bytes() == cli.read_bytes()
+        counts = layer_counts(out)
+        assert result["FACES_COUNT"] == counts["faces"] > 10
+        assert set(loaded) == {"faces", "lines"}
+        lines = loaded["lines"]
+        assert lines.crs().authid() == "EPSG:2154"
+        colours = {c.value(): c.symbol().color().name() for c in lines.renderer().categories()}
+        assert colours["ridge"] == "#c81e1e" and colours["valley"] == "#1e3cc8"
+        assert (tmp_path / "p.png").stat().st_size > 10000
+    finally:
+        project.removeMapLayers([lay.id() for lay in loaded.values()])
+    hatched = run("rockhatch:rockhatching", sample_params(sample_dir, tmp_path / "h.gpkg",
+                                                          FACES=f"{out}|layername=faces"))
+    assert hatched["FACES_HATCHED"] == counts["faces"] and hatched["HATCHES"] > 10000
+
+
+def test_rock_partition_without_rock_raises(qgis, tmp_path):
+    flat = tmp_path / "flat.tif"
+    ds = gdal.GetDriverByName("GTiff").Create(str(flat), 50, 50, 1, gdal.GDT_Float32)
+    ds.SetGeoTransform([1000000, 5, 0, 6500000, 0, -5])
+    ds.SetProjection(carto_epsg_wkt(2154))
+    ds.GetRasterBand(1).Fill(1200.0)
+    ds = None
+    with pytest.raises(QgsProcessingException, match="rock"):
+        run("rockhatch:rockpartition", {"DEM": str(flat), "OUTPUT": str(tmp_path / "f.gpkg")})
+    assert not (tmp_path / "f.gpkg").exists()
+
+
+def carto_epsg_wkt(code):
+    from rockhatch import carto
+    return carto.epsg_wkt(code)
 
 
 # ---- terrain fields

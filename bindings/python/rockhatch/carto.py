@@ -20,7 +20,7 @@ from ._rockhatch.carto import *  # noqa: F401,F403
 from ._rockhatch import carto as _carto
 
 __all__ = [n for n in dir(_carto) if not n.startswith("_")] + [
-    "run", "prepare", "hatch", "make_options", "load_style", "as_style", "error"]
+    "run", "prepare", "hatch", "make_options", "load_style", "as_style", "error", "partition_from_dem"]
 
 
 def error(code, message):
@@ -133,3 +133,31 @@ def hatch(prepared, progress=None, **kwargs):
     """Hatches a prepared partition; returns a Drawing (write it with write_gpkg / write_svg)."""
     o = make_options(kwargs.pop("dem", "-"), kwargs.pop("partition", "-"), **kwargs)
     return _carto.hatch(prepared, o, progress)
+
+
+def partition_from_dem(dem, output=None, progress=None, overwrite=False, png=None, png_pixels=1600, **options):
+    """The partition of the rock areas from the DEM alone (``rockhatch partition``).
+
+    dem: a path or a Raster. options: the fields of ExtractOptions (min_slope in percent,
+    min_roughness, min_area_mm2 and scale, thalweg_area and ridge_area in m2, smooth and
+    max_fill in m, converge, extend_ridges, simplify in cells, mask: a polygon layer path).
+    Writes the GeoPackage `output` (layers faces, lines, mask, network) that ``run`` reads,
+    and a PNG preview when `png` is given; returns the ExtractResult."""
+    o = ExtractOptions()  # noqa: F405
+    if isinstance(dem, Raster):  # noqa: F405
+        o.raster = dem
+    else:
+        o.dem = os.fspath(dem)
+    for key, value in options.items():
+        if key.startswith("_") or not hasattr(o, key) or key in ("dem", "raster", "what"):
+            raise TypeError(f"unknown option '{key}'")
+        setattr(o, key, os.fspath(value) if key == "mask" else value)
+    for path in (output, png):
+        if path is not None:
+            check_output(os.fspath(path), overwrite)  # noqa: F405
+    result = _carto.extract_partition(o, progress)
+    if output is not None:
+        write_partition_gpkg(result.partition, os.fspath(output), overwrite, result.network)  # noqa: F405
+    if png is not None:
+        write_partition_png(result, os.fspath(png), png_pixels)  # noqa: F405
+    return result

@@ -3,6 +3,7 @@
 // to a temporary file in the same folder, renamed at the end.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -24,7 +25,10 @@ struct Drawing {
     tex::BBox bounds;  // extent of the drawing in the working CRS
 };
 
-void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index = true);
+// `keep_going(fraction written)` is asked every few thousand features; false cancels
+// (Error Cancelled, nothing left behind).
+void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index = true,
+                const std::function<bool(double)>& keep_going = {});
 void write_svg(const Drawing& d, const std::string& path);
 // A PNG preview `pixels` wide, over a light hillshade when one is given.
 void write_png(const Drawing& d, const std::string& path, int pixels, const Raster* hillshade);

@@ -16,7 +16,7 @@ from .common import Progress, RockhatchAlgorithm
 
 # The GeoPackage layers the pipeline writes, one per hatch family, with the line width a
 # renderer uses when a feature has no width_mm (mm on paper).
-FAMILIES = {"hatch_fill": 0.10, "hatch_valley": 0.12, "hatch_ridge": 0.25, "hatch_cross": 0.08}
+FAMILIES = {"hatch_fill": 0.10, "hatch_ridge": 0.12, "hatch_valley": 0.25, "hatch_cross": 0.08}
 # Vector formats handed to the pipeline as they are; other layers are written to a GeoPackage.
 OGR_EXTENSIONS = ["gpkg", "shp", "geojson", "json", "fgb", "sqlite", "gml", "kml", "tab", "mif", "csv"]
 
