@@ -50,6 +50,7 @@ struct ExtractOptions {
     double smooth = 10;            // m: smoothing of the DEM the flow runs on (0: none)
     double converge = 1.2;         // a line starts where the area is >= this x that beside it
     bool extend_ridges = true;     // prolong ridge feet down their crest to a thalweg
+    bool label_outline = true;     // label rock-outline borders along a ridge / thalweg too
     double max_fill = 30;          // m: deeper depressions (and prominences) stop the flow
     double simplify = 0.5;         // Douglas-Peucker tolerance in cells
     std::string what = "--dem";    // how error messages name the DEM
