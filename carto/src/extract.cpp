@@ -382,10 +382,11 @@ std::vector<float> concavity(const Grid& g, const std::vector<float>& z, double 
 // (8 around) that is most concave, while concave by at least `depth` (two cells' tolerance),
 // for at most `max_cells`; where the floor fades (near a col or a summit) the walk finishes
 // by steepest ascent over at most `finish` cells. Kept only when it reaches a cell of `stop`
-// (the other lines), or leaves the rock (a head in a hole of the rock, non-rock that is not
-// `open`, first walks into the rock: a line ending in a hole often does not cut), or comes
-// next to the grid's edge (the edge cell joins the line), so the line cuts the rock area
-// instead of dangling in it.
+// (the other lines), or leaves the rock for the `open` non-rock, or comes next to the grid's
+// edge (the edge cell joins the line), so the line cuts the rock area instead of dangling in
+// it. Holes of the rock (non-rock that is not `open`) are crossed, as a line ending in one
+// seldom cuts its face; if the walk then gets nowhere, it is kept up to the hole. A head in a
+// hole first walks into the rock.
 // Kept steps are linked downstream in `down`, so the network can be traced along them; those
 // of the steepest finish are set in `straight` (they cut the rock but follow no crest or floor).
 void extend_heads(const Grid& g, std::vector<int>& down, std::vector<char>& ch, std::vector<char>& straight,
@@ -412,6 +413,7 @@ void extend_heads(const Grid& g, std::vector<int>& down, std::vector<char>& ch, 
         steep.assign(1, 0);
         int weak = 0, finishing = -1;
         bool in_rock = rock[h] || open[h];
+        std::size_t fallback = 0;  // the steps kept if the walk, having entered a hole, gets nowhere
         while (int(path.size()) <= max_cells) {
             const std::size_t i = path.back();
             const int c = int(i % g.w), r = int(i / g.w);
@@ -431,14 +433,19 @@ void extend_heads(const Grid& g, std::vector<int>& down, std::vector<char>& ch, 
                 path.push_back(std::size_t(edge));
                 steep.push_back(finishing >= 0);
                 keep(path.size());
+                fallback = 0;
                 break;
             }
             if (best < 0) break;
-            if (stop[best] || (in_rock && !rock[best])) {
+            if (stop[best] || (in_rock && open[best])) {
                 path.push_back(std::size_t(best));
                 keep(path.size() - 1);
+                fallback = 0;
                 break;
             }
+            // Into a hole of the rock: crossed (ending there seldom cuts the face), but the
+            // steps so far are kept if nothing better is reached.
+            if (in_rock && !rock[best] && !fallback && rock[i]) fallback = path.size();
             in_rock = in_rock || rock[best];
             if (finishing < 0) {
                 weak = conc[best] <= -depth ? 0 : weak + 1;
@@ -449,6 +456,7 @@ void extend_heads(const Grid& g, std::vector<int>& down, std::vector<char>& ch, 
             path.push_back(std::size_t(best));
             steep.push_back(finishing >= 0);
         }
+        if (fallback) keep(fallback);
     }
 }
 
