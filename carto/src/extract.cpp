@@ -94,6 +94,37 @@ std::vector<int> components(const Grid& g, const std::vector<char>& on, bool eig
     return lab;
 }
 
+// The 8-connected non-rock pieces: label per cell (-1 on rock), and per piece its size and
+// whether it is open (reaches the grid's edge, NoData or the outside of the user's mask)
+// rather than a hole in the rock.
+struct NonRock {
+    std::vector<int> lab;
+    std::vector<std::size_t> size;
+    std::vector<char> open;
+};
+
+NonRock non_rock_pieces(const Grid& g, const std::vector<char>& rock, const std::vector<float>& dem,
+                        const std::vector<char>& inside_mask) {
+    std::vector<char> non_rock(g.size());
+    for (std::size_t i = 0; i < g.size(); ++i) non_rock[i] = !rock[i];
+    NonRock out;
+    int n = 0;
+    out.lab = components(g, non_rock, true, n);
+    out.size.assign(std::size_t(n), 0);
+    out.open.assign(std::size_t(n), 0);
+    for (int r = 0; r < g.h; ++r)
+        for (int c = 0; c < g.w; ++c) {
+            const std::size_t i = g.at(c, r);
+            const int l = out.lab[i];
+            if (l < 0) continue;
+            ++out.size[l];
+            if (c == 0 || r == 0 || c == g.w - 1 || r == g.h - 1 || std::isnan(dem[i]) ||
+                (!inside_mask.empty() && !inside_mask[i]))
+                out.open[l] = 1;
+        }
+    return out;
+}
+
 // The user's mask layer burnt onto the grid (1 inside a polygon).
 std::vector<char> rasterize_mask(const std::string& path, const Raster& grid) {
     const std::string what = "--mask '" + path + "'";
@@ -941,22 +972,11 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
         for (std::size_t i = 0; i < g.size(); ++i)
             if (lab[i] >= 0 && double(size[lab[i]]) * cell_area < min_area) rock[i] = 0;
         // Gaps: 8-connected non-rock pieces enclosed by rock, without NoData, below the area.
-        std::vector<char> gap(g.size());
-        for (std::size_t i = 0; i < g.size(); ++i) gap[i] = !rock[i];
-        const std::vector<int> glab = components(g, gap, true, n);
-        std::vector<std::size_t> gsize(std::size_t(n), 0);
-        std::vector<char> open(std::size_t(n), 0);
-        for (int r = 0; r < g.h; ++r)
-            for (int c = 0; c < g.w; ++c) {
-                const std::size_t i = g.at(c, r);
-                if (glab[i] < 0) continue;
-                ++gsize[glab[i]];
-                if (c == 0 || r == 0 || c == g.w - 1 || r == g.h - 1 || std::isnan(dem.data[i]) ||
-                    (!inside_mask.empty() && !inside_mask[i]))
-                    open[glab[i]] = 1;
-            }
-        for (std::size_t i = 0; i < g.size(); ++i)
-            if (glab[i] >= 0 && !open[glab[i]] && double(gsize[glab[i]]) * cell_area < min_area) rock[i] = 1;
+        const NonRock gaps = non_rock_pieces(g, rock, dem.data, inside_mask);
+        for (std::size_t i = 0; i < g.size(); ++i) {
+            const int l = gaps.lab[i];
+            if (l >= 0 && !gaps.open[l] && double(gaps.size[l]) * cell_area < min_area) rock[i] = 1;
+        }
     }
     std::size_t rock_cells = 0;
     for (char v : rock) rock_cells += v;
@@ -1008,23 +1028,11 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
     const int reach = std::max(3, int(std::lround(1000.0 / dx)));
     const int finish = std::max(4, int(std::lround(150.0 / dx)));
     const double across = std::max(2 * dx, 20.0);
-    // The open non-rock: 8-connected non-rock pieces reaching the grid's edge, NoData or the
-    // outside of the user's mask (not the holes in the rock).
+    // The open non-rock (not the holes in the rock).
     std::vector<char> open(g.size(), 0);
     {
-        std::vector<char> non_rock(g.size());
-        for (std::size_t i = 0; i < g.size(); ++i) non_rock[i] = !rock[i];
-        int n = 0;
-        const std::vector<int> lab = components(g, non_rock, true, n);
-        std::vector<char> reaches(std::size_t(n), 0);
-        for (int r = 0; r < g.h; ++r)
-            for (int c = 0; c < g.w; ++c) {
-                const std::size_t i = g.at(c, r);
-                if (lab[i] >= 0 && (c == 0 || r == 0 || c == g.w - 1 || r == g.h - 1 || std::isnan(dem.data[i]) ||
-                                    (!inside_mask.empty() && !inside_mask[i])))
-                    reaches[lab[i]] = 1;
-            }
-        for (std::size_t i = 0; i < g.size(); ++i) open[i] = lab[i] >= 0 && reaches[lab[i]];
+        const NonRock pieces = non_rock_pieces(g, rock, dem.data, inside_mask);
+        for (std::size_t i = 0; i < g.size(); ++i) open[i] = pieces.lab[i] >= 0 && pieces.open[pieces.lab[i]];
     }
     // Steps of the steepest finishes: ridge ones label no border (a ridge finished straight
     // down a flank is not an arête); thalweg ones do (a couloir's head is steep and straight).
