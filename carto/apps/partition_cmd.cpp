@@ -43,6 +43,8 @@ const char* kUsage =
     "  --converge K            a line starts where the contributing area is at least K times the mean\n"
     "                          of the cells beside it across the flow (default 1.2; 1: no test)\n"
     "  --no-ridge-extension    do not prolong ridge feet down their crest to a thalweg\n"
+    "  --no-outline-labels     label the rock outline 'other' everywhere (default: ridge / valley where\n"
+    "                          it runs along a traced ridge or thalweg)\n"
     "  --simplify CELLS        border simplification tolerance in DEM cells (default 0.5)\n"
     "  --png PATH              also write a preview: hillshade, faces, ridges red, thalwegs blue\n"
     "  --png-size PIXELS       preview width (default 1600)\n"
@@ -94,7 +96,8 @@ int partition_main(int argc, char** argv) {
             const std::pair<const char*, std::function<void()>> flags[] = {
                 {"--overwrite", [&] { overwrite = true; }},
                 {"-q", [&] { quiet = true; }},
-                {"--no-ridge-extension", [&] { o.extend_ridges = false; }}};
+                {"--no-ridge-extension", [&] { o.extend_ridges = false; }},
+                {"--no-outline-labels", [&] { o.label_outline = false; }}};
             if (a == "--help" || a == "-h") {
                 std::cout << kUsage;
                 return 0;

@@ -94,6 +94,37 @@ std::vector<int> components(const Grid& g, const std::vector<char>& on, bool eig
     return lab;
 }
 
+// The 8-connected non-rock pieces: label per cell (-1 on rock), and per piece its size and
+// whether it is open (reaches the grid's edge, NoData or the outside of the user's mask)
+// rather than a hole in the rock.
+struct NonRock {
+    std::vector<int> lab;
+    std::vector<std::size_t> size;
+    std::vector<char> open;
+};
+
+NonRock non_rock_pieces(const Grid& g, const std::vector<char>& rock, const std::vector<float>& dem,
+                        const std::vector<char>& inside_mask) {
+    std::vector<char> non_rock(g.size());
+    for (std::size_t i = 0; i < g.size(); ++i) non_rock[i] = !rock[i];
+    NonRock out;
+    int n = 0;
+    out.lab = components(g, non_rock, true, n);
+    out.size.assign(std::size_t(n), 0);
+    out.open.assign(std::size_t(n), 0);
+    for (int r = 0; r < g.h; ++r)
+        for (int c = 0; c < g.w; ++c) {
+            const std::size_t i = g.at(c, r);
+            const int l = out.lab[i];
+            if (l < 0) continue;
+            ++out.size[l];
+            if (c == 0 || r == 0 || c == g.w - 1 || r == g.h - 1 || std::isnan(dem[i]) ||
+                (!inside_mask.empty() && !inside_mask[i]))
+                out.open[l] = 1;
+        }
+    return out;
+}
+
 // The user's mask layer burnt onto the grid (1 inside a polygon).
 std::vector<char> rasterize_mask(const std::string& path, const Raster& grid) {
     const std::string what = "--mask '" + path + "'";
@@ -382,43 +413,71 @@ std::vector<float> concavity(const Grid& g, const std::vector<float>& z, double 
 // (8 around) that is most concave, while concave by at least `depth` (two cells' tolerance),
 // for at most `max_cells`; where the floor fades (near a col or a summit) the walk finishes
 // by steepest ascent over at most `finish` cells. Kept only when it reaches a cell of `stop`
-// (the other lines, or non-rock), so the line cuts the rock area instead of dangling in it.
-// Kept steps are linked downstream in `down`, so the network can be traced along them.
-void extend_heads(const Grid& g, std::vector<int>& down, std::vector<char>& ch, const std::vector<float>& z,
-                  const std::vector<float>& conc, double depth, const std::vector<char>& stop, int max_cells,
-                  int finish) {
+// (the other lines), or leaves the rock for the `open` non-rock, or comes next to the grid's
+// edge (the edge cell joins the line), so the line cuts the rock area instead of dangling in
+// it. Holes of the rock (non-rock that is not `open`) are crossed, as a line ending in one
+// seldom cuts its face; if the walk then gets nowhere, it is kept up to the hole. A head in a
+// hole first walks into the rock.
+// Kept steps are linked downstream in `down`, so the network can be traced along them; those
+// of the steepest finish are set in `straight` (they cut the rock but follow no crest or floor).
+void extend_heads(const Grid& g, std::vector<int>& down, std::vector<char>& ch, std::vector<char>& straight,
+                  const std::vector<float>& z, const std::vector<float>& conc, double depth,
+                  const std::vector<char>& stop, const std::vector<char>& rock, const std::vector<char>& open,
+                  int max_cells, int finish) {
     std::vector<char> has_up(g.size(), 0);
     for (std::size_t i = 0; i < g.size(); ++i)
         if (ch[i] && down[i] >= 0) has_up[down[i]] = 1;
     std::vector<std::size_t> heads;
     for (std::size_t i = 0; i < g.size(); ++i)
         if (ch[i] && !has_up[i]) heads.push_back(i);
+    std::vector<std::size_t> path;
+    std::vector<char> steep;  // per step of the path: taken by the steepest finish
+    auto keep = [&](std::size_t marked) {
+        for (std::size_t k = 1; k < marked; ++k) {
+            ch[path[k]] = 1;
+            down[path[k]] = int(path[k - 1]);
+            straight[path[k]] = k < steep.size() && steep[k];
+        }
+    };
     for (std::size_t h : heads) {
-        std::vector<std::size_t> path{h};
+        path.assign(1, h);
+        steep.assign(1, 0);
         int weak = 0, finishing = -1;
+        bool in_rock = rock[h] || open[h];
+        std::size_t fallback = 0;  // the steps kept if the walk, having entered a hole, gets nowhere
         while (int(path.size()) <= max_cells) {
             const std::size_t i = path.back();
             const int c = int(i % g.w), r = int(i / g.w);
-            int best = -1;
+            int best = -1, edge = -1;
             double key = 0;
             for (int k = 0; k < 8; ++k) {
                 const int cc = c + kDc[k], rr = r + kDr[k];
                 if (!g.inside(cc, rr)) continue;
                 const std::size_t j = g.at(cc, rr);
+                if (rock[j] && (cc == 0 || rr == 0 || cc == g.w - 1 || rr == g.h - 1) && edge < 0) edge = int(j);
                 if (!(z[j] > z[i]) || std::isnan(conc[j])) continue;
                 // Along the floor: the most concave; finishing: the steepest.
                 const double v = finishing < 0 ? conc[j] : -(z[j] - z[i]) / ((kDc[k] && kDr[k]) ? 1.4142 : 1.0);
                 if (best < 0 || v < key) best = int(j), key = v;
             }
-            if (best < 0) break;
-            if (stop[best]) {
-                path.push_back(std::size_t(best));
-                for (std::size_t k = 1; k + 1 < path.size(); ++k) {
-                    ch[path[k]] = 1;
-                    down[path[k]] = int(path[k - 1]);
-                }
+            if (in_rock && edge >= 0 && path.size() > 1) {  // at the grid's edge: the edge cell ends the line
+                path.push_back(std::size_t(edge));
+                steep.push_back(finishing >= 0);
+                keep(path.size());
+                fallback = 0;
                 break;
             }
+            if (best < 0) break;
+            if (stop[best] || (in_rock && open[best])) {
+                path.push_back(std::size_t(best));
+                keep(path.size() - 1);
+                fallback = 0;
+                break;
+            }
+            // Into a hole of the rock: crossed (ending there seldom cuts the face), but the
+            // steps so far are kept if nothing better is reached.
+            if (in_rock && !rock[best] && !fallback && rock[i]) fallback = path.size();
+            in_rock = in_rock || rock[best];
             if (finishing < 0) {
                 weak = conc[best] <= -depth ? 0 : weak + 1;
                 if (weak > 2) finishing = 0;
@@ -426,7 +485,9 @@ void extend_heads(const Grid& g, std::vector<int>& down, std::vector<char>& ch, 
                 break;
             }
             path.push_back(std::size_t(best));
+            steep.push_back(finishing >= 0);
         }
+        if (fallback) keep(fallback);
     }
 }
 
@@ -445,6 +506,7 @@ struct Chain {
     bool closed = false;
     bool use_raw = false;
     LineKind kind = LineKind::Other;
+    std::vector<unsigned char> edges;  // per cell edge: bit 0 along a ridge cell, bit 1 along a thalweg cell
 };
 
 double seg_dist(const Point& p, const Point& a, const Point& b) {
@@ -554,14 +616,11 @@ std::vector<Chain> trace_chains(const Grid& g, const std::vector<int>& face, con
         ch.start = (long long)j0 * W + i0;
         ch.raw.push_back({double(i0), double(j0)});
         int i = i0, j = j0, d = d0;
-        int ridge = 0, valley = 0, total = 0;
         while (true) {
             seen(i, j, d) = 1;
             cells(i, j, d, right, left, rc, rr, lc, lr);
             const int kr = g.inside(rc, rr) ? kind[g.at(rc, rr)] : 0, kl = g.inside(lc, lr) ? kind[g.at(lc, lr)] : 0;
-            ++total;
-            ridge += (kr == 1 || kl == 1);
-            valley += (kr == 2 || kl == 2);
+            ch.edges.push_back((unsigned char)((kr == 1 || kl == 1) | ((kr == 2 || kl == 2) << 1)));
             ch.last_dir = d;
             i += kCx[d];
             j += kCy[d];
@@ -577,12 +636,6 @@ std::vector<Chain> trace_chains(const Grid& g, const std::vector<int>& face, con
             d = next;
         }
         ch.end = (long long)j * W + i;
-        if (ch.right >= 0 && ch.left >= 0) {
-            if (2 * ridge > total && ridge >= valley)
-                ch.kind = LineKind::Ridge;
-            else if (2 * valley > total)
-                ch.kind = LineKind::Valley;
-        }
         chains.push_back(std::move(ch));
     };
     for (int j = 0; j < H; ++j)
@@ -596,6 +649,89 @@ std::vector<Chain> trace_chains(const Grid& g, const std::vector<int>& face, con
             for (int d = 0; d < 4; ++d)
                 if (edge_exists(i, j, d) && !seen(i, j, d)) trace(i, j, d);
     return chains;
+}
+
+// Labels the chains by the line cells they run along, piece by piece: each chain is cut where
+// it passes from running along ridge cells to thalweg cells or to neither, pieces shorter than
+// `min_run` cell edges taking the label of their longer neighbour (so a border is not chopped
+// at every kink of a line). Borders of the rock outline are labelled too when `outline` is set:
+// an arête is often the very edge of the steep area.
+std::vector<Chain> label_chains(std::vector<Chain> chains, int corner_w, int min_run, bool outline) {
+    auto dir_of = [](const Point& a, const Point& b) {
+        return b.x > a.x ? 0 : b.y > a.y ? 1 : b.x < a.x ? 2 : 3;
+    };
+    auto corner = [&](const Point& q) { return (long long)std::lround(q.y) * corner_w + std::lround(q.x); };
+    auto kind_of = [](int l) { return l == 1 ? LineKind::Ridge : l == 2 ? LineKind::Valley : LineKind::Other; };
+    std::vector<Chain> out;
+    for (Chain& ch : chains) {
+        const std::size_t n = ch.edges.size();
+        std::vector<int> lab(n, 0);
+        if (outline || (ch.right >= 0 && ch.left >= 0))
+            for (std::size_t e = 0; e < n; ++e) lab[e] = (ch.edges[e] & 1) ? 1 : (ch.edges[e] & 2) ? 2 : 0;
+        // A loop without a node starts where its label changes, so its first and last pieces differ.
+        if (ch.closed && lab[n - 1] == lab[0]) {
+            std::size_t s = n;  // start of the last run
+            while (s > 0 && lab[s - 1] == lab[n - 1]) --s;
+            if (s > 0) {
+                std::rotate(lab.begin(), lab.begin() + long(s), lab.end());
+                std::rotate(ch.edges.begin(), ch.edges.begin() + long(s), ch.edges.end());
+                ch.raw.pop_back();
+                std::rotate(ch.raw.begin(), ch.raw.begin() + long(s), ch.raw.end());
+                ch.raw.push_back(ch.raw.front());
+                ch.start = ch.end = corner(ch.raw.front());
+                ch.first_dir = dir_of(ch.raw[0], ch.raw[1]);
+                ch.last_dir = dir_of(ch.raw[n - 1], ch.raw[n]);
+            }
+        }
+        struct Run {
+            int label;
+            std::size_t begin, len;
+        };
+        std::vector<Run> runs;
+        for (std::size_t e = 0; e < n; ++e)
+            if (runs.empty() || runs.back().label != lab[e])
+                runs.push_back({lab[e], e, 1});
+            else
+                ++runs.back().len;
+        auto merge_equal = [&] {
+            std::vector<Run> m;
+            for (const Run& r : runs)
+                if (!m.empty() && m.back().label == r.label)
+                    m.back().len += r.len;
+                else
+                    m.push_back(r);
+            runs = std::move(m);
+        };
+        while (runs.size() > 1) {
+            std::size_t k = 0;
+            for (std::size_t q = 1; q < runs.size(); ++q)
+                if (runs[q].len < runs[k].len) k = q;
+            if (int(runs[k].len) >= min_run) break;
+            const Run* a = k > 0 ? &runs[k - 1] : nullptr;
+            const Run* b = k + 1 < runs.size() ? &runs[k + 1] : nullptr;
+            runs[k].label = (!b || (a && a->len >= b->len)) ? a->label : b->label;
+            merge_equal();
+        }
+        if (runs.size() == 1) {
+            ch.kind = kind_of(runs[0].label);
+            out.push_back(std::move(ch));
+            continue;
+        }
+        for (const Run& r : runs) {
+            Chain piece;
+            piece.raw.assign(ch.raw.begin() + long(r.begin), ch.raw.begin() + long(r.begin + r.len + 1));
+            piece.edges.assign(ch.edges.begin() + long(r.begin), ch.edges.begin() + long(r.begin + r.len));
+            piece.right = ch.right;
+            piece.left = ch.left;
+            piece.first_dir = dir_of(piece.raw[0], piece.raw[1]);
+            piece.last_dir = dir_of(piece.raw[piece.raw.size() - 2], piece.raw.back());
+            piece.start = corner(piece.raw.front());
+            piece.end = corner(piece.raw.back());
+            piece.kind = kind_of(r.label);
+            out.push_back(std::move(piece));
+        }
+    }
+    return out;
 }
 
 // The network cells inside the rock traced into polylines: from each head down the D8
@@ -797,17 +933,31 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
         rock[i] = !std::isnan(dem.data[i]) && slope[i] >= o.min_slope && rough[i] >= o.min_roughness &&
                   (inside_mask.empty() || inside_mask[i]);
     {
-        // Closing over about 15 m (dilation then erosion, square window): crests and couloir
-        // floors are less steep than the flanks around them but belong to the rock.
+        // Closing over about 15 m (dilation then erosion by a disc, at least the 4 neighbours):
+        // crests and couloir floors are less steep than the flanks around them but belong to
+        // the rock. A round window keeps the outline and the gaps free of square corners.
         const int rc = std::max(1, int(std::lround(15.0 / dx)));
+        std::vector<std::pair<int, int>> disc;
+        for (int dr = -rc; dr <= rc; ++dr)
+            for (int dc = -rc; dc <= rc; ++dc)
+                if (dr * dr + dc * dc <= rc * (rc + 1)) disc.push_back({dc, dr});
         auto grow = [&](const std::vector<char>& on, bool dilate) {
-            std::vector<float> v(g.size());
-            for (std::size_t i = 0; i < g.size(); ++i)
-                v[i] = std::isnan(dem.data[i]) ? (dilate ? 0.0f : 1.0f) : float(on[i]);
-            // box_mean skips NaN only: give every cell a value, then threshold the window mean.
-            const std::vector<float> m = box_mean(g, v, rc);
+            // NoData counts as not rock when dilating and as rock when eroding; cells off the
+            // grid do not count.
             std::vector<char> out(g.size());
-            for (std::size_t i = 0; i < g.size(); ++i) out[i] = dilate ? m[i] > 0.0f : m[i] > 0.9999f;
+            for (int r = 0; r < g.h; ++r)
+                for (int c = 0; c < g.w; ++c) {
+                    bool any = false, all = true;
+                    for (auto [dc, dr] : disc) {
+                        if (!g.inside(c + dc, r + dr)) continue;
+                        const std::size_t j = g.at(c + dc, r + dr);
+                        const bool v = std::isnan(dem.data[j]) ? !dilate : on[j] != 0;
+                        any = any || v;
+                        all = all && v;
+                        if (dilate ? any : !all) break;
+                    }
+                    out[g.at(c, r)] = dilate ? any : all;
+                }
             return out;
         };
         std::vector<char> closed = grow(grow(rock, true), false);
@@ -822,22 +972,11 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
         for (std::size_t i = 0; i < g.size(); ++i)
             if (lab[i] >= 0 && double(size[lab[i]]) * cell_area < min_area) rock[i] = 0;
         // Gaps: 8-connected non-rock pieces enclosed by rock, without NoData, below the area.
-        std::vector<char> gap(g.size());
-        for (std::size_t i = 0; i < g.size(); ++i) gap[i] = !rock[i];
-        const std::vector<int> glab = components(g, gap, true, n);
-        std::vector<std::size_t> gsize(std::size_t(n), 0);
-        std::vector<char> open(std::size_t(n), 0);
-        for (int r = 0; r < g.h; ++r)
-            for (int c = 0; c < g.w; ++c) {
-                const std::size_t i = g.at(c, r);
-                if (glab[i] < 0) continue;
-                ++gsize[glab[i]];
-                if (c == 0 || r == 0 || c == g.w - 1 || r == g.h - 1 || std::isnan(dem.data[i]) ||
-                    (!inside_mask.empty() && !inside_mask[i]))
-                    open[glab[i]] = 1;
-            }
-        for (std::size_t i = 0; i < g.size(); ++i)
-            if (glab[i] >= 0 && !open[glab[i]] && double(gsize[glab[i]]) * cell_area < min_area) rock[i] = 1;
+        const NonRock gaps = non_rock_pieces(g, rock, dem.data, inside_mask);
+        for (std::size_t i = 0; i < g.size(); ++i) {
+            const int l = gaps.lab[i];
+            if (l >= 0 && !gaps.open[l] && double(gaps.size[l]) * cell_area < min_area) rock[i] = 1;
+        }
     }
     std::size_t rock_cells = 0;
     for (char v : rock) rock_cells += v;
@@ -889,17 +1028,25 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
     const int reach = std::max(3, int(std::lround(1000.0 / dx)));
     const int finish = std::max(4, int(std::lround(150.0 / dx)));
     const double across = std::max(2 * dx, 20.0);
-    std::vector<char> stop(g.size());
+    // The open non-rock (not the holes in the rock).
+    std::vector<char> open(g.size(), 0);
+    {
+        const NonRock pieces = non_rock_pieces(g, rock, dem.data, inside_mask);
+        for (std::size_t i = 0; i < g.size(); ++i) open[i] = pieces.lab[i] >= 0 && pieces.open[pieces.lab[i]];
+    }
+    // Steps of the steepest finishes: ridge ones label no border (a ridge finished straight
+    // down a flank is not an arête); thalweg ones do (a couloir's head is steep and straight).
+    std::vector<char> stop(g.size()), straight(g.size(), 0), steep_valley(g.size(), 0);
     std::vector<int> ridge_down = ridge_flow.down, valley_down = valley_flow.down;
     std::vector<float> conc = concavity(g, z, dx, dy, across);  // of the inverted DEM
     if (o.extend_ridges) {
-        for (std::size_t i = 0; i < g.size(); ++i) stop[i] = valley[i] || !rock[i];
-        extend_heads(g, ridge_down, ridge, z, conc, 0.05 * across, stop, reach, finish);
+        for (std::size_t i = 0; i < g.size(); ++i) stop[i] = valley[i];
+        extend_heads(g, ridge_down, ridge, straight, z, conc, 0.05 * across, stop, rock, open, reach, finish);
     }
     for (float& v : z) v = -v;  // back to the (smoothed) DEM
     for (float& v : conc) v = -v;
-    for (std::size_t i = 0; i < g.size(); ++i) stop[i] = ridge[i] || !rock[i];
-    extend_heads(g, valley_down, valley, z, conc, 0.05 * across, stop, reach, finish);
+    for (std::size_t i = 0; i < g.size(); ++i) stop[i] = ridge[i];
+    extend_heads(g, valley_down, valley, steep_valley, z, conc, 0.05 * across, stop, rock, open, reach, finish);
     res.network = trace_network(g, ridge_down, ridge, rock, LineKind::Ridge, dem, 1.0);
     for (auto& l : trace_network(g, valley_down, valley, rock, LineKind::Valley, dem, 1.0))
         res.network.push_back(std::move(l));
@@ -1002,7 +1149,14 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
 
     // ---- 4. Polygons: shared, simplified borders
     step(progress, 0.75, "polygons");
-    std::vector<Chain> chains = trace_chains(g, face, res.line_cells);
+    // Border pieces are labelled when they run along line cells for at least 40 m (3 cells).
+    const int min_run = std::max(3, int(std::lround(40.0 / dx)));
+    // The steepest finishes of prolonged ridges split faces but follow no crest: the borders
+    // along them are "other".
+    std::vector<int> label_cells(res.line_cells);
+    for (std::size_t i = 0; i < g.size(); ++i)
+        if (straight[i]) label_cells[i] = 0;
+    std::vector<Chain> chains = label_chains(trace_chains(g, face, label_cells), g.w + 1, min_run, o.label_outline);
     std::vector<std::vector<int>> of_face(static_cast<std::size_t>(nfaces));
     for (std::size_t k = 0; k < chains.size(); ++k) {
         chains[k].simple = simplify(chains[k].raw, chains[k].closed, o.simplify);

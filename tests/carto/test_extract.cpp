@@ -144,8 +144,26 @@ TEST(Extract, FacesCarryOrientationDensityAndLabelledBorders) {
     EXPECT_GT(ridge_segs, 20u);
     EXPECT_GT(valley_segs, 5u);
     EXPECT_GT(with_neighbour, total / 10);
-    // A ridge or valley border separates two faces; the mask outline is "other".
+    // The rock outline is labelled too where it runs along a ridge or thalweg (an arête is
+    // often the edge of the steep area), but mostly "other".
+    std::size_t outline = 0, outline_labelled = 0;
     for (const RockFace& f : p.faces)
+        for (const auto& s : f.boundary)
+            if (s.neighbor < 0) {
+                ++outline;
+                outline_labelled += s.kind != LineKind::Other;
+            }
+    EXPECT_GT(outline_labelled, 0u);
+    EXPECT_LT(outline_labelled, outline / 2);
+}
+
+TEST(Extract, OutlineLabelsCanBeTurnedOff) {
+    ExtractOptions o;
+    o.dem = kSample + "/dem.tif";
+    o.label_outline = false;
+    const ExtractResult r = extract_partition(o);
+    EXPECT_EQ(r.partition.faces.size(), sample().partition.faces.size());
+    for (const RockFace& f : r.partition.faces)
         for (const auto& s : f.boundary)
             if (s.kind != LineKind::Other) EXPECT_GE(s.neighbor, 0);
 }
@@ -207,15 +225,18 @@ TEST(Extract, RidgesAndThalwegsMatchTheSyntheticTruth) {
     std::unique_ptr<OGRGeometry> hull(all_truth.ConvexHull());
     std::unique_ptr<OGRGeometry> zone(m->Intersection(hull.get()));
     const double tol = 10;
-    for (auto [kind, name] : {std::pair{LineKind::Ridge, "ridges"}, std::pair{LineKind::Valley, "thalwegs"}}) {
-        const OGRMultiLineString extracted = collect(r.network, kind), t = truth(name);
-        const auto [p_hit, p_all] = near_length(extracted, t, tol, zone.get());
-        const auto [r_hit, r_all] = near_length(t, extracted, tol, zone.get());
-        std::printf("%s: precision %.3f recall %.3f (extracted %.0f m, true %.0f m)\n", name, p_hit / p_all,
-                    r_hit / r_all, p_all, r_all);
-        EXPECT_GE(p_hit / p_all, 0.8) << name << " precision";
-        EXPECT_GE(r_hit / r_all, 0.8) << name << " recall";
-    }
+    // The traced network, and the face borders (what rockhatch reads: a traced line ending
+    // inside a face is no border).
+    for (auto [lines, what] : {std::pair{&r.network, "network"}, std::pair{&r.partition.lines, "borders"}})
+        for (auto [kind, name] : {std::pair{LineKind::Ridge, "ridges"}, std::pair{LineKind::Valley, "thalwegs"}}) {
+            const OGRMultiLineString extracted = collect(*lines, kind), t = truth(name);
+            const auto [p_hit, p_all] = near_length(extracted, t, tol, zone.get());
+            const auto [r_hit, r_all] = near_length(t, extracted, tol, zone.get());
+            std::printf("%s %s: precision %.3f recall %.3f (extracted %.0f m, true %.0f m)\n", what, name,
+                        p_hit / p_all, r_hit / r_all, p_all, r_all);
+            EXPECT_GE(p_hit / p_all, 0.8) << what << " " << name << " precision";
+            EXPECT_GE(r_hit / r_all, 0.8) << what << " " << name << " recall";
+        }
 }
 
 TEST(Extract, GeoPackageIsReadBackByRockhatchAndDeterministic) {

@@ -48,9 +48,11 @@ def test_two_commands_from_a_bare_dem(rockhatch_exe, sample_dir, tmp_path):
     assert len(polys) > 10
     assert kinds.get("ridge", 0) > 5 and kinds.get("valley", 0) > 2
     assert_no_overlap(polys)
-    # Ridges and thalwegs within two cells (10 m) of the generator's true lines.
-    for kind, (p, r, _, _) in precision_recall(faces, sample_dir / "truth.gpkg").items():
-        assert p >= 0.8 and r >= 0.8, (kind, p, r)
+    # Ridges and thalwegs within two cells (10 m) of the generator's true lines: the traced
+    # network and the face borders rockhatch reads.
+    for layer in ("network", "lines"):
+        for kind, (p, r, _, _) in precision_recall(faces, sample_dir / "truth.gpkg", layer).items():
+            assert p >= 0.8 and r >= 0.8, (layer, kind, p, r)
     out = tmp_path / "out.svg"
     r = run(rockhatch_exe, "-q", "--dem", sample_dir / "dem.tif", "--partition", faces, "-o", out)
     assert r.returncode == 0, r.stderr
@@ -107,3 +109,28 @@ def test_real_dem(rockhatch_exe, tmp_path):
     assert len(polys) > 50
     assert kinds.get("ridge", 0) > 10 and kinds.get("valley", 0) > 10
     assert_no_overlap(polys)
+
+
+def outline_kinds(path):
+    """Kinds of the `lines` features lying on the rock outline (the mask's boundary)."""
+    ds = ogr.Open(str(path))
+    mask_feature = ds.GetLayerByName("mask").GetNextFeature()
+    outline = mask_feature.GetGeometryRef().Boundary().Buffer(0.01)
+    kinds = {}
+    for f in ds.GetLayerByName("lines"):
+        if outline.Contains(f.GetGeometryRef()):
+            kinds[f.GetField("kind")] = kinds.get(f.GetField("kind"), 0) + 1
+    return kinds
+
+
+def test_outline_labels(rockhatch_exe, sample_dir, tmp_path):
+    # By default the rock outline is a ridge or thalweg where it runs along one; with
+    # --no-outline-labels it is "other" throughout, and the faces are the same.
+    on, off = tmp_path / "on.gpkg", tmp_path / "off.gpkg"
+    assert run(rockhatch_exe, "partition", "--dem", sample_dir / "dem.tif", "-o", on, "-q").returncode == 0
+    r = run(rockhatch_exe, "partition", "--dem", sample_dir / "dem.tif", "-o", off, "-q", "--no-outline-labels")
+    assert r.returncode == 0, r.stderr
+    with_labels, without = outline_kinds(on), outline_kinds(off)
+    assert with_labels.get("ridge", 0) + with_labels.get("valley", 0) > 0, with_labels
+    assert set(without) == {"other"}, without
+    assert len(layer_stats(on)[0]) == len(layer_stats(off)[0])

@@ -6,23 +6,27 @@
 // random numbers, no threads, ties broken by cell index.
 //
 //  1. rock mask: cells whose slope and roughness (averaged over about 25 m) reach the
-//     thresholds, optionally inside a user's polygon layer; closed over about 15 m (crests
-//     and couloir floors are less steep than the walls); rock specks smaller than the minimum
-//     area are dropped and enclosed gaps smaller than it are filled;
+//     thresholds, optionally inside a user's polygon layer; closed over about 15 m by a disc
+//     (crests and couloir floors are less steep than the walls); rock specks smaller than the
+//     minimum area are dropped and enclosed gaps smaller than it are filled;
 //  2. thalwegs: contributing area by multiple flow directions on the smoothed DEM
 //     (depressions up to `max_fill` deep crossed by priority flood); a line starts where the
 //     area reaches `thalweg_area` and the flow converges, and follows its D8 path down;
 //     ridges: the same on the inverted DEM with `ridge_area`. Short branches and branches
 //     alongside a bigger line are pruned. Thalweg heads are prolonged up their couloir floor
 //     and ridge feet down their crest (cross-profile concavity) until they meet a line of the
-//     other kind or leave the rock, so that lines split the rock instead of dangling in it;
+//     other kind, leave the rock or reach the grid's edge, so that lines split the rock instead
+//     of dangling in it (a head in a hole of the rock first walks into the rock); where the
+//     crest or floor fades the walk finishes by steepest descent (ascent);
 //  3. faces: the rock cells cut by the line cells (4-connected pieces), line cells given to a
 //     neighbouring face, faces smaller than the minimum area merged into the neighbour they
 //     share most border with;
 //  4. polygons: the borders between faces are traced once as chains of cell edges, simplified
 //     (Douglas-Peucker, half a cell) and shared by the two faces, so faces tile the mask
-//     exactly; a chain is a ridge or valley when most of its length runs along ridge or
-//     thalweg cells, else other;
+//     exactly; chains are labelled piece by piece: ridge or valley where they run along ridge
+//     or thalweg cells for at least 40 m (3 cells), else other; the rock outline too (an
+//     arête is often the edge of the steep area), unless `label_outline` is off; the steepest
+//     finish of a ridge labels no border (it cuts a flank, not an arête);
 //  5. per face: orientation from the mean fall line, density from 1 - mean hillshade.
 #pragma once
 
@@ -50,6 +54,7 @@ struct ExtractOptions {
     double smooth = 10;            // m: smoothing of the DEM the flow runs on (0: none)
     double converge = 1.2;         // a line starts where the area is >= this x that beside it
     bool extend_ridges = true;     // prolong ridge feet down their crest to a thalweg
+    bool label_outline = true;     // label rock-outline borders along a ridge / thalweg too
     double max_fill = 30;          // m: deeper depressions (and prominences) stop the flow
     double simplify = 0.5;         // Douglas-Peucker tolerance in cells
     std::string what = "--dem";    // how error messages name the DEM
