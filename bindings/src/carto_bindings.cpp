@@ -554,6 +554,8 @@ void bind_carto(py::module_& m) {
         .def_readwrite("extend_ridges", &ExtractOptions::extend_ridges)
         .def_readwrite("max_fill", &ExtractOptions::max_fill, "m")
         .def_readwrite("simplify", &ExtractOptions::simplify, "cells")
+        .def_readwrite("label_outline", &ExtractOptions::label_outline,
+                       "label the rock outline ridge / valley where it runs along a line")
         .def_readwrite("what", &ExtractOptions::what);
     py::class_<ExtractResult>(m, "ExtractResult", "An extracted partition, its rock mask and terrain")
         .def_readonly("partition", &ExtractResult::partition)
