@@ -1,6 +1,6 @@
 """What both algorithms share: the rockhatch module, file paths of layers, progress, errors."""
-from qgis.core import (QgsProcessingAlgorithm, QgsProcessingException, QgsProcessingUtils, QgsRasterFileWriter,
-                       QgsRasterPipe)
+from qgis.core import (QgsProcessingAlgorithm, QgsProcessingException, QgsProcessingParameterDefinition,
+                       QgsProcessingUtils, QgsRasterFileWriter, QgsRasterPipe)
 
 from .. import module
 from ..icon import WithIcon
@@ -20,6 +20,13 @@ class RockhatchAlgorithm(WithIcon, QgsProcessingAlgorithm):
 
     def canExecute(self):  # noqa: N802
         return module.available()
+
+    def add(self, param, help_text, advanced=False):
+        """Adds a parameter with its help (the dialog and `qgis_process help` show it)."""
+        param.setHelp(help_text)
+        if advanced:
+            param.setFlags(param.flags() | QgsProcessingParameterDefinition.FlagAdvanced)
+        self.addParameter(param)
 
     def carto(self):
         """rockhatch.carto, or a QgsProcessingException saying how to make it importable."""

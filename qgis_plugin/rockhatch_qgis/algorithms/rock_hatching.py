@@ -4,7 +4,7 @@ import os
 from osgeo import ogr
 from qgis.core import (QgsLineSymbol, QgsProcessing, QgsProcessingContext, QgsProcessingException,
                        QgsProcessingLayerPostProcessorInterface, QgsProcessingOutputMultipleLayers,
-                       QgsProcessingOutputNumber, QgsProcessingParameterDefinition, QgsProcessingParameterEnum,
+                       QgsProcessingOutputNumber, QgsProcessingParameterEnum,
                        QgsProcessingParameterFeatureSource, QgsProcessingParameterField,
                        QgsProcessingParameterFile, QgsProcessingParameterFileDestination,
                        QgsProcessingParameterNumber, QgsProcessingParameterRasterLayer,
@@ -103,71 +103,65 @@ class RockHatching(RockhatchAlgorithm):
         return [s.name for s in carto.styles()], carto.default_style()
 
     def initAlgorithm(self, config=None):  # noqa: N802
-        def add(param, help_text, advanced=False):
-            param.setHelp(help_text)
-            if advanced:
-                param.setFlags(param.flags() | QgsProcessingParameterDefinition.FlagAdvanced)
-            self.addParameter(param)
-
-        add(QgsProcessingParameterRasterLayer(self.DEM, "DEM"),
+        self.add(QgsProcessingParameterRasterLayer(self.DEM, "DEM"),
             "Elevation raster (metres) in a projected CRS, or a geographic one (then reprojected to its "
             "UTM zone, which becomes the CRS of the hatches). It must have a CRS.")
-        add(QgsProcessingParameterFeatureSource(self.FACES, "Rock faces (partition polygons)",
+        self.add(QgsProcessingParameterFeatureSource(self.FACES, "Rock faces (partition polygons)",
                                                 [QgsProcessing.TypeVectorPolygon]),
             "Polygons of the rock faces. When the line layer is not given, the lines are taken from the "
             "faces' own file (GeoPackage): a line layer with the label field, or layers named ridges / "
             "valleys; a line layer named orientation* there gives the faces' orientation.")
-        add(QgsProcessingParameterFeatureSource(self.LINES, "Labelled lines (ridges, valleys)",
+        self.add(QgsProcessingParameterFeatureSource(self.LINES, "Labelled lines (ridges, valleys)",
                                                 [QgsProcessing.TypeVectorLine], optional=True),
             "Lines that label the faces' borders, with a label field holding ridge, valley or other. "
             "Default: found in the faces' file.")
-        add(QgsProcessingParameterField(self.LABEL_FIELD, "Label field of the lines", "kind", self.LINES,
+        self.add(QgsProcessingParameterField(self.LABEL_FIELD, "Label field of the lines", "kind", self.LINES,
                                         QgsProcessingParameterField.String, optional=True),
             "Field of the line layer holding ridge / valley / other. Default: kind.")
-        add(QgsProcessingParameterField(self.ORIENTATION_FIELD, "Orientation field of the faces", "orientation",
+        self.add(QgsProcessingParameterField(self.ORIENTATION_FIELD, "Orientation field of the faces", "orientation",
                                         self.FACES, QgsProcessingParameterField.Numeric, optional=True),
             "Field of the faces with the hatching direction, azimuth in degrees clockwise from north. "
             "Default: orientation; faces without it take the orientation layer or the mean aspect.")
-        add(QgsProcessingParameterField(self.DENSITY_FIELD, "Density field of the faces", "density", self.FACES,
+        self.add(QgsProcessingParameterField(self.DENSITY_FIELD, "Density field of the faces", "density", self.FACES,
                                         QgsProcessingParameterField.Numeric, optional=True),
             "Field of the faces with the hatching density, 0 (light) to 1 (dark). Default: density; "
             "faces without it are shaded from the terrain.")
-        add(QgsProcessingParameterField(self.ID_FIELD, "Identifier field of the faces", None, self.FACES,
+        self.add(QgsProcessingParameterField(self.ID_FIELD, "Identifier field of the faces", None, self.FACES,
                                         QgsProcessingParameterField.Numeric, optional=True),
             "Integer field copied to face_id of the hatches. Default: the feature id.", advanced=True)
-        add(QgsProcessingParameterFeatureSource(self.ORIENTATION_LAYER, "Orientation lines",
+        self.add(QgsProcessingParameterFeatureSource(self.ORIENTATION_LAYER, "Orientation lines",
                                                 [QgsProcessing.TypeVectorLine], optional=True),
             "Lines along the faces' fall lines: a face takes the direction of the line it holds. "
             "Default: a layer named orientation* in the partition's file.", advanced=True)
-        add(QgsProcessingParameterRasterLayer(self.SLOPE, "Slope raster", optional=True),
+        self.add(QgsProcessingParameterRasterLayer(self.SLOPE, "Slope raster", optional=True),
             "Slope in percent replacing the one computed from the DEM (resampled onto the DEM's grid). "
             "Default: computed from the DEM (Horn).", advanced=True)
-        add(QgsProcessingParameterRasterLayer(self.ROUGHNESS, "Roughness raster", optional=True),
+        self.add(QgsProcessingParameterRasterLayer(self.ROUGHNESS, "Roughness raster", optional=True),
             "Roughness 0..1 replacing the one computed from the DEM (vector ruggedness). "
             "Default: computed from the DEM.", advanced=True)
         names, default = self.style_names()
         style = QgsProcessingParameterEnum(self.STYLE, "Style", names, defaultValue=default)
         style.setUsesStaticStrings(True)
-        add(style, f"Built-in style (thesis Fig. 5.4 a to g). Default: {default}. See the algorithm's help for "
+        self.add(style, f"Built-in style (thesis Fig. 5.4 a to g). Default: {default}. See the algorithm's help for "
                    "each style's parameters.")
-        add(QgsProcessingParameterFile(self.STYLE_SCRIPT, "Style script (Python)", extension="py", optional=True),
+        self.add(QgsProcessingParameterFile(self.STYLE_SCRIPT, "Style script (Python)", extension="py", optional=True),
             "A Python style script (styles/*.py of rockhatch: NAME, PARAMS, style(fields, params, seed)); "
             "replaces the built-in style when given.")
-        add(QgsProcessingParameterString(self.PARAMS, "Style parameters", optional=True),
+        self.add(QgsProcessingParameterString(self.PARAMS, "Style parameters", optional=True),
             "Overrides of the style's parameters: NAME=VALUE separated by ';', lengths in mm on paper at the "
             "map scale, e.g. spacing_min=0.3; length=2. Default: the style's values.", advanced=True)
-        add(QgsProcessingParameterNumber(self.SCALE, "Map scale 1:", QgsProcessingParameterNumber.Double, 10000,
+        self.add(QgsProcessingParameterNumber(self.SCALE, "Map scale 1:", QgsProcessingParameterNumber.Double, 10000,
                                          minValue=100),
             "Scale denominator of the map: the style's mm on paper become ground metres at this scale. "
             "Default: 10000.")
-        add(QgsProcessingParameterNumber(self.SEED, "Random seed", QgsProcessingParameterNumber.Integer, 0,
+        self.add(QgsProcessingParameterNumber(self.SEED, "Random seed", QgsProcessingParameterNumber.Integer, 0,
                                          minValue=0),
             "Seed of the styles' jitter: the same seed gives the same hatches. Default: 0.")
-        add(QgsProcessingParameterFileDestination(self.OUTPUT, "Hatches (GeoPackage)", "GeoPackage (*.gpkg)"),
+        self.add(QgsProcessingParameterFileDestination(self.OUTPUT, "Hatches (GeoPackage)", "GeoPackage (*.gpkg)"),
             "GeoPackage written with one LineString layer per hatch family (hatch_fill, hatch_ridge, "
             "hatch_valley, hatch_cross; fields face_id, family, style, width_mm) in the DEM's CRS (UTM "
             "for a geographic DEM). An existing file is replaced.")
-        add(QgsProcessingParameterFileDestination(self.SVG, "Hatches (SVG)", "SVG files (*.svg)", optional=True,
+        self.add(QgsProcessingParameterFileDestination(self.SVG, "Hatches (SVG)", "SVG files (*.svg)", optional=True,
                                                   createByDefault=False),
             "Optional SVG drawing of the hatches at the map scale (millimetres on paper).")
         self.addOutput(QgsProcessingOutputMultipleLayers("LAYERS", "Hatch layers"))

@@ -1,7 +1,7 @@
 """Processing algorithm "Rock partition from DEM": rockhatch partition on a QGIS raster."""
 from qgis.core import (QgsCategorizedSymbolRenderer, QgsFillSymbol, QgsLineSymbol, QgsProcessing,
                        QgsProcessingContext, QgsProcessingException, QgsProcessingLayerPostProcessorInterface,
-                       QgsProcessingOutputNumber, QgsProcessingParameterBoolean, QgsProcessingParameterDefinition,
+                       QgsProcessingOutputNumber, QgsProcessingParameterBoolean,
                        QgsProcessingParameterFeatureSource, QgsProcessingParameterFileDestination,
                        QgsProcessingParameterNumber, QgsProcessingParameterRasterLayer, QgsRendererCategory,
                        QgsSingleSymbolRenderer)
@@ -54,20 +54,14 @@ class RockPartition(RockhatchAlgorithm):
         return ["partition", "rock", "ridge", "thalweg", "couloir", "arete", "flow accumulation", "dem"]
 
     def initAlgorithm(self, config=None):  # noqa: N802
-        def add(param, help_text, advanced=False):
-            param.setHelp(help_text)
-            if advanced:
-                param.setFlags(param.flags() | QgsProcessingParameterDefinition.FlagAdvanced)
-            self.addParameter(param)
-
         def number(name, title, default, minimum, help_text, advanced=False, integer=False):
             kind = QgsProcessingParameterNumber.Integer if integer else QgsProcessingParameterNumber.Double
-            add(QgsProcessingParameterNumber(name, title, kind, default, minValue=minimum), help_text, advanced)
+            self.add(QgsProcessingParameterNumber(name, title, kind, default, minValue=minimum), help_text, advanced)
 
-        add(QgsProcessingParameterRasterLayer(self.DEM, "DEM"),
+        self.add(QgsProcessingParameterRasterLayer(self.DEM, "DEM"),
             "Elevation raster (metres) with a CRS; a geographic DEM is reprojected to its UTM zone, which "
             "becomes the CRS of the partition.")
-        add(QgsProcessingParameterFeatureSource(self.MASK, "Rock mask polygons", [QgsProcessing.TypeVectorPolygon],
+        self.add(QgsProcessingParameterFeatureSource(self.MASK, "Rock mask polygons", [QgsProcessing.TypeVectorPolygon],
                                                 optional=True),
             "Optional polygons: rock is looked for only inside them (e.g. the rock areas of an existing map).")
         number(self.MIN_SLOPE, "Minimum slope (percent)", 70.0, 0.0,
@@ -87,14 +81,14 @@ class RockPartition(RockhatchAlgorithm):
                "Default: 20000.", advanced=True)
         number(self.SMOOTH, "Smoothing (m)", 10.0, 0.0,
                "Smoothing of the DEM before flow routing, metres (0: none). Default: 10.", advanced=True)
-        add(QgsProcessingParameterFileDestination(self.OUTPUT, "Partition (GeoPackage)", "GeoPackage (*.gpkg)"),
+        self.add(QgsProcessingParameterFileDestination(self.OUTPUT, "Partition (GeoPackage)", "GeoPackage (*.gpkg)"),
             "GeoPackage with the layers faces (id, orientation = azimuth in degrees, density 0..1, area), lines "
             "(kind = ridge / valley / other), mask and network (every traced ridge and thalweg), ready for "
             "Rock hatching. An existing file is replaced.")
-        add(QgsProcessingParameterFileDestination(self.PREVIEW, "Preview (PNG)", "PNG files (*.png)", optional=True,
+        self.add(QgsProcessingParameterFileDestination(self.PREVIEW, "Preview (PNG)", "PNG files (*.png)", optional=True,
                                                   createByDefault=False),
             "Optional PNG: the hillshade, the faces tinted, ridges red, thalwegs blue.")
-        add(QgsProcessingParameterBoolean(self.NETWORK, "Load the traced network too", False),
+        self.add(QgsProcessingParameterBoolean(self.NETWORK, "Load the traced network too", False),
             "Also load the network layer (every traced ridge and thalweg, including those that end inside a "
             "face). Default: no.", advanced=True)
         self.addOutput(QgsProcessingOutputNumber("FACES_COUNT", "Faces"))
