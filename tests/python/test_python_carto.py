@@ -240,3 +240,14 @@ def test_cancelling_while_the_geopackage_is_written(sample_dir, tmp_path):
         carto.write_gpkg(drawing, str(tmp_path / "w.gpkg"), progress=lambda f, s: calls.append(f) or len(calls) < 3)
     assert e.value.code == 10 and len(calls) == 3 and calls == sorted(calls)
     assert list(tmp_path.iterdir()) == []
+
+
+def test_an_exception_in_the_progress_callback_stops_the_run(sample_dir, tmp_path):
+    def progress(fraction, stage):
+        if stage == "hatching":
+            raise ValueError("stop here")
+
+    with pytest.raises(ValueError, match="stop here"):
+        carto.run(sample_dir / "dem.tif", sample_dir / "partition.gpkg", [tmp_path / "x.svg"], progress=progress,
+                  threads=2)
+    assert list(tmp_path.iterdir()) == []
