@@ -221,6 +221,40 @@ def test_rock_partition_equals_the_command(qgis, rockhatch_exe, sample_dir, tmp_
     assert hatched["FACES_HATCHED"] == counts["faces"] and hatched["HATCHES"] > 10000
 
 
+def test_a_graphical_model_from_dem_to_hatching(qgis, rockhatch_exe, sample_dir, tmp_path):
+    """The algorithms chain in a Processing model: DEM -> Rock partition -> Rock hatching,
+    with the partition in a temporary file of the model; same hatches as the two commands."""
+    from qgis.core import (QgsProcessingModelAlgorithm, QgsProcessingModelChildAlgorithm,
+                           QgsProcessingModelChildParameterSource, QgsProcessingModelOutput,
+                           QgsProcessingModelParameter, QgsProcessingParameterRasterLayer)
+    model = QgsProcessingModelAlgorithm("dem_to_hatching", "rockhatch tests")
+    model.addModelParameter(QgsProcessingParameterRasterLayer("dem", "DEM"), QgsProcessingModelParameter("dem"))
+    dem_source = QgsProcessingModelChildParameterSource.fromModelParameter("dem")
+    part = QgsProcessingModelChildAlgorithm("rockhatch:rockpartition")
+    part.setChildId("partition")
+    part.addParameterSources("DEM", [dem_source])
+    model.addChildAlgorithm(part)
+    hatch = QgsProcessingModelChildAlgorithm("rockhatch:rockhatching")
+    hatch.setChildId("hatching")
+    hatch.addParameterSources("DEM", [dem_source])
+    hatch.addParameterSources("FACES", [QgsProcessingModelChildParameterSource.fromChildOutput("partition", "OUTPUT")])
+    output = QgsProcessingModelOutput("hatches", "Hatches")
+    output.setChildId("hatching")
+    output.setChildOutputName("OUTPUT")
+    hatch.setModelOutputs({"hatches": output})
+    model.addChildAlgorithm(hatch)
+    model.updateDestinationParameters()
+    result = run(model, {"dem": str(sample_dir / "dem.tif"), "hatching:hatches": str(tmp_path / "m.gpkg")})
+    assert result["hatching:hatches"] == str(tmp_path / "m.gpkg")
+
+    part_gpkg, cli = tmp_path / "p.gpkg", tmp_path / "cli.gpkg"
+    subprocess.run([str(rockhatch_exe), "partition", "-q", "--dem", str(sample_dir / "dem.tif"), "-o", str(part_gpkg)],
+                   check=True)
+    subprocess.run([str(rockhatch_exe), "-q", "--dem", str(sample_dir / "dem.tif"), "--partition", str(part_gpkg),
+                    "-o", str(cli)], check=True)
+    assert layer_counts(tmp_path / "m.gpkg") == layer_counts(cli)
+
+
 def test_rock_partition_without_rock_raises(qgis, tmp_path):
     flat = tmp_path / "flat.tif"
     ds = gdal.GetDriverByName("GTiff").Create(str(flat), 50, 50, 1, gdal.GDT_Float32)

@@ -201,6 +201,15 @@ class RockHatching(RockhatchAlgorithm):
             parameters, name, context, OGR_EXTENSIONS, "gpkg", feedback)
         return path, layer or ""
 
+    def is_copy(self, parameters, name, context, path):
+        """True when `path` is a copy Processing wrote of the layer (a memory layer, a
+        selection, a filter), not the file the layer is read from."""
+        source = self.parameterAsVectorLayer(parameters, name, context)
+        if source is None or source.providerType() != "ogr":
+            return True
+        own = source.source().split("|")[0]
+        return os.path.realpath(own) != os.path.realpath(path) or "subset=" in source.source()
+
     def partition_options(self, parameters, context, feedback):
         """The partition path and layer options: the faces' file when every layer lies in it,
         else a temporary GeoPackage with the layers faces, lines, orientation."""
@@ -211,8 +220,7 @@ class RockHatching(RockhatchAlgorithm):
         files = {os.path.realpath(p) for p, _ in given.values()}
         if len(files) == 1:
             path = given["faces_layer"][0]
-            temporary = os.path.realpath(path).startswith(os.path.realpath(QgsProcessingUtils.tempFolder()))
-            if temporary and "lines_layer" not in given:
+            if "lines_layer" not in given and self.is_copy(parameters, self.FACES, context, path):
                 raise QgsProcessingException(
                     "FACES is not read from its own file (a selection, a filter or a memory layer): give the "
                     "labelled lines layer LINES")
