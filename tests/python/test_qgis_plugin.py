@@ -416,9 +416,9 @@ def test_install_zip(tmp_path):
     assert not [n for n in names if "__pycache__" in n or not n.startswith("rockhatch_qgis/")]
 
 
-@pytest.mark.skipif(not os.path.exists(QGIS_PROCESS), reason="qgis_process is not installed")
 def test_qgis_process_runs_rock_hatching(sample_dir, reference, tmp_path):
     """The install command into a throwaway profile, then qgis_process as a cartographer runs it."""
+    assert os.path.exists(QGIS_PROCESS), f"{QGIS_PROCESS} is missing: scripts/setup.sh installs QGIS (package qgis)"
     config = tmp_path / "config"
     env = python_env()
     env.update(QGIS_CUSTOM_CONFIG_PATH=str(config), QT_QPA_PLATFORM="offscreen", XDG_RUNTIME_DIR=str(tmp_path),
