@@ -20,7 +20,7 @@ from ._rockhatch.carto import *  # noqa: F401,F403
 from ._rockhatch import carto as _carto
 
 __all__ = [n for n in dir(_carto) if not n.startswith("_")] + [
-    "run", "prepare", "hatch", "make_options", "load_style", "as_style", "error", "partition_from_dem"]
+    "run", "run_options", "prepare", "hatch", "make_options", "load_style", "as_style", "error", "partition_from_dem"]
 
 
 def error(code, message):
@@ -85,7 +85,7 @@ _PARTITION_KEYS = ("faces_layer", "lines_layer", "label_field", "id_field", "ori
                    "orientation_layer", "density_field", "density_layer", "repair", "snap")
 
 
-def make_options(dem, partition, outputs=(), style=None, params=None, scale=10000.0, seed=0, threads=0,
+def make_options(dem="", partition="", outputs=(), style=None, params=None, scale=10000.0, seed=0, threads=0,
                  overwrite=False, slope="", roughness="", window=None, png_pixels=1600, spatial_index=True,
                  **partition_options):
     """The Options of the rockhatch command from keyword arguments (same names as its
@@ -120,7 +120,12 @@ def make_options(dem, partition, outputs=(), style=None, params=None, scale=1000
 def run(dem, partition, outputs, progress=None, **kwargs):
     """Everything the rockhatch command does; returns Stats. progress(fraction, stage) may
     return False to cancel (RockhatchError with code 10)."""
-    return _carto.run(make_options(dem, partition, outputs, **kwargs), progress)
+    return run_options(make_options(dem, partition, outputs, **kwargs), progress)
+
+
+def run_options(options, progress=None):
+    """carto::run on ready-made Options (what the command line parses into)."""
+    return _carto.run(options, progress)
 
 
 def prepare(dem, partition, progress=None, **kwargs):
@@ -131,8 +136,7 @@ def prepare(dem, partition, progress=None, **kwargs):
 
 def hatch(prepared, progress=None, **kwargs):
     """Hatches a prepared partition; returns a Drawing (write it with write_gpkg / write_svg)."""
-    o = make_options(kwargs.pop("dem", "-"), kwargs.pop("partition", "-"), **kwargs)
-    return _carto.hatch(prepared, o, progress)
+    return _carto.hatch(prepared, make_options(**kwargs), progress)
 
 
 def partition_from_dem(dem, output=None, progress=None, overwrite=False, png=None, png_pixels=1600, **options):

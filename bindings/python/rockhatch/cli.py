@@ -50,7 +50,7 @@ def main(argv=None, style=None):
                 raise carto.error(2, "--style and --script (or a style script) exclude each other")
             options.custom_style = carto.as_style(chosen) if not isinstance(chosen, str) else carto.load_style(chosen)
         bar = _Bar(not cl.quiet)
-        stats = carto._carto.run(options, bar)
+        stats = carto.run_options(options, bar)
         bar.finish()
         if not cl.quiet:
             for note in stats.notes:
