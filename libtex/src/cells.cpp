@@ -61,10 +61,8 @@ BBox CellBBox(const Vertex& c) {
 }
 
 BBox CellBBox(const Edge& c) {
-    const EdgeRec& r = record(c);
     BBox b;
-    b.add(c.map().vertices()[r.source].point);
-    b.add(c.map().vertices()[r.target].point);
+    for (const Point& p : record(c).points) b.add(p);
     return b;
 }
 
@@ -72,7 +70,7 @@ BBox CellBBox(const Face& c) {
     const FaceRec& r = record(c);
     BBox b;
     if (r.unbounded) return b;
-    for (const Side& s : r.cycles.front()) b.add(c.map().side_start(s));
+    for (const Point& p : c.map().cycle_points(c.id(), 0)) b.add(p);
     return b;
 }
 
@@ -92,10 +90,19 @@ Curves MatchFace(const Curves& c, const Face& f) {
 Point Location(const Vertex& v) { return record(v).point; }
 
 Point LocationAt(const Edge& e, double s) {
-    const EdgeRec& r = record(e);
-    const Point& a = e.map().vertices()[r.source].point;
-    const Point& b = e.map().vertices()[r.target].point;
-    return a + (b - a) * s;
+    // By arc length along the edge's polyline.
+    const std::vector<Point>& p = record(e).points;
+    double total = 0;
+    for (std::size_t i = 1; i < p.size(); ++i) total += distance(p[i - 1], p[i]);
+    if (!(s > 0) || total == 0) return p.front();
+    if (s >= 1) return p.back();
+    double want = s * total;
+    for (std::size_t i = 1; i < p.size(); ++i) {
+        const double l = distance(p[i - 1], p[i]);
+        if (want <= l && l > 0) return p[i - 1] + (p[i] - p[i - 1]) * (want / l);
+        want -= l;
+    }
+    return p.back();
 }
 
 Point Centroid(const Face& f) {

@@ -1,14 +1,20 @@
 // Merging operators and the mask they share with the cropping partitions.
 //
-// Masking induces one planar map of the subject curves together with the mask's face
-// boundaries. The mask boundaries carry a reserved marker label on the side of the mask's
-// bounded faces, so each face of the joint map knows whether it lies inside the mask as soon
-// as one mask edge bounds it; the other faces (bounded only by subject curves) inherit the
-// status of their neighbours, since crossing a subject curve does not enter or leave the
-// mask. No point location is needed.
+// A mask is the set of boundaries of the bounded faces of a planar map (or a region's
+// rings). Subject curves that meet none of its segments lie in one of its faces: they are
+// kept or dropped whole after one exact point location (segment_index.hpp). The others are
+// inserted, with the mask boundaries, into one exact planar map. The mask boundaries carry
+// a reserved marker label on the side of the mask's bounded faces, so each face of that
+// joint map knows whether it lies inside as soon as one mask edge bounds it; the other
+// faces (bounded only by subject curves) inherit the status of their neighbours, since
+// crossing a subject curve does not enter or leave the mask.
 #include "libtex/merge.hpp"
 
 #include <deque>
+#include <map>
+#include <numeric>
+
+#include "segment_index.hpp"
 
 #include "libtex/error.hpp"
 #include "libtex/parallel.hpp"
@@ -19,6 +25,14 @@ namespace {
 LabelId inside_marker() {
     static const LabelId id = intern_label("\x01libtex-inside");
     return id;
+}
+
+Curve strip(Curve c) {
+    const LabelId in = inside_marker();
+    c.left.remove(in);
+    c.right.remove(in);
+    c.labels.remove(in);
+    return c;
 }
 
 enum class Status : signed char { Unknown = -1, Out = 0, In = 1 };
@@ -61,70 +75,278 @@ std::vector<Status> classify_faces(const PlanarMap& j, std::size_t n_subject) {
     return status;
 }
 
-Curves mask_core(Curves subject, const Curves& mask, MaskSide side, Border b) {
+// A subject curve's points for masking: finite, without repeated consecutive points.
+std::vector<Point> clean_points(const Curve& c) {
+    std::vector<Point> p;
+    p.reserve(c.points.size());
+    for (const Point& q : c.points) {
+        if (!std::isfinite(q.x) || !std::isfinite(q.y)) continue;
+        if (p.empty() || p.back() != q) p.push_back(q);
+    }
+    if (c.closed)
+        while (p.size() > 1 && p.front() == p.back()) p.pop_back();
+    return p;
+}
+
+// A stretch of consecutive segments of one subject curve that all meet the mask (near) or
+// all miss it (far).
+struct Run {
+    std::uint32_t curve;
+    std::vector<Point> pts;
+    bool closed;
+    bool near;
+};
+
+// Cuts each subject curve into near and far runs. A far run lies in one face of the mask,
+// so one exact point location classifies it; only the near runs go, with the mask
+// boundaries, into the exact planar map.
+std::vector<Run> split_runs(const Curves& subject, const detail::SegmentGrid& grid, bool only_changing,
+                            std::vector<char>& touched) {
+    std::vector<Run> runs;
+    std::vector<char> near;
+    for (std::uint32_t i = 0; i < subject.curves.size(); ++i) {
+        std::vector<Point> pts = clean_points(subject.curves[i]);
+        const std::size_t n = pts.size();
+        if (n < 2) continue;
+        const bool closed = subject.curves[i].closed && n >= 3;
+        const std::size_t nseg = closed ? n : n - 1;
+        near.assign(nseg, 0);
+        bool any = false, all = true;
+        for (std::size_t k = 0; k < nseg; ++k) {
+            near[k] = grid.touches(pts[k], pts[(k + 1) % n], only_changing, &touched);
+            any |= near[k] != 0;
+            all &= near[k] != 0;
+        }
+        if (!any || all) {
+            runs.push_back({i, std::move(pts), closed, any});
+            continue;
+        }
+        std::size_t k0 = 0;
+        if (closed)
+            while (near[k0] == near[(k0 + nseg - 1) % nseg]) ++k0;
+        for (std::size_t s = 0; s < nseg;) {
+            const std::size_t k = (k0 + s) % nseg;
+            std::size_t len = 1;
+            while (s + len < nseg && near[(k + len) % nseg] == near[k]) ++len;
+            Run r{i, {}, false, near[k] != 0};
+            r.pts.reserve(len + 1);
+            for (std::size_t t = 0; t <= len; ++t) r.pts.push_back(pts[(k + t) % n]);
+            runs.push_back(std::move(r));
+            s += len;
+        }
+    }
+    return runs;
+}
+
+// Joins the kept pieces of one curve that meet end to start away from the mask, so that a
+// curve is only cut where it meets the mask. Pieces run in the curve's direction.
+void stitch(std::vector<std::vector<Point>>& pieces, const Curve& source, const detail::SegmentGrid& grid,
+            Curves& out) {
+    const std::size_t n = pieces.size();
+    std::vector<int> next(n, -1), prev(n, -1);
+    {
+        std::map<Point, std::vector<int>> starts, ends;
+        for (std::size_t i = 0; i < n; ++i) {
+            starts[pieces[i].front()].push_back(int(i));
+            ends[pieces[i].back()].push_back(int(i));
+        }
+        for (const auto& [p, e] : ends) {
+            auto it = starts.find(p);
+            if (e.size() != 1 || it == starts.end() || it->second.size() != 1) continue;
+            if (grid.touches(p, p, false)) continue;  // cut by the mask
+            next[e[0]] = it->second[0];  // a closed curve kept whole links to itself
+            prev[it->second[0]] = e[0];
+        }
+    }
+    std::vector<char> done(n, 0);
+    auto emit = [&](std::size_t first, bool cycle) {
+        Curve c;
+        c.labels = source.labels;
+        c.left = source.left;
+        c.right = source.right;
+        std::size_t i = first;
+        do {
+            done[i] = 1;
+            const auto& p = pieces[i];
+            c.points.insert(c.points.end(), p.begin() + (c.points.empty() ? 0 : 1), p.end());
+            if (next[i] < 0) break;
+            i = std::size_t(next[i]);
+        } while (i != first);
+        if (cycle && c.points.size() > 2 && c.points.front() == c.points.back()) {
+            c.points.pop_back();
+            c.closed = true;
+        }
+        out.curves.push_back(std::move(c));
+    };
+    for (std::size_t i = 0; i < n; ++i)
+        if (prev[i] < 0) emit(i, false);
+    for (std::size_t i = 0; i < n; ++i)
+        if (!done[i]) emit(i, true);
+}
+
+// The mask curves the exact planar map needs: every connected piece of the mask boundary
+// that a near run touches. A piece no near run touches lies inside one face of that map and
+// changes nothing there, unless some near run lies inside it (then the face would mix both
+// sides): in that case every mask curve is used.
+std::vector<char> mask_curves_needed(const Curves& mask, const detail::SegmentGrid& grid, const std::vector<Run>& runs,
+                                     const std::vector<char>& touched) {
+    const std::size_t n = mask.curves.size();
+    std::vector<std::size_t> parent(n);
+    std::iota(parent.begin(), parent.end(), std::size_t(0));
+    auto find = [&](std::size_t i) {
+        while (parent[i] != i) i = parent[i] = parent[parent[i]];
+        return i;
+    };
+    std::map<Point, std::size_t> at;
+    for (std::size_t m = 0; m < n; ++m) {
+        const auto& pts = mask.curves[m].points;
+        if (pts.empty()) continue;
+        for (const Point& p : {pts.front(), pts.back()}) {
+            auto [it, fresh] = at.emplace(p, m);
+            if (!fresh) parent[find(m)] = find(it->second);
+        }
+    }
+    std::vector<char> comp_used(n, 0), included(n, 0);
+    for (std::size_t m = 0; m < n; ++m)
+        if (touched[m]) comp_used[find(m)] = 1;
+    bool all = true;
+    for (std::size_t m = 0; m < n; ++m) {
+        included[m] = comp_used[find(m)];
+        all &= included[m] != 0;
+    }
+    if (all) return included;
+    std::vector<detail::Seg> rest;
+    for (const auto& s : grid.segments())
+        if (!included[s.owner] && s.changes()) rest.push_back(s);
+    if (rest.empty()) return included;
+    const detail::SegmentGrid left_out(std::move(rest));
+    for (const Run& r : runs)
+        if (r.near && left_out.locate(r.pts.front()) != detail::SegmentGrid::Where::Out)
+            return std::vector<char>(n, 1);
+    return included;
+}
+
+Curves mask_core(const Curves& subject, const Curves& mask, MaskSide side, Border b) {
     const LabelId in = inside_marker();
     const bool keep_whole = (b == Border::KEEP_INSIDE || b == Border::KEEP_OUTSIDE);
-    Curves pieces_src = keep_whole ? PlanarMap::induce(subject)->edge_curves() : subject;
-    const std::size_t n_subject = pieces_src.curves.size();
+    const bool want_in = side == MaskSide::Inside;
+    const Status wanted = want_in ? Status::In : Status::Out;
 
-    Curves joint = pieces_src;
-    joint.points.clear();
-    joint.curves.insert(joint.curves.end(), mask.curves.begin(), mask.curves.end());
-    MapPtr jm = PlanarMap::induce(joint);
-    const std::vector<Status> status = classify_faces(*jm, n_subject);
+    std::vector<detail::Seg> mask_segs = detail::curve_segments(mask);
+    for (auto& sg : mask_segs) {
+        const Curve& mc = mask.curves[sg.owner];
+        sg.in_left = mc.left.has(in);
+        sg.in_right = mc.right.has(in);
+    }
+    const detail::SegmentGrid grid(std::move(mask_segs));
 
-    const Status wanted = side == MaskSide::Inside ? Status::In : Status::Out;
-    auto strip = [&](Curve c) {
-        c.left.remove(in);
-        c.right.remove(in);
-        c.labels.remove(in);
-        return c;
-    };
+    // KEEP modes decide on the edges of the subject's own planar map; CROP on its curves.
+    Curves edges;
+    if (keep_whole) edges = detail::maximal_edges(subject);
+    const Curves& src = keep_whole ? edges : subject;
+    // KEEP modes only care where the inside changes; CROP also cuts at inner boundaries.
+    std::vector<char> touched(mask.curves.size(), 0);
+    const std::vector<Run> runs = split_runs(src, grid, keep_whole, touched);
+    const std::vector<char> included = mask_curves_needed(mask, grid, runs, touched);
+
+    std::vector<Status> run_status(runs.size(), Status::Unknown);
+    Curves joint;
+    std::vector<std::uint32_t> joint_run;
+    for (std::uint32_t r = 0; r < runs.size(); ++r) {
+        if (!runs[r].near) {
+            run_status[r] = grid.locate(runs[r].pts.front()) == detail::SegmentGrid::Where::In ? Status::In : Status::Out;
+            continue;
+        }
+        const Curve& c = src.curves[runs[r].curve];
+        Curve jc;
+        jc.points = runs[r].pts;
+        jc.closed = runs[r].closed;
+        jc.labels = c.labels;
+        jc.left = c.left;
+        jc.right = c.right;
+        joint.curves.push_back(std::move(jc));
+        joint_run.push_back(r);
+    }
+    const std::size_t n_subject = joint.curves.size();
+    MapPtr jm;
+    std::vector<Status> status;
+    if (n_subject > 0) {
+        for (std::size_t m = 0; m < mask.curves.size(); ++m)
+            if (included[m]) joint.curves.push_back(mask.curves[m]);
+        jm = PlanarMap::induce(joint);
+        status = classify_faces(*jm, n_subject);
+    }
 
     Curves out;
     out.points = subject.points;
     if (keep_whole) {
-        // Whole edges of the subject's planar map, kept by the status of their pieces.
-        std::vector<int> any(n_subject, 0), all(n_subject, 1), seen(n_subject, 0);
-        for (const EdgeRec& e : jm->edges()) {
-            bool on_mask = false;
-            for (const auto& s : e.sources) on_mask |= s.curve >= n_subject;
-            const bool ok = on_mask ? (status[e.left] == wanted || status[e.right] == wanted)
-                                    : status[e.left] == wanted;
-            for (const auto& s : e.sources) {
-                if (s.curve >= n_subject) continue;
-                seen[s.curve] = 1;
-                any[s.curve] |= ok;
-                all[s.curve] &= ok;
+        // Whole edges, kept by the status of all their pieces (KEEP_INSIDE) or of any one
+        // (KEEP_OUTSIDE); a piece lying on the mask boundary counts for both sides.
+        std::vector<char> any(src.curves.size(), 0), all(src.curves.size(), 1), seen(src.curves.size(), 0);
+        auto note = [&](std::uint32_t curve, bool ok) {
+            seen[curve] = 1;
+            any[curve] |= ok;
+            all[curve] &= ok;
+        };
+        for (std::uint32_t r = 0; r < runs.size(); ++r)
+            if (!runs[r].near) note(runs[r].curve, run_status[r] == wanted);
+        if (jm)
+            for (const EdgeRec& e : jm->edges()) {
+                bool on_mask = false;
+                for (const auto& s : e.sources) on_mask |= s.curve >= n_subject;
+                const bool ok = on_mask ? (status[e.left] == wanted || status[e.right] == wanted)
+                                        : status[e.left] == wanted;
+                for (const auto& s : e.sources)
+                    if (s.curve < n_subject) note(runs[joint_run[s.curve]].curve, ok);
             }
-        }
-        for (std::size_t i = 0; i < n_subject; ++i) {
+        for (std::size_t i = 0; i < src.curves.size(); ++i) {
             const bool keep = b == Border::KEEP_INSIDE ? (seen[i] && all[i]) : any[i];
-            if (keep) out.curves.push_back(pieces_src.curves[i]);
+            if (keep) out.curves.push_back(src.curves[i]);
         }
         return out;
     }
 
-    for (std::size_t ei = 0; ei < jm->edges().size(); ++ei) {
-        const EdgeRec& e = jm->edges()[ei];
-        bool on_mask = false, on_subject = false, mask_bounded = false;
-        for (const auto& s : e.sources) {
-            if (s.curve >= n_subject) {
-                on_mask = true;
-                const Curve& mc = joint.curves[s.curve];
-                mask_bounded |= mc.left.has(in) || mc.right.has(in);
-            } else {
-                on_subject = true;
+    // CROP: the kept pieces of each curve, in its direction, then joined where the mask
+    // does not cut them.
+    std::vector<std::vector<std::vector<Point>>> pieces(src.curves.size());
+    Curves loose;  // pieces on the mask or shared by several curves
+    for (std::uint32_t r = 0; r < runs.size(); ++r)
+        if (!runs[r].near && run_status[r] == wanted) {
+            std::vector<Point> p = runs[r].pts;
+            if (runs[r].closed) p.push_back(p.front());
+            pieces[runs[r].curve].push_back(std::move(p));
+        }
+    if (jm)
+        for (std::size_t ei = 0; ei < jm->edges().size(); ++ei) {
+            const EdgeRec& e = jm->edges()[ei];
+            bool on_mask = false, on_subject = false, mask_bounded = false;
+            for (const auto& s : e.sources) {
+                if (s.curve >= n_subject) {
+                    on_mask = true;
+                    const Curve& mc = joint.curves[s.curve];
+                    mask_bounded |= mc.left.has(in) || mc.right.has(in);
+                } else {
+                    on_subject = true;
+                }
             }
+            bool keep = false;
+            if (on_subject)
+                keep = on_mask ? (status[e.left] == wanted || status[e.right] == wanted) : status[e.left] == wanted;
+            if (keep && !on_mask && e.sources.size() == 1) {
+                std::vector<Point> p = e.points;
+                if (!e.sources[0].forward) std::reverse(p.begin(), p.end());
+                pieces[runs[joint_run[e.sources[0].curve]].curve].push_back(std::move(p));
+                continue;
+            }
+            if (!keep && on_mask && b == Border::CROP_ADD_BOUNDARY) keep = mask_bounded;
+            if (keep) loose.curves.push_back(strip(jm->edge_curve(int(ei))));
         }
-        bool keep = false;
-        if (on_subject) {
-            keep = on_mask ? (status[e.left] == wanted || status[e.right] == wanted)
-                           : status[e.left] == wanted;
-        }
-        if (!keep && on_mask && b == Border::CROP_ADD_BOUNDARY) keep = mask_bounded;
-        if (keep) out.curves.push_back(strip(jm->edge_curve(int(ei))));
-    }
+    for (std::size_t i = 0; i < src.curves.size(); ++i)
+        if (!pieces[i].empty()) stitch(pieces[i], src.curves[i], grid, out);
+    for (auto& c : loose.curves) out.curves.push_back(std::move(c));
+    if (!jm && b == Border::CROP_ADD_BOUNDARY)
+        for (const Curve& mc : mask.curves)
+            if (mc.left.has(in) || mc.right.has(in)) out.curves.push_back(strip(mc));
     return out;
 }
 
@@ -139,7 +361,7 @@ Curves apply_mask(const Curves& subject, const PlanarMap& mask_map, MaskSide sid
         const bool right_in = !mask_map.faces()[e.right].unbounded;
         if (!left_in && !right_in) continue;  // a dangling edge in the unbounded face
         Curve c;
-        c.points = {mask_map.vertices()[e.source].point, mask_map.vertices()[e.target].point};
+        c.points = e.points;
         if (left_in) c.left.add(in);
         if (right_in) c.right.add(in);
         mask.curves.push_back(std::move(c));

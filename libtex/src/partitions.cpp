@@ -111,9 +111,11 @@ Curves realize(const Complex& cx, const Region& r, Border b) {
         // they cross, so that a face bounded only by the outline keeps its labels.
         for (auto& c : out.curves) {
             if (!c.labels.empty() || !c.left.empty() || !c.right.empty()) continue;
-            const Point mid = (c.points.front() + c.points.back()) / 2;
-            // The inside is on the left of an outline piece; nudge the probe that way.
-            const Point d = c.points.back() - c.points.front();
+            if (c.points.size() < 2) continue;
+            // Probe beside the middle of the piece's first segment (the piece may turn a
+            // corner of the outline); the inside is on its left.
+            const Point mid = (c.points[0] + c.points[1]) / 2;
+            const Point d = c.points[1] - c.points[0];
             const double len = norm(d);
             if (len == 0) continue;
             const Point probe = mid + Point{-d.y, d.x} * (1e-7 / len * std::max(1.0, len));

@@ -1,6 +1,9 @@
 // Merging operators (table 3.5): which edges Inside and Outside keep in each border mode.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "helpers.hpp"
 
 using namespace tex;
@@ -69,4 +72,124 @@ TEST(Merge, RegionMaskWithHole) {
     const Region r({{0, 0}, {10, 0}, {10, 10}, {0, 10}}, {{{3, 3}, {7, 3}, {7, 7}, {3, 7}}});
     const Curves c = apply_mask(Polyline({{-1, 5}, {11, 5}}), r, CROP);
     EXPECT_NEAR(th::length(c), 6, 1e-12);  // 3 + 3, the hole cut out
+}
+
+// ---- KEEP modes keep or drop each edge of A1 whole (thesis Table 3.5, Fig. 3.6) ----
+
+namespace {
+
+Curves circle(Point c, double r, const char* label) {
+    Curves out;
+    Curve cv;
+    for (int i = 0; i < 48; ++i) cv.points.push_back(c + Point{r * std::cos(2 * pi * i / 48), r * std::sin(2 * pi * i / 48)});
+    cv.closed = true;
+    cv.labels = Labels{label};
+    out.curves.push_back(cv);
+    return out;
+}
+
+// Three circles: one well inside the square [0, 10]^2, one across its right side, one
+// outside.
+Arrangement three_circles() {
+    Curves c = circle({5, 5}, 2, "in");
+    c.append(circle({10, 5}, 2, "across"));
+    c.append(circle({20, 5}, 2, "out"));
+    return Constant(c);
+}
+
+std::vector<std::string> kept(const Curves& c) {
+    std::vector<std::string> out;
+    for (const auto& cv : c.curves) {
+        EXPECT_TRUE(cv.closed) << "a circle was cut";
+        EXPECT_EQ(cv.points.size(), 48u) << "a circle was cut";
+        out.push_back(cv.labels.names().at(0));
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+using Names = std::vector<std::string>;
+
+}  // namespace
+
+TEST(MergeKeep, CirclesAreKeptOrDroppedWhole) {
+    EXPECT_EQ(kept(Inside(three_circles(), square(), KEEP_INSIDE)(kAny)), (Names{"in"}));
+    EXPECT_EQ(kept(Inside(three_circles(), square(), KEEP_OUTSIDE)(kAny)), (Names{"across", "in"}));
+    EXPECT_EQ(kept(Outside(three_circles(), square(), KEEP_INSIDE)(kAny)), (Names{"out"}));
+    EXPECT_EQ(kept(Outside(three_circles(), square(), KEEP_OUTSIDE)(kAny)), (Names{"across", "out"}));
+}
+
+TEST(MergeKeep, CropCutsTheCircleAcrossTheBorder) {
+    const Curves in = Inside(three_circles(), square(), CROP)(kAny);
+    const Curves out = Outside(three_circles(), square(), CROP)(kAny);
+    // Half of the crossing circle on each side.
+    const double c = th::length(circle({0, 0}, 2, "x"));
+    EXPECT_NEAR(th::length(in), 1.5 * c, 1e-9);
+    EXPECT_NEAR(th::length(out), 1.5 * c, 1e-9);
+    std::size_t open = 0;
+    for (const auto& cv : in.curves) open += !cv.closed;
+    EXPECT_EQ(open, 1u);  // the half circle inside, in one piece
+}
+
+TEST(MergeKeep, EdgesOfA1AreCutOnlyWhereA1MeetsItself) {
+    // Two overlapping circles of A1 make four edges (two arcs each). Across the square's
+    // right side (x = 10), KEEP_INSIDE keeps the three arcs left of it whole and drops b's
+    // outer arc, which leaves the square.
+    Curves c = circle({8, 5}, 1.5, "a");
+    c.append(circle({10, 5}, 1.5, "b"));
+    const Curves in = Inside(Constant(c), square(), KEEP_INSIDE)(kAny);
+    ASSERT_EQ(in.curves.size(), 3u);
+    for (const auto& cv : in.curves) {
+        EXPECT_FALSE(cv.closed);
+        for (const auto& p : cv.points) EXPECT_LT(p.x, 10);
+    }
+}
+
+TEST(MergeKeep, FarAndNearCurvesAgreeWithTheExactMap) {
+    // Small squares [i, i + 0.5] x [j, j + 0.5]: those with i or j equal to 0 or 10 touch the
+    // mask [0, 10]^2 along one side (they take the exact planar map), the others are classified
+    // by point location. A piece lying on the mask border counts for both sides.
+    Curves c;
+    for (int i = -2; i <= 11; ++i)
+        for (int j = -2; j <= 11; ++j) c.append(Polyline({{i + 0.0, j + 0.0}, {i + 0.5, j + 0.0}, {i + 0.5, j + 0.5}, {i + 0.0, j + 0.5}}, true));
+    auto whole = [](const Curves& k) {
+        std::size_t n = 0;
+        for (const auto& cv : k.curves) n += cv.closed && cv.points.size() == 4;
+        EXPECT_EQ(n, k.curves.size());
+        return n;
+    };
+    EXPECT_EQ(whole(Inside(Constant(c), square(), KEEP_INSIDE)(kAny)), 100u);
+    EXPECT_EQ(whole(Inside(Constant(c), square(), KEEP_OUTSIDE)(kAny)), 120u);  // + the 20 touching from outside
+    EXPECT_EQ(whole(Outside(Constant(c), square(), KEEP_INSIDE)(kAny)), 96u);
+    EXPECT_EQ(whole(Outside(Constant(c), square(), KEEP_OUTSIDE)(kAny)), 115u);  // + the 19 touching from inside
+}
+
+TEST(MergeMask, MaskPiecesLeftOutOfTheExactMapCannotHideASide) {
+    // A2: a square C with a square D nested inside it (so D's sides have the inside on both
+    // hands), and a square E apart. A1 crosses D (inside C, touching neither C's sides) and
+    // crosses E. C is not needed to cut anything, but leaving it out of the exact map would
+    // put D and E on the same face and make A1's piece left of E look inside.
+    Curves a2 = Polyline({{0, 0}, {10, 0}, {10, 10}, {0, 10}}, true);
+    a2.append(Polyline({{4, 4}, {6, 4}, {6, 6}, {4, 6}}, true));
+    a2.append(Polyline({{20, 0}, {30, 0}, {30, 10}, {20, 10}}, true));
+    Curves a1 = Polyline({{3, 5}, {7, 5}});
+    a1.append(Polyline({{15, 5}, {25, 5}}));
+    EXPECT_NEAR(th::length(Inside(Constant(a1), Constant(a2), CROP)(kAny)), 4 + 5, 1e-12);
+    EXPECT_NEAR(th::length(Outside(Constant(a1), Constant(a2), CROP)(kAny)), 5, 1e-12);
+    EXPECT_NEAR(th::length(Outside(Constant(a1), Constant(a2), KEEP_OUTSIDE)(kAny)), 10, 1e-12);
+    EXPECT_NEAR(th::length(Inside(Constant(a1), Constant(a2), KEEP_INSIDE)(kAny)), 4, 1e-12);
+}
+
+TEST(MergeMask, CropKeepsCurvesWholeBetweenCuts) {
+    // A long wavy curve crossing the square twice: its inside part comes out as one curve
+    // (not one piece per segment or per run of the classification).
+    Curve w;
+    for (int i = 0; i <= 400; ++i) w.points.push_back({-10 + 30.0 * i / 400, 5 + std::sin(i * 0.2)});
+    Curves c;
+    c.curves.push_back(w);
+    const Curves in = Inside(Constant(c), square(), CROP)(kAny);
+    ASSERT_EQ(in.curves.size(), 1u);
+    EXPECT_NEAR(in.curves[0].points.front().x, 0, 1e-12);
+    EXPECT_NEAR(in.curves[0].points.back().x, 10, 1e-12);
+    EXPECT_EQ(Outside(Constant(c), square(), CROP)(kAny).curves.size(), 2u);
 }

@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
+#include <cmath>
 
 #include "helpers.hpp"
 
@@ -40,8 +42,12 @@ int face_with_label(const PlanarMap& m, const char* l) {
 
 TEST(PlanarMap, InducesCellsOfOverlappingCurves) {
     const MapPtr m = PlanarMap::induce(two_squares());
-    EXPECT_EQ(m->vertices().size(), 8u);  // 6 square corners, stroke start on B, stroke tip
-    EXPECT_EQ(m->edges().size(), 9u);     // 7 sides (one shared), B's right side split, stroke
+    // Vertices: the two ends of the shared side (degree 3), the stroke's start on B
+    // (degree 3) and its tip. The other corners are bends of one curve, not vertices.
+    EXPECT_EQ(m->vertices().size(), 4u);
+    // Edges: A's three free sides in one piece, the shared side, B's outline split in two
+    // by the stroke's start, the stroke.
+    EXPECT_EQ(m->edges().size(), 5u);
     EXPECT_EQ(th::bounded_faces(*m), 2u);
     const int fa = face_with_label(*m, "A"), fb = face_with_label(*m, "B");
     ASSERT_GE(fa, 0);
@@ -74,8 +80,8 @@ TEST(PlanarMap, SharedEdgeMergesLabelsAndSides) {
 TEST(PlanarMap, IncidenceQueries) {
     const MapPtr m = PlanarMap::induce(two_squares());
     const Face a(m, face_with_label(*m, "A"));
-    EXPECT_EQ(IncidentEdges(a).size(), 4u);
-    EXPECT_EQ(IncidentVertices(a).size(), 4u);
+    EXPECT_EQ(IncidentEdges(a).size(), 2u);    // the shared side and the rest of A's outline
+    EXPECT_EQ(IncidentVertices(a).size(), 2u); // the ends of the shared side
     EXPECT_TRUE(IsBoundary(a));
     const Point c = Centroid(a);
     EXPECT_NEAR(c.x, 5, 1e-12);
@@ -155,4 +161,135 @@ TEST(PlanarMap, EmptyAndDegenerateInput) {
     EXPECT_TRUE(m->faces()[0].unbounded);
     const MapPtr z = PlanarMap::induce(Polyline({{1, 1}, {1, 1}}));
     EXPECT_EQ(z->edges().size(), 0u);
+}
+
+// ---- Cells are the thesis's (3.2): maximal subcurves between vertices ----
+
+namespace {
+
+// A closed circle (64 points), an S-shaped stroke (200 points) crossing it twice and a
+// bent stroke (3 points) that meets nothing.
+Curves circle_and_strokes() {
+    Curves c;
+    Curve circle;
+    for (int i = 0; i < 64; ++i) circle.points.push_back({10 * std::cos(2 * pi * i / 64), 10 * std::sin(2 * pi * i / 64)});
+    circle.closed = true;
+    circle.labels = Labels{"circle"};
+    Curve s;
+    for (int i = 0; i <= 200; ++i) {
+        const double x = -20 + 40.0 * i / 200;
+        s.points.push_back({x, 3 * std::sin(pi * x / 20)});
+    }
+    s.labels = Labels{"s"};
+    Curve bent;
+    bent.points = {{0, 20}, {5, 15}, {5, 25}};
+    c.curves = {circle, s, bent};
+    return c;
+}
+
+}  // namespace
+
+TEST(PlanarMapCells, VerticesAreEndsAndCrossingsNotBends) {
+    const MapPtr m = PlanarMap::induce(circle_and_strokes());
+    // 2 + 2 stroke ends, 2 crossings of the S with the circle.
+    EXPECT_EQ(m->vertices().size(), 6u);
+    // The circle cut in two arcs, the S in three pieces, the bent stroke whole.
+    EXPECT_EQ(m->edges().size(), 6u);
+    EXPECT_EQ(th::bounded_faces(*m), 2u);
+    for (const auto& v : m->vertices()) EXPECT_NE(v.edges.size(), 2u) << "a bend became a vertex";
+    std::size_t points = 0;
+    for (const auto& e : m->edges()) points += e.points.size();
+    EXPECT_GT(points, 64u + 200u);  // the edges keep every point of the curves
+    // Faces: the two halves of the disc, each bounded by one arc and one piece of the S.
+    for (std::size_t f = 0; f < m->faces().size(); ++f) {
+        if (m->faces()[f].unbounded) continue;
+        EXPECT_EQ(m->faces()[f].edges.size(), 2u);
+        // The S is point-symmetric about the centre: each half has half the polygon's area.
+        EXPECT_NEAR(th::face_area(*m, int(f)), 0.25 * 64 * 100 * std::sin(2 * pi / 64), 1e-6);
+    }
+}
+
+TEST(PlanarMapCells, TwoCrossingBezierStrokes) {
+    // Two S-shaped strokes, each one cubic Bezier of an SVG path (flattened to many points),
+    // mirror images of each other: they cross on their common axis.
+    const Curves c = ParseSVG(R"(<svg xmlns="http://www.w3.org/2000/svg" width="300" height="300">
+        <path d="M 0 0 C 300 0, 0 300, 300 300"/><path d="M 300 0 C 0 0, 300 300, 0 300"/></svg>)");
+    ASSERT_EQ(c.curves.size(), 2u);
+    ASSERT_GT(c.curves[0].points.size(), 10u);
+    const MapPtr m = PlanarMap::induce(c);
+    std::size_t crossings = 0, ends = 0;
+    for (const auto& v : m->vertices()) {
+        if (v.edges.size() == 4) ++crossings;
+        else if (v.edges.size() == 1) ++ends;
+        else ADD_FAILURE() << "vertex of degree " << v.edges.size() << " at " << v.point.x << "," << v.point.y;
+    }
+    EXPECT_EQ(ends, 4u);
+    EXPECT_GE(crossings, 1u);
+    EXPECT_EQ(m->vertices().size(), 4 + crossings);
+    EXPECT_EQ(m->edges().size(), 2 + 2 * crossings);
+}
+
+TEST(PlanarMapCells, ClosedCurveAloneIsOneLoopOnItsSmallestPoint) {
+    Curves c = Polyline({{5, 0}, {10, 5}, {5, 10}, {0, 5}}, true);
+    c.curves[0].left = Labels{"in"};
+    const MapPtr m = PlanarMap::induce(c);
+    ASSERT_EQ(m->vertices().size(), 1u);
+    ASSERT_EQ(m->edges().size(), 1u);
+    ASSERT_EQ(m->faces().size(), 2u);
+    EXPECT_EQ(m->vertices()[0].point, Point(0, 5));
+    const Edge e(m, 0);
+    EXPECT_EQ(SourceVertex(e), TargetVertex(e));
+    EXPECT_EQ(IncidentEdges(SourceVertex(e)).size(), 2u);  // a loop counts twice
+    EXPECT_NE(LeftFace(e), RightFace(e));
+    EXPECT_TRUE(HasLabel(LeftFace(e), "in"));
+    const Curves curve = ToCurve(e);
+    ASSERT_EQ(curve.curves.size(), 1u);
+    EXPECT_TRUE(curve.curves[0].closed);
+    EXPECT_EQ(curve.curves[0].points.size(), 4u);
+    EXPECT_NEAR(th::length(curve), 4 * std::sqrt(50.0), 1e-12);
+    EXPECT_EQ(Contour(LeftFace(e)).curves[0].points.size(), 4u);
+}
+
+TEST(PlanarMapCells, OverlapsStartAndStopAtVertices) {
+    // Two bent curves sharing their middle stretch: vertices where they start and stop
+    // overlapping, and an edge for each stretch with its own sources.
+    Curves c = Polyline({{0, 0}, {5, 2}, {10, 2}, {15, 2}});
+    c.append(Polyline({{5, 2}, {10, 2}, {15, 2}, {20, 0}}));
+    c.append(Polyline({{10, 2}, {10, -5}}));  // a third curve leaving the shared stretch
+    const MapPtr m = PlanarMap::induce(c);
+    // The six curve ends (the second curve starts where the first bends, the first ends
+    // where the second bends); the third curve starts on the shared stretch.
+    EXPECT_EQ(m->vertices().size(), 6u);
+    std::size_t shared = 0;
+    for (const auto& e : m->edges()) shared += e.sources.size() == 2;
+    EXPECT_EQ(shared, 2u);  // (5,2)-(10,2) and (10,2)-(15,2): cut by the third curve
+    EXPECT_EQ(m->edges().size(), 5u);
+}
+
+TEST(PlanarMapCells, LocationAtFollowsTheWholeEdge) {
+    const MapPtr m = PlanarMap::induce(Polyline({{0, 0}, {10, 0}, {10, 10}}));
+    ASSERT_EQ(m->edges().size(), 1u);
+    const Edge e(m, 0);
+    const Point p = LocationAt(e, 0.75);
+    EXPECT_NEAR(p.x, 10, 1e-12);
+    EXPECT_NEAR(p.y, 5, 1e-12);
+    EXPECT_EQ(LocationAt(e, 0), Point(0, 0));
+    EXPECT_EQ(LocationAt(e, 1), Point(10, 10));
+    EXPECT_EQ(BBoxHeight(e), 10);
+}
+
+TEST(PlanarMapCells, MappersSeeWholeCells) {
+    // A curved stroke from an SVG cubic Bezier: one edge, two vertices.
+    const Curves s = ParseSVG(R"(<svg xmlns="http://www.w3.org/2000/svg"><path d="M 0 0 C 50 100, 100 -100, 150 0"/></svg>)");
+    ASSERT_GT(s.curves[0].points.size(), 10u);
+    std::atomic<int> edge_calls{0}, vertex_calls{0};
+    const Curves edges = MapToEdges([&](const Edge& e) { ++edge_calls; return ToCurve(e); }, Constant(s))(
+        Region::rectangle(-10, -100, 200, 100));
+    EXPECT_EQ(edge_calls.load(), 1);
+    ASSERT_EQ(edges.curves.size(), 1u);
+    EXPECT_EQ(edges.curves[0].points.size(), s.curves[0].points.size());
+    EXPECT_NEAR(th::length(edges), th::length(s), 1e-9);
+    MapToVertices([&](const Vertex&) { ++vertex_calls; return Nothing(); }, Constant(s))(
+        Region::rectangle(-10, -100, 200, 100));
+    EXPECT_EQ(vertex_calls.load(), 2);
 }

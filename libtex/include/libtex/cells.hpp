@@ -60,14 +60,15 @@ Curves MatchFace(const Curves& c, const Face& f);
 
 // ---- Geometry ----
 Point Location(const Vertex& v);
-// Point at parameter s in [0, 1] from the edge's source to its target.
+// Point at parameter s in [0, 1] along the edge, by arc length from its source to its target.
 Point LocationAt(const Edge& e, double s);
 // Area centroid of the face (holes subtracted).
 Point Centroid(const Face& f);
 // Boundary of the face as closed curves (outer ring counter-clockwise, holes clockwise),
 // carrying the face's labels on their left side.
 Curves Contour(const Face& f);
-// The edge as a curve, with its labels and side labels.
+// The whole edge as a curve (its polyline; closed for a loop), with its labels and side
+// labels.
 Curves ToCurve(const Edge& e);
 // The face as a region, so that an arrangement can be evaluated on it.
 Region ToRegion(const Face& f);

@@ -2,9 +2,19 @@
 //
 // Induction runs CGAL's Arrangement_2 over an exact-constructions kernel, with every
 // segment carrying the ids of the curves it comes from (consolidated curve data, so
-// overlapping curves merge their data). The result is then frozen into plain tables of
-// vertices, edges and faces with their labels, incidences and double coordinates. The
-// tables are immutable, so mappers may query them from several threads at once and
+// overlapping curves merge their data). CGAL's vertices and x-monotone segments are then
+// grouped into the thesis's cells and frozen into plain tables of vertices, edges and
+// faces with their labels, incidences and double coordinates:
+//
+//  - an edge is a maximal piece of the input curves between two vertices: a chain of CGAL
+//    segments that only breaks at a curve end, at a point where more or fewer than two
+//    segments meet (an intersection, a branching), where the set of curves the piece comes
+//    from changes (curves start or stop overlapping), or at a labelled point;
+//  - a vertex is such a break point. The points where a flattened curve bends are not
+//    vertices; a closed curve that meets nothing is one edge looping on one vertex (its
+//    lexicographically smallest point).
+//
+// The tables are immutable, so mappers may query them from several threads at once and
 // never touch CGAL objects.
 #pragma once
 
@@ -38,13 +48,18 @@ struct Side {
 struct VertexRec {
     Point point;
     Labels labels;
-    std::vector<int> edges;  // incident edges, counter-clockwise around the vertex
+    // Incident edges, counter-clockwise around the vertex; a loop appears twice (once per
+    // end), so the size is the vertex's degree.
+    std::vector<int> edges;
     std::vector<int> faces;  // incident faces, counter-clockwise, without repetition
     std::uint64_t key = 0;   // geometric key for Random(cell, ...)
 };
 
 struct EdgeRec {
     int source = -1, target = -1;  // edges are oriented like their first source curve
+    // The edge's polyline from its source to its target (at least two points; for a loop
+    // the first and last points are both the vertex).
+    std::vector<Point> points;
     int left = -1, right = -1;     // faces on each side
     Labels labels, left_labels, right_labels;
     std::vector<EdgeSource> sources;
@@ -79,9 +94,10 @@ public:
         const EdgeRec& e = edges_[s.edge];
         return vertices_[s.left ? e.source : e.target].point;
     }
-    // A face boundary cycle as a ring of points.
+    // A face boundary cycle as a ring of points (every point of its edges' polylines).
     std::vector<Point> cycle_points(int face, std::size_t cycle) const;
-    // Edge e as a two-point curve carrying its labels and side labels.
+    // Edge e as a curve (its polyline, closed for a loop) carrying its labels and side
+    // labels.
     Curve edge_curve(int e) const;
     // Every edge as a curve (the planar map drawn as open polylines).
     Curves edge_curves() const;

@@ -1,0 +1,84 @@
+// Internal: a uniform grid over segments, exact intersection tests on double coordinates,
+// and point location against a mask boundary. Used by the masks (merge.cpp) to decide
+// which curves need the exact planar map and which can be classified by one point.
+//
+// Every decision here is exact for the double coordinates it is given (CGAL's filtered
+// predicates of the Epick kernel); the grid only narrows the candidates, conservatively.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "libtex/curves.hpp"
+#include "libtex/geometry.hpp"
+
+namespace tex::detail {
+
+struct Seg {
+    Point a, b;
+    // For point location: whether the left / right side of a -> b is inside the mask.
+    bool in_left = false, in_right = false;
+    // Whether the inside changes across the segment (exactly one side inside).
+    bool changes() const { return in_left != in_right; }
+    std::uint32_t owner = 0;  // index of the curve (or edge) the segment comes from
+};
+
+// Exact test: do the closed segments ab and cd share a point?
+bool segments_touch(const Point& a, const Point& b, const Point& c, const Point& d);
+
+class SegmentGrid {
+public:
+    explicit SegmentGrid(std::vector<Seg> segs);
+
+    const std::vector<Seg>& segments() const { return segs_; }
+    bool empty() const { return segs_.empty(); }
+
+    // Calls f(i) once for each segment i registered in a cell that box overlaps.
+    template <class F>
+    void for_each_in(const BBox& box, F&& f) const {
+        if (segs_.empty() || !box.intersects(box_)) return;
+        const int c0 = col(box.xmin), c1 = col(box.xmax), r0 = row(box.ymin), r1 = row(box.ymax);
+        ++stamp_;
+        for (int r = r0; r <= r1; ++r)
+            for (int c = c0; c <= c1; ++c)
+                for (std::uint32_t k = start_[cell(c, r)]; k < start_[cell(c, r) + 1]; ++k) {
+                    const std::uint32_t i = items_[k];
+                    if (seen_[i] == stamp_) continue;
+                    seen_[i] = stamp_;
+                    f(i);
+                }
+    }
+
+    // Whether the polyline segment pq shares a point with any segment of the grid
+    // (when only_changing, with any segment across which the inside changes). With
+    // `owners`, every touched segment's owner is marked there (and the search goes on).
+    bool touches(const Point& p, const Point& q, bool only_changing, std::vector<char>* owners = nullptr) const;
+
+    // Point location against the segments across which the inside changes.
+    enum class Where { Out, In, On };
+    Where locate(const Point& p) const;
+
+private:
+    int col(double x) const;
+    int row(double y) const;
+    std::size_t cell(int c, int r) const { return std::size_t(r) * std::size_t(nx_) + std::size_t(c); }
+
+    std::vector<Seg> segs_;
+    BBox box_;
+    int nx_ = 1, ny_ = 1;
+    double cw_ = 1, ch_ = 1;
+    std::vector<std::uint32_t> start_, items_;
+    mutable std::vector<std::uint64_t> seen_;
+    mutable std::uint64_t stamp_ = 0;
+};
+
+// The segments of a set of curves (zero-length and non-finite segments left out), each
+// tagged with the index of its curve.
+std::vector<Seg> curve_segments(const Curves& c);
+
+// The edges of the planar map the curves induce, as curves (PlanarMap::edge_curves()),
+// computed without the exact planar map for the curves that meet no other curve and do
+// not touch themselves: such a curve is one edge on its own.
+Curves maximal_edges(const Curves& c);
+
+}  // namespace tex::detail
