@@ -236,6 +236,18 @@ def circles(elements, density):
 CIRCLES = 8.5e-5
 
 
+def combine_a(elements):
+    return squares(elements, pi / 4, 400)
+
+
+def combine_b(elements):
+    return waves(elements, pi / 6, 80)
+
+
+def combine_c(elements):
+    return circles(elements, CIRCLES)
+
+
 def combine_d(elements):
     return Union(squares(elements, pi / 4, 400), waves(elements, pi / 6, 80))
 
@@ -259,8 +271,9 @@ def combine_h(elements):
 EXAMPLES = {
     "stripes": stripes, "grid": grid, "uniform": uniform, "random": random_, "puzzle": puzzle,
     "rosettes": rosettes, "cracks": cracks, "bimodal": bimodal, "crosses": crosses, "curves": curves,
-    "clusters": clusters, "overview": overview, "combine_d": combine_d, "combine_e": combine_e,
-    "combine_f": combine_f, "combine_g": combine_g, "combine_h": combine_h,
+    "clusters": clusters, "overview": overview,
+    "combine_a": combine_a, "combine_b": combine_b, "combine_c": combine_c, "combine_d": combine_d,
+    "combine_e": combine_e, "combine_f": combine_f, "combine_g": combine_g, "combine_h": combine_h,
 }
 
 

@@ -213,6 +213,11 @@ Arrangement circles(const std::string& dir, double density) {
 
 constexpr double kCircles = 8.5e-5;
 
+// Combining a to c: each of the three textures on its own.
+Arrangement combine_squares(const std::string& dir) { return squares(dir, pi / 4, 400); }
+Arrangement combine_waves(const std::string& dir) { return waves(dir, pi / 6, 80); }
+Arrangement combine_circles(const std::string& dir) { return circles(dir, kCircles); }
+
 Arrangement combine_union(const std::string& dir) { return Union(squares(dir, pi / 4, 400), waves(dir, pi / 6, 80)); }
 Arrangement combine_inside_crop(const std::string& dir) {
     return Inside(waves(dir, pi / 6, 80), squares(dir, pi / 4, 400), CROP);
@@ -243,6 +248,9 @@ const std::vector<Example>& examples() {
         {"curves", "By example limitations: regular curves", 4, curves},
         {"clusters", "By example limitations: clusters", 42, clusters},
         {"overview", "Overview (Fig. 3.1)", -1, overview},
+        {"combine_a", "Combining a: squares", 1, combine_squares},
+        {"combine_b", "Combining b: waves", 1, combine_waves},
+        {"combine_c", "Combining c: circles", 13, combine_circles},
         {"combine_d", "Combining d: Union(squares, waves)", 4, combine_union},
         {"combine_e", "Combining e: waves Inside squares (CROP)", 3, combine_inside_crop},
         {"combine_f", "Combining f: circles Inside squares (KEEP_OUTSIDE)", 15, combine_inside_keep},
