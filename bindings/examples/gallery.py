@@ -201,6 +201,235 @@ def overview(elements):
     return MapToFaces(map_arrangement_to, MapToFaces(map_blob_to, init_tex))
 
 
+# ---- The "Teaser" scripts (a to h); twins of libtex/examples/gallery_teasers.cpp ----
+
+def load_numbered(elements, stem, n):
+    return [load(elements, f"{stem}{i}.svg") for i in range(1, n + 1)]
+
+
+def pick(items, cell, n):
+    # One of the items, chosen by the cell's random stream n.
+    return items[floor(Random(cell, 0, len(items), n))]
+
+
+def hatching(angle, width):
+    # Stripes `width` apart at `angle`, cropped to whatever face they are evaluated on.
+    return StripesPartition(StripesProperties(angle, width))
+
+
+def lozenge_lattice():
+    return GridPartition(StripesProperties(pi / 3, 150), StripesProperties(-pi / 3, 150), KEEP_OUTSIDE)
+
+
+def lattice_strokes(elements):
+    strokes = load_numbered(elements, "tcurve", 4)
+
+    def edge_to_stroke(e):
+        # A wavy stroke stretched from the edge's source ("bottom") to its target ("top").
+        s = pick(strokes, e, 0)
+        return MatchPoints(s, PointLabeled(s, "bottom"), PointLabeled(s, "top"),
+                           Location(SourceVertex(e)), Location(TargetVertex(e)))
+
+    return MapToEdges(edge_to_stroke, lozenge_lattice())
+
+
+def lattice_beads(elements):
+    blobs = load_numbered(elements, "tblob", 4)
+
+    def vertex_to_bead(v):
+        # A blob centred on the vertex, turned at random.
+        b = Rotate(pick(blobs, v, 0), Random(v, 0, 2 * pi, 1))
+        return MatchPoint(b, BBoxCenter(b), Location(v))
+
+    return MapToVertices(vertex_to_bead, lozenge_lattice())
+
+
+def teaser_a(elements):
+    # Beads on a curvy lattice: the strokes are cut away under the beads.
+    beads = lattice_beads(elements)
+    return Union(beads, Outside(lattice_strokes(elements), beads, CROP))
+
+
+RING_LAYERS = 10
+
+
+def ring_layer(elements, layer):
+    rings = load_numbered(elements, "tring", 3)
+
+    def cell_to_nest(f):
+        # Rings nested in the cell, from a random fraction of its box down to nothing.
+        nest = Nothing()
+        scale = Random(f, 0.3, 0.8, 0)
+        i = 0
+        while scale > 0:
+            ring = Scale(MatchFace(pick(rings, f, 1 + 3 * i), f), scale)
+            nest = Append(nest, Rotate(ring, Random(f, 0, 2 * pi, 2 + 3 * i)))
+            scale -= Random(f, 0.09, 0.2, 3 + 3 * i)
+            i += 1
+        return nest
+
+    # Sites depend on the plane, the density and the seed: a density a thousandth apart
+    # per layer gives every layer its own sites.
+    density = 15 / (SIZE * SIZE) * (1 + 0.001 * layer)
+    return MapToFaces(cell_to_nest, UniformPartition(IrregularProperties(density), KEEP_OUTSIDE))
+
+
+def teaser_b(elements):
+    # Stacked tree rings: each new layer hides what lies under its discs.
+    stack = ring_layer(elements, 0)
+    for layer in range(1, RING_LAYERS):
+        top = ring_layer(elements, layer)
+        stack = Union(top, Outside(stack, top, CROP))
+    return stack
+
+
+def labelled_bricks_grid():
+    rows = StripesProperties(0, 200)
+    columns = StripesProperties(pi / 2, 120)
+    SetEdgeLabels(rows, "h1", "h2")
+    SetEdgeLabels(columns, "v1", "v2", "v3", "v4")
+    return GridPartition(rows, columns, KEEP_OUTSIDE)
+
+
+def brick_courses():
+    def keep_joints(e):
+        # Horizontal edges stay; below an "h1" line only "v1" joints stay, elsewhere "v2" and "v4".
+        if HasLabel(e, "h1") or HasLabel(e, "h2"):
+            return ToCurve(e)
+        if HasLabel(IncidentEdges(TargetVertex(e)), "h1"):
+            kept = HasLabel(e, "v1")
+        else:
+            kept = HasLabel(e, "v2") or HasLabel(e, "v4")
+        return ToCurve(e) if kept else Nothing()
+
+    return MapToEdges(keep_joints, labelled_bricks_grid())
+
+
+def teaser_c(elements):
+    # A wall of long and short bricks; long bricks shrink to 90 %, short ones to 80 %.
+    def shrink(f):
+        return Scale(Contour(f), 0.9 if HasLabel(IncidentEdges(f), "v1") else 0.8)
+
+    return MapToFaces(shrink, brick_courses())
+
+
+def hatch_cells():
+    return UniformPartition(IrregularProperties(1000 / (SIZE * SIZE)), KEEP_OUTSIDE)
+
+
+def teaser_d(elements):
+    groups = load_numbered(elements, "tbighatch", 4)
+
+    def cell_to_group(f):
+        # A group of parallel strokes on the cell's centroid, upright one time in two.
+        g = pick(groups, f, 0)
+        if Random(f, 0, 1, 1) > 0.5:
+            g = Rotate(g, pi / 2)
+        return MatchPoint(g, BBoxCenter(g), Centroid(f))
+
+    return MapToFaces(cell_to_group, hatch_cells())
+
+
+def wheels(elements):
+    wheel = load(elements, "twheel.svg")
+
+    def cell_to_wheel(f):
+        w = Scale(Rotate(wheel, Random(f, 0, 2 * pi, 0)), Random(f, 0.8, 1, 1))
+        return MatchPoint(w, BBoxCenter(w), Centroid(f))
+
+    return MapToFaces(cell_to_wheel, UniformPartition(IrregularProperties(100 / (SIZE * SIZE)), KEEP_OUTSIDE))
+
+
+def stipples(elements):
+    stipple = load(elements, "tstipple.svg")
+
+    def cell_to_stipple(f):
+        s = Scale(Rotate(stipple, Random(f, 0, 2 * pi, 0)), Random(f, 0.9, 1, 1))
+        return MatchPoint(s, BBoxCenter(s), Centroid(f))
+
+    return MapToFaces(cell_to_stipple, RandomPartition(IrregularProperties(1200 / (SIZE * SIZE)), KEEP_OUTSIDE))
+
+
+def teaser_e(elements):
+    # Wheels, and the stipple's pieces lying wholly outside them.
+    w = wheels(elements)
+    return Union(w, Outside(stipples(elements), w, KEEP_INSIDE))
+
+
+def shards():
+    def shrink(f):
+        return Scale(Contour(f), 0.95)
+
+    return MapToFaces(shrink, RandomPartition(IrregularProperties(30 / (SIZE * SIZE)), KEEP_OUTSIDE))
+
+
+def teaser_f(elements):
+    def fill(f):
+        # Stripes at the shard's own random angle, closed by its outline...
+        return hatching(Random(f, 0, 2 * pi, 1), 40)(f)
+
+    def drop_outline(e):
+        # ...whose edges, on the outer face, then go.
+        return Nothing() if IsBoundary(e) else ToCurve(e)
+
+    return MapToEdges(drop_outline, MapToFaces(fill, shards()))
+
+
+def basket_cells():
+    rows = StripesProperties(0, 200)
+    columns = StripesProperties(pi / 2, 200)
+    SetFaceLabels(rows, "h1", "h2")
+    SetFaceLabels(columns, "v1", "v2")
+    return GridPartition(rows, columns, KEEP_OUTSIDE)
+
+
+def teaser_g(elements):
+    cracks = [load(elements, "line1.svg"), load(elements, "line2.svg")]
+
+    def line_to_crack(e):
+        # The cell's outline stays straight; inner lines become cracks, laid either way.
+        if IsBoundary(e):
+            return ToCurve(e)
+        c = pick(cracks, e, 0)
+        src, dst = PointLabeled(c, "start"), PointLabeled(c, "end")
+        if Random(e, 0, 1, 1) >= 0.5:
+            src, dst = dst, src
+        return MatchPoints(c, src, dst, Location(SourceVertex(e)), Location(TargetVertex(e)))
+
+    def cell_to_weave(f):
+        # Four to six stripes, horizontal or vertical like a checkerboard.
+        width = BBoxWidth(f) / Random(f, 4, 6, 0)
+        upright = (HasLabel(f, "h1") and HasLabel(f, "v1")) or (HasLabel(f, "h2") and HasLabel(f, "v2"))
+        return MapToEdges(line_to_crack, hatching(pi / 2 if upright else 0, width))(f)
+
+    return MapToFaces(cell_to_weave, basket_cells())
+
+
+def teaser_h(elements):
+    rows = StripesProperties(0, 300)
+    SetFaceLabels(rows, "h1", "h2")
+    columns = StripesProperties(pi / 2, 300)
+    SetFaceLabels(columns, "v1", "v2")
+    fine_rows = StripesProperties(0, 100, 100, 100, 300)
+    SetFaceLabels(fine_rows, "h1", "h2", "h3", "h4")
+    fine_columns = StripesProperties(pi / 2, 100, 100, 100, 300)
+    SetFaceLabels(fine_columns, "v1", "v2", "v3", "v4")
+
+    def rows_hatch(f):
+        return hatching(-pi / 4, 30)(f) if HasLabel(f, "h1") else Nothing()
+
+    def columns_hatch(f):
+        return hatching(pi / 4, 30)(f) if HasLabel(f, "v1") else Nothing()
+
+    def grid_hatch(f):
+        # Fine vertical hatching in the first narrow row and column of every period.
+        return hatching(pi / 2, 10)(f) if HasLabel(f, "h1") or HasLabel(f, "v1") else Nothing()
+
+    bands = Union(MapToFaces(rows_hatch, StripesPartition(rows)), MapToFaces(columns_hatch, StripesPartition(columns)))
+    return Union(bands, MapToFaces(grid_hatch, GridPartition(fine_rows, fine_columns, KEEP_OUTSIDE)))
+
+
+
 def squares(elements, theta, width):
     square = load(elements, "square.svg")
     grid_tex = GridPartition(StripesProperties(theta, width), StripesProperties(theta + pi / 2, width), KEEP_OUTSIDE)
@@ -236,6 +465,18 @@ def circles(elements, density):
 CIRCLES = 8.5e-5
 
 
+def combine_a(elements):
+    return squares(elements, pi / 4, 400)
+
+
+def combine_b(elements):
+    return waves(elements, pi / 6, 80)
+
+
+def combine_c(elements):
+    return circles(elements, CIRCLES)
+
+
 def combine_d(elements):
     return Union(squares(elements, pi / 4, 400), waves(elements, pi / 6, 80))
 
@@ -259,8 +500,11 @@ def combine_h(elements):
 EXAMPLES = {
     "stripes": stripes, "grid": grid, "uniform": uniform, "random": random_, "puzzle": puzzle,
     "rosettes": rosettes, "cracks": cracks, "bimodal": bimodal, "crosses": crosses, "curves": curves,
-    "clusters": clusters, "overview": overview, "combine_d": combine_d, "combine_e": combine_e,
-    "combine_f": combine_f, "combine_g": combine_g, "combine_h": combine_h,
+    "clusters": clusters, "overview": overview,
+    "teaser_a": teaser_a, "teaser_b": teaser_b, "teaser_c": teaser_c, "teaser_d": teaser_d,
+    "teaser_e": teaser_e, "teaser_f": teaser_f, "teaser_g": teaser_g, "teaser_h": teaser_h,
+    "combine_a": combine_a, "combine_b": combine_b, "combine_c": combine_c, "combine_d": combine_d,
+    "combine_e": combine_e, "combine_f": combine_f, "combine_g": combine_g, "combine_h": combine_h,
 }
 
 

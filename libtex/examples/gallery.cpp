@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "gallery_teasers.hpp"
+
 namespace gallery {
 using namespace tex;
 
@@ -213,6 +215,17 @@ Arrangement circles(const std::string& dir, double density) {
 
 constexpr double kCircles = 8.5e-5;
 
+// An example that places no element.
+template <Arrangement (*F)()>
+Arrangement no_elements(const std::string&) {
+    return F();
+}
+
+// Combining a to c: each of the three textures on its own.
+Arrangement combine_squares(const std::string& dir) { return squares(dir, pi / 4, 400); }
+Arrangement combine_waves(const std::string& dir) { return waves(dir, pi / 6, 80); }
+Arrangement combine_circles(const std::string& dir) { return circles(dir, kCircles); }
+
 Arrangement combine_union(const std::string& dir) { return Union(squares(dir, pi / 4, 400), waves(dir, pi / 6, 80)); }
 Arrangement combine_inside_crop(const std::string& dir) {
     return Inside(waves(dir, pi / 6, 80), squares(dir, pi / 4, 400), CROP);
@@ -243,6 +256,17 @@ const std::vector<Example>& examples() {
         {"curves", "By example limitations: regular curves", 4, curves},
         {"clusters", "By example limitations: clusters", 42, clusters},
         {"overview", "Overview (Fig. 3.1)", -1, overview},
+        {"teaser_a", "Teaser a: beads on a curvy lattice", 25, teasers::beads_on_strokes},
+        {"teaser_b", "Teaser b: stacked tree rings", 129, teasers::stacked_rings},
+        {"teaser_c", "Teaser c: a wall of long and short bricks", 1, no_elements<teasers::shrunk_bricks>},
+        {"teaser_d", "Teaser d: woven hatching", 220, teasers::woven_hatching},
+        {"teaser_e", "Teaser e: wheels in a stipple field", 20, teasers::wheels_in_stipple},
+        {"teaser_f", "Teaser f: hatched shards", 3, no_elements<teasers::hatched_shards>},
+        {"teaser_g", "Teaser g: cracked basket weave", 6, teasers::cracked_basket},
+        {"teaser_h", "Teaser h: plaid", 26, no_elements<teasers::plaid>},
+        {"combine_a", "Combining a: squares", 1, combine_squares},
+        {"combine_b", "Combining b: waves", 1, combine_waves},
+        {"combine_c", "Combining c: circles", 13, combine_circles},
         {"combine_d", "Combining d: Union(squares, waves)", 4, combine_union},
         {"combine_e", "Combining e: waves Inside squares (CROP)", 3, combine_inside_crop},
         {"combine_f", "Combining f: circles Inside squares (KEEP_OUTSIDE)", 15, combine_inside_keep},

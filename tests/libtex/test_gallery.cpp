@@ -1,7 +1,14 @@
-// The Appendix A gallery: every example runs and is deterministic whatever the thread count.
+// The Appendix A gallery: every example runs and is deterministic whatever the thread count;
+// the teasers keep the meaning of their scripts.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
 #include "gallery.hpp"
+#include "gallery_teasers.hpp"
 #include "helpers.hpp"
 
 using namespace tex;
@@ -30,7 +37,8 @@ TEST_P(GalleryTest, SameBytesWithOneOrTwoThreadsAndAcrossRuns) {
     EXPECT_EQ(two, again);
     EXPECT_GT(one.size(), 2000u) << "the drawing is nearly empty";
     // A different seed gives a different drawing for the random examples.
-    if (e.name != "stripes" && e.name != "grid") {
+    static const std::set<std::string> no_random = {"stripes", "grid", "teaser_c", "teaser_h", "combine_b"};
+    if (!no_random.count(e.name)) {
         const std::uint64_t seed = GetSeed();
         SetSeed(seed + 7);
         const std::string other = render(e);
@@ -41,7 +49,11 @@ TEST_P(GalleryTest, SameBytesWithOneOrTwoThreadsAndAcrossRuns) {
 
 INSTANTIATE_TEST_SUITE_P(Appendix, GalleryTest,
                          ::testing::Values("stripes", "grid", "uniform", "random", "puzzle", "rosettes",
-                                           "cracks", "bimodal", "crosses", "curves", "clusters", "overview"));
+                                           "cracks", "bimodal", "crosses", "curves", "clusters", "overview",
+                                           "combine_a", "combine_b", "combine_c"));
+INSTANTIATE_TEST_SUITE_P(Teasers, GalleryTest,
+                         ::testing::Values("teaser_a", "teaser_b", "teaser_c", "teaser_d", "teaser_e",
+                                           "teaser_f", "teaser_g", "teaser_h"));
 
 TEST(Gallery, ExpectedStructure) {
     // Puzzle: a 16 x 16 grid in which every other vertical edge is removed row by row.
@@ -58,3 +70,397 @@ TEST(Gallery, ExpectedStructure) {
 }
 
 TEST(Gallery, UnknownExample) { EXPECT_TEX_ERROR(gallery::find("nope"), "gallery", "'nope'"); }
+
+// ---- The teasers: each drawing checked against the parts it is made of ----
+//
+// These assertions are about what each script means (beads hide strokes, upper layers hide
+// lower ones, outlines are dropped...), computed from the parts with plain geometry. The
+// ones that depend on how the engine represents edges (polyline segments today, maximal
+// curves later) or on partitions drawing their own random sites say so.
+
+namespace {
+
+namespace tz = gallery::teasers;
+
+const Region kWindow = Region::rectangle(0, 0, gallery::kSize, gallery::kSize);
+
+const std::string& elements() {
+    static const std::string d = gallery::default_elements_dir();
+    return d;
+}
+
+struct Segment {
+    Point a, b;
+    Point mid() const { return (a + b) / 2; }
+};
+
+// The segments of the curves from index `from` on (closed curves closed).
+std::vector<Segment> segments(const Curves& c, std::size_t from = 0) {
+    std::vector<Segment> out;
+    for (std::size_t i = from; i < c.curves.size(); ++i) {
+        const auto& p = c.curves[i].points;
+        for (std::size_t k = 0; k + 1 < p.size(); ++k) out.push_back({p[k], p[k + 1]});
+        if (c.curves[i].closed && p.size() > 2) out.push_back({p.back(), p.front()});
+    }
+    return out;
+}
+
+double point_segment_distance(const Point& p, const Point& a, const Point& b) {
+    const Point d = b - a;
+    const double l2 = dot(d, d);
+    const double t = l2 > 0 ? std::clamp(dot(p - a, d) / l2, 0.0, 1.0) : 0.0;
+    return distance(p, a + d * t);
+}
+
+// Proper crossing of two segments (touching ends do not count).
+bool segments_cross(const Point& a, const Point& b, const Point& c, const Point& d) {
+    const double d1 = cross(b - a, c - a), d2 = cross(b - a, d - a);
+    const double d3 = cross(d - c, a - c), d4 = cross(d - c, b - c);
+    return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
+}
+
+// A closed curve as a polygon, with its box for quick rejection.
+struct Ring {
+    std::vector<Point> pts;
+    BBox box;
+    double distance_to(const Point& p) const {
+        double d = std::numeric_limits<double>::infinity();
+        for (std::size_t i = 0, j = pts.size() - 1; i < pts.size(); j = i++)
+            d = std::min(d, point_segment_distance(p, pts[j], pts[i]));
+        return d;
+    }
+    // Inside, and farther than eps from the ring itself.
+    bool strictly_contains(const Point& p, double eps = 1e-6) const {
+        return box.contains(p) && point_in_ring(p, pts) && distance_to(p) > eps;
+    }
+    bool crossed_by(const Segment& s) const {
+        BBox sb;
+        sb.add(s.a);
+        sb.add(s.b);
+        if (!sb.intersects(box)) return false;
+        for (std::size_t i = 0, j = pts.size() - 1; i < pts.size(); j = i++)
+            if (segments_cross(s.a, s.b, pts[j], pts[i])) return true;
+        return false;
+    }
+};
+
+std::vector<Ring> rings(const Curves& c) {
+    std::vector<Ring> out;
+    for (const auto& cv : c.curves) {
+        if (!cv.closed) continue;
+        Ring r{cv.points, {}};
+        for (const auto& p : cv.points) r.box.add(p);
+        out.push_back(std::move(r));
+    }
+    return out;
+}
+
+bool strictly_inside_any(const Point& p, const std::vector<Ring>& rs) {
+    for (const auto& r : rs)
+        if (r.strictly_contains(p)) return true;
+    return false;
+}
+
+// The drawing starts with `first`, curve for curve (Union keeps its operands' order).
+void expect_starts_with(const Curves& drawing, const Curves& first) {
+    ASSERT_GE(drawing.size(), first.size());
+    for (std::size_t i = 0; i < first.size(); ++i) {
+        EXPECT_EQ(drawing.curves[i].points, first.curves[i].points) << "curve " << i;
+        EXPECT_EQ(drawing.curves[i].closed, first.curves[i].closed) << "curve " << i;
+    }
+}
+
+// Finds which of several sets of segments a point lies on (within 1e-6), through a grid.
+class SegmentIndex {
+public:
+    explicit SegmentIndex(double cell) : cell_(cell) {}
+    void add(const Segment& s, int tag) {
+        const long long i0 = key(std::min(s.a.x, s.b.x) - 1e-3), i1 = key(std::max(s.a.x, s.b.x) + 1e-3);
+        const long long j0 = key(std::min(s.a.y, s.b.y) - 1e-3), j1 = key(std::max(s.a.y, s.b.y) + 1e-3);
+        for (long long i = i0; i <= i1; ++i)
+            for (long long j = j0; j <= j1; ++j) cells_[{i, j}].push_back({s, tag});
+    }
+    // The tags of the segments through p.
+    std::set<int> tags_at(const Point& p) const {
+        std::set<int> out;
+        const auto it = cells_.find({key(p.x), key(p.y)});
+        if (it == cells_.end()) return out;
+        for (const auto& [s, tag] : it->second)
+            if (point_segment_distance(p, s.a, s.b) < 1e-6) out.insert(tag);
+        return out;
+    }
+
+private:
+    long long key(double v) const { return (long long)std::floor(v / cell_); }
+    double cell_;
+    std::map<std::pair<long long, long long>, std::vector<std::pair<Segment, int>>> cells_;
+};
+
+double angle_mod_pi(const Segment& s) {
+    double a = std::atan2(s.b.y - s.a.y, s.b.x - s.a.x);
+    while (a < 0) a += pi;
+    while (a >= pi) a -= pi;
+    return a;
+}
+
+bool on_multiple(double v, double step) { return std::abs(v - step * std::round(v / step)) < 1e-6; }
+
+}  // namespace
+
+TEST(GalleryTeasers, A_BeadsOnEveryLatticeVertexHideTheStrokes) {
+    const Curves drawing = tz::beads_on_strokes(elements())(kWindow);
+    const Curves beads = tz::lattice_beads(elements())(kWindow);
+    const Curves strokes = tz::lattice_strokes(elements())(kWindow);
+    const MapPtr lattice = tz::lozenge_lattice().induce(kWindow);
+    const std::vector<Ring> bead_rings = rings(beads);
+    ASSERT_EQ(bead_rings.size(), beads.size()) << "beads are closed curves";
+    // A bead on every vertex (a blob has one or two rings: its outline and maybe a hole).
+    const std::size_t nv = lattice->vertices().size();
+    EXPECT_GE(beads.size(), nv);
+    EXPECT_LE(beads.size(), 2 * nv);
+    for (const auto& v : lattice->vertices()) EXPECT_TRUE(strictly_inside_any(v.point, bead_rings));
+    // The beads are drawn whole, then what is left of the strokes: nothing under a bead,
+    // pieces ending on the beads' rims, and a good share of each stroke hidden.
+    expect_starts_with(drawing, beads);
+    auto on_a_rim = [&bead_rings](const Point& p) {
+        for (const auto& r : bead_rings)
+            if (r.box.expanded(1e-6).contains(p) && r.distance_to(p) < 1e-6) return true;
+        return false;
+    };
+    double kept = 0;
+    std::size_t under_a_bead = 0, ends_on_rims = 0;
+    for (const auto& s : segments(drawing, beads.size())) {
+        kept += distance(s.a, s.b);
+        under_a_bead += strictly_inside_any(s.mid(), bead_rings);
+        ends_on_rims += on_a_rim(s.a) + on_a_rim(s.b);
+    }
+    EXPECT_EQ(under_a_bead, 0u);
+    // Every stroke runs from bead to bead, so each visible piece has both ends on rims; and
+    // every lattice edge shows at least one piece between its two beads.
+    EXPECT_GE(ends_on_rims, 2 * lattice->edges().size());
+    const double uncut = th::length(strokes);
+    EXPECT_LT(kept, 0.8 * uncut);
+    EXPECT_GT(kept, 0.3 * uncut);
+}
+
+TEST(GalleryTeasers, B_UpperRingLayersHideTheLowerOnes) {
+    ASSERT_EQ(tz::kRingLayers, 10);  // the script stacks ten layers
+    const Curves drawing = tz::stacked_rings(elements())(kWindow);
+    std::vector<Curves> layers;
+    std::vector<std::vector<Ring>> layer_rings;
+    SegmentIndex index(25);
+    for (int i = 0; i < tz::kRingLayers; ++i) {
+        layers.push_back(tz::ring_layer(elements(), i)(kWindow));
+        layer_rings.push_back(rings(layers.back()));
+        ASSERT_FALSE(layers.back().empty());
+        for (const auto& s : segments(layers.back())) index.add(s, i);
+    }
+    // The top layer whole, first.
+    expect_starts_with(drawing, layers.back());
+    // Every other piece lies on a ring of one lower layer and outside every ring above it.
+    std::vector<std::size_t> visible(tz::kRingLayers, 0);
+    std::size_t foreign = 0, hidden_but_drawn = 0;
+    for (const auto& s : segments(drawing, layers.back().size())) {
+        // (A tiny piece between two close crossings may lie on two layers' rings within
+        // the tolerance: it is taken as the lower one's.)
+        const std::set<int> on = index.tags_at(s.mid());
+        if (on.empty() || *on.begin() == tz::kRingLayers - 1) {
+            ++foreign;
+            continue;
+        }
+        if (on.size() > 1) EXPECT_LT(distance(s.a, s.b), 1e-3);
+        const int layer = *on.begin();
+        ++visible[layer];
+        for (int above = layer + 1; above < tz::kRingLayers; ++above)
+            hidden_but_drawn += strictly_inside_any(s.mid(), layer_rings[above]);
+    }
+    EXPECT_EQ(foreign, 0u);
+    EXPECT_EQ(hidden_but_drawn, 0u);
+    // Every layer shows somewhere, and the layers hide a lot of each other. (Depends on each
+    // layer drawing its own sites: ring_layer gives each its own density for that.)
+    for (int i = 0; i + 1 < tz::kRingLayers; ++i) EXPECT_GT(visible[i], 0u) << "layer " << i;
+    std::size_t all_rings = 0;
+    for (const auto& l : layers) all_rings += segments(l).size();
+    EXPECT_LT(segments(drawing).size(), all_rings);
+}
+
+TEST(GalleryTeasers, C_LabelRulesLeaveCoursesOfLongAndShortBricks) {
+    // KEEP_OUTSIDE on the window: rows 200 high between y = 0 and 2000 (10 rows, 11 lines),
+    // columns 120 wide between x = 0 and 2040 (17 columns, 18 lines). Vertical line k
+    // (x = 120 k) carries "v1" when k % 4 == 0 (5 lines) and "v2" or "v4" when k is odd (9
+    // lines), whichever way the label cycle runs along x; the "h" labels alternate from row
+    // to row, so five rows keep the "v1" lines and five keep the odd ones.
+    // Counted as polyline segments (with maximal curves, the window's four corners, of
+    // degree 2, would join two edges each).
+    EXPECT_EQ(tz::brick_courses()(kWindow).size(), std::size_t(11 * 17 + 5 * 5 + 5 * 9));
+    // Bricks: 4 long ones (between "v1" lines 480 apart; the piece past the last line is
+    // open) in five rows, 8 short ones (between odd lines 240 apart; the piece before the
+    // first is open) in the five others; long ones shrunk to 90 %, short ones to 80 %.
+    const Curves bricks = tz::shrunk_bricks()(kWindow);
+    ASSERT_EQ(bricks.size(), 60u);
+    int long_bricks = 0, short_bricks = 0;
+    for (const auto& c : bricks.curves) {
+        EXPECT_TRUE(c.closed);
+        BBox b;
+        for (const auto& p : c.points) b.add(p);
+        if (std::abs(b.width() - 432) < 1e-6 && std::abs(b.height() - 180) < 1e-6) ++long_bricks;
+        else if (std::abs(b.width() - 192) < 1e-6 && std::abs(b.height() - 160) < 1e-6) ++short_bricks;
+        else ADD_FAILURE() << "a brick of " << b.width() << " x " << b.height();
+    }
+    EXPECT_EQ(long_bricks, 20);
+    EXPECT_EQ(short_bricks, 40);
+}
+
+TEST(GalleryTeasers, D_OneGroupOfStrokesPerCellLyingOrStanding) {
+    const MapPtr cells = tz::hatch_cells().induce(kWindow);
+    const std::size_t n = th::bounded_faces(*cells);
+    const Curves drawing = tz::woven_hatching(elements())(kWindow);
+    // The stroke groups hold three to five strokes each.
+    EXPECT_GE(drawing.size(), 3 * n);
+    EXPECT_LE(drawing.size(), 5 * n);
+    std::size_t lying = 0, standing = 0;
+    for (const auto& c : drawing.curves) {
+        const Point d = c.points.back() - c.points.front();
+        if (std::abs(d.y) < 1e-9 * norm(d)) ++lying;
+        else if (std::abs(d.x) < 1e-9 * norm(d)) ++standing;
+        else ADD_FAILURE() << "a stroke neither horizontal nor vertical";
+    }
+    // Upright one time in two (over about a thousand cells).
+    EXPECT_NEAR(double(standing) / double(lying + standing), 0.5, 0.1);
+}
+
+TEST(GalleryTeasers, E_NoStippleCrossesOrEntersAWheel) {
+    const Curves wheels = tz::wheels(elements())(kWindow);
+    const Curves dots = tz::stipples(elements())(kWindow);
+    const Curves drawing = tz::wheels_in_stipple(elements())(kWindow);
+    expect_starts_with(drawing, wheels);
+    const std::vector<Ring> wheel_rings = rings(wheels);  // rims and hubs
+    ASSERT_FALSE(wheel_rings.empty());
+    double kept = 0;
+    std::size_t inside = 0, crossing = 0;
+    for (const auto& s : segments(drawing, wheels.size())) {
+        kept += distance(s.a, s.b);
+        for (const auto& r : wheel_rings) {
+            // Not even on a rim: only the stipple's edges lying wholly outside stay.
+            inside += (r.box.contains(s.a) && point_in_ring(s.a, r.pts)) ||
+                      (r.box.contains(s.b) && point_in_ring(s.b, r.pts)) || r.strictly_contains(s.mid());
+            crossing += r.crossed_by(s);
+        }
+    }
+    EXPECT_EQ(inside, 0u);
+    EXPECT_EQ(crossing, 0u);
+    // The wheels clear a good share of the stipple, not all of it.
+    EXPECT_GT(kept, 0.3 * th::length(dots));
+    EXPECT_LT(kept, 0.9 * th::length(dots));
+}
+
+TEST(GalleryTeasers, F_ShardsKeepTheirStripesNotTheirOutlines) {
+    const Curves shards = tz::shards()(kWindow);
+    const std::vector<Ring> shard_rings = rings(shards);
+    ASSERT_EQ(shard_rings.size(), shards.size());
+    ASSERT_GT(shard_rings.size(), 20u);
+    const Curves drawing = tz::hatched_shards()(kWindow);
+    // Every piece lies strictly inside one shard: none on an outline (IsBoundary edges
+    // were dropped), none in the gaps between shards.
+    std::vector<std::vector<double>> angles(shard_rings.size());
+    std::size_t astray = 0;
+    for (const auto& s : segments(drawing)) {
+        int owner = -1, owners = 0;
+        for (std::size_t k = 0; k < shard_rings.size(); ++k)
+            if (shard_rings[k].strictly_contains(s.mid())) owner = int(k), ++owners;
+        if (owners != 1) {
+            ++astray;
+            continue;
+        }
+        angles[std::size_t(owner)].push_back(angle_mod_pi(s));
+    }
+    EXPECT_EQ(astray, 0u);
+    // Each shard is striped, all its stripes parallel; the angles differ between shards.
+    std::set<long> distinct;
+    for (std::size_t k = 0; k < angles.size(); ++k) {
+        ASSERT_FALSE(angles[k].empty()) << "shard " << k << " has no stripe";
+        for (double a : angles[k]) {
+            const double d = std::abs(a - angles[k][0]);
+            EXPECT_LT(std::min(d, pi - d), 1e-6) << "shard " << k;
+        }
+        distinct.insert(std::lround(angles[k][0] * 1e4));
+    }
+    EXPECT_GT(distinct.size(), angles.size() / 2);
+}
+
+TEST(GalleryTeasers, G_CheckerboardOfCrackedStripes) {
+    const Curves drawing = tz::cracked_basket(elements())(kWindow);
+    // Straight curves are the cells' outlines, on the lines of the 200 grid; the others are
+    // cracks crossing one cell from side to side.
+    std::map<std::pair<int, int>, std::pair<int, int>> cracks;  // cell -> (lying, standing)
+    for (const auto& c : drawing.curves) {
+        bool same_x = true, same_y = true;
+        for (const auto& p : c.points) {
+            same_x &= std::abs(p.x - c.points[0].x) < 1e-6;
+            same_y &= std::abs(p.y - c.points[0].y) < 1e-6;
+        }
+        if (same_x || same_y) {
+            EXPECT_TRUE((same_x && on_multiple(c.points[0].x, 200)) || (same_y && on_multiple(c.points[0].y, 200)));
+            continue;
+        }
+        const Point a = c.points.front(), b = c.points.back(), m = (a + b) / 2;
+        auto& n = cracks[{int(std::floor(m.x / 200)), int(std::floor(m.y / 200))}];
+        if (std::abs(a.y - b.y) < 1e-6 && std::abs(std::abs(a.x - b.x) - 200) < 1e-6) ++n.first;
+        else if (std::abs(a.x - b.x) < 1e-6 && std::abs(std::abs(a.y - b.y) - 200) < 1e-6) ++n.second;
+        else ADD_FAILURE() << "a crack that does not cross its cell";
+    }
+    // Every cell of the window: three to six cracks, all one way, the way alternating
+    // like a checkerboard.
+    EXPECT_EQ(cracks.size(), 100u);
+    int phase = -1;
+    for (const auto& [cell, n] : cracks) {
+        EXPECT_TRUE(n.first == 0 || n.second == 0);
+        EXPECT_GE(n.first + n.second, 3);
+        EXPECT_LE(n.first + n.second, 6);
+        const int p = (cell.first + cell.second + (n.second > 0 ? 1 : 0)) & 1;
+        if (phase < 0) phase = p;
+        EXPECT_EQ(p, phase) << "cell " << cell.first << ", " << cell.second;
+    }
+}
+
+TEST(GalleryTeasers, H_PlaidOfDiagonalBandsOverFineVerticalHatching) {
+    const Curves drawing = tz::plaid()(kWindow);
+    std::set<int> parity_45, parity_135;  // of the 300-wide band holding each diagonal piece
+    std::vector<Point> fine;               // middles of the fine vertical hatching
+    std::size_t horizontal = 0, vertical = 0, other = 0;
+    for (const auto& s : segments(drawing)) {
+        const double a = angle_mod_pi(s) * 180 / pi;
+        const Point m = s.mid();
+        if (std::abs(a - 45) < 1e-6) parity_45.insert(int(std::floor(m.x / 300)) & 1);
+        else if (std::abs(a - 135) < 1e-6) parity_135.insert(int(std::floor(m.y / 300)) & 1);
+        else if (a < 1e-6 || a > 180 - 1e-6) ++horizontal;
+        else if (std::abs(a - 90) < 1e-6) {
+            ++vertical;
+            if (!on_multiple(s.a.x, 100)) fine.push_back(m);  // not a cell side
+        } else ++other;
+    }
+    EXPECT_EQ(other, 0u);
+    EXPECT_GT(horizontal, 0u);
+    EXPECT_GT(vertical, 0u);
+    // The 45 degree hatching fills one column band in two, the 135 degree one one row band
+    // in two.
+    EXPECT_EQ(parity_45.size(), 1u);
+    EXPECT_EQ(parity_135.size(), 1u);
+    // The fine hatching lies in one 100-slot of rows or one 100-slot of columns of the
+    // uneven grid's 600 period (its "h1" row and "v1" column), and in both.
+    ASSERT_GT(fine.size(), 100u);
+    auto slot = [](double v) { return int(std::floor(v / 100)) % 6; };
+    int matches = 0;
+    for (int row = 0; row < 6; ++row)
+        for (int col = 0; col < 6; ++col) {
+            bool all = true, some_row_only = false, some_col_only = false;
+            for (const auto& m : fine) {
+                const bool r = slot(m.y) == row, c = slot(m.x) == col;
+                all &= r || c;
+                some_row_only |= r && !c;
+                some_col_only |= c && !r;
+            }
+            matches += all && some_row_only && some_col_only;
+        }
+    EXPECT_EQ(matches, 1);
+}

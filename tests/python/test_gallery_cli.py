@@ -16,7 +16,9 @@ def test_list_names_every_example(gallery_exe):
     assert r.returncode == 0
     names = [line.split("\t")[0] for line in r.stdout.splitlines()]
     assert names == ["stripes", "grid", "uniform", "random", "puzzle", "rosettes", "cracks",
-                     "bimodal", "crosses", "curves", "clusters", "overview", "combine_d", "combine_e",
+                     "bimodal", "crosses", "curves", "clusters", "overview",
+                     "teaser_a", "teaser_b", "teaser_c", "teaser_d", "teaser_e", "teaser_f", "teaser_g",
+                     "teaser_h", "combine_a", "combine_b", "combine_c", "combine_d", "combine_e",
                      "combine_f", "combine_g", "combine_h"]
 
 

@@ -1,5 +1,6 @@
 """The Python module: its shape, the operators under the thesis's names, cells, mappers,
 Random, threads and the GIL, and the errors it raises."""
+import math
 import pathlib
 import threading
 import time
@@ -43,6 +44,38 @@ def test_package_shape():
 def test_every_operator_by_its_seed_name(name):
     assert name in globals(), f"{name} is not exported by 'from rockhatch.tex import *'"
     assert name in tex.__all__
+
+
+# The math the Appendix A scripts call bare (teaser a: `curves[floor(Random(edge, 0, len(curves), 0))]`).
+APPENDIX_A_MATH = "floor ceil fabs pow exp log sqrt hypot cos sin tan acos asin atan atan2".split()
+
+
+def star_import():
+    scope = {}
+    exec("from rockhatch.tex import *", scope)
+    return scope
+
+
+@pytest.mark.parametrize("name", APPENDIX_A_MATH)
+def test_the_star_import_brings_the_scripts_math(name):
+    assert star_import()[name] is getattr(math, name)
+    assert name in tex.__all__
+
+
+def test_an_appendix_a_script_runs_with_the_star_import_alone():
+    # Teaser a's way of choosing an element: floor() of a Random in [0, n) indexes a list.
+    script = """
+sizes = [10, 20, 30]
+def edge_to_stroke(edge):
+    s = sizes[floor(Random(edge, 0, len(sizes), 0))]
+    return Scale(ToCurve(edge), s / 100 + fabs(sin(0)) + pow(2, 0) - exp(log(1)))
+grid = GridPartition(StripesProperties(0, 100), StripesProperties(pi / 2, 100), KEEP_OUTSIDE)
+out = MapToEdges(edge_to_stroke, grid)(Region.rectangle(0, 0, 300, 300))
+"""
+    scope = star_import()
+    exec(script, scope)
+    assert len(scope["out"]) == 24  # 4 x 3 horizontal + 3 x 4 vertical edges, each shrunk
+    assert isinstance(scope["floor"](2.7), int)
 
 
 def test_point_arithmetic():

@@ -11,7 +11,10 @@ from conftest import GALLERY_PY, python_env
 FAMILIES = {
     "partitions": ["stripes", "grid", "uniform", "random"],
     "mappers": ["puzzle", "rosettes", "cracks", "bimodal", "crosses", "curves", "clusters", "overview"],
-    "merges": ["combine_d", "combine_e", "combine_f", "combine_g", "combine_h"],
+    "teasers": ["teaser_a", "teaser_b", "teaser_c", "teaser_d", "teaser_e", "teaser_f", "teaser_g", "teaser_h"],
+    # The "Combining" section: its three textures alone (a to c), then their merges.
+    "merges": ["combine_a", "combine_b", "combine_c", "combine_d", "combine_e", "combine_f", "combine_g",
+               "combine_h"],
 }
 
 

@@ -5,14 +5,19 @@
 gives partitions (StripesProperties, GridPartition, UniformPartition...), label setters,
 the border constants, MapToVertices / MapToEdges / MapToFaces with Python mappers, every
 table 3.4 built-in, Union / Inside / Outside, ImportSVG / ExportSVG, Point, Scale, Rotate,
-Translate, Nothing, Random, pi, and cos / sin / sqrt / atan2 from math as the thesis's
-scripts use them.
+Translate, Nothing, Random, pi, and the names of `math` the thesis's scripts use bare
+(cos, sin, tan, acos, asin, atan, atan2, sqrt, hypot, exp, log, pow, fabs, floor, ceil:
+`curves[floor(Random(edge, 0, len(curves), 0))]` runs as written). `pow` is math.pow: after
+the star import it shadows the built-in pow (always a float, no modulus argument).
 """
-from math import atan2, cos, sin, sqrt  # noqa: F401  (the scripts' math)
+from math import (acos, asin, atan, atan2, ceil, cos, exp, fabs, floor, hypot, log,  # noqa: F401
+                  pow, sin, sqrt, tan)  # (the scripts' math)
 
 from ._rockhatch import Lines, Points, TexError  # noqa: F401
 from ._rockhatch.tex import *  # noqa: F401,F403
 from ._rockhatch import tex as _tex
 
-__all__ = [n for n in dir(_tex) if not n.startswith("_")] + [
-    "cos", "sin", "sqrt", "atan2", "Points", "Lines", "TexError"]
+_MATH_NAMES = ["cos", "sin", "tan", "acos", "asin", "atan", "atan2", "sqrt", "hypot", "exp", "log", "pow",
+               "fabs", "floor", "ceil"]
+
+__all__ = [n for n in dir(_tex) if not n.startswith("_")] + _MATH_NAMES + ["Points", "Lines", "TexError"]
