@@ -253,7 +253,7 @@ def teaser_a(elements):
 RING_LAYERS = 10
 
 
-def ring_layer(elements, layer):
+def ring_layer(elements):
     rings = load_numbered(elements, "tring", 3)
 
     def cell_to_nest(f):
@@ -268,17 +268,16 @@ def ring_layer(elements, layer):
             i += 1
         return nest
 
-    # Sites depend on the plane, the density and the seed: a density a thousandth apart
-    # per layer gives every layer its own sites.
-    density = 15 / (SIZE * SIZE) * (1 + 0.001 * layer)
+    # Every layer's partition draws its own sites (its own random stream).
+    density = 15 / (SIZE * SIZE)
     return MapToFaces(cell_to_nest, UniformPartition(IrregularProperties(density), KEEP_OUTSIDE))
 
 
 def teaser_b(elements):
     # Stacked tree rings: each new layer hides what lies under its discs.
-    stack = ring_layer(elements, 0)
-    for layer in range(1, RING_LAYERS):
-        top = ring_layer(elements, layer)
+    stack = ring_layer(elements)
+    for _ in range(1, RING_LAYERS):
+        top = ring_layer(elements)
         stack = Union(top, Outside(stack, top, CROP))
     return stack
 
@@ -526,6 +525,7 @@ def main(argv=None):
     os.makedirs(a.out, exist_ok=True)
     for n in names:
         t0 = time.perf_counter()
+        SetSeed(a.seed)  # each example numbers its partitions' streams from the start
         c = ExportSVG(EXAMPLES[n](a.elements), SIZE, os.path.join(a.out, n + ".svg"))
         print("%-10s %7d curves  %8.3f s" % (n, len(c), time.perf_counter() - t0))
     return 0

@@ -375,10 +375,12 @@ void bind_tex(py::module_& m) {
         py::return_value_policy::reference);
     m.def("StripesPartition", &StripesPartition, py::arg("p"));
     m.def("GridPartition", &GridPartition, py::arg("s1"), py::arg("s2"), py::arg("border"));
-    m.def("UniformPartition", &UniformPartition, py::arg("p"), py::arg("border"));
-    m.def("RandomPartition", &RandomPartition, py::arg("p"), py::arg("border"));
-    m.def("PoissonDiskSites", &PoissonDiskSites, py::arg("density"), py::arg("box"));
-    m.def("PoissonSites", &PoissonSites, py::arg("density"), py::arg("box"));
+    m.def("UniformPartition", &UniformPartition, py::arg("p"), py::arg("border"), py::arg("seed") = py::none(),
+          "Voronoi cells of Poisson-disk sites; each call draws its own sites unless `seed` repeats them");
+    m.def("RandomPartition", &RandomPartition, py::arg("p"), py::arg("border"), py::arg("seed") = py::none(),
+          "Voronoi cells of Poisson sites; each call draws its own sites unless `seed` repeats them");
+    m.def("PoissonDiskSites", &PoissonDiskSites, py::arg("density"), py::arg("box"), py::arg("stream") = 0);
+    m.def("PoissonSites", &PoissonSites, py::arg("density"), py::arg("box"), py::arg("stream") = 0);
     m.def("PoissonDiskRadius", &PoissonDiskRadius, py::arg("density"));
 
     // ---- Mapping (table 3.3) and merging (table 3.5) ----
@@ -411,7 +413,8 @@ void bind_tex(py::module_& m) {
     m.def("ExportSVG", py::overload_cast<const Curves&, double, const std::string&, const SvgStyle&>(&ExportSVG),
           py::arg("curves"), py::arg("size"), py::arg("filename"), py::arg("style") = SvgStyle{},
           py::call_guard<py::gil_scoped_release>());
-    m.def("SetSeed", &SetSeed, py::arg("seed"));
+    m.def("SetSeed", &SetSeed, py::arg("seed"),
+          "sets the global seed and restarts the numbering of the partitions' random streams");
     m.def("GetSeed", &GetSeed);
     m.def("SetThreads", &SetThreads, py::arg("n"), "worker threads (0: all cores); never changes the result");
     m.def("GetThreads", &GetThreads);

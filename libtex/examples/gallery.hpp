@@ -13,8 +13,14 @@ struct Example {
     std::string name;          // file stem of the output
     std::string title;         // name in the thesis
     double published_seconds;  // Appendix A time; 0: "< 1 sec"; -1: not published
-    // Builds the arrangement (loads its SVG elements from `elements`).
-    std::function<tex::Arrangement(const std::string& elements)> build;
+    // The script: builds the arrangement (loads its SVG elements from `elements`).
+    std::function<tex::Arrangement(const std::string& elements)> script;
+    // Runs the script as a fresh program would: its partitions' random streams are
+    // numbered from the start, whatever was built before.
+    tex::Arrangement build(const std::string& elements) const {
+        tex::StreamScope fresh(0);
+        return script(elements);
+    }
 };
 
 // Output size of every example (the thesis's `size = 2000`).

@@ -66,7 +66,7 @@ Arrangement beads_on_strokes(const std::string& dir) {
 
 // ---- Teaser b ----
 
-Arrangement ring_layer(const std::string& dir, int layer) {
+Arrangement ring_layer(const std::string& dir) {
     const std::vector<Curves> rings = load_all(dir, "tring", 3);
     // A nest of rings in each cell: the outer one fitted to the cell's box and reduced at
     // random, then smaller and smaller ones, each a random one of the three drawings
@@ -81,18 +81,17 @@ Arrangement ring_layer(const std::string& dir, int layer) {
         }
         return nest;
     };
-    // About 15 cells in the window. Irregular partitions are anchored to the plane, the
-    // density and the seed: ten layers with one density would draw the same sites ten
-    // times, so each layer's density differs by a thousandth, which gives it its own sites.
-    const double density = 15 / (kSize * kSize) * (1 + 0.001 * layer);
+    // About 15 cells in the window; every layer's partition draws its own sites (its own
+    // random stream), so the ten layers differ.
+    const double density = 15 / (kSize * kSize);
     return MapToFaces(cell_to_nest, UniformPartition(IrregularProperties(density), KEEP_OUTSIDE));
 }
 
 Arrangement stacked_rings(const std::string& dir) {
     // Each new layer on top of the stack, hiding what lies under its discs.
-    Arrangement stack = ring_layer(dir, 0);
+    Arrangement stack = ring_layer(dir);
     for (int layer = 1; layer < kRingLayers; ++layer) {
-        const Arrangement top = ring_layer(dir, layer);
+        const Arrangement top = ring_layer(dir);
         stack = Union(top, Outside(stack, top, CROP));
     }
     return stack;

@@ -24,7 +24,7 @@ tex::Arrangement beads_on_strokes(const std::string& dir);
 // of a sparse uniform partition); each new layer goes on top and hides what lies under
 // its discs.
 inline constexpr int kRingLayers = 10;
-tex::Arrangement ring_layer(const std::string& dir, int layer);  // layer in [0, kRingLayers)
+tex::Arrangement ring_layer(const std::string& dir);  // one layer: its own random sites
 tex::Arrangement stacked_rings(const std::string& dir);
 
 // Teaser c, a wall of long and short bricks: label rules on a labelled grid remove

@@ -127,12 +127,29 @@ Point Centroid(const Face& f) {
 Curves Contour(const Face& f) {
     const FaceRec& r = record(f);
     Curves out;
-    for (std::size_t k = 0; k < r.cycles.size(); ++k) {
-        Curve c;
-        c.points = f.map().cycle_points(f.id(), k);
-        c.closed = true;
-        c.left = r.labels;
-        out.curves.push_back(std::move(c));
+    for (const auto& cycle : r.cycles) {
+        // A cycle of one loop edge is a closed curve; otherwise one curve per edge, so that
+        // the contour's edges stay the face's edges when the contour is induced again.
+        if (cycle.size() == 1) {
+            const auto& e = f.map().edges()[cycle[0].edge];
+            if (e.source == e.target) {
+                Curve c;
+                c.points.assign(e.points.begin(), e.points.end() - 1);
+                if (!cycle[0].left) std::reverse(c.points.begin(), c.points.end());
+                c.closed = true;
+                c.left = r.labels;
+                out.curves.push_back(std::move(c));
+                continue;
+            }
+        }
+        for (const Side& s : cycle) {
+            const auto& e = f.map().edges()[s.edge];
+            Curve c;
+            c.points = e.points;
+            if (!s.left) std::reverse(c.points.begin(), c.points.end());
+            c.left = r.labels;
+            out.curves.push_back(std::move(c));
+        }
     }
     return out;
 }

@@ -1,5 +1,7 @@
 #include "libtex/parallel.hpp"
 
+#include "libtex/random.hpp"
+
 #include <algorithm>
 #include <atomic>
 #include <exception>
@@ -24,9 +26,15 @@ unsigned GetThreads() {
 }
 
 void parallel_for(std::size_t n, const std::function<void(std::size_t)>& body) {
+    // Each item runs under random streams derived from the caller's and its index.
+    const detail::StreamState parent = detail::capture_stream_state();
+    auto item = [&](std::size_t i) {
+        detail::ItemScope scope(parent, i);
+        body(i);
+    };
     const unsigned threads = unsigned(std::min<std::size_t>(GetThreads(), n));
     if (threads <= 1 || t_in_worker) {
-        for (std::size_t i = 0; i < n; ++i) body(i);
+        for (std::size_t i = 0; i < n; ++i) item(i);
         return;
     }
     std::atomic<std::size_t> next{0};
@@ -40,7 +48,7 @@ void parallel_for(std::size_t n, const std::function<void(std::size_t)>& body) {
             const std::size_t i = next.fetch_add(1);
             if (i >= n) break;
             try {
-                body(i);
+                item(i);
             } catch (...) {
                 std::lock_guard lock(error_mutex);
                 if (i < error_index) {

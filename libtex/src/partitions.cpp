@@ -16,6 +16,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <unordered_map>
 
@@ -318,10 +319,10 @@ void check_weights(const std::vector<WeightedLabel>& w, const char* op) {
     }
 }
 
-Labels pick_label(const std::vector<WeightedLabel>& w, std::uint64_t key) {
+Labels pick_label(const std::vector<WeightedLabel>& w, std::uint64_t stream, std::uint64_t key) {
     Labels l;
     if (w.empty()) return l;
-    const double u = unit_from_hash(hash_combine(mix64(GetSeed() ^ 0x4c41424cULL), key));
+    const double u = unit_from_hash(hash_combine(hash_combine(mix64(GetSeed() ^ 0x4c41424cULL), stream), key));
     double acc = 0;
     for (const auto& x : w) {
         acc += x.weight;
@@ -343,8 +344,8 @@ struct TileHash {
     }
 };
 
-std::uint64_t tile_seed(std::uint64_t salt, double density, long long i, long long j) {
-    std::uint64_t h = hash_combine(mix64(GetSeed() ^ salt), std::uint64_t(i));
+std::uint64_t tile_seed(std::uint64_t salt, std::uint64_t stream, double density, long long i, long long j) {
+    std::uint64_t h = hash_combine(hash_combine(mix64(GetSeed() ^ salt), stream), std::uint64_t(i));
     h = hash_combine(h, std::uint64_t(j));
     return hash_double(h, density);
 }
@@ -361,7 +362,8 @@ constexpr int kDartsPerTile = 48;
 // three steps of it, whatever region asked for them.
 class DiskSampler {
 public:
-    DiskSampler(double density) : density_(density), r_(PoissonDiskRadius(density)), s_(2 * r_) {}
+    DiskSampler(double density, std::uint64_t stream)
+        : density_(density), stream_(stream), r_(PoissonDiskRadius(density)), s_(2 * r_) {}
 
     std::vector<Point> sites(const BBox& box) {
         std::vector<Point> out;
@@ -387,7 +389,7 @@ private:
         for (int dj = -1; dj <= 1; ++dj)
             for (int di = -1; di <= 1; ++di)
                 if ((di || dj) && phase(i + di, j + dj) < ph) lower.push_back(&tile(i + di, j + dj));
-        KeyedRng rng(tile_seed(0x44495343ULL, density_, i, j));
+        KeyedRng rng(tile_seed(0x44495343ULL, stream_, density_, i, j));
         std::vector<Point> pts;
         const double r2 = r_ * r_;
         for (int k = 0; k < kDartsPerTile; ++k) {
@@ -404,7 +406,9 @@ private:
         return tiles_.emplace(TileKey{i, j}, std::move(pts)).first->second;
     }
 
-    double density_, r_, s_;
+    double density_;
+    std::uint64_t stream_;
+    double r_, s_;
     std::unordered_map<TileKey, std::vector<Point>, TileHash> tiles_;
 };
 
@@ -416,7 +420,8 @@ using Delaunay = CGAL::Delaunay_triangulation_2<DtKernel, DtTds>;
 
 // Voronoi cells of the sites as a complex. Cells of hull sites are unbounded and left out
 // (the sites cover a margin around the region, so no such cell meets it).
-Complex voronoi_complex(const std::vector<Point>& sites, const Irregular& p, std::vector<Point>& hull_sites) {
+Complex voronoi_complex(const std::vector<Point>& sites, const Irregular& p, std::uint64_t stream,
+                        std::vector<Point>& hull_sites) {
     Complex cx;
     std::vector<std::pair<DtKernel::Point_2, int>> pts;
     pts.reserve(sites.size());
@@ -443,7 +448,7 @@ Complex voronoi_complex(const std::vector<Point>& sites, const Irregular& p, std
     }
     if (!p.vertex_labels.empty()) {
         for (const auto& v : cx.verts) {
-            Labels l = pick_label(p.vertex_labels, hash_point(0x56564c42ULL, v));
+            Labels l = pick_label(p.vertex_labels, stream, hash_point(0x56564c42ULL, v));
             if (!l.empty()) cx.vertex_labels.push_back({v, std::move(l)});
         }
     }
@@ -472,7 +477,7 @@ Complex voronoi_complex(const std::vector<Point>& sites, const Irregular& p, std
             if (ring.empty() || ring.back() != cx.verts[id]) ring.push_back(cx.verts[id]);
         while (ring.size() > 1 && ring.front() == ring.back()) ring.pop_back();
         if (ring.size() < 3) continue;
-        cell_of[si] = cx.add_cell(std::move(ring), pick_label(p.face_labels, hash_point(0x53495445ULL, sites[si])));
+        cell_of[si] = cx.add_cell(std::move(ring), pick_label(p.face_labels, stream, hash_point(0x53495445ULL, sites[si])));
     }
     // Edges: duals of the Delaunay edges between two finite triangles, by site pair.
     std::vector<std::pair<std::pair<int, int>, Delaunay::Edge>> des;
@@ -500,23 +505,27 @@ Complex voronoi_complex(const std::vector<Point>& sites, const Irregular& p, std
         const Point& pb = sites[sb];
         const std::uint64_t ekey = pa < pb ? hash_point(hash_point(0x45444745ULL, pa), pb)
                                            : hash_point(hash_point(0x45444745ULL, pb), pa);
-        cx.edges.push_back({a, b, a_left ? ca : cb, a_left ? cb : ca, pick_label(p.edge_labels, ekey)});
+        cx.edges.push_back({a, b, a_left ? ca : cb, a_left ? cb : ca, pick_label(p.edge_labels, stream, ekey)});
     }
     return cx;
 }
 
-Arrangement irregular_partition(const Irregular& p, Border b, bool disk, const char* op) {
+Arrangement irregular_partition(const Irregular& p, Border b, bool disk, const char* op,
+                                std::optional<std::uint64_t> seed) {
     check_density(p.density, op);
-    return Arrangement([p, b, disk, op](const Region& r) {
+    // The stream is fixed now, when the operator is created (random.hpp, "Streams").
+    const std::uint64_t stream = seed ? SeededStream(*seed) : NextStream();
+    return Arrangement([p, b, disk, op, stream](const Region& r) {
         const double spacing = 1.0 / std::sqrt(p.density);
         double margin = 3 * spacing;
         for (int attempt = 0;; ++attempt) {
             const BBox box = r.bbox().expanded(margin);
             const double expected = p.density * (box.width() * box.height());
             if (expected > 2e7) throw Error(op, "too many sites for the region (density too high)");
-            const std::vector<Point> sites = disk ? PoissonDiskSites(p.density, box) : PoissonSites(p.density, box);
+            const std::vector<Point> sites =
+                disk ? PoissonDiskSites(p.density, box, stream) : PoissonSites(p.density, box, stream);
             std::vector<Point> hull;
-            Complex cx = voronoi_complex(sites, p, hull);
+            Complex cx = voronoi_complex(sites, p, stream, hull);
             // Every cell meeting the region must be bounded, so no hull site (whose cell
             // is unbounded) may lie near the region; widen the margin otherwise.
             const BBox near = r.bbox().expanded(1.5 * spacing);
@@ -592,12 +601,12 @@ Arrangement GridPartition(const Stripes& s1, const Stripes& s2, Border b) {
     return Arrangement([s1, s2, b](const Region& r) { return realize(grid_complex(s1, s2, r), r, b); });
 }
 
-Arrangement UniformPartition(const Irregular& p, Border b) {
-    return irregular_partition(p, b, true, "UniformPartition");
+Arrangement UniformPartition(const Irregular& p, Border b, std::optional<std::uint64_t> seed) {
+    return irregular_partition(p, b, true, "UniformPartition", seed);
 }
 
-Arrangement RandomPartition(const Irregular& p, Border b) {
-    return irregular_partition(p, b, false, "RandomPartition");
+Arrangement RandomPartition(const Irregular& p, Border b, std::optional<std::uint64_t> seed) {
+    return irregular_partition(p, b, false, "RandomPartition", seed);
 }
 
 double PoissonDiskRadius(double density) {
@@ -605,12 +614,12 @@ double PoissonDiskRadius(double density) {
     return std::sqrt(kDiskPacking / density);
 }
 
-std::vector<Point> PoissonDiskSites(double density, const BBox& box) {
+std::vector<Point> PoissonDiskSites(double density, const BBox& box, std::uint64_t stream) {
     check_density(density, "UniformPartition");
-    return DiskSampler(density).sites(box);
+    return DiskSampler(density, stream).sites(box);
 }
 
-std::vector<Point> PoissonSites(double density, const BBox& box) {
+std::vector<Point> PoissonSites(double density, const BBox& box, std::uint64_t stream) {
     check_density(density, "RandomPartition");
     const double t = std::sqrt(8.0 / density);  // about eight sites per tile
     const long long i0 = (long long)std::floor(box.xmin / t), i1 = (long long)std::floor(box.xmax / t);
@@ -618,7 +627,7 @@ std::vector<Point> PoissonSites(double density, const BBox& box) {
     std::vector<Point> out;
     for (long long j = j0; j <= j1; ++j)
         for (long long i = i0; i <= i1; ++i) {
-            KeyedRng rng(tile_seed(0x504f4953ULL, density, i, j));
+            KeyedRng rng(tile_seed(0x504f4953ULL, stream, density, i, j));
             const std::uint32_t n = rng.poisson(density * t * t);
             for (std::uint32_t k = 0; k < n; ++k) {
                 const Point p{(double(i) + rng.uniform()) * t, (double(j) + rng.uniform()) * t};

@@ -14,12 +14,37 @@ struct ThreadStream {
     std::uint64_t key = 0;
     std::uint64_t counter = 0;
     std::uint64_t free_counter = 0;  // outside mappers
+    std::uint64_t stream_key = 0;    // numbering of the streams of new operators
+    std::uint64_t stream_count = 0;
 };
 thread_local ThreadStream t_stream;
 
+constexpr std::uint64_t kStreamTag = 0x5354524541ULL;
+
 }  // namespace
 
-void SetSeed(std::uint64_t seed) { g_seed.store(seed); }
+void SetSeed(std::uint64_t seed) {
+    g_seed.store(seed);
+    t_stream.free_counter = 0;
+    if (!t_stream.active) t_stream.stream_count = 0;
+}
+
+std::uint64_t NextStream() {
+    return hash_combine(hash_combine(kStreamTag, t_stream.stream_key), ++t_stream.stream_count);
+}
+
+std::uint64_t SeededStream(std::uint64_t seed) { return hash_combine(mix64(kStreamTag ^ 0x5345454455ULL), seed); }
+
+StreamScope::StreamScope(std::uint64_t key) : saved_key_(t_stream.stream_key), saved_count_(t_stream.stream_count) {
+    t_stream.stream_key = key;
+    t_stream.stream_count = 0;
+}
+
+StreamScope::~StreamScope() {
+    t_stream.stream_key = saved_key_;
+    t_stream.stream_count = saved_count_;
+}
+
 std::uint64_t GetSeed() { return g_seed.load(); }
 
 std::uint64_t hash_double(std::uint64_t h, double v) {
@@ -48,17 +73,51 @@ std::uint32_t KeyedRng::poisson(double mean) {
     return k;
 }
 
+
+namespace detail {
+
+StreamState capture_stream_state() {
+    return {t_stream.active, t_stream.key, t_stream.counter, t_stream.stream_key, t_stream.stream_count};
+}
+
+ItemScope::ItemScope(const StreamState& parent, std::size_t i) : saved_(capture_stream_state()) {
+    const std::uint64_t base = hash_combine(hash_combine(parent.stream_key ^ 0x504152ULL, parent.stream_count), i);
+    t_stream.stream_key = base;
+    t_stream.stream_count = 0;
+    t_stream.key = parent.active ? hash_combine(hash_combine(parent.key, parent.counter), i) : base;
+    t_stream.active = true;
+    t_stream.counter = 0;
+}
+
+ItemScope::~ItemScope() {
+    t_stream.active = saved_.active;
+    t_stream.key = saved_.key;
+    t_stream.counter = saved_.counter;
+    t_stream.stream_key = saved_.stream_key;
+    t_stream.stream_count = saved_.stream_count;
+}
+
+}  // namespace detail
+
 RandomScope::RandomScope(std::uint64_t key)
-    : saved_key_(t_stream.key), saved_counter_(t_stream.counter), saved_active_(t_stream.active) {
+    : saved_key_(t_stream.key),
+      saved_counter_(t_stream.counter),
+      saved_active_(t_stream.active),
+      saved_stream_key_(t_stream.stream_key),
+      saved_stream_count_(t_stream.stream_count) {
     t_stream.active = true;
     t_stream.key = key;
     t_stream.counter = 0;
+    t_stream.stream_key = hash_combine(key, 0x43454c4cULL);
+    t_stream.stream_count = 0;
 }
 
 RandomScope::~RandomScope() {
     t_stream.active = saved_active_;
     t_stream.key = saved_key_;
     t_stream.counter = saved_counter_;
+    t_stream.stream_key = saved_stream_key_;
+    t_stream.stream_count = saved_stream_count_;
 }
 
 double Random(double min, double max) {

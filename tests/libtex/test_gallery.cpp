@@ -144,6 +144,20 @@ struct Ring {
     }
 };
 
+// The outer rings of the bounded faces the curves induce (a shrunk Contour is one curve per
+// edge of its face: it closes into a ring only once induced).
+std::vector<Ring> face_rings(const Curves& c) {
+    const MapPtr m = PlanarMap::induce(c);
+    std::vector<Ring> out;
+    for (std::size_t f = 0; f < m->faces().size(); ++f) {
+        if (m->faces()[f].unbounded) continue;
+        Ring r{m->cycle_points(int(f), 0), {}};
+        for (const auto& p : r.pts) r.box.add(p);
+        out.push_back(std::move(r));
+    }
+    return out;
+}
+
 std::vector<Ring> rings(const Curves& c) {
     std::vector<Ring> out;
     for (const auto& cv : c.curves) {
@@ -245,12 +259,19 @@ TEST(GalleryTeasers, A_BeadsOnEveryLatticeVertexHideTheStrokes) {
 
 TEST(GalleryTeasers, B_UpperRingLayersHideTheLowerOnes) {
     ASSERT_EQ(tz::kRingLayers, 10);  // the script stacks ten layers
-    const Curves drawing = tz::stacked_rings(elements())(kWindow);
+    Curves drawing;
+    {
+        StreamScope fresh(0);
+        drawing = tz::stacked_rings(elements())(kWindow);
+    }
+    // The same layers: built in the same order from a fresh numbering, they get the same
+    // random streams as in the script.
+    StreamScope fresh(0);
     std::vector<Curves> layers;
     std::vector<std::vector<Ring>> layer_rings;
     SegmentIndex index(25);
     for (int i = 0; i < tz::kRingLayers; ++i) {
-        layers.push_back(tz::ring_layer(elements(), i)(kWindow));
+        layers.push_back(tz::ring_layer(elements())(kWindow));
         layer_rings.push_back(rings(layers.back()));
         ASSERT_FALSE(layers.back().empty());
         for (const auto& s : segments(layers.back())) index.add(s, i);
@@ -276,8 +297,8 @@ TEST(GalleryTeasers, B_UpperRingLayersHideTheLowerOnes) {
     }
     EXPECT_EQ(foreign, 0u);
     EXPECT_EQ(hidden_but_drawn, 0u);
-    // Every layer shows somewhere, and the layers hide a lot of each other. (Depends on each
-    // layer drawing its own sites: ring_layer gives each its own density for that.)
+    // Every layer shows somewhere, and the layers hide a lot of each other (each layer's
+    // partition draws its own sites).
     for (int i = 0; i + 1 < tz::kRingLayers; ++i) EXPECT_GT(visible[i], 0u) << "layer " << i;
     std::size_t all_rings = 0;
     for (const auto& l : layers) all_rings += segments(l).size();
@@ -290,19 +311,17 @@ TEST(GalleryTeasers, C_LabelRulesLeaveCoursesOfLongAndShortBricks) {
     // (x = 120 k) carries "v1" when k % 4 == 0 (5 lines) and "v2" or "v4" when k is odd (9
     // lines), whichever way the label cycle runs along x; the "h" labels alternate from row
     // to row, so five rows keep the "v1" lines and five keep the odd ones.
-    // Counted as polyline segments (with maximal curves, the window's four corners, of
-    // degree 2, would join two edges each).
+    // Every grid edge is a curve of its own in the partition, so the edges of its planar map
+    // run from one grid vertex to the next, corners of the window included.
     EXPECT_EQ(tz::brick_courses()(kWindow).size(), std::size_t(11 * 17 + 5 * 5 + 5 * 9));
     // Bricks: 4 long ones (between "v1" lines 480 apart; the piece past the last line is
     // open) in five rows, 8 short ones (between odd lines 240 apart; the piece before the
     // first is open) in the five others; long ones shrunk to 90 %, short ones to 80 %.
-    const Curves bricks = tz::shrunk_bricks()(kWindow);
+    const std::vector<Ring> bricks = face_rings(tz::shrunk_bricks()(kWindow));
     ASSERT_EQ(bricks.size(), 60u);
     int long_bricks = 0, short_bricks = 0;
-    for (const auto& c : bricks.curves) {
-        EXPECT_TRUE(c.closed);
-        BBox b;
-        for (const auto& p : c.points) b.add(p);
+    for (const auto& r : bricks) {
+        const BBox& b = r.box;
         if (std::abs(b.width() - 432) < 1e-6 && std::abs(b.height() - 180) < 1e-6) ++long_bricks;
         else if (std::abs(b.width() - 192) < 1e-6 && std::abs(b.height() - 160) < 1e-6) ++short_bricks;
         else ADD_FAILURE() << "a brick of " << b.width() << " x " << b.height();
@@ -330,9 +349,19 @@ TEST(GalleryTeasers, D_OneGroupOfStrokesPerCellLyingOrStanding) {
 }
 
 TEST(GalleryTeasers, E_NoStippleCrossesOrEntersAWheel) {
-    const Curves wheels = tz::wheels(elements())(kWindow);
-    const Curves dots = tz::stipples(elements())(kWindow);
-    const Curves drawing = tz::wheels_in_stipple(elements())(kWindow);
+    Curves drawing, wheels, dots;
+    {
+        StreamScope fresh(0);
+        drawing = tz::wheels_in_stipple(elements())(kWindow);
+    }
+    {
+        // The same two partitions: created in the script's order from a fresh numbering.
+        StreamScope fresh(0);
+        const Arrangement w = tz::wheels(elements());
+        const Arrangement d = tz::stipples(elements());
+        wheels = w(kWindow);
+        dots = d(kWindow);
+    }
     expect_starts_with(drawing, wheels);
     const std::vector<Ring> wheel_rings = rings(wheels);  // rims and hubs
     ASSERT_FALSE(wheel_rings.empty());
@@ -355,11 +384,18 @@ TEST(GalleryTeasers, E_NoStippleCrossesOrEntersAWheel) {
 }
 
 TEST(GalleryTeasers, F_ShardsKeepTheirStripesNotTheirOutlines) {
-    const Curves shards = tz::shards()(kWindow);
-    const std::vector<Ring> shard_rings = rings(shards);
-    ASSERT_EQ(shard_rings.size(), shards.size());
+    // Each from a fresh numbering of the random streams, so that both use the same shards.
+    Curves shards, drawing;
+    {
+        StreamScope fresh(0);
+        shards = tz::shards()(kWindow);
+    }
+    {
+        StreamScope fresh(0);
+        drawing = tz::hatched_shards()(kWindow);
+    }
+    const std::vector<Ring> shard_rings = face_rings(shards);
     ASSERT_GT(shard_rings.size(), 20u);
-    const Curves drawing = tz::hatched_shards()(kWindow);
     // Every piece lies strictly inside one shard: none on an outline (IsBoundary edges
     // were dropped), none in the gaps between shards.
     std::vector<std::vector<double>> angles(shard_rings.size());
@@ -390,19 +426,15 @@ TEST(GalleryTeasers, F_ShardsKeepTheirStripesNotTheirOutlines) {
 
 TEST(GalleryTeasers, G_CheckerboardOfCrackedStripes) {
     const Curves drawing = tz::cracked_basket(elements())(kWindow);
-    // Straight curves are the cells' outlines, on the lines of the 200 grid; the others are
-    // cracks crossing one cell from side to side.
+    // The cells' outlines lie on the lines of the 200 grid; the other curves are cracks
+    // crossing one cell from side to side.
     std::map<std::pair<int, int>, std::pair<int, int>> cracks;  // cell -> (lying, standing)
     for (const auto& c : drawing.curves) {
-        bool same_x = true, same_y = true;
-        for (const auto& p : c.points) {
-            same_x &= std::abs(p.x - c.points[0].x) < 1e-6;
-            same_y &= std::abs(p.y - c.points[0].y) < 1e-6;
-        }
-        if (same_x || same_y) {
-            EXPECT_TRUE((same_x && on_multiple(c.points[0].x, 200)) || (same_y && on_multiple(c.points[0].y, 200)));
-            continue;
-        }
+        // An outline piece runs along the cell's sides (it may turn a corner: an edge is a
+        // whole curve between two vertices).
+        bool outline = true;
+        for (const auto& p : c.points) outline &= on_multiple(p.x, 200) || on_multiple(p.y, 200);
+        if (outline) continue;
         const Point a = c.points.front(), b = c.points.back(), m = (a + b) / 2;
         auto& n = cracks[{int(std::floor(m.x / 200)), int(std::floor(m.y / 200))}];
         if (std::abs(a.y - b.y) < 1e-6 && std::abs(std::abs(a.x - b.x) - 200) < 1e-6) ++n.first;

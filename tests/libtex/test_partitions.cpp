@@ -1,6 +1,8 @@
 // Partitioning operators (table 3.2) and their border modes (Fig. 3.4).
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -238,4 +240,96 @@ TEST(Partitions, BadParametersAreNamed) {
     EXPECT_TEX_ERROR(Region({{0, 0}, {1, 1}}), "Region", "empty region");
     EXPECT_TEX_ERROR(Region({{0, 0}, {1, 1}, {2, 2}}), "Region", "no area");
     EXPECT_TEX_ERROR(ExportSVG(Nothing(), 0, "/tmp/never.svg"), "ExportSVG", "size 0");
+}
+
+// ---- Every random partition draws from its own stream ----
+
+namespace {
+
+std::string sites_of(const Arrangement& a) { return ToSVG(a(Region::rectangle(0, 0, 1000, 1000)), 1000); }
+
+}  // namespace
+
+TEST(Streams, TwoIdenticalCallsDrawDifferentSites) {
+    StreamScope fresh(0);
+    const Irregular p = IrregularProperties(40e-6);
+    const Arrangement a = UniformPartition(p, KEEP_OUTSIDE), b = UniformPartition(p, KEEP_OUTSIDE);
+    EXPECT_NE(sites_of(a), sites_of(b));
+    const Arrangement c = RandomPartition(p, KEEP_OUTSIDE), d = RandomPartition(p, KEEP_OUTSIDE);
+    EXPECT_NE(sites_of(c), sites_of(d));
+    // Evaluating one again gives the same sites (the stream is fixed at creation).
+    EXPECT_EQ(sites_of(a), sites_of(a));
+}
+
+TEST(Streams, AnExplicitSeedRepeatsOnPurpose) {
+    const Irregular p = IrregularProperties(40e-6);
+    EXPECT_EQ(sites_of(UniformPartition(p, KEEP_OUTSIDE, 3)), sites_of(UniformPartition(p, KEEP_OUTSIDE, 3)));
+    EXPECT_NE(sites_of(UniformPartition(p, KEEP_OUTSIDE, 3)), sites_of(UniformPartition(p, KEEP_OUTSIDE, 4)));
+    EXPECT_EQ(sites_of(RandomPartition(p, KEEP_OUTSIDE, 9)), sites_of(RandomPartition(p, KEEP_OUTSIDE, 9)));
+}
+
+TEST(Streams, TheSameScriptGivesTheSameStreams) {
+    const Irregular p = IrregularProperties(40e-6);
+    auto script = [&] {
+        const Arrangement a = UniformPartition(p, KEEP_OUTSIDE);
+        const Arrangement b = RandomPartition(p, KEEP_OUTSIDE);
+        return sites_of(a) + sites_of(b);
+    };
+    std::string first, second, third;
+    {
+        StreamScope fresh(0);
+        first = script();
+    }
+    {
+        StreamScope fresh(0);
+        second = script();
+    }
+    const std::uint64_t seed = GetSeed();
+    SetSeed(seed);  // SetSeed restarts the numbering too
+    third = script();
+    SetSeed(seed);
+    EXPECT_EQ(first, second);
+    EXPECT_EQ(first, third);
+    // A scope gives the numbering back: what is created after it is what would have been.
+    StreamScope outer(77);
+    const std::uint64_t n1 = NextStream();
+    {
+        StreamScope inner(0);
+        NextStream();
+        NextStream();
+    }
+    const std::uint64_t n2 = NextStream();
+    StreamScope again(77);
+    EXPECT_EQ(NextStream(), n1);
+    EXPECT_EQ(NextStream(), n2);
+}
+
+TEST(Streams, APartitionBuiltInAMapperTakesItsStreamFromTheCell) {
+    // Each face of a grid builds its own uniform partition and evaluates it on one fixed
+    // square: what each face draws depends only on the face, not on the thread that visits
+    // it nor on the order of visits, and two faces draw differently.
+    const Region fixed = Region::rectangle(0, 0, 300, 300);
+    auto per_face = MapToFaces(
+        [&](const Face&) {
+            const Arrangement inner = UniformPartition(IrregularProperties(3e-4), KEEP_INSIDE);
+            return inner(fixed);
+        },
+        GridPartition(StripesProperties(0, 250), StripesProperties(pi / 2, 250), KEEP_INSIDE));
+    const Region window = Region::rectangle(0, 0, 1000, 1000);
+    const unsigned saved = GetThreads();
+    SetThreads(1);
+    const Curves one = per_face(window);
+    SetThreads(2);
+    const Curves two = per_face(window);
+    SetThreads(saved);
+    EXPECT_EQ(ToSVG(one, 1000), ToSVG(two, 1000));
+    // 16 faces, each its own drawing of the fixed square: no two alike.
+    const MapPtr grid = GridPartition(StripesProperties(0, 250), StripesProperties(pi / 2, 250), KEEP_INSIDE).induce(window);
+    std::set<std::string> drawings;
+    for (std::size_t f = 0; f < grid->faces().size(); ++f) {
+        if (grid->faces()[f].unbounded) continue;
+        RandomScope cell(grid->faces()[f].key);
+        drawings.insert(ToSVG(UniformPartition(IrregularProperties(3e-4), KEEP_INSIDE)(fixed), 300));
+    }
+    EXPECT_EQ(drawings.size(), 16u);
 }

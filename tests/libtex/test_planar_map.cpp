@@ -109,8 +109,15 @@ TEST(PlanarMap, ContourCarriesFaceLabelsAndReinducesThem) {
     const MapPtr m = PlanarMap::induce(two_squares());
     const Face a(m, face_with_label(*m, "A"));
     const Curves c = Contour(a);
-    ASSERT_EQ(c.curves.size(), 1u);
-    EXPECT_GT(signed_area(c.curves[0].points), 0);
+    ASSERT_EQ(c.curves.size(), 2u);  // one curve per edge of A
+    std::vector<Point> ring;
+    for (const auto& cv : c.curves) {
+        EXPECT_FALSE(cv.closed);
+        EXPECT_TRUE(cv.left.has("A"));
+        ring.insert(ring.end(), cv.points.begin(), cv.points.end() - 1);
+        if (&cv != &c.curves.back()) EXPECT_EQ(cv.points.back(), (&cv + 1)->points.front());
+    }
+    EXPECT_NEAR(signed_area(ring), 100, 1e-12);
     const MapPtr m2 = PlanarMap::induce(Scale(c, 0.5));
     ASSERT_EQ(th::bounded_faces(*m2), 1u);
     EXPECT_GE(face_with_label(*m2, "A"), 0);

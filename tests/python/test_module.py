@@ -149,7 +149,9 @@ def test_incidence_and_labels_seen_by_python_mappers():
     # h1 lines are y = 0, 200, ..., 1000: 6 lines of 10 edges.
     assert len(edges) == 60
     faces = MapToFaces(face_mapper, grid)(BOX)
-    assert len(faces) == 100
+    # A contour is one curve per edge of its face: four sides per square.
+    assert len(faces) == 4 * 100
+    assert len(PlanarMap.induce(faces).faces()) == 100
     assert abs(BBoxWidth(faces) - 950) < 1e-9
 
 
@@ -191,7 +193,7 @@ def test_python_mappers_run_on_the_engine_threads():
                                               KEEP_INSIDE))(BOX)
     finally:
         SetThreads(0)
-    assert len(out) == 400
+    assert len(out) == 4 * 400  # four sides per square face
     assert len(idents) == 2, "the two workers should both have run the Python mapper"
 
 

@@ -64,8 +64,10 @@ Point Location(const Vertex& v);
 Point LocationAt(const Edge& e, double s);
 // Area centroid of the face (holes subtracted).
 Point Centroid(const Face& f);
-// Boundary of the face as closed curves (outer ring counter-clockwise, holes clockwise),
-// carrying the face's labels on their left side.
+// Boundary of the face, one curve per edge in the order of its boundary cycles (outer
+// cycle counter-clockwise, holes clockwise: the face is on the left), each carrying the
+// face's labels on its left side; a cycle made of one loop edge is one closed curve. Induced
+// again, the contour has the face's edges.
 Curves Contour(const Face& f);
 // The whole edge as a curve (its polyline; closed for a loop), with its labels and side
 // labels.

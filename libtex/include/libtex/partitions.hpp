@@ -1,6 +1,8 @@
 // Partitioning operators (thesis 3.3, table 3.2).
 #pragma once
 
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -64,14 +66,16 @@ Arrangement StripesPartition(const Stripes& p);
 // Cells between two families of stripes.
 Arrangement GridPartition(const Stripes& s1, const Stripes& s2, Border b);
 // Voronoi diagram of Poisson-disk sites (density sites per unit area). Sites are a
-// function of the plane, not of the region: two regions sharing a border agree on it.
-Arrangement UniformPartition(const Irregular& p, Border b);
+// function of the plane, the seed and the partition's stream, not of the region: two
+// regions sharing a border agree on it. Each call draws from its own stream (random.hpp,
+// "Streams"); an explicit `seed` repeats one on purpose.
+Arrangement UniformPartition(const Irregular& p, Border b, std::optional<std::uint64_t> seed = std::nullopt);
 // Voronoi diagram of Poisson (uniform random) sites, also anchored to the plane.
-Arrangement RandomPartition(const Irregular& p, Border b);
+Arrangement RandomPartition(const Irregular& p, Border b, std::optional<std::uint64_t> seed = std::nullopt);
 
-// The sites the two irregular partitions use inside a box (exposed for tests and tools).
-std::vector<Point> PoissonDiskSites(double density, const BBox& box);
-std::vector<Point> PoissonSites(double density, const BBox& box);
+// The sites the two irregular partitions of a stream use inside a box (for tests and tools).
+std::vector<Point> PoissonDiskSites(double density, const BBox& box, std::uint64_t stream = 0);
+std::vector<Point> PoissonSites(double density, const BBox& box, std::uint64_t stream = 0);
 // Minimum distance between Poisson-disk sites for a density.
 double PoissonDiskRadius(double density);
 

@@ -6,13 +6,16 @@
 // give the same bytes with any number of threads (ARCHITECTURE.md, "Random").
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 #include "libtex/geometry.hpp"
 
 namespace tex {
 
-// Global seed used by every random operator (default 0).
+// Global seed used by every random operator (default 0). Setting it also restarts the
+// numbering of the streams (see below) and the unkeyed Random(min, max) of the calling
+// thread, so a script that starts with SetSeed(n) draws the same values every time it runs.
 void SetSeed(std::uint64_t seed);
 std::uint64_t GetSeed();
 
@@ -48,7 +51,8 @@ private:
 };
 
 // Scope that binds the unkeyed Random(min, max) of the current thread to a cell key, so
-// that a mapper calling Random(min, max) gets the same values whatever thread runs it.
+// that a mapper calling Random(min, max) gets the same values whatever thread runs it;
+// streams created inside it are numbered under the same key.
 class RandomScope {
 public:
     explicit RandomScope(std::uint64_t key);
@@ -60,10 +64,66 @@ private:
     std::uint64_t saved_key_;
     std::uint64_t saved_counter_;
     bool saved_active_;
+    std::uint64_t saved_stream_key_;
+    std::uint64_t saved_stream_count_;
 };
 
 // Random value in [min, max): inside a mapper it is keyed by the visited cell and the
 // call count in that mapper; outside mappers it is a seeded stream of the calling thread.
 double Random(double min, double max);
+
+// ---- Streams ----
+//
+// Every random operator (UniformPartition, RandomPartition) draws from a stream of its own,
+// fixed when the operator is created:
+//  - at the top of a script, the n-th random operator created gets stream n (numbered per
+//    thread from the last SetSeed or StreamScope), so two identical calls differ and the
+//    same script gives the same streams on every run;
+//  - inside a mapper, the n-th one created for a cell gets a stream keyed by that cell's
+//    geometry, so the result does not depend on which thread visits the cell first;
+//  - an explicit seed gives a stream of its own that repeats on purpose (the same seed,
+//    the same sites).
+// Work items of parallel_for run under a stream keyed by their index, so streams created
+// there do not depend on the thread either.
+
+// A fresh stream for an operator being created now.
+std::uint64_t NextStream();
+// The stream an explicit seed names.
+std::uint64_t SeededStream(std::uint64_t seed);
+
+// Scope in which the numbering of streams restarts under `key` (0: as at the start of a
+// program); the previous numbering comes back at the end of the scope. Library entry points
+// use it so that a call does not change what the next one draws.
+class StreamScope {
+public:
+    explicit StreamScope(std::uint64_t key);
+    ~StreamScope();
+    StreamScope(const StreamScope&) = delete;
+    StreamScope& operator=(const StreamScope&) = delete;
+
+private:
+    std::uint64_t saved_key_;
+    std::uint64_t saved_count_;
+};
+
+namespace detail {
+// The random state of a thread, captured by parallel_for in the calling thread and derived
+// for each work item (ItemScope), whatever thread runs it.
+struct StreamState {
+    bool active;
+    std::uint64_t key, counter, stream_key, stream_count;
+};
+StreamState capture_stream_state();
+class ItemScope {
+public:
+    ItemScope(const StreamState& parent, std::size_t i);
+    ~ItemScope();
+    ItemScope(const ItemScope&) = delete;
+    ItemScope& operator=(const ItemScope&) = delete;
+
+private:
+    StreamState saved_;
+};
+}  // namespace detail
 
 }  // namespace tex
