@@ -189,8 +189,14 @@ void stitch(std::vector<std::vector<Point>>& pieces, const Curve& source, const 
 // changes nothing there, unless some near run lies inside it (then the face would mix both
 // sides): in that case every mask curve is used.
 std::vector<char> mask_curves_needed(const Curves& mask, const detail::SegmentGrid& grid, const std::vector<Run>& runs,
-                                     const std::vector<char>& touched) {
+                                     const std::vector<char>& touched, bool only_changing) {
     const std::size_t n = mask.curves.size();
+    // KEEP modes only read the inside: boundaries with the inside on both hands (or on
+    // neither) change nothing there and stay out of the exact map.
+    const LabelId in = inside_marker();
+    auto useful = [&](std::size_t m) {
+        return !only_changing || mask.curves[m].left.has(in) != mask.curves[m].right.has(in);
+    };
     std::vector<std::size_t> parent(n);
     std::iota(parent.begin(), parent.end(), std::size_t(0));
     auto find = [&](std::size_t i) {
@@ -211,8 +217,8 @@ std::vector<char> mask_curves_needed(const Curves& mask, const detail::SegmentGr
         if (touched[m]) comp_used[find(m)] = 1;
     bool all = true;
     for (std::size_t m = 0; m < n; ++m) {
-        included[m] = comp_used[find(m)];
-        all &= included[m] != 0;
+        included[m] = comp_used[find(m)] && useful(m);
+        all &= included[m] != 0 || !useful(m);
     }
     if (all) return included;
     std::vector<detail::Seg> rest;
@@ -221,8 +227,10 @@ std::vector<char> mask_curves_needed(const Curves& mask, const detail::SegmentGr
     if (rest.empty()) return included;
     const detail::SegmentGrid left_out(std::move(rest));
     for (const Run& r : runs)
-        if (r.near && left_out.locate(r.pts.front()) != detail::SegmentGrid::Where::Out)
-            return std::vector<char>(n, 1);
+        if (r.near && left_out.locate(r.pts.front()) != detail::SegmentGrid::Where::Out) {
+            for (std::size_t m = 0; m < n; ++m) included[m] = useful(m);
+            return included;
+        }
     return included;
 }
 
@@ -247,7 +255,7 @@ Curves mask_core(const Curves& subject, const Curves& mask, MaskSide side, Borde
     // KEEP modes only care where the inside changes; CROP also cuts at inner boundaries.
     std::vector<char> touched(mask.curves.size(), 0);
     const std::vector<Run> runs = split_runs(src, grid, keep_whole, touched);
-    const std::vector<char> included = mask_curves_needed(mask, grid, runs, touched);
+    const std::vector<char> included = mask_curves_needed(mask, grid, runs, touched, keep_whole);
 
     std::vector<Status> run_status(runs.size(), Status::Unknown);
     Curves joint;
