@@ -1,11 +1,21 @@
-// Induction of planar maps with CGAL (see planar_map.hpp for the model).
+// Induction of planar maps (see planar_map.hpp for the model).
 //
-// The shape follows CGAL's own examples (consolidated_curve_data.cpp for the curve data,
-// dcel_extension.cpp for indices stored in the DCEL): every input segment carries one
-// integer, the index of its polyline times two plus a "runs left to right" bit, and the
-// sweep of CGAL::insert merges these integers on overlapping pieces. CGAL's halfedges are
-// then grouped into chains (the thesis's edges) between break vertices (the thesis's
-// vertices), and every cell is numbered in an order that depends only on the geometry.
+// Two ways to the same map, both producing a neutral half-edge graph of segments (RawGraph)
+// that one common step turns into the thesis's cells:
+//
+//  - direct: when the curves' segments only meet at shared end points (checked with exact
+//    predicates on the doubles) and form one connected drawing, the faces are traced from
+//    the segments' exact angular order around each point. This is the common case of
+//    partitions and of contours, and needs no construction at all;
+//  - CGAL: otherwise, CGAL's Arrangement_2 over an exact-constructions kernel computes the
+//    intersections and overlaps. The shape follows CGAL's own examples
+//    (consolidated_curve_data.cpp for the curve data, dcel_extension.cpp for indices in the
+//    DCEL): every input segment carries one integer, the index of its polyline times two
+//    plus a "runs left to right" bit, merged on overlapping pieces.
+//
+// The common step groups segments into chains (the thesis's edges) between break vertices
+// (the thesis's vertices) and numbers every cell in an order that depends only on the
+// geometry, so both ways give the same map, byte for byte (tested).
 #include "libtex/planar_map.hpp"
 
 #include <CGAL/Arr_consolidated_curve_data_traits_2.h>
@@ -13,13 +23,17 @@
 #include <CGAL/Arr_segment_traits_2.h>
 #include <CGAL/Arrangement_2.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
 #include <climits>
+#include <functional>
+#include <numeric>
 #include <unordered_map>
 #include <unordered_set>
 
 #include "libtex/random.hpp"
+#include "segment_index.hpp"
 
 namespace tex {
 namespace {
@@ -31,7 +45,7 @@ using Dcel = CGAL::Arr_extended_dcel<Traits, int, int, int>;
 using Arr = CGAL::Arrangement_2<Traits, Dcel>;
 using KPoint = Kernel::Point_2;
 using KSegment = Kernel::Segment_2;
-using Halfedge = Arr::Halfedge_handle;
+using IK = CGAL::Exact_predicates_inexact_constructions_kernel;
 
 struct PointHash {
     std::size_t operator()(const Point& p) const { return hash_point(0, p); }
@@ -40,16 +54,6 @@ struct PointHash {
 // Lexicographic "left to right" order of CGAL's x-monotone curves.
 bool left_to_right(const Point& a, const Point& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); }
 
-Point approx(const KPoint& p) { return Point{CGAL::to_double(p.x()), CGAL::to_double(p.y())}; }
-
-// The sorted, distinct ids of the curves a CGAL edge comes from.
-void curve_ids(Halfedge h, std::vector<std::uint32_t>& out) {
-    out.clear();
-    for (std::uint32_t d : h->curve().data()) out.push_back(d >> 1);
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
-}
-
 // The chain's polyline read in one direction, for ordering and keys: the direction that
 // starts at the smaller end point, or for a loop the one whose second point is smaller.
 std::vector<Point> canonical_points(const std::vector<Point>& pts) {
@@ -57,169 +61,454 @@ std::vector<Point> canonical_points(const std::vector<Point>& pts) {
     return std::lexicographical_compare(rev.begin(), rev.end(), pts.begin(), pts.end()) ? rev : pts;
 }
 
-struct Chain {
-    std::vector<Halfedge> hs;  // in the chain's direction
-    std::vector<Point> points;
-    std::vector<Point> canon;
-    int source = -1, target = -1;  // break-vertex ids
+// A planar map at the level of segments. Half-edges 2k and 2k+1 are twins; a half-edge's
+// face lies on its left.
+struct RawGraph {
+    std::vector<Point> vpt;
+    std::vector<int> vrank;       // exact order among vertices with equal doubles
+    std::vector<char> visolated;
+    std::vector<int> vout_start;  // outgoing half-edges of each vertex, counter-clockwise
+    std::vector<int> vout;
+    struct HalfEdge {
+        int source, target, next, face;
+        bool l2r;
+    };
+    std::vector<HalfEdge> he;
+    std::vector<std::uint32_t> data_start, data;  // curve data of each segment (he / 2)
+    struct RawFace {
+        bool unbounded = false;
+        int outer = -1;
+        std::vector<int> inner;
+        std::vector<int> isolated;
+    };
+    std::vector<RawFace> faces;
+
+    std::size_t degree(int v) const { return std::size_t(vout_start[v + 1] - vout_start[v]); }
+    template <class F>
+    void for_data(int h, F&& f) const {
+        const int e = h / 2;
+        for (std::uint32_t k = data_start[e]; k < data_start[e + 1]; ++k) f(data[k]);
+    }
 };
 
-}  // namespace
-
-struct PlanarMapBuilder {
-    static MapPtr build(const Curves& curves);
-};
-
-MapPtr PlanarMap::induce(const Curves& curves) { return PlanarMapBuilder::build(curves); }
-
-MapPtr PlanarMapBuilder::build(const Curves& input) {
-    auto map = std::make_shared<PlanarMap>();
-    PlanarMap& pm = *map;
-
-    // 1. Segments with their curve data; the end points of open curves.
-    std::vector<Traits::Curve_2> segs;
+struct Inputs {
     std::unordered_set<Point, PointHash> ends;
-    std::size_t total = 0;
-    for (const auto& c : input.curves) total += c.points.size();
-    segs.reserve(total);
+    std::unordered_map<Point, Labels, PointHash> point_labels;
+};
+
+// ---- Way 1: CGAL ----
+
+void build_with_cgal(const Curves& input, RawGraph& g) {
+    std::vector<Traits::Curve_2> segs;
     for (std::uint32_t ci = 0; ci < input.curves.size(); ++ci) {
         const Curve& c = input.curves[ci];
         const std::size_t n = c.points.size();
         if (n < 2) continue;
         const std::size_t nseg = c.closed ? n : n - 1;
-        bool first = true;
-        Point last;
         for (std::size_t i = 0; i < nseg; ++i) {
             const Point& a = c.points[i];
             const Point& b = c.points[(i + 1) % n];
-            if (a == b || !std::isfinite(a.x) || !std::isfinite(a.y) || !std::isfinite(b.x) ||
-                !std::isfinite(b.y))
+            if (a == b || !std::isfinite(a.x) || !std::isfinite(a.y) || !std::isfinite(b.x) || !std::isfinite(b.y))
                 continue;
-            const std::uint32_t data = (ci << 1) | (left_to_right(a, b) ? 1u : 0u);
-            segs.emplace_back(KSegment(KPoint(a.x, a.y), KPoint(b.x, b.y)), data);
-            if (!c.closed && first) ends.insert(a);
-            first = false;
-            last = b;
+            const std::uint32_t d = (ci << 1) | (left_to_right(a, b) ? 1u : 0u);
+            segs.emplace_back(KSegment(KPoint(a.x, a.y), KPoint(b.x, b.y)), d);
         }
-        if (!c.closed && !first) ends.insert(last);
+    }
+    Arr arr;
+    CGAL::insert(arr, segs.begin(), segs.end());
+
+    std::vector<Arr::Vertex_handle> vs;
+    for (auto v = arr.vertices_begin(); v != arr.vertices_end(); ++v) vs.push_back(v);
+    const std::size_t nv = vs.size();
+    g.vpt.resize(nv);
+    g.visolated.resize(nv);
+    for (std::size_t i = 0; i < nv; ++i) {
+        vs[i]->set_data(int(i));
+        g.vpt[i] = Point{CGAL::to_double(vs[i]->point().x()), CGAL::to_double(vs[i]->point().y())};
+        g.visolated[i] = vs[i]->is_isolated();
+    }
+    {
+        std::vector<int> order(nv);
+        std::iota(order.begin(), order.end(), 0);
+        std::sort(order.begin(), order.end(), [&](int a, int b) {
+            return CGAL::compare_xy(vs[a]->point(), vs[b]->point()) == CGAL::SMALLER;
+        });
+        g.vrank.resize(nv);
+        for (std::size_t i = 0; i < nv; ++i) g.vrank[order[i]] = int(i);
+    }
+    int k = 0;
+    for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e, ++k) {
+        e->set_data(2 * k);
+        e->twin()->set_data(2 * k + 1);
+    }
+    int fi = 0;
+    for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) f->set_data(fi++);
+    g.he.resize(2 * std::size_t(k));
+    g.data_start.assign(std::size_t(k) + 1, 0);
+    k = 0;
+    for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e, ++k) {
+        for (Arr::Halfedge_handle h : {Arr::Halfedge_handle(e), e->twin()})
+            g.he[h->data()] = {h->source()->data(), h->target()->data(), h->next()->data(), h->face()->data(),
+                               h->direction() == CGAL::ARR_LEFT_TO_RIGHT};
+        for (std::uint32_t d : e->curve().data()) g.data.push_back(d);
+        g.data_start[k + 1] = std::uint32_t(g.data.size());
+    }
+    g.vout_start.assign(nv + 1, 0);
+    for (std::size_t i = 0; i < nv; ++i) {
+        const std::size_t before = g.vout.size();
+        if (!vs[i]->is_isolated()) {
+            auto circ = vs[i]->incident_halfedges();  // incoming, clockwise
+            const auto first = circ;
+            do {
+                g.vout.push_back(circ->twin()->data());
+            } while (++circ != first);
+            std::reverse(g.vout.begin() + std::ptrdiff_t(before), g.vout.end());
+        }
+        g.vout_start[i + 1] = int(g.vout.size());
+    }
+    g.faces.resize(std::size_t(fi));
+    for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
+        RawGraph::RawFace& rf = g.faces[f->data()];
+        rf.unbounded = f->is_unbounded();
+        if (!rf.unbounded) rf.outer = f->outer_ccb()->data();
+        for (auto h = f->inner_ccbs_begin(); h != f->inner_ccbs_end(); ++h) rf.inner.push_back((*h)->data());
+        for (auto iv = f->isolated_vertices_begin(); iv != f->isolated_vertices_end(); ++iv)
+            rf.isolated.push_back(iv->data());
+    }
+}
+
+// ---- Way 2: direct, for clean connected drawings ----
+
+IK::Point_2 ik(const Point& p) { return IK::Point_2(p.x, p.y); }
+
+// Counter-clockwise order of directions from p, starting at the +x axis.
+bool ccw_before(const Point& p, const Point& a, const Point& b) {
+    auto upper = [&](const Point& q) { return q.y > p.y || (q.y == p.y && q.x > p.x); };
+    const bool ua = upper(a), ub = upper(b);
+    if (ua != ub) return ua;
+    return CGAL::orientation(ik(p), ik(a), ik(b)) == CGAL::LEFT_TURN;
+}
+
+bool build_directly(const Curves& input, RawGraph& g) {
+    std::vector<detail::Seg> segs = detail::curve_segments(input);
+    if (segs.empty()) return false;
+    // Clean: two segments meet only at a common end point, without overlapping.
+    const detail::SegmentGrid grid(segs);
+    {
+        const auto& gs = grid.segments();
+        for (std::uint32_t i = 0; i < gs.size(); ++i) {
+            const detail::Seg& s = gs[i];
+            BBox b;
+            b.add(s.a);
+            b.add(s.b);
+            bool bad = false;
+            grid.for_each_in(b, [&](std::uint32_t j) {
+                if (bad || j <= i) return;
+                const detail::Seg& t = gs[j];
+                if (std::max(t.a.x, t.b.x) < b.xmin || std::min(t.a.x, t.b.x) > b.xmax ||
+                    std::max(t.a.y, t.b.y) < b.ymin || std::min(t.a.y, t.b.y) > b.ymax)
+                    return;
+                const bool sa = s.a == t.a || s.a == t.b, sb = s.b == t.a || s.b == t.b;
+                if (sa && sb) {
+                    bad = true;  // the same segment twice
+                } else if (sa || sb) {
+                    const Point& p = sa ? s.a : s.b;           // shared
+                    const Point& q = sa ? s.b : s.a;           // s's other end
+                    const Point& r = (t.a == p) ? t.b : t.a;   // t's other end
+                    bad = CGAL::orientation(ik(p), ik(q), ik(r)) == CGAL::COLLINEAR && dot(q - p, r - p) > 0;
+                } else {
+                    bad = detail::segments_touch(s.a, s.b, t.a, t.b);
+                }
+            });
+            if (bad) return false;
+        }
+    }
+    // Vertices, segments.
+    std::unordered_map<Point, int, PointHash> vid;
+    auto vertex = [&](const Point& p) {
+        auto [it, fresh] = vid.emplace(p, int(g.vpt.size()));
+        if (fresh) g.vpt.push_back(p);
+        return it->second;
+    };
+    const std::size_t ns = segs.size();
+    g.he.resize(2 * ns);
+    g.data_start.resize(ns + 1);
+    g.data.resize(ns);
+    for (std::size_t k = 0; k < ns; ++k) {
+        const Point& a = segs[k].a;
+        const Point& b = segs[k].b;
+        const int u = vertex(a), v = vertex(b);
+        const bool l2r = left_to_right(a, b);
+        g.he[2 * k] = {u, v, -1, -1, l2r};
+        g.he[2 * k + 1] = {v, u, -1, -1, !l2r};
+        g.data_start[k] = std::uint32_t(k);
+        g.data[k] = (segs[k].owner << 1) | (l2r ? 1u : 0u);
+    }
+    g.data_start[ns] = std::uint32_t(ns);
+    const std::size_t nv = g.vpt.size();
+    // Connected pieces of the drawing.
+    std::vector<int> comp(nv);
+    int ncomp = 0;
+    {
+        std::vector<int> parent(nv);
+        std::iota(parent.begin(), parent.end(), 0);
+        auto find = [&](int x) {
+            while (parent[x] != x) x = parent[x] = parent[parent[x]];
+            return x;
+        };
+        for (std::size_t k = 0; k < ns; ++k) {
+            const int a = find(g.he[2 * k].source), b = find(g.he[2 * k].target);
+            if (a != b) parent[a] = b;
+        }
+        std::vector<int> id(nv, -1);
+        for (std::size_t v = 0; v < nv; ++v) {
+            int& c = id[find(int(v))];
+            if (c < 0) c = ncomp++;
+            comp[v] = c;
+        }
+    }
+    g.vrank.assign(nv, 0);
+    g.visolated.assign(nv, 0);
+    g.vout_start.assign(nv + 1, 0);
+    for (const auto& h : g.he) ++g.vout_start[h.source + 1];
+    for (std::size_t v = 0; v < nv; ++v) g.vout_start[v + 1] += g.vout_start[v];
+    g.vout.resize(g.he.size());
+    {
+        std::vector<int> fill(g.vout_start.begin(), g.vout_start.end() - 1);
+        for (std::size_t h = 0; h < g.he.size(); ++h) g.vout[fill[g.he[h].source]++] = int(h);
+    }
+    std::vector<int> pos(g.he.size());
+    for (std::size_t v = 0; v < nv; ++v) {
+        const auto b = g.vout.begin() + g.vout_start[v], e = g.vout.begin() + g.vout_start[v + 1];
+        const Point& p = g.vpt[v];
+        std::sort(b, e, [&](int x, int y) { return ccw_before(p, g.vpt[g.he[x].target], g.vpt[g.he[y].target]); });
+        for (int i = g.vout_start[v]; i < g.vout_start[v + 1]; ++i) pos[g.vout[i]] = i;
+    }
+    // The face on the left of u -> v goes on along the edge leaving v just clockwise of v -> u.
+    for (std::size_t h = 0; h < g.he.size(); ++h) {
+        const int v = g.he[h].target;
+        const int twin = int(h ^ 1);
+        const int s = g.vout_start[v], n = g.vout_start[v + 1] - s;
+        g.he[h].next = g.vout[s + (pos[twin] - s + n - 1) % n];
+    }
+    // Cycles. In each connected piece, the outer one lies left of the most counter-clockwise
+    // edge leaving the piece's lexicographically smallest vertex.
+    std::vector<int> v0(std::size_t(ncomp), -1);
+    for (std::size_t v = 0; v < nv; ++v) {
+        int& m = v0[std::size_t(comp[v])];
+        if (m < 0 || g.vpt[v] < g.vpt[m]) m = int(v);
+    }
+    std::vector<int> outer_he(static_cast<std::size_t>(ncomp), -1);
+    for (int c = 0; c < ncomp; ++c) {
+        const int v = v0[c];
+        const Point& p = g.vpt[v];
+        int o = g.vout[g.vout_start[v + 1] - 1];
+        for (int i = g.vout_start[v]; i < g.vout_start[v + 1]; ++i) {
+            const Point& q = g.vpt[g.he[g.vout[i]].target];
+            if (q.y > p.y || (q.y == p.y && q.x > p.x)) o = g.vout[i];
+        }
+        outer_he[c] = o;
+    }
+    std::vector<int> cycle(g.he.size(), -1), cycle_start;
+    std::vector<char> cycle_outer;
+    for (std::size_t h = 0; h < g.he.size(); ++h) {
+        if (cycle[h] >= 0) continue;
+        const int id = int(cycle_start.size());
+        cycle_start.push_back(int(h));
+        bool outer = false;
+        int cur = int(h);
+        do {
+            cycle[cur] = id;
+            outer |= cur == outer_he[comp[g.he[cur].source]];
+            cur = g.he[cur].next;
+        } while (cur != int(h));
+        cycle_outer.push_back(outer);
+    }
+    // Faces: one per inner cycle, plus the unbounded face. Each piece's outer cycle is a hole
+    // of the face holding the piece: the face below the first segment of another piece met
+    // by a ray going up from the piece's smallest vertex (exact predicates).
+    std::vector<int> face_of_cycle(cycle_start.size(), -1);
+    g.faces.emplace_back();
+    g.faces[0].unbounded = true;
+    for (std::size_t c = 0; c < cycle_start.size(); ++c)
+        if (!cycle_outer[c]) {
+            face_of_cycle[c] = int(g.faces.size());
+            g.faces.emplace_back();
+            g.faces.back().outer = cycle_start[c];
+        }
+    std::vector<int> holder(std::size_t(ncomp), -2);  // face holding each piece
+    std::function<int(int)> holding = [&](int c) -> int {
+        if (holder[c] != -2) return holder[c];
+        if (ncomp == 1) return holder[c] = 0;
+        bool on = false;
+        const int k = grid.first_above(g.vpt[v0[c]], [&](std::uint32_t i) {
+            return comp[g.he[2 * i].source] != c;
+        }, on);
+        if (k < 0) return holder[c] = 0;
+        const int below = g.he[2 * k].l2r ? 2 * k + 1 : 2 * k;  // runs right to left
+        const int cyc = cycle[below];
+        if (!cycle_outer[cyc]) return holder[c] = face_of_cycle[cyc];
+        return holder[c] = holding(comp[g.he[below].source]);
+    };
+    for (std::size_t c = 0; c < cycle_start.size(); ++c) {
+        if (!cycle_outer[c]) continue;
+        const int f = holding(comp[g.he[cycle_start[c]].source]);
+        face_of_cycle[c] = f;
+        g.faces[f].inner.push_back(cycle_start[c]);
+    }
+    for (std::size_t h = 0; h < g.he.size(); ++h) g.he[h].face = face_of_cycle[cycle[h]];
+    return true;
+}
+
+}  // namespace
+
+struct PlanarMapBuilder {
+    static MapPtr build(const Curves& curves, bool allow_direct);
+};
+
+MapPtr PlanarMap::induce(const Curves& curves) { return PlanarMapBuilder::build(curves, true); }
+
+namespace detail {
+MapPtr induce_with_cgal(const Curves& curves) { return PlanarMapBuilder::build(curves, false); }
+thread_local std::uint64_t t_direct = 0;
+std::uint64_t direct_inductions() { return t_direct; }
+}  // namespace detail
+
+MapPtr PlanarMapBuilder::build(const Curves& input, bool allow_direct) {
+    auto map = std::make_shared<PlanarMap>();
+    PlanarMap& pm = *map;
+
+    // The end points of open curves and the labelled points: vertices whatever their degree.
+    std::unordered_set<Point, PointHash> ends;
+    for (const Curve& c : input.curves) {
+        if (c.closed) continue;
+        const Point* first = nullptr;
+        const Point* last = nullptr;
+        for (std::size_t i = 0; i + 1 < c.points.size(); ++i) {
+            const Point& a = c.points[i];
+            const Point& b = c.points[i + 1];
+            if (a == b || !std::isfinite(a.x) || !std::isfinite(a.y) || !std::isfinite(b.x) || !std::isfinite(b.y))
+                continue;
+            if (!first) first = &a;
+            last = &b;
+        }
+        if (first) {
+            ends.insert(*first);
+            ends.insert(*last);
+        }
     }
     std::unordered_map<Point, Labels, PointHash> point_labels;
     for (const auto& lp : input.points) point_labels[lp.point].merge(lp.labels);
 
-    Arr arr;
-    CGAL::insert(arr, segs.begin(), segs.end());
+    RawGraph g;
+    if (allow_direct && build_directly(input, g)) {
+        ++detail::t_direct;
+    } else {
+        g = RawGraph{};
+        build_with_cgal(input, g);
+    }
+    const std::size_t nv = g.vpt.size();
+    const std::size_t nh = g.he.size();
 
-    // 2. Break vertices: curve ends, labelled points, degree other than two, and points
+    // 1. Break vertices: curve ends, labelled points, degree other than two, and points
     //    where the set of source curves changes.
-    std::vector<Arr::Vertex_handle> vs;
-    vs.reserve(arr.number_of_vertices());
-    for (auto v = arr.vertices_begin(); v != arr.vertices_end(); ++v) vs.push_back(v);
-    std::vector<Point> vpt(vs.size());
-    std::vector<char> is_break(vs.size(), 0);
+    std::vector<char> is_break(nv, 0);
     {
         std::vector<std::uint32_t> ids_a, ids_b;
-        for (std::size_t i = 0; i < vs.size(); ++i) {
-            const auto v = vs[i];
-            v->set_data(int(i));
-            vpt[i] = approx(v->point());
-            bool brk = v->is_isolated() || v->degree() != 2 || ends.count(vpt[i]) || point_labels.count(vpt[i]);
+        auto ids = [&](int h, std::vector<std::uint32_t>& out) {
+            out.clear();
+            g.for_data(h, [&](std::uint32_t d) { out.push_back(d >> 1); });
+            std::sort(out.begin(), out.end());
+            out.erase(std::unique(out.begin(), out.end()), out.end());
+        };
+        for (std::size_t v = 0; v < nv; ++v) {
+            bool brk = g.visolated[v] || g.degree(int(v)) != 2 || ends.count(g.vpt[v]) || point_labels.count(g.vpt[v]);
             if (!brk) {
-                auto circ = v->incident_halfedges();
-                const Halfedge a = circ;
-                ++circ;
-                const Halfedge b = circ;
-                const auto& da = a->curve().data();
-                const auto& db = b->curve().data();
-                if (da.size() == 1 && db.size() == 1) {
-                    brk = (*da.begin() >> 1) != (*db.begin() >> 1);
-                } else {
-                    curve_ids(a, ids_a);
-                    curve_ids(b, ids_b);
-                    brk = ids_a != ids_b;
-                }
+                ids(g.vout[g.vout_start[v]], ids_a);
+                ids(g.vout[g.vout_start[v] + 1], ids_b);
+                brk = ids_a != ids_b;
             }
-            is_break[i] = brk;
+            is_break[v] = brk;
         }
     }
-    for (auto h = arr.halfedges_begin(); h != arr.halfedges_end(); ++h) h->set_data(-1);
 
-    // 3. Chains: walk from every break vertex along degree-two vertices; what is left are
+    // 2. Chains: walk from every break vertex along degree-two vertices; what is left are
     //    closed curves meeting nothing, which start at their smallest point.
+    struct Chain {
+        std::vector<int> hs;  // half-edges in the chain's direction
+        std::vector<Point> points, canon;
+        int source = -1, target = -1;
+    };
     std::vector<Chain> chains;
-    auto walk = [&](Halfedge start) {
+    std::vector<int> he_chain(nh, -1);
+    auto walk = [&](int start) {
         Chain ch;
-        Halfedge cur = start;
+        int cur = start;
         for (;;) {
             ch.hs.push_back(cur);
-            cur->set_data(0);
-            cur->twin()->set_data(0);
-            if (is_break[cur->target()->data()]) break;
-            cur = cur->next();
+            he_chain[cur] = he_chain[cur ^ 1] = int(chains.size());
+            if (is_break[g.he[cur].target]) break;
+            cur = g.he[cur].next;
         }
         chains.push_back(std::move(ch));
     };
-    for (std::size_t i = 0; i < vs.size(); ++i) {
-        if (!is_break[i] || vs[i]->is_isolated()) continue;
-        auto circ = vs[i]->incident_halfedges();
-        const auto first = circ;
-        do {
-            const Halfedge out = circ->twin();
-            if (out->data() == -1) walk(out);
-        } while (++circ != first);
+    for (std::size_t v = 0; v < nv; ++v) {
+        if (!is_break[v]) continue;
+        for (int i = g.vout_start[v]; i < g.vout_start[v + 1]; ++i)
+            if (he_chain[g.vout[i]] < 0) walk(g.vout[i]);
     }
-    for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
-        if (e->data() != -1) continue;
-        Halfedge start = e, cur = e;
+    for (std::size_t h = 0; h < nh; h += 2) {
+        if (he_chain[h] >= 0) continue;
+        int start = int(h), cur = int(h);
         do {
-            if (vpt[cur->source()->data()] < vpt[start->source()->data()]) start = cur;
-            cur = cur->next();
-        } while (cur != Halfedge(e));
-        is_break[start->source()->data()] = 1;
+            if (g.vpt[g.he[cur].source] < g.vpt[g.he[start].source]) start = cur;
+            cur = g.he[cur].next;
+        } while (cur != int(h));
+        is_break[g.he[start].source] = 1;
         walk(start);
     }
 
-    // 4. Orient each chain like its first source curve; its polyline.
+    // 3. Orient each chain like its first source curve; its polyline.
+    auto by_curve = [](const EdgeSource& a, const EdgeSource& b) {
+        return a.curve < b.curve || (a.curve == b.curve && a.forward > b.forward);
+    };
     std::vector<std::vector<EdgeSource>> chain_sources(chains.size());
     for (std::size_t k = 0; k < chains.size(); ++k) {
         Chain& ch = chains[k];
-        const Halfedge h0 = ch.hs.front();
-        const bool h0_l2r = h0->direction() == CGAL::ARR_LEFT_TO_RIGHT;
+        const int h0 = ch.hs.front();
+        const bool h0_l2r = g.he[h0].l2r;
         auto& src = chain_sources[k];
-        for (std::uint32_t d : h0->curve().data()) src.push_back({d >> 1, ((d & 1u) != 0) == h0_l2r});
-        std::sort(src.begin(), src.end(), [](const EdgeSource& a, const EdgeSource& b) {
-            return a.curve < b.curve || (a.curve == b.curve && a.forward > b.forward);
-        });
-        for (const Halfedge& h : ch.hs) ch.points.push_back(vpt[h->source()->data()]);
-        ch.points.push_back(vpt[ch.hs.back()->target()->data()]);
+        g.for_data(h0, [&](std::uint32_t d) { src.push_back({d >> 1, ((d & 1u) != 0) == h0_l2r}); });
+        std::sort(src.begin(), src.end(), by_curve);
+        for (int h : ch.hs) ch.points.push_back(g.vpt[g.he[h].source]);
+        ch.points.push_back(g.vpt[g.he[ch.hs.back()].target]);
         bool flip = !src.front().forward;
         // The first curve running both ways along the chain: keep the canonical direction.
         if (src.size() > 1 && src[1].curve == src[0].curve) flip = canonical_points(ch.points) != ch.points;
         if (flip) {
             std::reverse(ch.hs.begin(), ch.hs.end());
-            for (auto& h : ch.hs) h = h->twin();
+            for (auto& h : ch.hs) h ^= 1;
             std::reverse(ch.points.begin(), ch.points.end());
             for (auto& s : src) s.forward = !s.forward;
-            std::sort(src.begin(), src.end(), [](const EdgeSource& a, const EdgeSource& b) {
-                return a.curve < b.curve || (a.curve == b.curve && a.forward > b.forward);
-            });
+            std::sort(src.begin(), src.end(), by_curve);
         }
         ch.canon = canonical_points(ch.points);
     }
 
-    // 5. Vertices: the break vertices, in the order of their points.
+    // 4. Vertices: the break vertices, in the order of their points.
     std::vector<int> breaks;
-    for (std::size_t i = 0; i < vs.size(); ++i)
-        if (is_break[i]) breaks.push_back(int(i));
+    for (std::size_t v = 0; v < nv; ++v)
+        if (is_break[v]) breaks.push_back(int(v));
     std::sort(breaks.begin(), breaks.end(), [&](int a, int b) {
-        if (vpt[a] != vpt[b]) return vpt[a] < vpt[b];
-        return CGAL::compare_xy(vs[a]->point(), vs[b]->point()) == CGAL::SMALLER;
+        if (g.vpt[a] != g.vpt[b]) return g.vpt[a] < g.vpt[b];
+        return g.vrank[a] < g.vrank[b];
     });
-    std::vector<int> vid(vs.size(), -1);
+    std::vector<int> vid(nv, -1);
     for (std::size_t i = 0; i < breaks.size(); ++i) vid[breaks[i]] = int(i);
     pm.vertices_.resize(breaks.size());
     for (std::size_t i = 0; i < breaks.size(); ++i) {
         VertexRec& rec = pm.vertices_[i];
-        rec.point = vpt[breaks[i]];
+        rec.point = g.vpt[breaks[i]];
         rec.key = hash_point(0x5645525445ULL, rec.point);
         if (!point_labels.empty()) {
             auto it = point_labels.find(rec.point);
@@ -227,13 +516,13 @@ MapPtr PlanarMapBuilder::build(const Curves& input) {
         }
     }
 
-    // 6. Edges: chains ordered by their end vertices, then by their polylines.
+    // 5. Edges: chains ordered by their end vertices, then by their polylines.
     for (auto& ch : chains) {
-        ch.source = vid[ch.hs.front()->source()->data()];
-        ch.target = vid[ch.hs.back()->target()->data()];
+        ch.source = vid[g.he[ch.hs.front()].source];
+        ch.target = vid[g.he[ch.hs.back()].target];
     }
     std::vector<int> order(chains.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = int(i);
+    std::iota(order.begin(), order.end(), 0);
     std::sort(order.begin(), order.end(), [&](int a, int b) {
         const Chain& x = chains[a];
         const Chain& y = chains[b];
@@ -244,50 +533,51 @@ MapPtr PlanarMapBuilder::build(const Curves& input) {
     pm.edges_.resize(chains.size());
     std::vector<int> eid(chains.size());
     for (std::size_t i = 0; i < order.size(); ++i) eid[order[i]] = int(i);
-    for (std::size_t k = 0; k < chains.size(); ++k) {
-        const int id = eid[k];
-        for (const Halfedge& h : chains[k].hs) {
-            h->set_data(2 * id);             // runs along the edge
-            h->twin()->set_data(2 * id + 1); // runs against it
+    // Each half-edge as a side: 2 * edge id, plus one when it runs against the edge.
+    std::vector<int> side_of(nh);
+    for (std::size_t k = 0; k < chains.size(); ++k)
+        for (int h : chains[k].hs) {
+            side_of[h] = 2 * eid[k];
+            side_of[h ^ 1] = 2 * eid[k] + 1;
         }
-    }
 
-    // 7. Faces: boundary cycles as sides of edges, ordered by their smallest side.
-    auto cycle_of = [&](Arr::Ccb_halfedge_circulator circ) {
+    // 6. Faces: boundary cycles as sides of edges, ordered by their smallest side.
+    auto cycle_of = [&](int start) {
         std::vector<Side> cycle;
         int best = INT_MAX;
         std::size_t best_at = 0;
-        const auto first = circ;
+        int cur = start;
         do {
-            if (is_break[circ->source()->data()]) {
-                const int d = circ->data();
+            if (is_break[g.he[cur].source]) {
+                const int d = side_of[cur];
                 if (d < best) {
                     best = d;
                     best_at = cycle.size();
                 }
                 cycle.push_back({d / 2, (d & 1) == 0});
             }
-        } while (++circ != first);
+            cur = g.he[cur].next;
+        } while (cur != start);
         std::rotate(cycle.begin(), cycle.begin() + std::ptrdiff_t(best_at), cycle.end());
         return std::make_pair(best, std::move(cycle));
     };
-    std::vector<std::pair<int, Arr::Face_handle>> fs;
-    fs.reserve(arr.number_of_faces());
-    for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f)
-        fs.push_back({f->is_unbounded() ? -1 : cycle_of(f->outer_ccb()).first, f});
-    std::sort(fs.begin(), fs.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-    for (std::size_t i = 0; i < fs.size(); ++i) fs[i].second->set_data(int(i));
-    pm.faces_.resize(fs.size());
+    const std::size_t nf = g.faces.size();
+    std::vector<std::pair<int, int>> fs(nf);  // (key, raw face)
+    for (std::size_t f = 0; f < nf; ++f)
+        fs[f] = {g.faces[f].unbounded ? -1 : cycle_of(g.faces[f].outer).first, int(f)};
+    std::sort(fs.begin(), fs.end());
+    std::vector<int> fid(nf);
+    for (std::size_t i = 0; i < nf; ++i) fid[fs[i].second] = int(i);
+    pm.faces_.resize(nf);
 
-    // Edge records (faces are numbered now).
     for (std::size_t k = 0; k < chains.size(); ++k) {
         const Chain& ch = chains[k];
         EdgeRec& rec = pm.edges_[eid[k]];
         rec.source = ch.source;
         rec.target = ch.target;
         rec.points = ch.points;
-        rec.left = ch.hs.front()->face()->data();
-        rec.right = ch.hs.front()->twin()->face()->data();
+        rec.left = fid[g.he[ch.hs.front()].face];
+        rec.right = fid[g.he[ch.hs.front() ^ 1].face];
         rec.sources = chain_sources[k];
         for (const auto& s : rec.sources) {
             const Curve& c = input.curves[s.curve];
@@ -301,62 +591,58 @@ MapPtr PlanarMapBuilder::build(const Curves& input) {
         rec.key = key;
     }
 
-    // 8. Vertex incidences (CGAL turns clockwise around a vertex; reverse it).
+    // 7. Vertex incidences, counter-clockwise from the smallest edge id.
     for (std::size_t i = 0; i < breaks.size(); ++i) {
-        const auto v = vs[breaks[i]];
+        const int v = breaks[i];
         VertexRec& rec = pm.vertices_[i];
-        if (v->is_isolated()) {
-            rec.faces.push_back(v->face()->data());
+        if (g.visolated[v]) {
+            for (std::size_t f = 0; f < nf; ++f)
+                for (int iv : g.faces[f].isolated)
+                    if (iv == v) rec.faces.push_back(fid[f]);
             continue;
         }
-        std::vector<Halfedge> in;
-        auto circ = v->incident_halfedges();
-        const auto first = circ;
-        do {
-            in.push_back(circ);
-        } while (++circ != first);
-        std::reverse(in.begin(), in.end());
-        std::size_t start = 0;
-        for (std::size_t k = 1; k < in.size(); ++k)
-            if (in[k]->data() / 2 < in[start]->data() / 2) start = k;
-        std::rotate(in.begin(), in.begin() + std::ptrdiff_t(start), in.end());
-        for (const Halfedge& h : in) {
-            rec.edges.push_back(h->data() / 2);
+        const int s = g.vout_start[v], n = g.vout_start[v + 1] - s;
+        int start = 0;
+        for (int k = 1; k < n; ++k)
+            if (side_of[g.vout[s + k]] / 2 < side_of[g.vout[s + start]] / 2) start = k;
+        for (int k = 0; k < n; ++k) {
+            const int out = g.vout[s + (start + k) % n];
+            rec.edges.push_back(side_of[out] / 2);
             // The face on the counter-clockwise side of the edge leaving the vertex.
-            const int f = h->twin()->face()->data();
+            const int f = fid[g.he[out].face];
             if (std::find(rec.faces.begin(), rec.faces.end(), f) == rec.faces.end()) rec.faces.push_back(f);
         }
     }
 
-    // 9. Face records: cycles, incidences, labels rebuilt from the side labels.
+    // 8. Face records: cycles, incidences, labels rebuilt from the side labels.
     std::vector<int> edge_seen(chains.size(), -1), vertex_seen(breaks.size(), -1);
-    for (const auto& [key_unused, f] : fs) {
-        (void)key_unused;
-        FaceRec& rec = pm.faces_[f->data()];
-        rec.unbounded = f->is_unbounded();
-        if (rec.unbounded) pm.unbounded_ = f->data();
-        if (!f->is_unbounded()) rec.cycles.push_back(cycle_of(f->outer_ccb()).second);
+    for (std::size_t i = 0; i < nf; ++i) {
+        const RawGraph::RawFace& rf = g.faces[fs[i].second];
+        const int f = int(i);
+        FaceRec& rec = pm.faces_[i];
+        rec.unbounded = rf.unbounded;
+        if (rec.unbounded) pm.unbounded_ = f;
+        if (!rf.unbounded) rec.cycles.push_back(cycle_of(rf.outer).second);
         std::vector<std::pair<int, std::vector<Side>>> holes;
-        for (auto h = f->inner_ccbs_begin(); h != f->inner_ccbs_end(); ++h) holes.push_back(cycle_of(*h));
+        for (int h : rf.inner) holes.push_back(cycle_of(h));
         std::sort(holes.begin(), holes.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
         for (auto& h : holes) rec.cycles.push_back(std::move(h.second));
         for (const auto& cyc : rec.cycles)
             for (const Side& sd : cyc) {
                 const EdgeRec& er = pm.edges_[sd.edge];
                 rec.labels.merge(sd.left ? er.left_labels : er.right_labels);
-                if (edge_seen[sd.edge] != f->data()) {
-                    edge_seen[sd.edge] = f->data();
+                if (edge_seen[sd.edge] != f) {
+                    edge_seen[sd.edge] = f;
                     rec.edges.push_back(sd.edge);
                 }
                 const int v = sd.left ? er.source : er.target;
-                if (vertex_seen[v] != f->data()) {
-                    vertex_seen[v] = f->data();
+                if (vertex_seen[v] != f) {
+                    vertex_seen[v] = f;
                     rec.vertices.push_back(v);
                 }
             }
         std::vector<int> isolated;
-        for (auto iv = f->isolated_vertices_begin(); iv != f->isolated_vertices_end(); ++iv)
-            isolated.push_back(vid[iv->data()]);
+        for (int iv : rf.isolated) isolated.push_back(vid[iv]);
         std::sort(isolated.begin(), isolated.end());
         rec.vertices.insert(rec.vertices.end(), isolated.begin(), isolated.end());
 
@@ -364,14 +650,15 @@ MapPtr PlanarMapBuilder::build(const Curves& input) {
         // same face gets the same key in any map and whatever its numbering.
         std::uint64_t key = 0x46414345ULL;
         if (!rec.unbounded && !rec.cycles.empty()) {
-            const std::vector<Point> ring = pm.cycle_points(f->data(), 0);
+            const std::vector<Point> ring = pm.cycle_points(f, 0);
             std::size_t start = 0;
-            for (std::size_t i = 1; i < ring.size(); ++i)
-                if (ring[i] < ring[start]) start = i;
-            for (std::size_t i = 0; i < ring.size(); ++i) key = hash_point(key, ring[(start + i) % ring.size()]);
+            for (std::size_t j = 1; j < ring.size(); ++j)
+                if (ring[j] < ring[start]) start = j;
+            for (std::size_t j = 0; j < ring.size(); ++j) key = hash_point(key, ring[(start + j) % ring.size()]);
         }
         rec.key = key;
     }
+    if (pm.unbounded_ < 0) pm.unbounded_ = 0;
     return map;
 }
 

@@ -129,10 +129,9 @@ bool SegmentGrid::touches(const Point& p, const Point& q, bool only_changing, st
     return hit;
 }
 
-SegmentGrid::Where SegmentGrid::locate(const Point& p) const {
-    // Shoot a ray upwards (at x = p.x + epsilon, by taking segments' x ranges half open)
-    // and read the side of the lowest boundary segment it meets.
-    if (segs_.empty() || p.x < box_.xmin || p.x > box_.xmax || p.y > box_.ymax) return Where::Out;
+int SegmentGrid::first_above(const Point& p, const std::function<bool(std::uint32_t)>& use, bool& on) const {
+    on = false;
+    if (segs_.empty() || p.x < box_.xmin || p.x > box_.xmax || p.y > box_.ymax) return -1;
     const int c = col(p.x);
     const int r_start = p.y < box_.ymin ? 0 : row(p.y);
     const KP kpp = kp(p);
@@ -144,21 +143,30 @@ SegmentGrid::Where SegmentGrid::locate(const Point& p) const {
             const std::uint32_t i = items_[k];
             if (seen_[i] == stamp_) continue;
             seen_[i] = stamp_;
+            if (!use(i)) continue;
             const Seg& s = segs_[i];
-            if (!s.changes()) continue;
             const Point& L = s.a < s.b ? s.a : s.b;
             const Point& R = s.a < s.b ? s.b : s.a;
             if (L.x == R.x) {
-                if (p.x == L.x && p.y >= L.y && p.y <= R.y) return Where::On;
+                if (p.x == L.x && p.y >= L.y && p.y <= R.y) {
+                    on = true;
+                    return int(i);
+                }
                 continue;
             }
             if (!(L.x <= p.x && p.x < R.x)) {
-                if (p == R) return Where::On;
+                if (p == R) {
+                    on = true;
+                    return int(i);
+                }
                 continue;
             }
             const KS seg(kp(L), kp(R));
             const auto o = CGAL::orientation(kp(L), kp(R), kpp);
-            if (o == CGAL::COLLINEAR) return Where::On;
+            if (o == CGAL::COLLINEAR) {
+                on = true;
+                return int(i);
+            }
             if (o == CGAL::LEFT_TURN) continue;  // p above the segment
             bool lower = best < 0;
             if (!lower) {
@@ -179,6 +187,14 @@ SegmentGrid::Where SegmentGrid::locate(const Point& p) const {
             if (y < box_.ymin + (r + 1) * ch_ - 1e-9 * ch_) break;
         }
     }
+    return best;
+}
+
+SegmentGrid::Where SegmentGrid::locate(const Point& p) const {
+    // Shoot a ray upwards and read the side of the lowest boundary segment it meets.
+    bool on = false;
+    const int best = first_above(p, [&](std::uint32_t i) { return segs_[i].changes(); }, on);
+    if (on) return Where::On;
     if (best < 0) return Where::Out;
     const Seg& s = segs_[best];
     // Below a left-to-right segment is its right side.

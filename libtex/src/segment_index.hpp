@@ -7,10 +7,12 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "libtex/curves.hpp"
 #include "libtex/geometry.hpp"
+#include "libtex/planar_map.hpp"
 
 namespace tex::detail {
 
@@ -58,6 +60,11 @@ public:
     enum class Where { Out, In, On };
     Where locate(const Point& p) const;
 
+    // The lowest segment (among those `use` accepts) met by a ray going up from p, taken
+    // just right of p (segments' x ranges are half open); -1 when there is none. `on` is set
+    // when p lies on an accepted segment (then the result is that segment).
+    int first_above(const Point& p, const std::function<bool(std::uint32_t)>& use, bool& on) const;
+
 private:
     int col(double x) const;
     int row(double y) const;
@@ -81,4 +88,12 @@ std::vector<Seg> curve_segments(const Curves& c);
 // not touch themselves: such a curve is one edge on its own.
 Curves maximal_edges(const Curves& c);
 
+}  // namespace tex::detail
+
+namespace tex::detail {
+// The planar map of the curves, always through CGAL's exact arrangement (PlanarMap::induce
+// traces clean connected drawings directly); for the tests that compare both ways.
+MapPtr induce_with_cgal(const Curves& curves);
+// How many planar maps this thread traced directly (for the tests).
+std::uint64_t direct_inductions();
 }  // namespace tex::detail
