@@ -1,14 +1,16 @@
 // Times every gallery example (load elements, evaluate on the 2000 x 2000 window, write
 // the SVG text) with one and two threads, and compares the medians with the times the
-// thesis publishes in its Appendix A.
+// thesis publishes in its Appendix A. With --python-times (written by
+// bench/gallery_python_times.py), the report also gives the Python twins' medians.
 //
-//   bench_gallery [--runs N] [--markdown FILE] [--only NAME[,NAME...]]
+//   bench_gallery [--runs N] [--markdown FILE] [--only NAME[,NAME...]] [--python-times FILE]
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <sstream>
 #include <thread>
 
@@ -45,20 +47,33 @@ std::string fmt(double v, const char* f) {
 
 int main(int argc, char** argv) {
     int runs = 7;
-    std::string markdown, only;
+    std::string markdown, only, python_times;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         if (a == "--runs" && i + 1 < argc) runs = std::max(1, std::atoi(argv[++i]));
         else if (a == "--markdown" && i + 1 < argc) markdown = argv[++i];
         else if (a == "--only" && i + 1 < argc) only = argv[++i];
+        else if (a == "--python-times" && i + 1 < argc) python_times = argv[++i];
         else {
-            std::cerr << "usage: bench_gallery [--runs N] [--markdown FILE] [--only NAMES]\n";
+            std::cerr << "usage: bench_gallery [--runs N] [--markdown FILE] [--only NAMES] [--python-times FILE]\n";
             return 2;
         }
     }
+    std::map<std::string, std::pair<double, double>> py;
+    if (!python_times.empty()) {
+        std::ifstream in(python_times);
+        if (!in) {
+            std::cerr << "bench_gallery: cannot read " << python_times << "\n";
+            return 2;
+        }
+        std::string name;
+        double t1, t2;
+        while (in >> name >> t1 >> t2) py[name] = {t1, t2};
+    }
     std::ostringstream md;
-    md << "| example | published (thesis) | 1 thread (median) | 2 threads (median) | speed-up vs thesis, 1 thread | 2 threads |\n"
-       << "|---|---:|---:|---:|---:|---:|\n";
+    md << "| example | published (thesis) | C++ 1 thread | C++ 2 threads | speed-up, C++ 1 thread | C++ 2 threads";
+    if (!py.empty()) md << " | Python 1 thread | Python 2 threads | speed-up, Python 1 thread | Python 2 threads";
+    md << " |\n|---|---:|---:|---:|---:|---:" << (py.empty() ? "" : "|---:|---:|---:|---:") << "|\n";
     std::printf("%-10s %10s %12s %12s %10s %10s\n", "example", "published", "1 thread", "2 threads", "x (1t)", "x (2t)");
     for (const auto& e : gallery::examples()) {
         if (!only.empty() && ("," + only + ",").find("," + e.name + ",") == std::string::npos) continue;
@@ -72,12 +87,32 @@ int main(int argc, char** argv) {
         std::printf("%-10s %10s %10.1f ms %10.1f ms %10s %10s\n", e.name.c_str(), pub_s.c_str(), t1 * 1e3, t2 * 1e3,
                     r1.c_str(), r2.c_str());
         md << "| " << e.title << " | " << pub_s << " | " << fmt(t1 * 1e3, "%.1f ms") << " | "
-           << fmt(t2 * 1e3, "%.1f ms") << " | " << r1 << " | " << r2 << " |\n";
+           << fmt(t2 * 1e3, "%.1f ms") << " | " << r1 << " | " << r2;
+        if (!py.empty()) {
+            const auto it = py.find(e.name);
+            if (it == py.end()) {
+                md << " | - | - | - | -";
+            } else {
+                const auto [p1, p2] = it->second;
+                auto ratio = [&](double t) {
+                    return !published ? std::string("-") : (known ? "" : "> ") + fmt(pub / t, "%.0f");
+                };
+                md << " | " << fmt(p1 * 1e3, "%.1f ms") << " | " << fmt(p2 * 1e3, "%.1f ms") << " | " << ratio(p1)
+                   << " | " << ratio(p2);
+            }
+        }
+        md << " |\n";
     }
     if (!markdown.empty()) {
         std::ofstream out(markdown);
-        out << "<!-- written by bench_gallery; medians of " << runs << " runs after one warm-up; "
-            << std::thread::hardware_concurrency() << " hardware threads -->\n"
+        out << "<!-- written by `cmake --build build --target bench` (bench_gallery and "
+               "bench/gallery_python_times.py); medians of "
+            << runs << " runs after one warm-up; " << std::thread::hardware_concurrency() << " hardware threads -->\n"
+            << "# The Appendix A gallery against the thesis's published times\n\n"
+            << "Each example is built, evaluated on the 2000 x 2000 window and written as SVG text; the "
+               "speed-up is the thesis's Appendix A time over our median (the thesis gives \"< 1 sec\" for "
+               "some: their ratio is a lower bound). The Python column runs the twin script of "
+               "bindings/examples/gallery.py in one interpreter (same bytes as C++).\n\n"
             << md.str();
         std::cout << "report written to " << markdown << "\n";
     }

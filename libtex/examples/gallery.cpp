@@ -181,6 +181,8 @@ Arrangement overview(const std::string& dir) {
     return MapToFaces(map_arrangement_to, MapToFaces(map_blob_to, init_tex));
 }
 
+}  // namespace
+
 // The "Combining" examples: three textures and their merges.
 Arrangement squares(const std::string& dir, double theta, double width) {
     const Curves square = load(dir, "square.svg");
@@ -212,6 +214,8 @@ Arrangement circles(const std::string& dir, double density) {
     };
     return MapToFaces(face_to_circle, UniformPartition(IrregularProperties(density), KEEP_OUTSIDE));
 }
+
+namespace {
 
 constexpr double kCircles = 8.5e-5;
 

@@ -27,6 +27,13 @@ struct Example {
 inline constexpr double kSize = 2000;
 
 const std::vector<Example>& examples();
+
+// The three textures of "Combining" (for the tests of the merges): rounded squares turned
+// at random in a grid at angle theta, waves along stripes, circles of random sizes on a
+// uniform partition.
+tex::Arrangement squares(const std::string& elements, double theta, double width);
+tex::Arrangement waves(const std::string& elements, double theta, double width);
+tex::Arrangement circles(const std::string& elements, double density);
 // The example with that name; throws tex::Error when there is none.
 const Example& find(const std::string& name);
 // Default folder of the SVG elements (the source tree).

@@ -4,8 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #include <map>
 #include <set>
+#include <sstream>
 
 #include "gallery.hpp"
 #include "gallery_teasers.hpp"
@@ -23,6 +28,52 @@ std::string render(const gallery::Example& e) {
 class GalleryTest : public ::testing::TestWithParam<std::string> {};
 
 }  // namespace
+
+// ---- Golden drawings: any change of an example's output fails here ----
+//
+// tests/libtex/gallery_golden.txt holds the size and a 64-bit FNV-1a hash of every
+// example's SVG at seed 0. When a change of output is intended, regenerate it with
+//   RH_UPDATE_GOLDEN=1 build/tests/test_gallery --gtest_filter='Golden.*'
+// and say in the commit why the drawings changed (the property tests below say what must
+// not change).
+
+std::uint64_t fnv1a(const std::string& s) {
+    std::uint64_t h = 1469598103934665603ULL;
+    for (unsigned char c : s) {
+        h ^= c;
+        h *= 1099511628211ULL;
+    }
+    return h;
+}
+
+TEST(Golden, EveryExampleDrawsItsGoldenBytes) {
+    const std::string path = RH_GALLERY_GOLDEN;
+    const std::uint64_t seed = GetSeed();
+    SetSeed(0);
+    std::ostringstream now;
+    for (const auto& e : gallery::examples()) {
+        const std::string svg = render(e);
+        char line[128];
+        std::snprintf(line, sizeof line, "%s\t%zu\t%016llx\n", e.name.c_str(), svg.size(),
+                      static_cast<unsigned long long>(fnv1a(svg)));
+        now << line;
+    }
+    SetSeed(seed);
+    if (std::getenv("RH_UPDATE_GOLDEN")) {
+        std::ofstream(path) << now.str();
+        GTEST_SKIP() << "wrote " << path;
+    }
+    std::ifstream in(path);
+    ASSERT_TRUE(in) << "missing " << path;
+    std::map<std::string, std::string> want, got;
+    std::string line;
+    while (std::getline(in, line))
+        if (!line.empty()) want[line.substr(0, line.find('\t'))] = line;
+    std::istringstream cur(now.str());
+    while (std::getline(cur, line)) got[line.substr(0, line.find('\t'))] = line;
+    EXPECT_EQ(want.size(), got.size()) << "examples added or removed: regenerate " << path;
+    for (const auto& [name, l] : got) EXPECT_EQ(want[name], l) << name << ": the drawing changed";
+}
 
 TEST_P(GalleryTest, SameBytesWithOneOrTwoThreadsAndAcrossRuns) {
     const auto& e = gallery::find(GetParam());
@@ -495,4 +546,100 @@ TEST(GalleryTeasers, H_PlaidOfDiagonalBandsOverFineVerticalHatching) {
             matches += all && some_row_only && some_col_only;
         }
     EXPECT_EQ(matches, 1);
+}
+
+// ---- The merges of "Combining": whole circles kept or dropped, waves cut at the squares ----
+
+namespace {
+
+struct CombineParts {
+    std::vector<Ring> squares;
+    Curves circles;
+};
+
+CombineParts combine_parts() {
+    StreamScope fresh(0);  // as the example's script: one random partition, the circles'
+    CombineParts p;
+    p.circles = gallery::circles(elements(), 8.5e-5)(kWindow);
+    p.squares = rings(gallery::squares(elements(), pi / 4, 400)(kWindow));
+    return p;
+}
+
+Curves combine(const char* name) {
+    StreamScope fresh(0);
+    return gallery::find(name).build(elements())(kWindow);
+}
+
+bool meets_inside(const Curve& c, const std::vector<Ring>& squares) {
+    const std::size_t n = c.points.size(), segs = c.closed ? n : n - 1;
+    for (const auto& r : squares) {
+        for (const auto& p : c.points)
+            if (r.strictly_contains(p)) return true;
+        for (std::size_t i = 0; i < segs; ++i)
+            if (r.crossed_by({c.points[i], c.points[(i + 1) % n]})) return true;
+    }
+    return false;
+}
+
+// A curve as a key: a closed one read from its smallest point.
+std::vector<Point> key(const Curve& c) {
+    std::vector<Point> p = c.points;
+    if (c.closed) std::rotate(p.begin(), std::min_element(p.begin(), p.end()), p.end());
+    return p;
+}
+
+std::set<std::vector<Point>> as_set(const Curves& c) {
+    std::set<std::vector<Point>> out;
+    for (const auto& cv : c.curves) out.insert(key(cv));
+    return out;
+}
+
+// The edges of the circles' own planar map: overlapping circles cut each other in arcs.
+Curves circle_edges(const CombineParts& p) { return PlanarMap::induce(p.circles)->edge_curves(); }
+
+}  // namespace
+
+TEST(GalleryCombining, F_CirclesMeetingASquareAreKeptWhole) {
+    const CombineParts parts = combine_parts();
+    ASSERT_GT(parts.squares.size(), 20u);
+    const Curves edges = circle_edges(parts);
+    std::set<std::vector<Point>> expected;
+    for (const auto& c : edges.curves)
+        if (meets_inside(c, parts.squares)) expected.insert(key(c));
+    ASSERT_GT(expected.size(), 50u);
+    ASSERT_LT(expected.size(), edges.size());
+    const auto got = as_set(combine("combine_f"));
+    EXPECT_EQ(got.size(), expected.size());
+    EXPECT_TRUE(got == expected) << "the kept edges are not the whole edges meeting the squares";
+}
+
+TEST(GalleryCombining, H_CirclesWhollyOutsideTheSquaresAreKeptWhole) {
+    const CombineParts parts = combine_parts();
+    std::set<std::vector<Point>> expected;
+    for (const auto& c : circle_edges(parts).curves)
+        if (!meets_inside(c, parts.squares)) expected.insert(key(c));
+    ASSERT_GT(expected.size(), 50u);
+    const auto got = as_set(combine("combine_h"));
+    EXPECT_EQ(got.size(), expected.size());
+    EXPECT_TRUE(got == expected) << "the kept edges are not the whole edges outside the squares";
+}
+
+TEST(GalleryCombining, G_CirclesAreCutAtTheSquares) {
+    const CombineParts parts = combine_parts();
+    const Curves g = combine("combine_g");
+    // Every piece lies outside every square; the pieces of the cut circles end on squares.
+    std::size_t open = 0;
+    for (const auto& c : g.curves) {
+        for (std::size_t i = 0; i + 1 < c.points.size(); ++i) {
+            const Point m = (c.points[i] + c.points[i + 1]) / 2;
+            for (const auto& r : parts.squares) EXPECT_FALSE(r.strictly_contains(m));
+        }
+        if (!c.closed) {
+            ++open;
+            double d = std::numeric_limits<double>::infinity();
+            for (const auto& r : parts.squares) d = std::min(d, r.distance_to(c.points.front()));
+            EXPECT_LT(d, 1e-6);
+        }
+    }
+    EXPECT_GT(open, 10u);
 }

@@ -279,3 +279,46 @@ def test_svg_round_trip_and_curves_api(tmp_path):
     assert back.curves[1].closed
     m = MatchPoints(c, Point(0, 0), Point(10, 0), Point(0, 0), Point(0, 20))
     assert abs(m.curves[0].points[1].x) < 1e-12 and abs(m.curves[0].points[1].y - 20) < 1e-12
+
+
+def test_each_random_partition_draws_its_own_sites():
+    # Teaser b's ten identical calls must give ten different layers.
+    SetSeed(0)
+    p = IrregularProperties(40e-6)
+    a, b = UniformPartition(p, KEEP_OUTSIDE), UniformPartition(p, KEEP_OUTSIDE)
+    win = BOX
+    assert ToSVG(a(win), 1000) != ToSVG(b(win), 1000)
+    assert ToSVG(a(win), 1000) == ToSVG(a(win), 1000)  # the stream is fixed at creation
+    # An explicit seed repeats a stream on purpose.
+    assert ToSVG(RandomPartition(p, KEEP_OUTSIDE, seed=7)(win), 1000) == \
+        ToSVG(RandomPartition(p, KEEP_OUTSIDE, seed=7)(win), 1000)
+    # SetSeed restarts the numbering: the same script, the same sites.
+    SetSeed(0)
+    again = UniformPartition(p, KEEP_OUTSIDE)
+    assert ToSVG(again(win), 1000) == ToSVG(a(win), 1000)
+
+
+def test_partitions_built_in_python_mappers_take_their_stream_from_the_cell():
+    fixed = Region.rectangle(0, 0, 300, 300)
+    grid = GridPartition(StripesProperties(0, 250), StripesProperties(pi / 2, 250), KEEP_INSIDE)
+
+    def per_face(f):
+        # The same fixed square for every face: what differs is the stream.
+        return UniformPartition(IrregularProperties(3e-4), KEEP_INSIDE)(fixed)
+
+    outs = []
+    for threads in (1, 2):
+        SetThreads(threads)
+        try:
+            outs.append(ToSVG(MapToFaces(per_face, grid)(BOX), 1000))
+        finally:
+            SetThreads(0)
+    assert outs[0] == outs[1]
+    seen = set()
+
+    def one(f):
+        seen.add(ToSVG(UniformPartition(IrregularProperties(3e-4), KEEP_INSIDE)(fixed), 300))
+        return Nothing()
+
+    MapToFaces(one, grid)(BOX)
+    assert len(seen) == 16
