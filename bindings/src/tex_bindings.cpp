@@ -384,14 +384,16 @@ void bind_tex(py::module_& m) {
     m.def("PoissonDiskRadius", &PoissonDiskRadius, py::arg("density"));
 
     // ---- Mapping (table 3.3) and merging (table 3.5) ----
+    // A Python mapper runs one call at a time (the interpreter's lock): the engine calls it
+    // cell after cell on the evaluating thread, instead of handing the lock between workers.
     m.def(
-        "MapToVertices", [](py::function f, Arrangement a) { return MapToVertices(mapper<Vertex>(f, "MapToVertices"), a); },
+        "MapToVertices", [](py::function f, Arrangement a) { return MapToVertices(mapper<Vertex>(f, "MapToVertices"), a, MapperThreads::Serial); },
         py::arg("mapper"), py::arg("arrangement"));
     m.def(
-        "MapToEdges", [](py::function f, Arrangement a) { return MapToEdges(mapper<Edge>(f, "MapToEdges"), a); },
+        "MapToEdges", [](py::function f, Arrangement a) { return MapToEdges(mapper<Edge>(f, "MapToEdges"), a, MapperThreads::Serial); },
         py::arg("mapper"), py::arg("arrangement"));
     m.def(
-        "MapToFaces", [](py::function f, Arrangement a) { return MapToFaces(mapper<Face>(f, "MapToFaces"), a); },
+        "MapToFaces", [](py::function f, Arrangement a) { return MapToFaces(mapper<Face>(f, "MapToFaces"), a, MapperThreads::Serial); },
         py::arg("mapper"), py::arg("arrangement"), "visits the bounded faces");
     m.def("Union", &Union, py::arg("a1"), py::arg("a2"));
     m.def("Inside", &Inside, py::arg("a1"), py::arg("a2"), py::arg("border"));

@@ -9,13 +9,18 @@ namespace tex {
 namespace {
 
 template <class CellT, class Mapper, class KeyOf>
-Curves map_cells(const MapPtr& map, const std::vector<int>& ids, const Mapper& m, KeyOf key_of) {
+Curves map_cells(const MapPtr& map, const std::vector<int>& ids, const Mapper& m, KeyOf key_of, MapperThreads t) {
     std::vector<Curves> results(ids.size());
-    parallel_for(ids.size(), [&](std::size_t i) {
+    auto visit = [&](std::size_t i) {
         CellT cell(map, ids[i]);
         RandomScope scope(key_of(ids[i]));
         results[i] = m(cell);
-    });
+    };
+    if (t == MapperThreads::Serial) {
+        for (std::size_t i = 0; i < ids.size(); ++i) visit(i);
+    } else {
+        parallel_for(ids.size(), visit);
+    }
     Curves out;
     std::size_t total = 0;
     for (const auto& r : results) total += r.curves.size();
@@ -33,29 +38,29 @@ std::vector<int> iota_ids(std::size_t n) {
 
 }  // namespace
 
-Arrangement MapToVertices(VertexMapper m, Arrangement a) {
-    return Arrangement([m = std::move(m), a = std::move(a)](const Region& r) {
+Arrangement MapToVertices(VertexMapper m, Arrangement a, MapperThreads t) {
+    return Arrangement([m = std::move(m), a = std::move(a), t](const Region& r) {
         MapPtr map = a.induce(r);
         return map_cells<Vertex>(map, iota_ids(map->vertices().size()), m,
-                                 [&](int i) { return map->vertices()[i].key; });
+                                 [&](int i) { return map->vertices()[i].key; }, t);
     });
 }
 
-Arrangement MapToEdges(EdgeMapper m, Arrangement a) {
-    return Arrangement([m = std::move(m), a = std::move(a)](const Region& r) {
+Arrangement MapToEdges(EdgeMapper m, Arrangement a, MapperThreads t) {
+    return Arrangement([m = std::move(m), a = std::move(a), t](const Region& r) {
         MapPtr map = a.induce(r);
         return map_cells<Edge>(map, iota_ids(map->edges().size()), m,
-                               [&](int i) { return map->edges()[i].key; });
+                               [&](int i) { return map->edges()[i].key; }, t);
     });
 }
 
-Arrangement MapToFaces(FaceMapper m, Arrangement a) {
-    return Arrangement([m = std::move(m), a = std::move(a)](const Region& r) {
+Arrangement MapToFaces(FaceMapper m, Arrangement a, MapperThreads t) {
+    return Arrangement([m = std::move(m), a = std::move(a), t](const Region& r) {
         MapPtr map = a.induce(r);
         std::vector<int> ids;
         for (std::size_t i = 0; i < map->faces().size(); ++i)
             if (!map->faces()[i].unbounded) ids.push_back(int(i));
-        return map_cells<Face>(map, ids, m, [&](int i) { return map->faces()[i].key; });
+        return map_cells<Face>(map, ids, m, [&](int i) { return map->faces()[i].key; }, t);
     });
 }
 

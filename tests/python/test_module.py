@@ -179,22 +179,45 @@ def test_random_is_deterministic_with_python_mappers_on_any_thread_count():
     assert other != outputs[1][0]
 
 
-def test_python_mappers_run_on_the_engine_threads():
+def test_python_mappers_run_one_cell_after_the_other_on_the_calling_thread():
+    # A Python mapper holds the interpreter's lock: the engine calls it cell after cell on
+    # the thread that evaluates the arrangement (two workers would only pass the lock back
+    # and forth), with the same output as on one thread.
     idents = set()
 
     def mapper(f):
         idents.add(threading.get_ident())
-        time.sleep(0.001)  # lets the other worker take the GIL
-        return Contour(f)
+        return Scale(Contour(f), 0.5)
+
+    grid = GridPartition(StripesProperties(0, 50), StripesProperties(pi / 2, 50), KEEP_INSIDE)
+    outs = []
+    for threads in (2, 1):
+        SetThreads(threads)
+        try:
+            outs.append(ToSVG(MapToFaces(mapper, grid)(BOX), 1000))
+        finally:
+            SetThreads(0)
+    assert outs[0] == outs[1]
+    assert idents == {threading.get_ident()}
+
+
+def test_python_arrangements_run_on_the_engine_threads():
+    # Python code called from the engine's worker threads (both sides of a Union are
+    # evaluated in parallel) takes the interpreter's lock back safely.
+    idents = set()
+
+    def side(r):
+        idents.add(threading.get_ident())
+        time.sleep(0.05)  # the other side starts meanwhile, on the other worker
+        return Polyline([Point(0, 0), Point(10, 10)])
 
     SetThreads(2)
     try:
-        out = MapToFaces(mapper, GridPartition(StripesProperties(0, 50), StripesProperties(pi / 2, 50),
-                                              KEEP_INSIDE))(BOX)
+        out = Union(Arrangement(side), Arrangement(side))(BOX)
     finally:
         SetThreads(0)
-    assert len(out) == 4 * 400  # four sides per square face
-    assert len(idents) == 2, "the two workers should both have run the Python mapper"
+    assert len(out) == 2
+    assert len(idents) == 2, "both workers should have run Python code"
 
 
 def test_the_gil_is_released_during_cpp_work():

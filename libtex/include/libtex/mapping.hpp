@@ -16,9 +16,15 @@ using VertexMapper = std::function<Curves(const Vertex&)>;
 using EdgeMapper = std::function<Curves(const Edge&)>;
 using FaceMapper = std::function<Curves(const Face&)>;
 
-Arrangement MapToVertices(VertexMapper m, Arrangement a);
-Arrangement MapToEdges(EdgeMapper m, Arrangement a);
+// How a mapping operator runs its mapper: on the worker threads (the default), or one cell
+// after the other on the thread that evaluates the arrangement, for a mapper that cannot
+// run two calls at once anyway (a Python function holds the interpreter's lock: on several
+// threads it would only pass the lock back and forth). The output is the same either way.
+enum class MapperThreads { Parallel, Serial };
+
+Arrangement MapToVertices(VertexMapper m, Arrangement a, MapperThreads t = MapperThreads::Parallel);
+Arrangement MapToEdges(EdgeMapper m, Arrangement a, MapperThreads t = MapperThreads::Parallel);
 // Visits the bounded faces only.
-Arrangement MapToFaces(FaceMapper m, Arrangement a);
+Arrangement MapToFaces(FaceMapper m, Arrangement a, MapperThreads t = MapperThreads::Parallel);
 
 }  // namespace tex
