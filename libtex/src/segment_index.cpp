@@ -234,9 +234,15 @@ Curves maximal_edges(const Curves& c) {
     if (!c.points.empty()) {
         std::unordered_set<Point, PointHash> labelled;
         for (const auto& lp : c.points) labelled.insert(lp.point);
-        for (std::size_t ci = 0; ci < c.curves.size(); ++ci)
-            for (const Point& p : c.curves[ci].points)
-                if (labelled.count(p)) busy[ci] = 1;
+        for (std::size_t ci = 0; ci < c.curves.size(); ++ci) {
+            const auto& pts = c.curves[ci].points;
+            if (pts.size() < 2) continue;
+            // The ends of an open curve are vertices anyway.
+            const std::size_t first = c.curves[ci].closed ? 0 : 1;
+            const std::size_t last = c.curves[ci].closed ? pts.size() : pts.size() - 1;
+            for (std::size_t k = first; k < last; ++k)
+                if (labelled.count(pts[k])) busy[ci] = 1;
+        }
     }
     const SegmentGrid grid(segs);
     for (std::uint32_t i = 0; i < segs.size(); ++i) {
