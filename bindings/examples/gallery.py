@@ -726,6 +726,76 @@ def script_edit_d(elements):
     return Union(cells, MapToFaces(lambda f: grid_inside(f, place), cells))
 
 
+def lozenges(a, b):
+    return GridPartition(StripesProperties(a, 200), StripesProperties(b, 200), KEEP_OUTSIDE)
+
+
+def split_diagonal(face):
+    # From the vertex where both of the face's edges start to the one where both end; drawn
+    # vertex to vertex (MatchPoints would land 1e-13 off and leave the bar dangling).
+    def incident(e):
+        return face == LeftFace(e) or face == RightFace(e)
+
+    first = last = None
+    for v in IncidentVertices(face):
+        starting = ending = 0
+        for e in IncidentEdges(v):
+            if v == SourceVertex(e) and incident(e):
+                starting += 1
+            if v == TargetVertex(e) and incident(e):
+                ending += 1
+        if starting == 2:
+            first = v
+        if ending == 2:
+            last = v
+    if first is None or last is None:
+        return Nothing()
+    return Polyline([Location(first), Location(last)])
+
+
+def split_lozenges(a, b):
+    grid = lozenges(a, b)
+    return Union(grid, MapToFaces(split_diagonal, grid))
+
+
+def triangles(elements):
+    return split_lozenges(pi / 3, -pi / 3)
+
+
+def bee_hive(elements):
+    def dual(e):
+        return Nothing() if IsBoundary(e) else Polyline([Centroid(LeftFace(e)), Centroid(RightFace(e))])
+
+    return MapToEdges(dual, triangles(elements))
+
+
+def wallpaper_p6(elements):
+    zee = load(elements, "zee.svg")
+    return MapToEdges(lambda e: stroke_along(zee, e), bee_hive(elements))
+
+
+def wallpaper_p4m(elements):
+    bump = load(elements, "bump.svg")
+    grid = lozenges(pi / 4, -pi / 4)
+    return Union(MapToEdges(lambda e: stroke_along(bump, e), grid), MapToEdges(lambda e: stroke_against(bump, e), grid))
+
+
+def wallpaper_p31m(elements):
+    hook, mirror = load(elements, "hook.svg"), load(elements, "hook_mirror.svg")
+
+    def subdivide(f):
+        # Faces with more than one edge running counter-clockwise around them take the mirror.
+        left = sum(1 for e in IncidentEdges(f) if f == LeftFace(e))
+        bend = mirror if left > 1 else hook
+        out = Nothing()
+        for v in IncidentVertices(f):
+            out = Append(out, MatchPoints(bend, PointLabeled(bend, "start"), PointLabeled(bend, "end"), Location(v),
+                                          Centroid(f)))
+        return out
+
+    return MapToFaces(subdivide, split_lozenges(pi / 6, pi - pi / 6))
+
+
 EXAMPLES = {
     "stripes": stripes, "grid": grid, "uniform": uniform, "random": random_, "puzzle": puzzle,
     "rosettes": rosettes, "cracks": cracks, "bimodal": bimodal, "crosses": crosses, "curves": curves,
@@ -739,6 +809,8 @@ EXAMPLES = {
     "nonregular_b": nonregular_b, "nonregular_c": nonregular_c, "nonregular_d": nonregular_d,
     "script_edit_a": script_edit_a, "script_edit_b": script_edit_b, "script_edit_c": script_edit_c,
     "script_edit_d": script_edit_d,
+    "triangles": triangles, "bee_hive": bee_hive, "wallpaper_p6": wallpaper_p6, "wallpaper_p4m": wallpaper_p4m,
+    "wallpaper_p31m": wallpaper_p31m,
 }
 
 

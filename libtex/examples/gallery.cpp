@@ -290,6 +290,11 @@ const std::vector<Example>& examples() {
         {"script_edit_b", "Script edition b: partitions switched", 52, more::script_edit_b},
         {"script_edit_c", "Script edition c: arrangements switched", 12, more::script_edit_c},
         {"script_edit_d", "Script edition d: mappings varied", 56, more::script_edit_d},
+        {"triangles", "Triangles: lozenges split along a diagonal", 4, more::triangles},
+        {"bee_hive", "Bee hive: the dual of the triangles", 5, more::honeycomb},
+        {"wallpaper_p6", "Wallpaper group P6: a honeycomb of Z-shaped kinks", 48, more::wallpaper_p6},
+        {"wallpaper_p4m", "Wallpaper group P4M: bumps laid both ways on a square grid", 24, more::wallpaper_p4m},
+        {"wallpaper_p31m", "Wallpaper group P31M: triangles cut into three by S-bends", 50, more::wallpaper_p31m},
     };
     return all;
 }

@@ -285,4 +285,73 @@ Arrangement script_edit_d(const std::string& dir) {
     return Union(cells, MapToFaces(fill, cells));
 }
 
+// ---- Triangles, Bee hive, wallpaper groups ----
+
+Arrangement lozenges(double a, double b) {
+    return GridPartition(StripesProperties(a, 200), StripesProperties(b, 200), KEEP_OUTSIDE);
+}
+
+Curves split_diagonal(const Face& f) {
+    auto incident = [&f](const Edge& e) { return f == LeftFace(e) || f == RightFace(e); };
+    Vertex first, last;
+    for (const Vertex& v : IncidentVertices(f)) {
+        int starting = 0, ending = 0;
+        for (const Edge& e : IncidentEdges(v)) {
+            if (v == SourceVertex(e) && incident(e)) ++starting;
+            if (v == TargetVertex(e) && incident(e)) ++ending;
+        }
+        if (starting == 2) first = v;
+        if (ending == 2) last = v;
+    }
+    if (!first.valid() || !last.valid()) return Nothing();
+    return Polyline({Location(first), Location(last)});
+}
+
+namespace {
+
+Arrangement split_lozenges(double a, double b) {
+    const Arrangement grid = lozenges(a, b);
+    return Union(grid, MapToFaces(split_diagonal, grid));
+}
+
+}  // namespace
+
+Arrangement triangles(const std::string&) { return split_lozenges(pi / 3, -pi / 3); }
+
+Arrangement honeycomb(const std::string& dir) {
+    auto dual = [](const Edge& e) {
+        return IsBoundary(e) ? Nothing() : Polyline({Centroid(LeftFace(e)), Centroid(RightFace(e))});
+    };
+    return MapToEdges(dual, triangles(dir));
+}
+
+Arrangement wallpaper_p6(const std::string& dir) {
+    const Curves zee = load(dir, "zee.svg");
+    return MapToEdges([zee](const Edge& e) { return stroke_along(zee, e); }, honeycomb(dir));
+}
+
+Arrangement wallpaper_p4m(const std::string& dir) {
+    const Curves bump = load(dir, "bump.svg");
+    const Arrangement grid = lozenges(pi / 4, -pi / 4);
+    return Union(MapToEdges([bump](const Edge& e) { return stroke_along(bump, e); }, grid),
+                 MapToEdges([bump](const Edge& e) { return stroke_against(bump, e); }, grid));
+}
+
+Arrangement wallpaper_p31m(const std::string& dir) {
+    const Curves hook = load(dir, "hook.svg"), mirror = load(dir, "hook_mirror.svg");
+    auto subdivide = [hook, mirror](const Face& f) {
+        // Faces with more than one edge running counter-clockwise around them take the
+        // mirrored bend.
+        int left = 0;
+        for (const Edge& e : IncidentEdges(f)) left += f == LeftFace(e);
+        const Curves& bend = left > 1 ? mirror : hook;
+        Curves out = Nothing();
+        for (const Vertex& v : IncidentVertices(f))
+            out = Append(out, MatchPoints(bend, PointLabeled(bend, "start"), PointLabeled(bend, "end"), Location(v),
+                                          Centroid(f)));
+        return out;
+    };
+    return MapToFaces(subdivide, split_lozenges(pi / 6, pi - pi / 6));
+}
+
 }  // namespace gallery::more

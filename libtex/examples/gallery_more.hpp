@@ -97,4 +97,26 @@ tex::Arrangement curled_cells(const std::string& dir);
 tex::Arrangement script_edit_d(const std::string& dir);
 inline constexpr double kEditCell = 125;  // the grid width of (c) and (d): 2000 / 16
 
+// ---- Triangles, Bee hive and the wallpaper groups ----
+// A lozenge grid: two stripe families 200 apart at angles a and b.
+tex::Arrangement lozenges(double a, double b);
+// The diagonal of a face running from the vertex where both of its edges start to the
+// vertex where both end (none when there is no such pair). The thesis matches a segment
+// element onto the two vertices; MatchPoints lands up to 1e-13 away from its targets, which
+// leaves the bar dangling next to the vertex instead of splitting the face, so the bar is
+// drawn from vertex to vertex exactly (a Polyline).
+tex::Curves split_diagonal(const tex::Face& f);
+// The lozenges (at +-60 degrees) with their diagonals: equilateral triangles.
+tex::Arrangement triangles(const std::string& dir);
+// The dual of the triangles: a bar between the centroids of the two faces of every inner
+// edge (exactly, as above), that is a honeycomb.
+tex::Arrangement honeycomb(const std::string& dir);
+// P6: every edge of the honeycomb replaced by a Z-shaped kink.
+tex::Arrangement wallpaper_p6(const std::string& dir);
+// P4M: every edge of a square grid turned 45 degrees drawn as a bump, laid both ways.
+tex::Arrangement wallpaper_p4m(const std::string& dir);
+// P31M: triangles (at 30 and 150 degrees) whose faces are each cut into three by S-bends
+// from their corners to their centroid, the bend or its mirror by the face's orientation.
+tex::Arrangement wallpaper_p31m(const std::string& dir);
+
 }  // namespace gallery::more

@@ -89,7 +89,8 @@ TEST_P(GalleryTest, SameBytesWithOneOrTwoThreadsAndAcrossRuns) {
     EXPECT_GT(one.size(), 2000u) << "the drawing is nearly empty";
     // A different seed gives a different drawing for the random examples.
     static const std::set<std::string> no_random = {"stripes", "grid", "teaser_c", "teaser_h", "combine_b",
-                                                    "regular_a", "regular_b"};
+                                                    "regular_a", "regular_b", "triangles", "bee_hive",
+                                                    "wallpaper_p6", "wallpaper_p4m", "wallpaper_p31m"};
     if (!no_random.count(e.name)) {
         const std::uint64_t seed = GetSeed();
         SetSeed(seed + 7);
@@ -110,7 +111,8 @@ INSTANTIATE_TEST_SUITE_P(More, GalleryTest,
                          ::testing::Values("regular_a", "regular_b", "regular_c", "regular_d",
                                            "nonregular_a_left", "nonregular_a_right", "nonregular_b",
                                            "nonregular_c", "nonregular_d", "script_edit_a", "script_edit_b",
-                                           "script_edit_c", "script_edit_d"));
+                                           "script_edit_c", "script_edit_d", "triangles", "bee_hive",
+                                           "wallpaper_p6", "wallpaper_p4m", "wallpaper_p31m"));
 
 TEST(Gallery, ExpectedStructure) {
     // Puzzle: a 16 x 16 grid in which every other vertical edge is removed row by row.
@@ -1133,4 +1135,120 @@ TEST(GalleryScriptEdition, D_AFlowerOrALeafOnEveryGridCellInsideACurledCell) {
         flowers += s == flower.curves[0].points.size();
     }
     EXPECT_NEAR(double(flowers) / double(sizes.size()), 0.5, 0.15);
+}
+
+// ---- Triangles, Bee hive, wallpaper groups ----
+
+namespace {
+
+std::vector<Face> bounded_faces(const MapPtr& m) {
+    std::vector<Face> out;
+    for (std::size_t f = 0; f < m->faces().size(); ++f)
+        if (!m->faces()[f].unbounded) out.push_back(Face(m, int(f)));
+    return out;
+}
+
+double face_area(const Face& f) { return std::abs(signed_area(f.map().cycle_points(f.id(), 0))); }
+
+const double kLozengeSide = 400 / std::sqrt(3.0);  // lines 200 apart at 60 degrees
+
+}  // namespace
+
+TEST(GalleryTilings, Triangles_EveryLozengeSplitIntoTwoEquilateralTriangles) {
+    const std::size_t lozenges = bounded_faces(mo::lozenges(pi / 3, -pi / 3).induce(kWindow)).size();
+    const MapPtr t = mo::triangles(elements()).induce(kWindow);
+    const std::vector<Face> faces = bounded_faces(t);
+    EXPECT_GT(lozenges, 80u);
+    EXPECT_EQ(faces.size(), 2 * lozenges);
+    for (const Face& f : faces) {
+        EXPECT_EQ(IncidentVertices(f).size(), 3u);
+        EXPECT_NEAR(face_area(f), std::sqrt(3.0) / 4 * kLozengeSide * kLozengeSide, 1e-6);
+    }
+}
+
+TEST(GalleryTilings, BeeHive_TheDualOfTheTrianglesIsAHoneycomb) {
+    const MapPtr h = mo::honeycomb(elements()).induce(kWindow);
+    const MapPtr lattice = mo::lozenges(pi / 3, -pi / 3).induce(kWindow);
+    const double side = kLozengeSide / std::sqrt(3.0);  // centroid to centroid
+    std::size_t inner = 0;
+    for (const Face& f : bounded_faces(h)) {
+        if (IsBoundary(f)) continue;
+        ++inner;
+        EXPECT_EQ(IncidentVertices(f).size(), 6u);
+        EXPECT_NEAR(face_area(f), 3 * std::sqrt(3.0) / 2 * side * side, 1e-6);
+        // Centred on a vertex of the lattice.
+        bool centred = false;
+        for (const auto& v : lattice->vertices()) centred = centred || distance(v.point, Centroid(f)) < 1e-6;
+        EXPECT_TRUE(centred);
+    }
+    EXPECT_GT(inner, 50u);
+}
+
+TEST(GalleryTilings, P6_EveryHoneycombEdgeIsAKinkSymmetricAboutItsMiddle) {
+    const MapPtr h = mo::honeycomb(elements()).induce(kWindow);
+    const Curves drawing = example("wallpaper_p6");
+    ASSERT_EQ(drawing.size(), h->edges().size());
+    for (std::size_t i = 0; i < drawing.size(); ++i) {
+        const auto& p = drawing.curves[i].points;
+        const EdgeRec& e = h->edges()[i];
+        EXPECT_EQ(p.size(), 6u);
+        EXPECT_LT(distance(p.front(), h->vertices()[e.source].point), 1e-6);
+        EXPECT_LT(distance(p.back(), h->vertices()[e.target].point), 1e-6);
+        // A half turn about the middle maps the kink onto itself: the honeycomb's turns of a
+        // third about its vertices and of a half about its edges' middles keep the drawing.
+        const Point mid = (p.front() + p.back()) / 2;
+        for (std::size_t k = 0; k < p.size(); ++k) EXPECT_LT(distance(p[k] + p[p.size() - 1 - k], mid * 2), 1e-6);
+    }
+}
+
+TEST(GalleryTilings, P4M_EveryEdgeCarriesTheBumpAndItsMirrorImage) {
+    const MapPtr grid = mo::lozenges(pi / 4, -pi / 4).induce(kWindow);
+    const Curves drawing = example("wallpaper_p4m");
+    const std::size_t n = grid->edges().size();
+    ASSERT_EQ(drawing.size(), 2 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto& a = drawing.curves[i].points;
+        const auto& b = drawing.curves[n + i].points;
+        ASSERT_EQ(a.size(), b.size());
+        // b is a read backwards and mirrored across the edge's line.
+        const Point o = a.front(), d = (a.back() - a.front()) / distance(a.front(), a.back());
+        EXPECT_GT(std::abs(cross(d, a[a.size() / 2] - o)), 10.0) << "a bump, not a straight line";
+        for (std::size_t k = 0; k < a.size(); ++k) {
+            const Point q = a[k] - o;
+            const Point mirrored = o + d * (2 * dot(q, d)) - q;
+            EXPECT_LT(distance(mirrored, b[b.size() - 1 - k]), 1e-6);
+        }
+    }
+}
+
+TEST(GalleryTilings, P31M_EveryTriangleCutIntoThreeByBendsOrTheirMirrors) {
+    const MapPtr t = PlanarMap::induce(Union(mo::lozenges(pi / 6, pi - pi / 6),
+                                             MapToFaces(mo::split_diagonal, mo::lozenges(pi / 6, pi - pi / 6)))(kWindow));
+    const std::vector<Face> faces = bounded_faces(t);
+    const Curves drawing = example("wallpaper_p31m");
+    ASSERT_EQ(drawing.size(), 3 * faces.size());
+    std::size_t mirrored = 0, expected_mirrored = 0;
+    for (std::size_t i = 0; i < faces.size(); ++i) {
+        const Face& f = faces[i];
+        EXPECT_EQ(IncidentVertices(f).size(), 3u);
+        int left = 0;
+        for (const Edge& e : IncidentEdges(f)) left += f == LeftFace(e);
+        expected_mirrored += left > 1;
+        int side = 0;
+        for (int k = 0; k < 3; ++k) {
+            const auto& p = drawing.curves[3 * i + k].points;
+            EXPECT_LT(distance(p.back(), Centroid(f)), 1e-6);
+            EXPECT_LT(distance(p.front(), Location(IncidentVertices(f)[k])), 1e-6);
+            // Which way the bend leaves the corner: the same for the three bends of a face.
+            const int s = cross(p.back() - p.front(), p[1] - p.front()) > 0 ? 1 : -1;
+            if (k == 0) side = s;
+            EXPECT_EQ(s, side);
+        }
+        mirrored += side > 0;
+    }
+    // One of the two drawings on the faces with more than one edge running counter-clockwise
+    // around them, the other one elsewhere: about half and half.
+    EXPECT_TRUE(mirrored == expected_mirrored || mirrored == faces.size() - expected_mirrored);
+    EXPECT_GT(expected_mirrored, faces.size() / 4);
+    EXPECT_LT(expected_mirrored, 3 * faces.size() / 4);
 }
