@@ -780,9 +780,7 @@ def wallpaper_p4m(elements):
     return Union(MapToEdges(lambda e: stroke_along(bump, e), grid), MapToEdges(lambda e: stroke_against(bump, e), grid))
 
 
-def wallpaper_p31m(elements):
-    hook, mirror = load(elements, "hook.svg"), load(elements, "hook_mirror.svg")
-
+def subdivided_triangles(hook, mirror):
     def subdivide(f):
         # Faces with more than one edge running counter-clockwise around them take the mirror.
         left = sum(1 for e in IncidentEdges(f) if f == LeftFace(e))
@@ -794,6 +792,32 @@ def wallpaper_p31m(elements):
         return out
 
     return MapToFaces(subdivide, split_lozenges(pi / 6, pi - pi / 6))
+
+
+def wallpaper_p31m(elements):
+    return subdivided_triangles(load(elements, "hook.svg"), load(elements, "hook_mirror.svg"))
+
+
+def escher_p6(elements):
+    outline, inside = load(elements, "fishline.svg"), load(elements, "fishface.svg")
+    outlines = MapToEdges(lambda e: stroke_along(outline, e), bee_hive(elements))
+
+    def place(f):
+        # The point 20 to the right of the nose on the centroid.
+        return MatchPoint(inside, PointLabeled(inside, "end") + Point(20.0, 0.0), Centroid(f))
+
+    return Union(outlines, MapToFaces(place, bee_hive(elements)))
+
+
+def escher_p4m(elements):
+    octopus, guy = load(elements, "octopus.svg"), load(elements, "guy.svg")
+    grid = lozenges(pi / 4, -pi / 4)
+    return Union(MapToEdges(lambda e: stroke_along(octopus, e), grid),
+                 MapToFaces(lambda f: MatchPoint(guy, PointLabeled(guy, "start"), Centroid(f)), grid))
+
+
+def escher_p31m(elements):
+    return subdivided_triangles(load(elements, "wing.svg"), load(elements, "wing_mirror.svg"))
 
 
 EXAMPLES = {
@@ -810,7 +834,7 @@ EXAMPLES = {
     "script_edit_a": script_edit_a, "script_edit_b": script_edit_b, "script_edit_c": script_edit_c,
     "script_edit_d": script_edit_d,
     "triangles": triangles, "bee_hive": bee_hive, "wallpaper_p6": wallpaper_p6, "wallpaper_p4m": wallpaper_p4m,
-    "wallpaper_p31m": wallpaper_p31m,
+    "wallpaper_p31m": wallpaper_p31m, "escher_p6": escher_p6, "escher_p4m": escher_p4m, "escher_p31m": escher_p31m,
 }
 
 

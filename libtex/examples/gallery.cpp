@@ -295,6 +295,9 @@ const std::vector<Example>& examples() {
         {"wallpaper_p6", "Wallpaper group P6: a honeycomb of Z-shaped kinks", 48, more::wallpaper_p6},
         {"wallpaper_p4m", "Wallpaper group P4M: bumps laid both ways on a square grid", 24, more::wallpaper_p4m},
         {"wallpaper_p31m", "Wallpaper group P31M: triangles cut into three by S-bends", 50, more::wallpaper_p31m},
+        {"escher_p6", "Escher P6: fish on a honeycomb", 38, more::escher_p6},
+        {"escher_p4m", "Escher P4M: octopuses and little men", 43, more::escher_p4m},
+        {"escher_p31m", "Escher P31M: triangles cut by feathered bends", 35, more::escher_p31m},
     };
     return all;
 }

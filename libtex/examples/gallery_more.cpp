@@ -337,8 +337,10 @@ Arrangement wallpaper_p4m(const std::string& dir) {
                  MapToEdges([bump](const Edge& e) { return stroke_against(bump, e); }, grid));
 }
 
-Arrangement wallpaper_p31m(const std::string& dir) {
-    const Curves hook = load(dir, "hook.svg"), mirror = load(dir, "hook_mirror.svg");
+namespace {
+
+// Each triangle cut into three by `bend` (or its mirror image) from its corners to its centroid.
+Arrangement subdivided_triangles(const Curves& hook, const Curves& mirror) {
     auto subdivide = [hook, mirror](const Face& f) {
         // Faces with more than one edge running counter-clockwise around them take the
         // mirrored bend.
@@ -352,6 +354,43 @@ Arrangement wallpaper_p31m(const std::string& dir) {
         return out;
     };
     return MapToFaces(subdivide, split_lozenges(pi / 6, pi - pi / 6));
+}
+
+}  // namespace
+
+Arrangement wallpaper_p31m(const std::string& dir) {
+    return subdivided_triangles(load(dir, "hook.svg"), load(dir, "hook_mirror.svg"));
+}
+
+// ---- Escher-like tilings ----
+
+Arrangement fish_outlines(const std::string& dir) {
+    const Curves outline = load(dir, "fishline.svg");
+    return MapToEdges([outline](const Edge& e) { return stroke_along(outline, e); }, honeycomb(dir));
+}
+
+Arrangement fish_insides(const std::string& dir) {
+    const Curves inside = load(dir, "fishface.svg");
+    // The point 20 to the right of the nose goes on the centroid (the script's
+    // `PointLabeled(center_elt, "end") + Point(20.0)`).
+    auto place = [inside](const Face& f) {
+        return MatchPoint(inside, PointLabeled(inside, "end") + Point(20.0, 0.0), Centroid(f));
+    };
+    return MapToFaces(place, honeycomb(dir));
+}
+
+Arrangement escher_p6(const std::string& dir) { return Union(fish_outlines(dir), fish_insides(dir)); }
+
+Arrangement escher_p4m(const std::string& dir) {
+    const Curves octopus = load(dir, "octopus.svg"), guy = load(dir, "guy.svg");
+    const Arrangement grid = lozenges(pi / 4, -pi / 4);
+    auto on_edge = [octopus](const Edge& e) { return stroke_along(octopus, e); };
+    auto on_face = [guy](const Face& f) { return MatchPoint(guy, PointLabeled(guy, "start"), Centroid(f)); };
+    return Union(MapToEdges(on_edge, grid), MapToFaces(on_face, grid));
+}
+
+Arrangement escher_p31m(const std::string& dir) {
+    return subdivided_triangles(load(dir, "wing.svg"), load(dir, "wing_mirror.svg"));
 }
 
 }  // namespace gallery::more

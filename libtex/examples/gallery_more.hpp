@@ -119,4 +119,16 @@ tex::Arrangement wallpaper_p4m(const std::string& dir);
 // from their corners to their centroid, the bend or its mirror by the face's orientation.
 tex::Arrangement wallpaper_p31m(const std::string& dir);
 
+// ---- Escher-like tilings: the wallpaper groups with richer elements ----
+// (The thesis exports these in a 1000 window; here they fill the gallery's 2000 one.)
+// P6: fish outlines on the honeycomb's edges, a fish's inside on each hexagon.
+tex::Arrangement fish_outlines(const std::string& dir);
+tex::Arrangement fish_insides(const std::string& dir);
+tex::Arrangement escher_p6(const std::string& dir);
+// P4M: an octopus along every edge of the square grid turned 45 degrees, a little man on
+// every square.
+tex::Arrangement escher_p4m(const std::string& dir);
+// P31M: the P31M subdivision with feathered bends.
+tex::Arrangement escher_p31m(const std::string& dir);
+
 }  // namespace gallery::more

@@ -90,7 +90,8 @@ TEST_P(GalleryTest, SameBytesWithOneOrTwoThreadsAndAcrossRuns) {
     // A different seed gives a different drawing for the random examples.
     static const std::set<std::string> no_random = {"stripes", "grid", "teaser_c", "teaser_h", "combine_b",
                                                     "regular_a", "regular_b", "triangles", "bee_hive",
-                                                    "wallpaper_p6", "wallpaper_p4m", "wallpaper_p31m"};
+                                                    "wallpaper_p6", "wallpaper_p4m", "wallpaper_p31m", "escher_p6",
+                                                    "escher_p4m", "escher_p31m"};
     if (!no_random.count(e.name)) {
         const std::uint64_t seed = GetSeed();
         SetSeed(seed + 7);
@@ -112,7 +113,8 @@ INSTANTIATE_TEST_SUITE_P(More, GalleryTest,
                                            "nonregular_a_left", "nonregular_a_right", "nonregular_b",
                                            "nonregular_c", "nonregular_d", "script_edit_a", "script_edit_b",
                                            "script_edit_c", "script_edit_d", "triangles", "bee_hive",
-                                           "wallpaper_p6", "wallpaper_p4m", "wallpaper_p31m"));
+                                           "wallpaper_p6", "wallpaper_p4m", "wallpaper_p31m", "escher_p6",
+                                           "escher_p4m", "escher_p31m"));
 
 TEST(Gallery, ExpectedStructure) {
     // Puzzle: a 16 x 16 grid in which every other vertical edge is removed row by row.
@@ -1251,4 +1253,80 @@ TEST(GalleryTilings, P31M_EveryTriangleCutIntoThreeByBendsOrTheirMirrors) {
     EXPECT_TRUE(mirrored == expected_mirrored || mirrored == faces.size() - expected_mirrored);
     EXPECT_GT(expected_mirrored, faces.size() / 4);
     EXPECT_LT(expected_mirrored, 3 * faces.size() / 4);
+}
+
+namespace {
+
+const Point& h_point(const MapPtr& m, int v) { return m->vertices()[v].point; }
+
+BBox curves_box(const Curves& c, std::size_t from, std::size_t to) {
+    BBox b;
+    for (std::size_t i = from; i < to; ++i)
+        for (const auto& p : c.curves[i].points) b.add(p);
+    return b;
+}
+
+}  // namespace
+
+TEST(GalleryEscher, P6_FishOutlinesOnTheHoneycombAndAFishInsideEachHexagon) {
+    const MapPtr h = mo::honeycomb(elements()).induce(kWindow);
+    const Curves outline = ImportSVG(elements() + "/fishline.svg"), inside = ImportSVG(elements() + "/fishface.svg");
+    const Curves drawing = example("escher_p6");
+    const std::size_t ne = h->edges().size(), nf = bounded_faces(h).size();
+    ASSERT_EQ(drawing.size(), ne * outline.size() + nf * inside.size());
+    // The outlines first: one S per honeycomb edge, from its source to its target.
+    for (std::size_t i = 0; i < ne; ++i) {
+        const auto& p = drawing.curves[i].points;
+        EXPECT_LT(distance(p.front(), h->vertices()[h->edges()[i].source].point), 1e-6);
+        EXPECT_LT(distance(p.back(), h->vertices()[h->edges()[i].target].point), 1e-6);
+    }
+    // Then a fish inside on every hexagon, translated so that the point 20 right of its
+    // nose is the centroid.
+    const Point offset = BBoxCenter(inside) - (PointLabeled(inside, "end") + Point(20, 0));
+    const std::vector<Face> faces = bounded_faces(h);
+    for (std::size_t k = 0; k < nf; ++k) {
+        const BBox b = curves_box(drawing, ne + k * inside.size(), ne + (k + 1) * inside.size());
+        EXPECT_LT(distance(b.center(), Centroid(faces[k]) + offset), 1e-6);
+    }
+}
+
+TEST(GalleryEscher, P4M_AnOctopusOnEveryEdgeAndALittleManOnEverySquare) {
+    const MapPtr grid = mo::lozenges(pi / 4, -pi / 4).induce(kWindow);
+    const Curves octopus = ImportSVG(elements() + "/octopus.svg"), guy = ImportSVG(elements() + "/guy.svg");
+    const Curves drawing = example("escher_p4m");
+    const std::size_t ne = grid->edges().size();
+    const std::vector<Face> faces = bounded_faces(grid);
+    ASSERT_EQ(drawing.size(), ne * octopus.size() + faces.size() * guy.size());
+    // Each octopus spans its edge: its body runs from the source to the target, a side of a
+    // square (KEEP_OUTSIDE keeps whole squares; lines 200 apart at 90 degrees: sides of 200).
+    for (std::size_t i = 0; i < ne; ++i) {
+        const auto& body = drawing.curves[i * octopus.size()].points;
+        EXPECT_LT(distance(body.front(), h_point(grid, grid->edges()[i].source)), 1e-6);
+        EXPECT_LT(distance(body.back(), h_point(grid, grid->edges()[i].target)), 1e-6);
+        EXPECT_NEAR(distance(body.front(), body.back()), 200, 1e-6);
+    }
+    // The little men stand upright (only translated), waist on the square's centroid.
+    const Point offset = BBoxCenter(guy) - PointLabeled(guy, "start");
+    for (std::size_t k = 0; k < faces.size(); ++k) {
+        const std::size_t from = ne * octopus.size() + k * guy.size();
+        const BBox b = curves_box(drawing, from, from + guy.size());
+        EXPECT_LT(distance(b.center(), Centroid(faces[k]) + offset), 1e-6);
+        EXPECT_NEAR(b.width(), BBoxWidth(guy), 1e-6);
+    }
+}
+
+TEST(GalleryEscher, P31M_FeatheredBendsFromEveryCornerToTheCentroid) {
+    const MapPtr t = PlanarMap::induce(Union(mo::lozenges(pi / 6, pi - pi / 6),
+                                             MapToFaces(mo::split_diagonal, mo::lozenges(pi / 6, pi - pi / 6)))(kWindow));
+    const std::vector<Face> faces = bounded_faces(t);
+    const Curves drawing = example("escher_p31m");
+    ASSERT_EQ(drawing.size(), 3 * faces.size());
+    const Curves wing = ImportSVG(elements() + "/wing.svg");
+    for (std::size_t i = 0; i < faces.size(); ++i)
+        for (int k = 0; k < 3; ++k) {
+            const auto& p = drawing.curves[3 * i + k].points;
+            EXPECT_EQ(p.size(), wing.curves[0].points.size());
+            EXPECT_LT(distance(p.front(), Location(IncidentVertices(faces[i])[k])), 1e-6);
+            EXPECT_LT(distance(p.back(), Centroid(faces[i])), 1e-6);
+        }
 }
