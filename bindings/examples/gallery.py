@@ -496,6 +496,330 @@ def combine_h(elements):
     return Outside(circles(elements, CIRCLES), squares(elements, pi / 4, 400), KEEP_INSIDE)
 
 
+# ---- "Regular result", "Non regular result", "Script edition"; twins of libtex/examples/gallery_more.cpp ----
+
+def stroke_along(c, e):
+    return MatchPoints(c, PointLabeled(c, "start"), PointLabeled(c, "end"), Location(SourceVertex(e)),
+                       Location(TargetVertex(e)))
+
+
+def stroke_against(c, e):
+    return MatchPoints(c, PointLabeled(c, "end"), PointLabeled(c, "start"), Location(SourceVertex(e)),
+                       Location(TargetVertex(e)))
+
+
+def shrink(f, s):
+    return Scale(Contour(f), s)
+
+
+def square_grid(a1, a2, width, border):
+    return GridPartition(StripesProperties(a1, width), StripesProperties(a2, width), border)
+
+
+def tilted_tiles():
+    # Each 200 grid cell turned by 45 degrees, then every face of that drawing shrunk.
+    def turn(f):
+        return Rotate(Contour(f), pi / 4)
+
+    return MapToFaces(lambda f: shrink(f, 0.8), MapToFaces(turn, square_grid(0, pi / 2, 200, KEEP_OUTSIDE)))
+
+
+def regular_a(elements):
+    return Outside(StripesPartition(StripesProperties(0, 15)), tilted_tiles(), CROP)
+
+
+def chevron_grid():
+    rising = StripesProperties(pi / 4, 200)
+    falling = StripesProperties(-pi / 4, 200)
+    SetEdgeLabels(rising, "h1", "h2", "h3", "h4")
+    SetEdgeLabels(falling, "v1", "v2", "v3", "v4")
+
+    def rules(e):
+        # "vi" edges ending on an "hi" line go, and "hi" edges ending on a "v(i+2)" line.
+        around = IncidentEdges(TargetVertex(e))
+        for i in range(4):
+            h, v, v2 = "h%d" % (i + 1), "v%d" % (i + 1), "v%d" % ((i + 2) % 4 + 1)
+            if HasLabel(e, v) and HasLabel(around, h):
+                return Nothing()
+            if HasLabel(e, h) and HasLabel(around, v2):
+                return Nothing()
+        return ToCurve(e)
+
+    return MapToEdges(rules, GridPartition(rising, falling, KEEP_OUTSIDE))
+
+
+def chevron_tiles():
+    return MapToFaces(lambda f: shrink(f, 0.8), chevron_grid())
+
+
+def regular_b(elements):
+    wobble = load(elements, "wobble.svg")
+
+    def hatch(f):
+        return StripesPartition(StripesProperties(0, 40))(f)
+
+    def to_stroke(e):
+        return Nothing() if IsBoundary(e) else stroke_along(wobble, e)
+
+    return MapToEdges(to_stroke, MapToFaces(hatch, chevron_tiles()))
+
+
+def wavy_grid(elements):
+    arch = load(elements, "scallop.svg")
+    rows = StripesProperties(0, 200)
+    columns = StripesProperties(pi / 2, 200)
+    SetEdgeLabels(rows, "h1", "h2")
+    SetEdgeLabels(columns, "h1", "h2")
+
+    def to_arch(e):
+        if IsBoundary(e):
+            return ToCurve(e)
+        return stroke_along(arch, e) if HasLabel(e, "h1") else stroke_against(arch, e)
+
+    return Union(MapToEdges(to_arch, StripesPartition(rows)), MapToEdges(to_arch, StripesPartition(columns)))
+
+
+def wavy_tiles(elements):
+    return MapToFaces(lambda f: shrink(f, 0.9), wavy_grid(elements))
+
+
+def regular_c(elements):
+    ripple = load(elements, "ripple.svg")
+
+    def hatch(f):
+        return StripesPartition(StripesProperties(Random(f, 0, 2 * pi, 0), 30))(f)
+
+    def to_ripple(e):
+        return Nothing() if IsBoundary(e) else stroke_along(ripple, e)
+
+    return MapToEdges(to_ripple, MapToFaces(hatch, wavy_tiles(elements)))
+
+
+def hoop_lattice(elements):
+    hoop = load(elements, "hoop.svg")
+    return MapToFaces(lambda f: Scale(MatchFace(hoop, f), 2.5), square_grid(pi / 2, pi, 200, KEEP_OUTSIDE))
+
+
+def hoop_pieces(elements):
+    return MapToFaces(lambda f: shrink(f, 0.65), hoop_lattice(elements))
+
+
+def regular_d(elements):
+    def thin_out(f):
+        return Nothing() if Random(f, 0, 1, 2) < 0.3 else Contour(f)
+
+    return MapToFaces(thin_out, hoop_pieces(elements))
+
+
+def nonregular_a_left(elements):
+    hoop = load(elements, "hoop.svg")
+    cells = UniformPartition(IrregularProperties(100 / (SIZE * SIZE)), KEEP_OUTSIDE)
+    return MapToFaces(lambda f: Scale(MatchFace(hoop, f), Random(f, 0.2, 2.0, 2)), cells)
+
+
+def nonregular_a_right(elements):
+    kink = load(elements, "kink.svg")
+    # Level 1: kinked cells; each next level: the faces of the previous one shrunk.
+    levels = [MapToEdges(lambda e: stroke_along(kink, e),
+                         UniformPartition(IrregularProperties(20 / (SIZE * SIZE)), KEEP_OUTSIDE))]
+    while len(levels) < 10:
+        levels.append(MapToFaces(lambda f: shrink(f, 0.8), levels[-1]))
+    out = levels[0]
+    for level in levels[1:]:
+        out = Union(out, level)
+    return out
+
+
+def jag_inner(jag, e):
+    return ToCurve(e) if IsBoundary(e) else stroke_against(jag, e)
+
+
+def nonregular_b(elements):
+    jag = load(elements, "jag.svg")
+    cells = MapToEdges(lambda e: jag_inner(jag, e),
+                       RandomPartition(IrregularProperties(10 / (SIZE * SIZE)), KEEP_OUTSIDE))
+
+    def split(f):
+        return RandomPartition(IrregularProperties(100 / (SIZE * SIZE)), CROP_ADD_BOUNDARY)(f)
+
+    return MapToEdges(lambda e: jag_inner(jag, e), MapToFaces(split, cells))
+
+
+def shrunk_cells(cells_per_window):
+    return MapToFaces(lambda f: shrink(f, 0.8),
+                      UniformPartition(IrregularProperties(cells_per_window / (SIZE * SIZE)), KEEP_OUTSIDE))
+
+
+def nonregular_c(elements):
+    coarse = shrunk_cells(20)
+    fine = shrunk_cells(90)
+    return Union(coarse, Inside(fine, coarse, CROP))
+
+
+def nonregular_d(elements):
+    cells = RandomPartition(IrregularProperties(30 / (SIZE * SIZE)), KEEP_OUTSIDE)
+    stretched = MapToEdges(lambda e: Scale(ToCurve(e), 10.0), cells)
+    return MapToEdges(lambda e: Rotate(ToCurve(e), pi / 4), stretched)
+
+
+def turned_on_centroid(c, f, n):
+    t = Rotate(c, Random(f, 0, 2 * pi, n))
+    return MatchPoint(t, BBoxCenter(t), Centroid(f))
+
+
+def inner_strokes(stroke):
+    return lambda e: ToCurve(e) if IsBoundary(e) else stroke_along(stroke, e)
+
+
+def sparse_uniform():
+    return UniformPartition(IrregularProperties(11 / (SIZE * SIZE)), KEEP_OUTSIDE)
+
+
+def script_edit_a(elements):
+    cloud = load(elements, "cloud.svg")
+    to_swirl = inner_strokes(load(elements, "swirl.svg"))
+    clouds = MapToFaces(lambda f: turned_on_centroid(cloud, f, 0), sparse_uniform())
+
+    def fill(f):
+        theta, width = Random(f, 0, 2 * pi, 1), BBoxWidth(f) / 5
+        return MapToEdges(to_swirl, square_grid(theta, theta + pi / 2, width, CROP_ADD_BOUNDARY))(f)
+
+    return MapToFaces(fill, clouds)
+
+
+def script_edit_b(elements):
+    cloud = load(elements, "cloud.svg")
+    to_swirl = inner_strokes(load(elements, "swirl.svg"))
+    clouds = MapToFaces(lambda f: turned_on_centroid(cloud, f, 0), square_grid(0, pi / 2, SIZE / 4, KEEP_OUTSIDE))
+
+    def fill(f):
+        part = UniformPartition(IrregularProperties(11 / (BBoxWidth(f) * BBoxHeight(f))), CROP_ADD_BOUNDARY)
+        return MapToEdges(to_swirl, part)(f)
+
+    return MapToFaces(fill, clouds)
+
+
+def grid_inside(f, place):
+    return MapToFaces(place, square_grid(0, pi / 2, 125, KEEP_INSIDE))(f)
+
+
+def script_edit_c(elements):
+    pebble = load(elements, "pebble.svg")
+    cells = MapToEdges(inner_strokes(load(elements, "swirl.svg")), sparse_uniform())
+
+    def fill(f):
+        return grid_inside(f, lambda g: turned_on_centroid(pebble, g, 0))
+
+    return Union(cells, MapToFaces(fill, cells))
+
+
+def script_edit_d(elements):
+    flower, leaf = load(elements, "flower.svg"), load(elements, "leaf.svg")
+    cells = MapToEdges(inner_strokes(load(elements, "curl.svg")), sparse_uniform())
+
+    def place(g):
+        fl = Scale(Rotate(flower, Random(g, 0, 2 * pi, 0)), Random(g, 0.7, 1, 1))
+        lf = Scale(Rotate(leaf, Random(g, 0, 2 * pi, 2)), Random(g, 0.7, 1, 3))
+        pick = fl if Random(g, 0, 1, 4) > 0.5 else lf
+        return MatchPoint(pick, BBoxCenter(pick), Centroid(g))
+
+    return Union(cells, MapToFaces(lambda f: grid_inside(f, place), cells))
+
+
+def lozenges(a, b):
+    return GridPartition(StripesProperties(a, 200), StripesProperties(b, 200), KEEP_OUTSIDE)
+
+
+def split_diagonal(face):
+    # From the vertex where both of the face's edges start to the one where both end; drawn
+    # vertex to vertex (MatchPoints would land 1e-13 off and leave the bar dangling).
+    def incident(e):
+        return face == LeftFace(e) or face == RightFace(e)
+
+    first = last = None
+    for v in IncidentVertices(face):
+        starting = ending = 0
+        for e in IncidentEdges(v):
+            if v == SourceVertex(e) and incident(e):
+                starting += 1
+            if v == TargetVertex(e) and incident(e):
+                ending += 1
+        if starting == 2:
+            first = v
+        if ending == 2:
+            last = v
+    if first is None or last is None:
+        return Nothing()
+    return Polyline([Location(first), Location(last)])
+
+
+def split_lozenges(a, b):
+    grid = lozenges(a, b)
+    return Union(grid, MapToFaces(split_diagonal, grid))
+
+
+def triangles(elements):
+    return split_lozenges(pi / 3, -pi / 3)
+
+
+def bee_hive(elements):
+    def dual(e):
+        return Nothing() if IsBoundary(e) else Polyline([Centroid(LeftFace(e)), Centroid(RightFace(e))])
+
+    return MapToEdges(dual, triangles(elements))
+
+
+def wallpaper_p6(elements):
+    zee = load(elements, "zee.svg")
+    return MapToEdges(lambda e: stroke_along(zee, e), bee_hive(elements))
+
+
+def wallpaper_p4m(elements):
+    bump = load(elements, "bump.svg")
+    grid = lozenges(pi / 4, -pi / 4)
+    return Union(MapToEdges(lambda e: stroke_along(bump, e), grid), MapToEdges(lambda e: stroke_against(bump, e), grid))
+
+
+def subdivided_triangles(hook, mirror):
+    def subdivide(f):
+        # Faces with more than one edge running counter-clockwise around them take the mirror.
+        left = sum(1 for e in IncidentEdges(f) if f == LeftFace(e))
+        bend = mirror if left > 1 else hook
+        out = Nothing()
+        for v in IncidentVertices(f):
+            out = Append(out, MatchPoints(bend, PointLabeled(bend, "start"), PointLabeled(bend, "end"), Location(v),
+                                          Centroid(f)))
+        return out
+
+    return MapToFaces(subdivide, split_lozenges(pi / 6, pi - pi / 6))
+
+
+def wallpaper_p31m(elements):
+    return subdivided_triangles(load(elements, "hook.svg"), load(elements, "hook_mirror.svg"))
+
+
+def escher_p6(elements):
+    outline, inside = load(elements, "fishline.svg"), load(elements, "fishface.svg")
+    outlines = MapToEdges(lambda e: stroke_along(outline, e), bee_hive(elements))
+
+    def place(f):
+        # The point 20 to the right of the nose on the centroid.
+        return MatchPoint(inside, PointLabeled(inside, "end") + Point(20.0, 0.0), Centroid(f))
+
+    return Union(outlines, MapToFaces(place, bee_hive(elements)))
+
+
+def escher_p4m(elements):
+    octopus, guy = load(elements, "octopus.svg"), load(elements, "guy.svg")
+    grid = lozenges(pi / 4, -pi / 4)
+    return Union(MapToEdges(lambda e: stroke_along(octopus, e), grid),
+                 MapToFaces(lambda f: MatchPoint(guy, PointLabeled(guy, "start"), Centroid(f)), grid))
+
+
+def escher_p31m(elements):
+    return subdivided_triangles(load(elements, "wing.svg"), load(elements, "wing_mirror.svg"))
+
+
 EXAMPLES = {
     "stripes": stripes, "grid": grid, "uniform": uniform, "random": random_, "puzzle": puzzle,
     "rosettes": rosettes, "cracks": cracks, "bimodal": bimodal, "crosses": crosses, "curves": curves,
@@ -504,6 +828,13 @@ EXAMPLES = {
     "teaser_e": teaser_e, "teaser_f": teaser_f, "teaser_g": teaser_g, "teaser_h": teaser_h,
     "combine_a": combine_a, "combine_b": combine_b, "combine_c": combine_c, "combine_d": combine_d,
     "combine_e": combine_e, "combine_f": combine_f, "combine_g": combine_g, "combine_h": combine_h,
+    "regular_a": regular_a, "regular_b": regular_b, "regular_c": regular_c, "regular_d": regular_d,
+    "nonregular_a_left": nonregular_a_left, "nonregular_a_right": nonregular_a_right,
+    "nonregular_b": nonregular_b, "nonregular_c": nonregular_c, "nonregular_d": nonregular_d,
+    "script_edit_a": script_edit_a, "script_edit_b": script_edit_b, "script_edit_c": script_edit_c,
+    "script_edit_d": script_edit_d,
+    "triangles": triangles, "bee_hive": bee_hive, "wallpaper_p6": wallpaper_p6, "wallpaper_p4m": wallpaper_p4m,
+    "wallpaper_p31m": wallpaper_p31m, "escher_p6": escher_p6, "escher_p4m": escher_p4m, "escher_p31m": escher_p31m,
 }
 
 

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "gallery_more.hpp"
 #include "gallery_teasers.hpp"
 
 namespace gallery {
@@ -276,6 +277,27 @@ const std::vector<Example>& examples() {
         {"combine_f", "Combining f: circles Inside squares (KEEP_OUTSIDE)", 15, combine_inside_keep},
         {"combine_g", "Combining g: circles Outside squares (CROP)", 15, combine_outside_crop},
         {"combine_h", "Combining h: circles Outside squares (KEEP_INSIDE)", 15, combine_outside_keep},
+        {"regular_a", "Regular result a: hatching between tilted tiles", 30, more::regular_a},
+        {"regular_b", "Regular result b: chevrons of wobbly hatching", 39, more::regular_b},
+        {"regular_c", "Regular result c: a wavy grid hatched at random angles", 30, more::regular_c},
+        {"regular_d", "Regular result d: pieces of overlapping rings, some missing", 25, more::regular_d},
+        {"nonregular_a_left", "Non regular result a (left): rings of random sizes", 6, more::nonregular_a_left},
+        {"nonregular_a_right", "Non regular result a (right): nested outlines", 29, more::nonregular_a_right},
+        {"nonregular_b", "Non regular result b: random cells within random cells", 12, more::nonregular_b},
+        {"nonregular_c", "Non regular result c: fine cells inside coarse cells", 30, more::nonregular_c},
+        {"nonregular_d", "Non regular result d: stretched and turned edges", 88, more::nonregular_d},
+        {"script_edit_a", "Script edition a: the original script", 25, more::script_edit_a},
+        {"script_edit_b", "Script edition b: partitions switched", 52, more::script_edit_b},
+        {"script_edit_c", "Script edition c: arrangements switched", 12, more::script_edit_c},
+        {"script_edit_d", "Script edition d: mappings varied", 56, more::script_edit_d},
+        {"triangles", "Triangles: lozenges split along a diagonal", 4, more::triangles},
+        {"bee_hive", "Bee hive: the dual of the triangles", 5, more::honeycomb},
+        {"wallpaper_p6", "Wallpaper group P6: a honeycomb of Z-shaped kinks", 48, more::wallpaper_p6},
+        {"wallpaper_p4m", "Wallpaper group P4M: bumps laid both ways on a square grid", 24, more::wallpaper_p4m},
+        {"wallpaper_p31m", "Wallpaper group P31M: triangles cut into three by S-bends", 50, more::wallpaper_p31m},
+        {"escher_p6", "Escher P6: fish on a honeycomb", 38, more::escher_p6},
+        {"escher_p4m", "Escher P4M: octopuses and little men", 43, more::escher_p4m},
+        {"escher_p31m", "Escher P31M: triangles cut by feathered bends", 35, more::escher_p31m},
     };
     return all;
 }

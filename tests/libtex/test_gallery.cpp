@@ -88,7 +88,10 @@ TEST_P(GalleryTest, SameBytesWithOneOrTwoThreadsAndAcrossRuns) {
     EXPECT_EQ(two, again);
     EXPECT_GT(one.size(), 2000u) << "the drawing is nearly empty";
     // A different seed gives a different drawing for the random examples.
-    static const std::set<std::string> no_random = {"stripes", "grid", "teaser_c", "teaser_h", "combine_b"};
+    static const std::set<std::string> no_random = {"stripes", "grid", "teaser_c", "teaser_h", "combine_b",
+                                                    "regular_a", "regular_b", "triangles", "bee_hive",
+                                                    "wallpaper_p6", "wallpaper_p4m", "wallpaper_p31m", "escher_p6",
+                                                    "escher_p4m", "escher_p31m"};
     if (!no_random.count(e.name)) {
         const std::uint64_t seed = GetSeed();
         SetSeed(seed + 7);
@@ -105,6 +108,13 @@ INSTANTIATE_TEST_SUITE_P(Appendix, GalleryTest,
 INSTANTIATE_TEST_SUITE_P(Teasers, GalleryTest,
                          ::testing::Values("teaser_a", "teaser_b", "teaser_c", "teaser_d", "teaser_e",
                                            "teaser_f", "teaser_g", "teaser_h"));
+INSTANTIATE_TEST_SUITE_P(More, GalleryTest,
+                         ::testing::Values("regular_a", "regular_b", "regular_c", "regular_d",
+                                           "nonregular_a_left", "nonregular_a_right", "nonregular_b",
+                                           "nonregular_c", "nonregular_d", "script_edit_a", "script_edit_b",
+                                           "script_edit_c", "script_edit_d", "triangles", "bee_hive",
+                                           "wallpaper_p6", "wallpaper_p4m", "wallpaper_p31m", "escher_p6",
+                                           "escher_p4m", "escher_p31m"));
 
 TEST(Gallery, ExpectedStructure) {
     // Puzzle: a 16 x 16 grid in which every other vertical edge is removed row by row.
@@ -642,4 +652,681 @@ TEST(GalleryCombining, G_CirclesAreCutAtTheSquares) {
         }
     }
     EXPECT_GT(open, 10u);
+}
+
+// ---- Regular results, non regular results, script edition (gallery_more.cpp) ----
+//
+// Each drawing checked against the layers of its script, with plain geometry: where the
+// pieces lie, which label rules hold, how many elements each cell gets.
+
+#include "gallery_more.hpp"
+
+namespace {
+
+namespace mo = gallery::more;
+
+// The example as rh_gallery draws it (streams numbered from the start).
+Curves example(const char* name) { return gallery::find(name).build(elements())(kWindow); }
+
+double ring_area(const Ring& r) { return std::abs(signed_area(r.pts)); }
+
+bool on_any_ring(const Point& p, const std::vector<Ring>& rs, double eps = 1e-6) {
+    for (const auto& r : rs)
+        if (r.box.expanded(eps).contains(p) && r.distance_to(p) < eps) return true;
+    return false;
+}
+
+// The index of the ring whose outline passes through p, or -1.
+int ring_through(const Point& p, const std::vector<Ring>& rs, double eps = 1e-6) {
+    for (std::size_t i = 0; i < rs.size(); ++i)
+        if (rs[i].box.expanded(eps).contains(p) && rs[i].distance_to(p) < eps) return int(i);
+    return -1;
+}
+
+// How many of `children` are copies of one of `parents` scaled by s about its box centre
+// (same box centre, area times s^2).
+std::size_t shrunk_copies(const std::vector<Ring>& children, const std::vector<Ring>& parents, double s) {
+    std::size_t n = 0;
+    for (const auto& c : children)
+        for (const auto& p : parents)
+            if (distance(c.box.center(), p.box.center()) < 1e-6 &&
+                std::abs(ring_area(c) - s * s * ring_area(p)) < 1e-6 * ring_area(p)) {
+                ++n;
+                break;
+            }
+    return n;
+}
+
+double chord_angle(const Curve& c) { return angle_mod_pi({c.points.front(), c.points.back()}); }
+
+}  // namespace
+
+TEST(GalleryRegular, A_HatchingShowsOnlyBetweenTheTiltedTiles) {
+    const Curves drawing = example("regular_a");
+    const std::vector<Ring> tiles = face_rings(mo::tilted_tiles()(kWindow));
+    // 100 turned squares overlapping their neighbours cut each other into many more faces.
+    ASSERT_GT(tiles.size(), 300u);
+    SegmentIndex index(25);
+    std::size_t ends_on_tiles = 0;
+    for (const auto& s : segments(drawing)) {
+        // Hatch lines 15 apart, or the window outline (the stripes partition's own).
+        const bool hatch = s.a.y == s.b.y && on_multiple(s.a.y, 15);
+        const bool outline = (s.a.x == s.b.x && (s.a.x == 0 || s.a.x == gallery::kSize)) ||
+                             (s.a.y == s.b.y && (s.a.y == 0 || s.a.y == gallery::kSize));
+        EXPECT_TRUE(hatch || outline) << s.a.x << "," << s.a.y << " " << s.b.x << "," << s.b.y;
+        EXPECT_FALSE(strictly_inside_any(s.mid(), tiles));
+        ends_on_tiles += on_any_ring(s.a, tiles) + on_any_ring(s.b, tiles);
+        index.add(s, 0);
+    }
+    EXPECT_GT(ends_on_tiles, 1000u);
+    // Every cell centre lies under its tile: nothing drawn there (y = 300 is a hatch line).
+    for (int i = 0; i < 10; ++i) EXPECT_TRUE(index.tags_at({100.0 + 200 * i, 300}).empty()) << i;
+    // The turned squares (|x - cx| + |y - cy| <= 100 sqrt 2) cut the plane into convex or
+    // star-shaped faces, the gaps between them included, and every face shrinks away from
+    // the squares' outlines: hatching shows wherever a hatch line meets an outline.
+    std::size_t probed = 0;
+    for (int a = 0; a < 10; ++a)
+        for (int b = 0; b < 10; ++b) {
+            const double cx = 100 + 200 * a, cy = 100 + 200 * b, r = 100 * std::sqrt(2.0);
+            for (double y = 15 * std::ceil((cy - r) / 15); y <= cy + r; y += 15)
+                for (double side : {-1.0, 1.0}) {
+                    const Point p(cx + side * (r - std::abs(y - cy)), y);
+                    if (p.x < 1 || p.x > gallery::kSize - 1 || p.y < 1 || p.y > gallery::kSize - 1) continue;
+                    ++probed;
+                    EXPECT_FALSE(index.tags_at(p).empty()) << p.x << "," << p.y;
+                }
+        }
+    EXPECT_GT(probed, 2000u);
+}
+
+TEST(GalleryRegular, B_LabelRulesLeaveChevronsOfWobblyHatching) {
+    // The rules remove one edge in four of the diagonal grid: away from the window's border,
+    // every face is two cells (200 x 200) joined.
+    const MapPtr chevrons = mo::chevron_grid().induce(kWindow);
+    const MapPtr grid = GridPartition(StripesProperties(pi / 4, 200), StripesProperties(-pi / 4, 200), KEEP_OUTSIDE)
+                            .induce(kWindow);
+    std::map<long long, std::size_t> areas;
+    for (std::size_t f = 0; f < chevrons->faces().size(); ++f) {
+        if (chevrons->faces()[f].unbounded || IsBoundary(Face(chevrons, int(f)))) continue;
+        ++areas[std::llround(std::abs(signed_area(chevrons->cycle_points(int(f), 0))) / (200.0 * 200.0) * 100)];
+    }
+    ASSERT_FALSE(areas.empty());
+    EXPECT_EQ(areas.size(), 1u);
+    EXPECT_EQ(areas.begin()->first, 200);
+    EXPECT_NEAR(double(chevrons->edges().size()) / double(grid->edges().size()), 0.75, 0.05);
+    // The drawing: wobbly strokes only, one per horizontal chord (40 apart) of a shrunk tile,
+    // both ends on that tile's outline; the outlines themselves are gone.
+    const std::vector<Ring> tiles = face_rings(mo::chevron_tiles()(kWindow));
+    const Curves drawing = example("regular_b");
+    std::size_t chords = 0;
+    for (const auto& t : tiles) {
+        for (long long k = std::llround(std::ceil(t.box.ymin / 40)); 40.0 * k <= t.box.ymax; ++k) {
+            std::size_t crossings = 0;
+            const double y = 40.0 * k;
+            for (std::size_t i = 0, j = t.pts.size() - 1; i < t.pts.size(); j = i++)
+                crossings += (t.pts[i].y > y) != (t.pts[j].y > y);
+            chords += crossings / 2;
+        }
+    }
+    EXPECT_EQ(drawing.size(), chords);
+    for (const auto& c : drawing.curves) {
+        ASSERT_FALSE(c.closed);
+        EXPECT_GT(c.points.size(), 10u) << "a straight line, not a stroke";
+        EXPECT_NEAR(c.points.front().y, c.points.back().y, 1e-6);
+        EXPECT_TRUE(on_multiple(c.points.front().y, 40));
+        const int r = ring_through(c.points.front(), tiles);
+        EXPECT_GE(r, 0);
+        EXPECT_EQ(r, ring_through(c.points.back(), tiles));
+    }
+}
+
+TEST(GalleryRegular, C_EachWavyTileIsHatchedAtItsOwnAngle) {
+    const std::vector<Ring> tiles = face_rings(mo::wavy_tiles(elements())(kWindow));
+    EXPECT_EQ(tiles.size(), 100u);  // the 10 x 10 cells of the wavy grid, apart
+    // The inner lines of the grid are scalloped, laid one way or the other by their label:
+    // successive lines bulge to opposite sides.
+    std::map<long long, int> bulge[2];  // [vertical][line offset / 200] = side
+    for (const auto& c : mo::wavy_grid(elements())(kWindow).curves) {
+        const Point a = c.points.front(), b = c.points.back();
+        const int upright = std::abs(a.x - b.x) < 1e-9;
+        if (!upright && std::abs(a.y - b.y) > 1e-9) continue;
+        const double base = upright ? a.x : a.y;
+        if (base <= 0 || base >= gallery::kSize) continue;  // the outline stays straight
+        double dev = 0;
+        for (const auto& p : c.points) {
+            const double d = (upright ? p.x : p.y) - base;
+            if (std::abs(d) > std::abs(dev)) dev = d;
+        }
+        EXPECT_GT(std::abs(dev), 20.0);
+        bulge[upright][std::llround(base / 200)] = dev > 0 ? 1 : -1;
+    }
+    for (int u = 0; u < 2; ++u) {
+        EXPECT_EQ(bulge[u].size(), 9u);
+        for (long long k = 1; k < 9; ++k) EXPECT_EQ(bulge[u][k], -bulge[u][k + 1]) << u << " " << k;
+    }
+    const Curves drawing = example("regular_c");
+    std::map<int, std::vector<double>> angles;  // by tile
+    for (const auto& c : drawing.curves) {
+        ASSERT_FALSE(c.closed);
+        EXPECT_GT(c.points.size(), 10u) << "a straight line, not a ripple";
+        const int r = ring_through(c.points.front(), tiles);
+        ASSERT_GE(r, 0);
+        EXPECT_EQ(r, ring_through(c.points.back(), tiles));
+        angles[r].push_back(chord_angle(c));
+    }
+    EXPECT_GE(angles.size(), 95u);
+    std::set<long long> distinct;
+    for (const auto& [r, a] : angles) {
+        for (double x : a) EXPECT_NEAR(std::sin(x - a.front()), 0.0, 1e-6) << "tile " << r;
+        distinct.insert(std::llround(a.front() * 1000));
+    }
+    EXPECT_GT(distinct.size(), angles.size() * 8 / 10);
+}
+
+TEST(GalleryRegular, D_PiecesOfTheRingsShrunkAndThinnedOut) {
+    const MapPtr rings_map = mo::hoop_lattice(elements()).induce(kWindow);
+    std::vector<Ring> ring_faces;
+    for (std::size_t f = 0; f < rings_map->faces().size(); ++f) {
+        if (rings_map->faces()[f].unbounded) continue;
+        Ring r{rings_map->cycle_points(int(f), 0), {}};
+        for (const auto& p : r.pts) r.box.add(p);
+        ring_faces.push_back(std::move(r));
+    }
+    const Curves pieces = mo::hoop_pieces(elements())(kWindow);
+    const MapPtr pieces_map = PlanarMap::induce(pieces);
+    const std::vector<Ring> piece_rings = face_rings(pieces);
+    // Every face of the rings' drawing becomes a copy at 65 %, apart from the others.
+    EXPECT_EQ(piece_rings.size(), ring_faces.size());
+    EXPECT_EQ(shrunk_copies(piece_rings, ring_faces, 0.65), piece_rings.size());
+    // Each piece stays unless its face's random number 2 is under 0.3.
+    std::set<std::pair<long long, long long>> kept;
+    std::size_t bounded = 0;
+    for (std::size_t f = 0; f < pieces_map->faces().size(); ++f) {
+        if (pieces_map->faces()[f].unbounded) continue;
+        ++bounded;
+        const Face face(pieces_map, int(f));
+        if (Random(face, 0, 1, 2) >= mo::kDropShare) {
+            const Point c = BBoxCenter(face);
+            kept.insert({std::llround(c.x * 1e4), std::llround(c.y * 1e4)});
+        }
+    }
+    const std::vector<Ring> drawn = face_rings(example("regular_d"));
+    EXPECT_EQ(drawn.size(), kept.size());
+    for (const auto& r : drawn)
+        EXPECT_TRUE(kept.count({std::llround(r.box.center().x * 1e4), std::llround(r.box.center().y * 1e4)}));
+    EXPECT_NEAR(double(kept.size()) / double(bounded), 0.7, 0.08);
+}
+
+TEST(GalleryNonRegular, A_Left_OneRingOfRandomSizePerCell) {
+    MapPtr cells;
+    {
+        StreamScope fresh(0);  // the script's only partition
+        cells = mo::uniform_cells_100().induce(kWindow);
+    }
+    const Curves drawing = example("nonregular_a_left");
+    std::size_t bounded = 0;
+    for (const auto& f : cells->faces()) bounded += !f.unbounded;
+    EXPECT_NEAR(double(bounded), 100, 30);
+    ASSERT_EQ(drawing.size(), bounded);
+    double smallest = 10, largest = 0;
+    for (const auto& c : drawing.curves) {
+        ASSERT_TRUE(c.closed);
+        BBox b;
+        for (const auto& p : c.points) b.add(p);
+        // Centred on a cell's box, its diameter 0.2 to 2 times the box's smaller side.
+        bool found = false;
+        for (std::size_t f = 0; f < cells->faces().size() && !found; ++f) {
+            if (cells->faces()[f].unbounded) continue;
+            const BBox fb = CellBBox(Face(cells, int(f)));
+            if (distance(fb.center(), b.center()) > 1e-6) continue;
+            found = true;
+            const double ratio = b.width() / std::min(fb.width(), fb.height());
+            EXPECT_GE(ratio, 0.2 - 1e-3);
+            EXPECT_LT(ratio, 2.0 + 1e-3);
+            smallest = std::min(smallest, ratio);
+            largest = std::max(largest, ratio);
+        }
+        EXPECT_TRUE(found);
+    }
+    EXPECT_LT(smallest, 0.5);
+    EXPECT_GT(largest, 1.5);
+}
+
+TEST(GalleryNonRegular, A_Right_TenNestedLevels) {
+    std::vector<Curves> levels;
+    {
+        StreamScope fresh(0);
+        for (const auto& l : mo::nest_levels(elements())) levels.push_back(l(kWindow));
+    }
+    ASSERT_EQ(levels.size(), std::size_t(mo::kNestLevels));
+    const Curves drawing = example("nonregular_a_right");
+    expect_starts_with(drawing, levels[0]);
+    std::size_t total = 0;
+    for (const auto& l : levels) total += l.size();
+    EXPECT_EQ(drawing.size(), total);
+    // Level 1 is kinked strokes; level k + 1 has one curve per side of every bounded face of
+    // level k, and its faces are level k's shrunk to 80 % (where shrunk copies do not
+    // overlap, which is nearly everywhere).
+    for (const auto& c : levels[0].curves) EXPECT_EQ(c.points.size(), 8u);
+    for (int k = 0; k + 1 < mo::kNestLevels; ++k) {
+        const MapPtr m = PlanarMap::induce(levels[k]);
+        std::size_t sides = 0;
+        for (const auto& f : m->faces())
+            if (!f.unbounded)
+                for (const auto& cyc : f.cycles) sides += cyc.size();
+        EXPECT_EQ(levels[k + 1].size(), sides) << "level " << k + 2;
+        const std::vector<Ring> child = face_rings(levels[k + 1]), parent = face_rings(levels[k]);
+        EXPECT_GT(double(shrunk_copies(child, parent, 0.8)), 0.9 * double(child.size())) << "level " << k + 2;
+    }
+}
+
+TEST(GalleryNonRegular, B_FineRandomCellsInEveryCoarseCell) {
+    std::vector<Ring> coarse;
+    {
+        StreamScope fresh(0);
+        coarse = face_rings(mo::jagged_cells(elements())(kWindow));
+    }
+    const Curves drawing = example("nonregular_b");
+    const std::vector<Ring> fine = face_rings(drawing);
+    EXPECT_GT(fine.size(), 3 * coarse.size());
+    // Every coarse cell is split: it holds the centres of at least two fine cells.
+    for (const auto& c : coarse) {
+        if (!c.box.intersects(kWindow.bbox())) continue;
+        std::size_t inside = 0;
+        for (const auto& f : fine) inside += point_in_ring(f.box.center(), c.pts);
+        EXPECT_GE(inside, 2u);
+    }
+    // Inner edges are jagged strokes (13 points, twice jagged: more); what lies on the
+    // outline of the whole stays straight.
+    std::size_t straight = 0;
+    for (const auto& c : drawing.curves) {
+        if (c.points.size() < 13) ++straight;
+    }
+    EXPECT_LT(straight, drawing.size() / 4);
+}
+
+TEST(GalleryNonRegular, C_FineCellsAreCutToTheCoarseOnes) {
+    Curves coarse, fine;
+    {
+        StreamScope fresh(0);  // as the script: the coarse partition first, then the fine one
+        const Arrangement c = mo::shrunk_cells(20);
+        const Arrangement f = mo::shrunk_cells(90);
+        coarse = c(kWindow);
+        fine = f(kWindow);
+    }
+    const std::vector<Ring> coarse_rings = face_rings(coarse);
+    const Curves drawing = example("nonregular_c");
+    expect_starts_with(drawing, coarse);
+    std::size_t ends_on_coarse = 0;
+    double kept = 0;
+    for (const auto& s : segments(drawing, coarse.size())) {
+        bool inside = false;
+        for (const auto& r : coarse_rings) inside = inside || point_in_ring(s.mid(), r.pts);
+        EXPECT_TRUE(inside);
+        ends_on_coarse += on_any_ring(s.a, coarse_rings) + on_any_ring(s.b, coarse_rings);
+        kept += distance(s.a, s.b);
+    }
+    EXPECT_GT(ends_on_coarse, 50u);
+    EXPECT_LT(kept, 0.9 * th::length(fine));
+    EXPECT_GT(kept, 0.3 * th::length(fine));
+}
+
+TEST(GalleryNonRegular, D_StretchedEdgesTurnedByAnEighthOfATurn) {
+    MapPtr cells;
+    {
+        StreamScope fresh(0);
+        cells = mo::random_cells_30().induce(kWindow);
+    }
+    std::vector<double> turned;
+    double longest = 0;
+    for (const auto& e : cells->edges()) {
+        turned.push_back(angle_mod_pi({e.points.front(), e.points.back()}) + pi / 4);
+        longest = std::max(longest, distance(e.points.front(), e.points.back()));
+    }
+    const Curves drawing = example("nonregular_d");
+    std::size_t slivers = 0;
+    EXPECT_GT(drawing.size(), 10 * cells->edges().size()) << "the stretched edges cross each other";
+    for (const auto& s : segments(drawing)) {
+        const double a = angle_mod_pi(s);
+        bool found = false;
+        if (distance(s.a, s.b) < 1e-6) {
+            // Three stretched edges of a Voronoi vertex stay on three lines through it:
+            // rounded, they cross at nearly the same point, leaving slivers of edges.
+            ++slivers;
+            continue;
+        }
+        for (double t : turned) found = found || std::abs(std::sin(a - t)) < 1e-6;
+        EXPECT_TRUE(found) << distance(s.a, s.b) << " " << a;
+        EXPECT_LE(distance(s.a, s.b), 10 * longest + 1e-6);
+    }
+    EXPECT_LT(slivers, drawing.size() / 10);
+}
+
+namespace {
+
+// Every point of the rings lies on the drawing's segments.
+void expect_outlines_drawn(const Curves& drawing, const std::vector<Ring>& outlines) {
+    SegmentIndex index(25);
+    for (const auto& s : segments(drawing)) index.add(s, 0);
+    for (const auto& r : outlines)
+        for (const auto& p : r.pts) EXPECT_FALSE(index.tags_at(p).empty());
+}
+
+// Every curve of the drawing starts and ends in (or on) one of the outlines (a swirl may
+// bulge out of its cloud between its ends).
+void expect_strokes_in(const Curves& drawing, const std::vector<Ring>& outlines) {
+    for (const auto& c : drawing.curves)
+        for (const Point& p : {c.points.front(), c.points.back()}) {
+            bool in = false;
+            for (const auto& r : outlines) in = in || point_in_ring(p, r.pts) || r.distance_to(p) < 1e-6;
+            EXPECT_TRUE(in) << p.x << "," << p.y;
+        }
+}
+
+// How many of the drawing's faces lie in each outline.
+std::vector<std::size_t> faces_in(const Curves& drawing, const std::vector<Ring>& outlines) {
+    std::vector<std::size_t> n(outlines.size(), 0);
+    for (const auto& f : face_rings(drawing))
+        for (std::size_t i = 0; i < outlines.size(); ++i) n[i] += outlines[i].strictly_contains(f.box.center()) ||
+                                                               point_in_ring(f.pts[0], outlines[i].pts);
+    return n;
+}
+
+}  // namespace
+
+TEST(GalleryScriptEdition, A_ACurvyGridInEveryCloud) {
+    Curves clouds;
+    {
+        StreamScope fresh(0);
+        clouds = mo::cloud_layer(elements())(kWindow);
+    }
+    const std::vector<Ring> outlines = rings(clouds);
+    ASSERT_EQ(outlines.size(), clouds.size());
+    // About 11 cells in the window, more with those crossing its border (kept whole).
+    EXPECT_GE(outlines.size(), 8u);
+    EXPECT_LE(outlines.size(), 30u);
+    const Curves drawing = example("script_edit_a");
+    expect_strokes_in(drawing, outlines);
+    expect_outlines_drawn(drawing, outlines);
+    // A grid a fifth of the cloud wide: a few tens of pieces in each.
+    for (std::size_t n : faces_in(drawing, outlines)) EXPECT_GE(n, 10u);
+}
+
+TEST(GalleryScriptEdition, B_AUniformPartitionInEachCloudOfAGrid) {
+    const std::vector<Ring> outlines = rings(mo::cloud_grid_layer(elements())(kWindow));
+    ASSERT_EQ(outlines.size(), 16u);  // the 4 x 4 grid
+    for (const auto& r : outlines) {
+        EXPECT_TRUE(on_multiple(r.box.center().x - 250, 500));
+        EXPECT_TRUE(on_multiple(r.box.center().y - 250, 500));
+    }
+    const Curves drawing = example("script_edit_b");
+    expect_outlines_drawn(drawing, outlines);
+    expect_strokes_in(drawing, outlines);
+    // About 11 cells per cloud.
+    for (std::size_t n : faces_in(drawing, outlines)) {
+        EXPECT_GE(n, 5u);
+        EXPECT_LE(n, 25u);
+    }
+}
+
+namespace {
+
+// The grid cells (kEditCell, anchored at the origin) lying wholly inside one of the rings.
+std::size_t grid_cells_inside(const std::vector<Ring>& faces) {
+    const double w = mo::kEditCell;
+    std::size_t n = 0;
+    for (const auto& r : faces) {
+        for (double x = w * std::floor(r.box.xmin / w); x < r.box.xmax; x += w)
+            for (double y = w * std::floor(r.box.ymin / w); y < r.box.ymax; y += w) {
+                const Point c[4] = {{x, y}, {x + w, y}, {x + w, y + w}, {x, y + w}};
+                bool inside = true;
+                for (int k = 0; k < 4 && inside; ++k)
+                    inside = r.strictly_contains(c[k]) && !r.crossed_by({c[k], c[(k + 1) % 4]});
+                n += inside;
+            }
+    }
+    return n;
+}
+
+// Checks a "switch arrangements" drawing: the stroked cells first, then one element
+// (`per_element` curves) centred on every grid cell lying wholly inside a cell. Returns the
+// elements' point counts.
+std::vector<std::size_t> check_elements_on_grid(const Curves& drawing, const Curves& cells) {
+    expect_starts_with(drawing, cells);
+    std::vector<std::size_t> sizes;
+    for (std::size_t i = cells.size(); i < drawing.size(); ++i) {
+        const Curve& c = drawing.curves[i];
+        EXPECT_TRUE(c.closed);
+        BBox b;
+        for (const auto& p : c.points) b.add(p);
+        EXPECT_TRUE(on_multiple(b.center().x - mo::kEditCell / 2, mo::kEditCell)) << b.center().x;
+        EXPECT_TRUE(on_multiple(b.center().y - mo::kEditCell / 2, mo::kEditCell)) << b.center().y;
+        EXPECT_LT(b.width(), mo::kEditCell);
+        sizes.push_back(c.points.size());
+    }
+    EXPECT_EQ(sizes.size(), grid_cells_inside(face_rings(cells)));
+    return sizes;
+}
+
+}  // namespace
+
+TEST(GalleryScriptEdition, C_APebbleOnEveryGridCellInsideASwirledCell) {
+    Curves cells;
+    {
+        StreamScope fresh(0);
+        cells = mo::swirled_cells(elements())(kWindow);
+    }
+    const auto sizes = check_elements_on_grid(example("script_edit_c"), cells);
+    EXPECT_GT(sizes.size(), 50u);
+}
+
+TEST(GalleryScriptEdition, D_AFlowerOrALeafOnEveryGridCellInsideACurledCell) {
+    Curves cells;
+    {
+        StreamScope fresh(0);
+        cells = mo::curled_cells(elements())(kWindow);
+    }
+    const auto sizes = check_elements_on_grid(example("script_edit_d"), cells);
+    ASSERT_GT(sizes.size(), 50u);
+    // The flower and the leaf have different numbers of points: about one in two of each.
+    const Curves flower = ImportSVG(elements() + "/flower.svg"), leaf = ImportSVG(elements() + "/leaf.svg");
+    ASSERT_NE(flower.curves[0].points.size(), leaf.curves[0].points.size());
+    std::size_t flowers = 0;
+    for (std::size_t s : sizes) {
+        EXPECT_TRUE(s == flower.curves[0].points.size() || s == leaf.curves[0].points.size());
+        flowers += s == flower.curves[0].points.size();
+    }
+    EXPECT_NEAR(double(flowers) / double(sizes.size()), 0.5, 0.15);
+}
+
+// ---- Triangles, Bee hive, wallpaper groups ----
+
+namespace {
+
+std::vector<Face> bounded_faces(const MapPtr& m) {
+    std::vector<Face> out;
+    for (std::size_t f = 0; f < m->faces().size(); ++f)
+        if (!m->faces()[f].unbounded) out.push_back(Face(m, int(f)));
+    return out;
+}
+
+double face_area(const Face& f) { return std::abs(signed_area(f.map().cycle_points(f.id(), 0))); }
+
+const double kLozengeSide = 400 / std::sqrt(3.0);  // lines 200 apart at 60 degrees
+
+}  // namespace
+
+TEST(GalleryTilings, Triangles_EveryLozengeSplitIntoTwoEquilateralTriangles) {
+    const std::size_t lozenges = bounded_faces(mo::lozenges(pi / 3, -pi / 3).induce(kWindow)).size();
+    const MapPtr t = mo::triangles(elements()).induce(kWindow);
+    const std::vector<Face> faces = bounded_faces(t);
+    EXPECT_GT(lozenges, 80u);
+    EXPECT_EQ(faces.size(), 2 * lozenges);
+    for (const Face& f : faces) {
+        EXPECT_EQ(IncidentVertices(f).size(), 3u);
+        EXPECT_NEAR(face_area(f), std::sqrt(3.0) / 4 * kLozengeSide * kLozengeSide, 1e-6);
+    }
+}
+
+TEST(GalleryTilings, BeeHive_TheDualOfTheTrianglesIsAHoneycomb) {
+    const MapPtr h = mo::honeycomb(elements()).induce(kWindow);
+    const MapPtr lattice = mo::lozenges(pi / 3, -pi / 3).induce(kWindow);
+    const double side = kLozengeSide / std::sqrt(3.0);  // centroid to centroid
+    std::size_t inner = 0;
+    for (const Face& f : bounded_faces(h)) {
+        if (IsBoundary(f)) continue;
+        ++inner;
+        EXPECT_EQ(IncidentVertices(f).size(), 6u);
+        EXPECT_NEAR(face_area(f), 3 * std::sqrt(3.0) / 2 * side * side, 1e-6);
+        // Centred on a vertex of the lattice.
+        bool centred = false;
+        for (const auto& v : lattice->vertices()) centred = centred || distance(v.point, Centroid(f)) < 1e-6;
+        EXPECT_TRUE(centred);
+    }
+    EXPECT_GT(inner, 50u);
+}
+
+TEST(GalleryTilings, P6_EveryHoneycombEdgeIsAKinkSymmetricAboutItsMiddle) {
+    const MapPtr h = mo::honeycomb(elements()).induce(kWindow);
+    const Curves drawing = example("wallpaper_p6");
+    ASSERT_EQ(drawing.size(), h->edges().size());
+    for (std::size_t i = 0; i < drawing.size(); ++i) {
+        const auto& p = drawing.curves[i].points;
+        const EdgeRec& e = h->edges()[i];
+        EXPECT_EQ(p.size(), 6u);
+        EXPECT_LT(distance(p.front(), h->vertices()[e.source].point), 1e-6);
+        EXPECT_LT(distance(p.back(), h->vertices()[e.target].point), 1e-6);
+        // A half turn about the middle maps the kink onto itself: the honeycomb's turns of a
+        // third about its vertices and of a half about its edges' middles keep the drawing.
+        const Point mid = (p.front() + p.back()) / 2;
+        for (std::size_t k = 0; k < p.size(); ++k) EXPECT_LT(distance(p[k] + p[p.size() - 1 - k], mid * 2), 1e-6);
+    }
+}
+
+TEST(GalleryTilings, P4M_EveryEdgeCarriesTheBumpAndItsMirrorImage) {
+    const MapPtr grid = mo::lozenges(pi / 4, -pi / 4).induce(kWindow);
+    const Curves drawing = example("wallpaper_p4m");
+    const std::size_t n = grid->edges().size();
+    ASSERT_EQ(drawing.size(), 2 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto& a = drawing.curves[i].points;
+        const auto& b = drawing.curves[n + i].points;
+        ASSERT_EQ(a.size(), b.size());
+        // b is a read backwards and mirrored across the edge's line.
+        const Point o = a.front(), d = (a.back() - a.front()) / distance(a.front(), a.back());
+        EXPECT_GT(std::abs(cross(d, a[a.size() / 2] - o)), 10.0) << "a bump, not a straight line";
+        for (std::size_t k = 0; k < a.size(); ++k) {
+            const Point q = a[k] - o;
+            const Point mirrored = o + d * (2 * dot(q, d)) - q;
+            EXPECT_LT(distance(mirrored, b[b.size() - 1 - k]), 1e-6);
+        }
+    }
+}
+
+TEST(GalleryTilings, P31M_EveryTriangleCutIntoThreeByBendsOrTheirMirrors) {
+    const MapPtr t = PlanarMap::induce(Union(mo::lozenges(pi / 6, pi - pi / 6),
+                                             MapToFaces(mo::split_diagonal, mo::lozenges(pi / 6, pi - pi / 6)))(kWindow));
+    const std::vector<Face> faces = bounded_faces(t);
+    const Curves drawing = example("wallpaper_p31m");
+    ASSERT_EQ(drawing.size(), 3 * faces.size());
+    std::size_t mirrored = 0, expected_mirrored = 0;
+    for (std::size_t i = 0; i < faces.size(); ++i) {
+        const Face& f = faces[i];
+        EXPECT_EQ(IncidentVertices(f).size(), 3u);
+        int left = 0;
+        for (const Edge& e : IncidentEdges(f)) left += f == LeftFace(e);
+        expected_mirrored += left > 1;
+        int side = 0;
+        for (int k = 0; k < 3; ++k) {
+            const auto& p = drawing.curves[3 * i + k].points;
+            EXPECT_LT(distance(p.back(), Centroid(f)), 1e-6);
+            EXPECT_LT(distance(p.front(), Location(IncidentVertices(f)[k])), 1e-6);
+            // Which way the bend leaves the corner: the same for the three bends of a face.
+            const int s = cross(p.back() - p.front(), p[1] - p.front()) > 0 ? 1 : -1;
+            if (k == 0) side = s;
+            EXPECT_EQ(s, side);
+        }
+        mirrored += side > 0;
+    }
+    // One of the two drawings on the faces with more than one edge running counter-clockwise
+    // around them, the other one elsewhere: about half and half.
+    EXPECT_TRUE(mirrored == expected_mirrored || mirrored == faces.size() - expected_mirrored);
+    EXPECT_GT(expected_mirrored, faces.size() / 4);
+    EXPECT_LT(expected_mirrored, 3 * faces.size() / 4);
+}
+
+namespace {
+
+const Point& h_point(const MapPtr& m, int v) { return m->vertices()[v].point; }
+
+BBox curves_box(const Curves& c, std::size_t from, std::size_t to) {
+    BBox b;
+    for (std::size_t i = from; i < to; ++i)
+        for (const auto& p : c.curves[i].points) b.add(p);
+    return b;
+}
+
+}  // namespace
+
+TEST(GalleryEscher, P6_FishOutlinesOnTheHoneycombAndAFishInsideEachHexagon) {
+    const MapPtr h = mo::honeycomb(elements()).induce(kWindow);
+    const Curves outline = ImportSVG(elements() + "/fishline.svg"), inside = ImportSVG(elements() + "/fishface.svg");
+    const Curves drawing = example("escher_p6");
+    const std::size_t ne = h->edges().size(), nf = bounded_faces(h).size();
+    ASSERT_EQ(drawing.size(), ne * outline.size() + nf * inside.size());
+    // The outlines first: one S per honeycomb edge, from its source to its target.
+    for (std::size_t i = 0; i < ne; ++i) {
+        const auto& p = drawing.curves[i].points;
+        EXPECT_LT(distance(p.front(), h->vertices()[h->edges()[i].source].point), 1e-6);
+        EXPECT_LT(distance(p.back(), h->vertices()[h->edges()[i].target].point), 1e-6);
+    }
+    // Then a fish inside on every hexagon, translated so that the point 20 right of its
+    // nose is the centroid.
+    const Point offset = BBoxCenter(inside) - (PointLabeled(inside, "end") + Point(20, 0));
+    const std::vector<Face> faces = bounded_faces(h);
+    for (std::size_t k = 0; k < nf; ++k) {
+        const BBox b = curves_box(drawing, ne + k * inside.size(), ne + (k + 1) * inside.size());
+        EXPECT_LT(distance(b.center(), Centroid(faces[k]) + offset), 1e-6);
+    }
+}
+
+TEST(GalleryEscher, P4M_AnOctopusOnEveryEdgeAndALittleManOnEverySquare) {
+    const MapPtr grid = mo::lozenges(pi / 4, -pi / 4).induce(kWindow);
+    const Curves octopus = ImportSVG(elements() + "/octopus.svg"), guy = ImportSVG(elements() + "/guy.svg");
+    const Curves drawing = example("escher_p4m");
+    const std::size_t ne = grid->edges().size();
+    const std::vector<Face> faces = bounded_faces(grid);
+    ASSERT_EQ(drawing.size(), ne * octopus.size() + faces.size() * guy.size());
+    // Each octopus spans its edge: its body runs from the source to the target, a side of a
+    // square (KEEP_OUTSIDE keeps whole squares; lines 200 apart at 90 degrees: sides of 200).
+    for (std::size_t i = 0; i < ne; ++i) {
+        const auto& body = drawing.curves[i * octopus.size()].points;
+        EXPECT_LT(distance(body.front(), h_point(grid, grid->edges()[i].source)), 1e-6);
+        EXPECT_LT(distance(body.back(), h_point(grid, grid->edges()[i].target)), 1e-6);
+        EXPECT_NEAR(distance(body.front(), body.back()), 200, 1e-6);
+    }
+    // The little men stand upright (only translated), waist on the square's centroid.
+    const Point offset = BBoxCenter(guy) - PointLabeled(guy, "start");
+    for (std::size_t k = 0; k < faces.size(); ++k) {
+        const std::size_t from = ne * octopus.size() + k * guy.size();
+        const BBox b = curves_box(drawing, from, from + guy.size());
+        EXPECT_LT(distance(b.center(), Centroid(faces[k]) + offset), 1e-6);
+        EXPECT_NEAR(b.width(), BBoxWidth(guy), 1e-6);
+    }
+}
+
+TEST(GalleryEscher, P31M_FeatheredBendsFromEveryCornerToTheCentroid) {
+    const MapPtr t = PlanarMap::induce(Union(mo::lozenges(pi / 6, pi - pi / 6),
+                                             MapToFaces(mo::split_diagonal, mo::lozenges(pi / 6, pi - pi / 6)))(kWindow));
+    const std::vector<Face> faces = bounded_faces(t);
+    const Curves drawing = example("escher_p31m");
+    ASSERT_EQ(drawing.size(), 3 * faces.size());
+    const Curves wing = ImportSVG(elements() + "/wing.svg");
+    for (std::size_t i = 0; i < faces.size(); ++i)
+        for (int k = 0; k < 3; ++k) {
+            const auto& p = drawing.curves[3 * i + k].points;
+            EXPECT_EQ(p.size(), wing.curves[0].points.size());
+            EXPECT_LT(distance(p.front(), Location(IncidentVertices(faces[i])[k])), 1e-6);
+            EXPECT_LT(distance(p.back(), Centroid(faces[i])), 1e-6);
+        }
 }

@@ -19,7 +19,12 @@ def test_list_names_every_example(gallery_exe):
                      "bimodal", "crosses", "curves", "clusters", "overview",
                      "teaser_a", "teaser_b", "teaser_c", "teaser_d", "teaser_e", "teaser_f", "teaser_g",
                      "teaser_h", "combine_a", "combine_b", "combine_c", "combine_d", "combine_e",
-                     "combine_f", "combine_g", "combine_h"]
+                     "combine_f", "combine_g", "combine_h",
+                     "regular_a", "regular_b", "regular_c", "regular_d", "nonregular_a_left",
+                     "nonregular_a_right", "nonregular_b", "nonregular_c", "nonregular_d",
+                     "script_edit_a", "script_edit_b", "script_edit_c", "script_edit_d",
+                     "triangles", "bee_hive", "wallpaper_p6", "wallpaper_p4m", "wallpaper_p31m",
+                     "escher_p6", "escher_p4m", "escher_p31m"]
 
 
 @pytest.mark.parametrize("name,minimum", [("puzzle", 400), ("rosettes", 300), ("cracks", 1000),

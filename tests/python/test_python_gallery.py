@@ -15,6 +15,12 @@ FAMILIES = {
     # The "Combining" section: its three textures alone (a to c), then their merges.
     "merges": ["combine_a", "combine_b", "combine_c", "combine_d", "combine_e", "combine_f", "combine_g",
                "combine_h"],
+    # "Regular result" a to d, "Non regular result" a to d, "Script edition" a to d.
+    "regular": ["regular_a", "regular_b", "regular_c", "regular_d"],
+    "nonregular": ["nonregular_a_left", "nonregular_a_right", "nonregular_b", "nonregular_c", "nonregular_d"],
+    "script_edition": ["script_edit_a", "script_edit_b", "script_edit_c", "script_edit_d"],
+    "tilings": ["triangles", "bee_hive", "wallpaper_p6", "wallpaper_p4m", "wallpaper_p31m", "escher_p6", "escher_p4m",
+                "escher_p31m"],
 }
 
 
