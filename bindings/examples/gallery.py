@@ -730,9 +730,12 @@ def lozenges(a, b):
     return GridPartition(StripesProperties(a, 200), StripesProperties(b, 200), KEEP_OUTSIDE)
 
 
+SEGMENT = Polyline([Point(0, 0), Point(1, 0)])
+
+
 def split_diagonal(face):
-    # From the vertex where both of the face's edges start to the one where both end; drawn
-    # vertex to vertex (MatchPoints would land 1e-13 off and leave the bar dangling).
+    # A segment from the vertex where both of the face's edges start to the one where both
+    # end (MatchPoints lands exactly on the two vertices, so the bar splits the face).
     def incident(e):
         return face == LeftFace(e) or face == RightFace(e)
 
@@ -750,7 +753,7 @@ def split_diagonal(face):
             last = v
     if first is None or last is None:
         return Nothing()
-    return Polyline([Location(first), Location(last)])
+    return MatchPoints(SEGMENT, Point(0, 0), Point(1, 0), Location(first), Location(last))
 
 
 def split_lozenges(a, b):

@@ -304,7 +304,8 @@ Curves split_diagonal(const Face& f) {
         if (ending == 2) last = v;
     }
     if (!first.valid() || !last.valid()) return Nothing();
-    return Polyline({Location(first), Location(last)});
+    static const Curves segment = Polyline({{0, 0}, {1, 0}});
+    return MatchPoints(segment, {0, 0}, {1, 0}, Location(first), Location(last));
 }
 
 namespace {

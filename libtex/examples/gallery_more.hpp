@@ -101,10 +101,8 @@ inline constexpr double kEditCell = 125;  // the grid width of (c) and (d): 2000
 // A lozenge grid: two stripe families 200 apart at angles a and b.
 tex::Arrangement lozenges(double a, double b);
 // The diagonal of a face running from the vertex where both of its edges start to the
-// vertex where both end (none when there is no such pair). The thesis matches a segment
-// element onto the two vertices; MatchPoints lands up to 1e-13 away from its targets, which
-// leaves the bar dangling next to the vertex instead of splitting the face, so the bar is
-// drawn from vertex to vertex exactly (a Polyline).
+// vertex where both end (none when there is no such pair): a segment element matched onto
+// the two vertices (MatchPoints lands exactly on them, so the bar splits the face).
 tex::Curves split_diagonal(const tex::Face& f);
 // The lozenges (at +-60 degrees) with their diagonals: equilateral triangles.
 tex::Arrangement triangles(const std::string& dir);

@@ -78,7 +78,27 @@ Curves Translate(const Curves& c, const Point& v) {
     return transformed(c, Affine::translation(v));
 }
 
-Curves MatchPoint(const Curves& c, const Point& s, const Point& t) { return Translate(c, t - s); }
+// Applies m, sending the points equal to a source exactly onto its target (rounding would
+// leave them a few ulps away, and a curve meant to end on a vertex would then miss it).
+static Curves transformed_onto(const Curves& c, const Affine& m, const Point* s, const Point* t, std::size_t n) {
+    Curves out = c;
+    const bool mirror = m.determinant() < 0;
+    auto map = [&](const Point& p) {
+        for (std::size_t k = 0; k < n; ++k)
+            if (p == s[k]) return t[k];
+        return m(p);
+    };
+    for (auto& cv : out.curves) {
+        for (auto& p : cv.points) p = map(p);
+        if (mirror) std::swap(cv.left, cv.right);
+    }
+    for (auto& lp : out.points) lp.point = map(lp.point);
+    return out;
+}
+
+Curves MatchPoint(const Curves& c, const Point& s, const Point& t) {
+    return transformed_onto(c, Affine::translation(t - s), &s, &t, 1);
+}
 
 Curves MatchPoints(const Curves& c, const Point& s1, const Point& s2, const Point& t1,
                    const Point& t2) {
@@ -91,7 +111,8 @@ Curves MatchPoints(const Curves& c, const Point& s1, const Point& s2, const Poin
     Affine m{ra, -rb, 0, rb, ra, 0};
     m.c = t1.x - (ra * s1.x - rb * s1.y);
     m.f = t1.y - (rb * s1.x + ra * s1.y);
-    return transformed(c, m);
+    const Point src[2] = {s1, s2}, dst[2] = {t1, t2};
+    return transformed_onto(c, m, src, dst, 2);
 }
 
 static std::string origin_of(const Curves& c) {

@@ -92,3 +92,17 @@ TEST(Random, UnkeyedRandomIsKeyedByScope) {
     EXPECT_GE(a1, 0);
     EXPECT_LT(a1, 1);
 }
+
+TEST(Curves, MatchPointsLandsExactlyOnItsTargets) {
+    // Targets of a GridPartition(pi/3, -pi/3) whose rounded similarity misses the second
+    // one by an ulp: an element matched between two vertices must end on them.
+    const Point t1{115.47005383792514, 999.99999999999977}, t2{346.41016151377551, 999.99999999999977};
+    Curves bar = Polyline({{0, 0}, {30, 5}, {100, 0}});
+    bar.points.push_back({{100, 0}, Labels{"end"}});
+    const Curves m = MatchPoints(bar, {0, 0}, {100, 0}, t1, t2);
+    EXPECT_EQ(m.curves[0].points.front(), t1);
+    EXPECT_EQ(m.curves[0].points.back(), t2);
+    EXPECT_EQ(PointLabeled(m, "end"), t2);
+    const Curves one = MatchPoint(bar, {100, 0}, t2);
+    EXPECT_EQ(one.curves[0].points.back(), t2);
+}

@@ -64,10 +64,11 @@ Curves Scale(const Curves& c, double sx, double sy);
 Curves Rotate(const Curves& c, double a);
 // Translates c by v.
 Curves Translate(const Curves& c, const Point& v);
-// Translates c by t - s.
+// Translates c by t - s; a point of c equal to s lands exactly on t.
 Curves MatchPoint(const Curves& c, const Point& s, const Point& t);
 // Applies the similarity (rotation, uniform scale, translation) that sends s1 to t1 and
-// s2 to t2.
+// s2 to t2; points of c equal to s1 or s2 land exactly on t1 or t2 (so that an element
+// matched between two vertices ends on them, not a rounding error away).
 Curves MatchPoints(const Curves& c, const Point& s1, const Point& s2, const Point& t1,
                    const Point& t2);
 // The location of the first point of c labelled l; throws when there is none.
