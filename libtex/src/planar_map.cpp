@@ -20,6 +20,7 @@
 
 #include <CGAL/Arr_consolidated_curve_data_traits_2.h>
 #include <CGAL/Arr_extended_dcel.h>
+#include <CGAL/Arr_non_caching_segment_traits_2.h>
 #include <CGAL/Arr_segment_traits_2.h>
 #include <CGAL/Arrangement_2.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
@@ -39,12 +40,19 @@ namespace tex {
 namespace {
 
 using Kernel = CGAL::Exact_predicates_exact_constructions_kernel;
-using SegmentTraits = CGAL::Arr_segment_traits_2<Kernel>;
-using Traits = CGAL::Arr_consolidated_curve_data_traits_2<SegmentTraits, std::uint32_t>;
-using Dcel = CGAL::Arr_extended_dcel<Traits, int, int, int>;
-using Arr = CGAL::Arrangement_2<Traits, Dcel>;
 using KPoint = Kernel::Point_2;
 using KSegment = Kernel::Segment_2;
+// Two segment traits, as CGAL advises: the caching one precomputes each segment's line,
+// which pays off when segments cross a lot; the non-caching one is cheaper per segment when
+// they mostly do not (CGAL's documentation, "Arr_non_caching_segment_traits_2").
+template <class SegmentTraits>
+struct CgalTypes {
+    using Traits = CGAL::Arr_consolidated_curve_data_traits_2<SegmentTraits, std::uint32_t>;
+    using Dcel = CGAL::Arr_extended_dcel<Traits, int, int, int>;
+    using Arr = CGAL::Arrangement_2<Traits, Dcel>;
+};
+using Caching = CgalTypes<CGAL::Arr_segment_traits_2<Kernel>>;
+using NonCaching = CgalTypes<CGAL::Arr_non_caching_segment_traits_2<Kernel>>;
 using IK = CGAL::Exact_predicates_inexact_constructions_kernel;
 
 struct PointHash {
@@ -98,8 +106,11 @@ struct Inputs {
 
 // ---- Way 1: CGAL ----
 
+template <class Types>
 void build_with_cgal(const Curves& input, RawGraph& g) {
-    std::vector<Traits::Curve_2> segs;
+    using Traits = typename Types::Traits;
+    using Arr = typename Types::Arr;
+    std::vector<typename Traits::Curve_2> segs;
     for (std::uint32_t ci = 0; ci < input.curves.size(); ++ci) {
         const Curve& c = input.curves[ci];
         const std::size_t n = c.points.size();
@@ -117,7 +128,7 @@ void build_with_cgal(const Curves& input, RawGraph& g) {
     Arr arr;
     CGAL::insert(arr, segs.begin(), segs.end());
 
-    std::vector<Arr::Vertex_handle> vs;
+    std::vector<typename Arr::Vertex_handle> vs;
     for (auto v = arr.vertices_begin(); v != arr.vertices_end(); ++v) vs.push_back(v);
     const std::size_t nv = vs.size();
     g.vpt.resize(nv);
@@ -147,7 +158,7 @@ void build_with_cgal(const Curves& input, RawGraph& g) {
     g.data_start.assign(std::size_t(k) + 1, 0);
     k = 0;
     for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e, ++k) {
-        for (Arr::Halfedge_handle h : {Arr::Halfedge_handle(e), e->twin()})
+        for (typename Arr::Halfedge_handle h : {typename Arr::Halfedge_handle(e), e->twin()})
             g.he[h->data()] = {h->source()->data(), h->target()->data(), h->next()->data(), h->face()->data(),
                                h->direction() == CGAL::ARR_LEFT_TO_RIGHT};
         for (std::uint32_t d : e->curve().data()) g.data.push_back(d);
@@ -189,40 +200,53 @@ bool ccw_before(const Point& p, const Point& a, const Point& b) {
     return CGAL::orientation(ik(p), ik(a), ik(b)) == CGAL::LEFT_TURN;
 }
 
-bool build_directly(const Curves& input, RawGraph& g) {
+// Returns false when the drawing is not clean; `many_crossings` then tells whether at least
+// a tenth of the segments cross another one, to choose the CGAL traits.
+bool build_directly(const Curves& input, RawGraph& g, bool& many_crossings) {
     std::vector<detail::Seg> segs = detail::curve_segments(input);
     if (segs.empty()) return false;
-    // Clean: two segments meet only at a common end point, without overlapping.
+    // Clean: two segments meet only at a common end point, without overlapping. Otherwise,
+    // count the segments that cross another one (not overlaps) to choose the CGAL traits.
     const detail::SegmentGrid grid(segs);
+    bool clean = true;
     {
         const auto& gs = grid.segments();
+        const std::size_t enough = gs.size() / 10 + 1;
+        std::size_t crossings = 0;
         for (std::uint32_t i = 0; i < gs.size(); ++i) {
             const detail::Seg& s = gs[i];
             BBox b;
             b.add(s.a);
             b.add(s.b);
-            bool bad = false;
+            bool crossing = false;
             grid.for_each_in(b, [&](std::uint32_t j) {
-                if (bad || j <= i) return;
+                if (crossing || j <= i) return;
                 const detail::Seg& t = gs[j];
                 if (std::max(t.a.x, t.b.x) < b.xmin || std::min(t.a.x, t.b.x) > b.xmax ||
                     std::max(t.a.y, t.b.y) < b.ymin || std::min(t.a.y, t.b.y) > b.ymax)
                     return;
                 const bool sa = s.a == t.a || s.a == t.b, sb = s.b == t.a || s.b == t.b;
                 if (sa && sb) {
-                    bad = true;  // the same segment twice
+                    clean = false;  // the same segment twice
                 } else if (sa || sb) {
                     const Point& p = sa ? s.a : s.b;           // shared
                     const Point& q = sa ? s.b : s.a;           // s's other end
                     const Point& r = (t.a == p) ? t.b : t.a;   // t's other end
-                    bad = CGAL::orientation(ik(p), ik(q), ik(r)) == CGAL::COLLINEAR && dot(q - p, r - p) > 0;
-                } else {
-                    bad = detail::segments_touch(s.a, s.b, t.a, t.b);
+                    if (CGAL::orientation(ik(p), ik(q), ik(r)) == CGAL::COLLINEAR && dot(q - p, r - p) > 0)
+                        clean = false;
+                } else if (detail::segments_touch(s.a, s.b, t.a, t.b)) {
+                    clean = false;
+                    crossing = CGAL::orientation(ik(s.a), ik(s.b), ik(t.a)) != CGAL::COLLINEAR ||
+                               CGAL::orientation(ik(s.a), ik(s.b), ik(t.b)) != CGAL::COLLINEAR;
                 }
             });
-            if (bad) return false;
+            if (crossing && ++crossings >= enough) {
+                many_crossings = true;
+                return false;
+            }
         }
     }
+    if (!clean) return false;
     // Vertices, segments.
     std::unordered_map<Point, int, PointHash> vid;
     auto vertex = [&](const Point& p) {
@@ -362,19 +386,23 @@ bool build_directly(const Curves& input, RawGraph& g) {
 
 }  // namespace
 
+enum class Way { Any, CgalCaching, CgalNonCaching };
+
 struct PlanarMapBuilder {
-    static MapPtr build(const Curves& curves, bool allow_direct);
+    static MapPtr build(const Curves& curves, Way way);
 };
 
-MapPtr PlanarMap::induce(const Curves& curves) { return PlanarMapBuilder::build(curves, true); }
+MapPtr PlanarMap::induce(const Curves& curves) { return PlanarMapBuilder::build(curves, Way::Any); }
 
 namespace detail {
-MapPtr induce_with_cgal(const Curves& curves) { return PlanarMapBuilder::build(curves, false); }
+MapPtr induce_with_cgal(const Curves& curves, bool caching) {
+    return PlanarMapBuilder::build(curves, caching ? Way::CgalCaching : Way::CgalNonCaching);
+}
 thread_local std::uint64_t t_direct = 0;
 std::uint64_t direct_inductions() { return t_direct; }
 }  // namespace detail
 
-MapPtr PlanarMapBuilder::build(const Curves& input, bool allow_direct) {
+MapPtr PlanarMapBuilder::build(const Curves& input, Way way) {
     auto map = std::make_shared<PlanarMap>();
     PlanarMap& pm = *map;
 
@@ -401,11 +429,15 @@ MapPtr PlanarMapBuilder::build(const Curves& input, bool allow_direct) {
     for (const auto& lp : input.points) point_labels[lp.point].merge(lp.labels);
 
     RawGraph g;
-    if (allow_direct && build_directly(input, g)) {
+    bool many_crossings = false;
+    if (way == Way::Any && build_directly(input, g, many_crossings)) {
         ++detail::t_direct;
     } else {
         g = RawGraph{};
-        build_with_cgal(input, g);
+        // Few crossings for the number of segments: the non-caching traits are faster.
+        const bool caching = way == Way::Any ? many_crossings : way == Way::CgalCaching;
+        if (caching) build_with_cgal<Caching>(input, g);
+        else build_with_cgal<NonCaching>(input, g);
     }
     const std::size_t nv = g.vpt.size();
     const std::size_t nh = g.he.size();

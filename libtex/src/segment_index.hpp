@@ -93,7 +93,7 @@ Curves maximal_edges(const Curves& c);
 namespace tex::detail {
 // The planar map of the curves, always through CGAL's exact arrangement (PlanarMap::induce
 // traces clean connected drawings directly); for the tests that compare both ways.
-MapPtr induce_with_cgal(const Curves& curves);
+MapPtr induce_with_cgal(const Curves& curves, bool caching = true);
 // How many planar maps this thread traced directly (for the tests).
 std::uint64_t direct_inductions();
 }  // namespace tex::detail

@@ -305,7 +305,7 @@ TEST(PlanarMapCells, MappersSeeWholeCells) {
 // ---- The direct trace of clean drawings and CGAL's arrangement give the same map ----
 
 namespace tex::detail {
-MapPtr induce_with_cgal(const Curves& curves);
+MapPtr induce_with_cgal(const Curves& curves, bool caching = true);
 std::uint64_t direct_inductions();
 }
 
@@ -434,4 +434,31 @@ TEST(PlanarMapWays, DirectTraceAndExactArrangementAgree) {
     // All but the overlapping squares and the T junction take the direct way; the
     // comparison would be empty otherwise.
     EXPECT_EQ(traced, cases.size() - 2);
+}
+
+TEST(PlanarMapWays, BothCgalTraitsGiveTheSameCells) {
+    // Crossing strokes and overlapping outlines: the caching and non-caching segment traits
+    // (chosen by how much the segments cross) must give the same cells.
+    Curves c;
+    for (int k = 0; k < 40; ++k) {
+        const double a = 0.37 * k, r = 400 + 13 * k;
+        c.append(Polyline({{500 + r * std::cos(a), 500 + r * std::sin(a)}, {500 - r * std::cos(a + 0.3), 500 - r * std::sin(a + 0.3)}}));
+    }
+    c.append(Polyline({{0, 0}, {300, 0}, {300, 300}, {0, 300}}, true));
+    c.append(Polyline({{300, 0}, {600, 0}, {600, 300}, {300, 300}}, true));
+    c.append(Polyline({{300, 100}, {300, 200}}));  // overlaps the shared side
+    const MapPtr a = detail::induce_with_cgal(c, true), b = detail::induce_with_cgal(c, false);
+    ASSERT_EQ(a->vertices().size(), b->vertices().size());
+    ASSERT_EQ(a->edges().size(), b->edges().size());
+    ASSERT_EQ(a->faces().size(), b->faces().size());
+    EXPECT_GT(a->vertices().size(), 300u);
+    for (std::size_t i = 0; i < a->vertices().size(); ++i) {
+        EXPECT_NEAR(a->vertices()[i].point.x, b->vertices()[i].point.x, 1e-9);
+        EXPECT_NEAR(a->vertices()[i].point.y, b->vertices()[i].point.y, 1e-9);
+        EXPECT_EQ(a->vertices()[i].edges.size(), b->vertices()[i].edges.size());
+    }
+    for (std::size_t i = 0; i < a->edges().size(); ++i) {
+        EXPECT_EQ(a->edges()[i].sources.size(), b->edges()[i].sources.size());
+        EXPECT_EQ(a->edges()[i].points.size(), b->edges()[i].points.size());
+    }
 }
