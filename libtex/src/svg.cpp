@@ -346,6 +346,7 @@ void walk(const tinyxml2::XMLElement* e, const Affine& parent, const Flattener& 
         } else {
             continue;  // text, images and unknown elements carry no curves
         }
+        const char* face_label = e->Attribute("data-face-label");
         for (auto& [pts, closed] : subpaths) {
             if (pts.size() < 2) continue;
             Curve c;
@@ -353,6 +354,13 @@ void walk(const tinyxml2::XMLElement* e, const Affine& parent, const Flattener& 
             for (const auto& p : pts) c.points.push_back(m(p));
             c.closed = closed;
             if (label) c.labels.add(label);
+            // The face a closed curve encloses gets the label: the inside is on the left of
+            // a counter-clockwise ring (positive signed area), on the right otherwise.
+            if (face_label && closed && c.points.size() >= 3) {
+                const double area = signed_area(c.points);
+                if (area > 0) c.left.add(face_label);
+                else if (area < 0) c.right.add(face_label);
+            }
             ctx.out->curves.push_back(std::move(c));
         }
     }

@@ -196,3 +196,36 @@ TEST(ExportSVGinDomain, AFrameWithoutAClosedCurveIsAnError) {
                                 "<rect x='200' y='0' width='50' height='50'/></svg>", "two.svg");
     EXPECT_TEX_ERROR(EvaluateInDomain(a, two), "ExportSVGinDomain", "outside its largest one");
 }
+
+TEST(ImportSVG, FaceLabelsGoOnTheInsideOfClosedCurves) {
+    // A rect (drawn clockwise on screen), the same polygon run the other way, a mirrored
+    // circle, and an open path whose face label is ignored.
+    const Curves c = ParseSVG(R"svg(<svg>
+        <rect x="0" y="0" width="100" height="100" data-face-label="ship"/>
+        <polygon points="300,0 300,100 200,100 200,0" data-face-label="ship"/>
+        <g transform="scale(-1,1)"><circle cx="-450" cy="50" r="40" data-face-label="chip"/></g>
+        <path d="M0,300 L100,300 L100,400" data-face-label="wire"/>
+        </svg>)svg");
+    ASSERT_EQ(c.curves.size(), 4u);
+    EXPECT_TRUE(c.curves[3].left.empty() && c.curves[3].right.empty());
+    const MapPtr m = PlanarMap::induce(c);
+    int ships = 0, chips = 0;
+    for (std::size_t i = 0; i < m->faces().size(); ++i) {
+        const Face f(m, int(i));
+        if (m->faces()[i].unbounded) {
+            EXPECT_FALSE(HasLabel(f, "ship") || HasLabel(f, "chip") || HasLabel(f, "wire"));
+            continue;
+        }
+        const Point p = Centroid(f);
+        if (HasLabel(f, "ship")) {
+            ++ships;
+            EXPECT_LT(p.x, 300);
+        }
+        if (HasLabel(f, "chip")) {
+            ++chips;
+            EXPECT_NEAR(p.x, 450, 1);
+        }
+    }
+    EXPECT_EQ(ships, 2);
+    EXPECT_EQ(chips, 1);
+}

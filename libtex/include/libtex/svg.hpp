@@ -12,8 +12,10 @@ namespace tex {
 // element transforms applied. A circle or ellipse carrying a `data-label` or
 // `inkscape:label` attribute is a labelled point (its centre), not geometry: this is how
 // an element marks its "start" and "end". Other elements with such a label are labelled
-// curves (CurveLabeled). Throws tex::Error naming the file when it is missing, does not
-// parse or holds no curve.
+// curves (CurveLabeled). A `data-face-label` attribute labels the inside of the element's
+// closed curves (it goes on the side of each closed curve the enclosed face lies on, so the
+// face a planar map induces inside gets it; open curves ignore it). Throws tex::Error
+// naming the file when it is missing, does not parse or holds no curve.
 Curves ImportSVG(const std::string& filename);
 // Same, from SVG text (origin names the source in messages).
 Curves ParseSVG(const std::string& text, const std::string& origin = "<svg text>");
