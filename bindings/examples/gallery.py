@@ -823,6 +823,68 @@ def escher_p31m(elements):
     return subdivided_triangles(load(elements, "wing.svg"), load(elements, "wing_mirror.svg"))
 
 
+# ---- Filling an outline (ExportSVGinDomain): the texture cut to a frame in the window ----
+
+PARQUET_RULES = [
+    ("v1", "v2", "h1"), ("v2", "v3", "h1"), ("v3", "v4", "h1"), ("v4", "v1", "h1"),
+    ("v1", "v2", "h3"), ("v2", "v3", "h3"), ("v3", "v4", "h3"), ("v4", "v1", "h3"),
+    ("h1", "h2", "v1"), ("h2", "h3", "v1"), ("h3", "h4", "v3"), ("h4", "h1", "v3"),
+    ("v2", "v3", "h2"), ("v3", "v4", "h2"), ("v4", "v1", "h4"), ("v1", "v2", "h4"),
+]
+
+
+def parquetry(elements):
+    def parquetry_structure(e):
+        faces = [LeftFace(e), RightFace(e)]
+        if not faces[0].is_bounded_face() or not faces[1].is_bounded_face():
+            return ToCurve(e)
+        for rule in PARQUET_RULES:
+            if all(HasLabel(faces, l) for l in rule):
+                return Nothing()
+        return ToCurve(e)
+
+    scale = 50
+    gap = 0.2 * scale
+    lines1 = StripesProperties(0.0, scale, gap, scale, gap)
+    SetFaceLabels(lines1, "h1", "h2", "h3", "h4")
+    lines2 = StripesProperties(pi / 6 + pi / 32 + pi / 100, 8 * scale, gap, 8 * scale, gap)
+    SetFaceLabels(lines2, "v1", "v2", "v3", "v4")
+    part = GridPartition(lines1, lines2, KEEP_OUTSIDE)
+    return InDomain(MapToEdges(parquetry_structure, part), load(elements, "carpet_outline.svg"))
+
+
+def place_jittered(items, v, angle, dx, dy):
+    loc = Location(v) + Point(Random(v, -dx, dx, 1), Random(v, -dy, dy, 2))
+    elem = Rotate(items[min(len(items) - 1, int(math.floor(Random(v, 0.0, float(len(items)), 3))))], angle)
+    return MatchPoint(elem, BBoxCenter(elem), loc)
+
+
+def table(elements):
+    grains = [load(elements, "table_grain%d.svg" % i) for i in (1, 2, 3)]
+    side = 0.0
+    part = GridPartition(StripesProperties(side + pi / 3, 60), StripesProperties(side + 2 * pi / 3, 150), KEEP_OUTSIDE)
+    texture = MapToVertices(lambda v: place_jittered(grains, v, side, 20, 80), part)
+    return InDomain(texture, load(elements, "table_top.svg"))
+
+
+def bottle(elements):
+    bubbles = [load(elements, "fizz%d.svg" % i) for i in (1, 2, 3, 4)]
+    side = pi / 2
+    part = GridPartition(StripesProperties(side + pi / 3, 60), StripesProperties(side + 2 * pi / 3, 60), KEEP_OUTSIDE)
+    texture = MapToVertices(lambda v: place_jittered(bubbles, v, side, 20, 40), part)
+    return InDomain(texture, load(elements, "bottle_outline.svg"))
+
+
+def teapot(elements):
+    ring = load(elements, "pot_ring.svg")
+
+    def face_to_ring(f):
+        return Scale(MatchPoint(ring, BBoxCenter(ring), Centroid(f)), Random(f, 0.05, 0.15, 0))
+
+    part = UniformPartition(IrregularProperties(3.0e-4), KEEP_OUTSIDE)
+    return InDomain(MapToFaces(face_to_ring, part), load(elements, "teapot_outline.svg"))
+
+
 EXAMPLES = {
     "stripes": stripes, "grid": grid, "uniform": uniform, "random": random_, "puzzle": puzzle,
     "rosettes": rosettes, "cracks": cracks, "bimodal": bimodal, "crosses": crosses, "curves": curves,
@@ -838,6 +900,7 @@ EXAMPLES = {
     "script_edit_d": script_edit_d,
     "triangles": triangles, "bee_hive": bee_hive, "wallpaper_p6": wallpaper_p6, "wallpaper_p4m": wallpaper_p4m,
     "wallpaper_p31m": wallpaper_p31m, "escher_p6": escher_p6, "escher_p4m": escher_p4m, "escher_p31m": escher_p31m,
+    "parquetry": parquetry, "table": table, "bottle": bottle, "teapot": teapot,
 }
 
 

@@ -35,9 +35,10 @@ std::function<Curves(const CellT&)> mapper(py::function fn, const char* op) {
 }
 
 template <class Tag>
-void bind_cell(py::module_& m, const char* name, const char* doc) {
+py::class_<Cell<Tag>> bind_cell(py::module_& m, const char* name, const char* doc) {
     using C = Cell<Tag>;
-    py::class_<C>(m, name, doc)
+    py::class_<C> cls(m, name, doc);
+    cls
         .def_property_readonly("id", &C::id, "index of the cell in its planar map (canonical geometric order)")
         .def("__eq__", [](const C& a, const C& b) { return a == b; })
         .def("__eq__", [](const C&, const py::object&) { return false; })
@@ -47,6 +48,7 @@ void bind_cell(py::module_& m, const char* name, const char* doc) {
             return py::hash(py::make_tuple(reinterpret_cast<std::uintptr_t>(c.map_ptr().get()), c.id()));
         })
         .def("__repr__", [name](const C& c) { return std::string(name) + "(" + std::to_string(c.id()) + ")"; });
+    return cls;
 }
 
 Curves polyline(const std::vector<Point>& pts, bool closed) { return Polyline(pts, closed); }
@@ -217,7 +219,8 @@ void bind_tex(py::module_& m) {
     // ---- Planar maps and cells ----
     bind_cell<VertexTag>(m, "Vertex", "A vertex of a planar map (a handle: equal when the same cell)");
     bind_cell<EdgeTag>(m, "Edge", "An edge of a planar map");
-    bind_cell<FaceTag>(m, "Face", "A face of a planar map");
+    bind_cell<FaceTag>(m, "Face", "A face of a planar map").def("is_bounded_face", [](const Face& f) { return !record(f).unbounded; },
+                                          "false for the unbounded face (outside every bounded face)");
 
     py::class_<PlanarMap, std::shared_ptr<PlanarMap>>(m, "PlanarMap", "An induced planar map (immutable)")
         .def_static("induce", [](const Curves& c) { return std::const_pointer_cast<PlanarMap>(PlanarMap::induce(c)); },
@@ -396,6 +399,7 @@ void bind_tex(py::module_& m) {
         "MapToFaces", [](py::function f, Arrangement a) { return MapToFaces(mapper<Face>(f, "MapToFaces"), a, MapperThreads::Serial); },
         py::arg("mapper"), py::arg("arrangement"), "visits the bounded faces");
     m.def("Union", &Union, py::arg("a1"), py::arg("a2"));
+    m.def("Merge", &Merge, py::arg("a1"), py::arg("a2"), "Union's name in the thesis's Chapter 4");
     m.def("Inside", &Inside, py::arg("a1"), py::arg("a2"), py::arg("border"));
     m.def("Outside", &Outside, py::arg("a1"), py::arg("a2"), py::arg("border"));
 
@@ -407,7 +411,7 @@ void bind_tex(py::module_& m) {
         .def_readwrite("background", &SvgStyle::background);
     m.def("ImportSVG", &ImportSVG, py::arg("filename"));
     m.def("ParseSVG", &ParseSVG, py::arg("text"), py::arg("origin") = "<svg text>");
-    m.def("ToSVG", &ToSVG, py::arg("curves"), py::arg("size"), py::arg("style") = SvgStyle{});
+    m.def("ToSVG", py::overload_cast<const Curves&, double, const SvgStyle&>(&ToSVG), py::arg("curves"), py::arg("size"), py::arg("style") = SvgStyle{});
     m.def("ExportSVG", py::overload_cast<const Arrangement&, double, const std::string&, const SvgStyle&>(&ExportSVG),
           py::arg("arrangement"), py::arg("size"), py::arg("filename"), py::arg("style") = SvgStyle{},
           py::call_guard<py::gil_scoped_release>(),
@@ -415,6 +419,17 @@ void bind_tex(py::module_& m) {
     m.def("ExportSVG", py::overload_cast<const Curves&, double, const std::string&, const SvgStyle&>(&ExportSVG),
           py::arg("curves"), py::arg("size"), py::arg("filename"), py::arg("style") = SvgStyle{},
           py::call_guard<py::gil_scoped_release>());
+    m.def("FrameRegion", &FrameRegion, py::arg("frame"), py::arg("op") = "FrameRegion",
+          "the region bounded by the frame's closed curves (the largest one outside, those inside it holes)");
+    m.def("EvaluateInDomain", &EvaluateInDomain, py::arg("arrangement"), py::arg("frame"),
+          py::call_guard<py::gil_scoped_release>(),
+          "the arrangement evaluated in the frame's region, cut to it, with the frame's outline");
+    m.def("InDomain", &InDomain, py::arg("arrangement"), py::arg("frame"),
+          "an arrangement returning EvaluateInDomain(arrangement, frame) whatever the region");
+    m.def("ExportSVGinDomain", &ExportSVGinDomain, py::arg("arrangement"), py::arg("frame"), py::arg("filename"),
+          py::arg("margin") = 10.0, py::arg("style") = SvgStyle{}, py::call_guard<py::gil_scoped_release>(),
+          "fills the frame: the arrangement evaluated in the frame's region, cut to it, with the frame's outline, "
+          "written (atomically) with a viewBox covering the frame grown by margin; returns the curves");
     m.def("SetSeed", &SetSeed, py::arg("seed"),
           "sets the global seed and restarts the numbering of the partitions' random streams");
     m.def("GetSeed", &GetSeed);

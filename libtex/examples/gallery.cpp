@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "gallery_domain.hpp"
 #include "gallery_more.hpp"
 #include "gallery_teasers.hpp"
 
@@ -298,6 +299,10 @@ const std::vector<Example>& examples() {
         {"escher_p6", "Escher P6: fish on a honeycomb", 38, more::escher_p6},
         {"escher_p4m", "Escher P4M: octopuses and little men", 43, more::escher_p4m},
         {"escher_p31m", "Escher P31M: triangles cut by feathered bends", 35, more::escher_p31m},
+        {"parquetry", "Parquetry: slats of a floor filling its outline", 20, domain::parquetry},
+        {"table", "Table: wood grain filling an oval table top", 45, domain::table},
+        {"bottle", "Bottle: bubbles filling a bottle", 11, domain::bottle},
+        {"teapot", "Teapot: dots of random sizes filling a teapot", 22, domain::teapot},
     };
     return all;
 }

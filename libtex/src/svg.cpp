@@ -3,6 +3,7 @@
 
 #include <tinyxml2.h>
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -12,6 +13,7 @@
 #include <sstream>
 
 #include "libtex/error.hpp"
+#include "libtex/merge.hpp"
 
 namespace tex {
 namespace {
@@ -344,6 +346,7 @@ void walk(const tinyxml2::XMLElement* e, const Affine& parent, const Flattener& 
         } else {
             continue;  // text, images and unknown elements carry no curves
         }
+        const char* face_label = e->Attribute("data-face-label");
         for (auto& [pts, closed] : subpaths) {
             if (pts.size() < 2) continue;
             Curve c;
@@ -351,6 +354,13 @@ void walk(const tinyxml2::XMLElement* e, const Affine& parent, const Flattener& 
             for (const auto& p : pts) c.points.push_back(m(p));
             c.closed = closed;
             if (label) c.labels.add(label);
+            // The face a closed curve encloses gets the label: the inside is on the left of
+            // a counter-clockwise ring (positive signed area), on the right otherwise.
+            if (face_label && closed && c.points.size() >= 3) {
+                const double area = signed_area(c.points);
+                if (area > 0) c.left.add(face_label);
+                else if (area < 0) c.right.add(face_label);
+            }
             ctx.out->curves.push_back(std::move(c));
         }
     }
@@ -407,17 +417,28 @@ Curves ImportSVG(const std::string& filename) {
 }
 
 std::string ToSVG(const Curves& c, double size, const SvgStyle& style) {
+    BBox view;
+    view.add(Point{0, 0});
+    view.add(Point{size, size});
+    return ToSVG(c, view, style);
+}
+
+std::string ToSVG(const Curves& c, const BBox& view, const SvgStyle& style) {
     std::string s;
     s.reserve(64 + c.curves.size() * 64);
     s += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
     s += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"";
-    append_number(s, size);
+    append_number(s, view.width());
     s += "\" height=\"";
-    append_number(s, size);
-    s += "\" viewBox=\"0 0 ";
-    append_number(s, size);
+    append_number(s, view.height());
+    s += "\" viewBox=\"";
+    append_number(s, view.xmin);
     s += " ";
-    append_number(s, size);
+    append_number(s, view.ymin);
+    s += " ";
+    append_number(s, view.width());
+    s += " ";
+    append_number(s, view.height());
     s += "\">\n";
     if (style.background) s += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
     s += "<g fill=\"none\" stroke=\"black\" stroke-width=\"";
@@ -440,28 +461,36 @@ std::string ToSVG(const Curves& c, double size, const SvgStyle& style) {
     return s;
 }
 
+namespace {
+
+// Writes text to filename atomically (a temporary file, then renamed); errors name op.
+void write_atomically(const std::string& text, const std::string& filename, const char* op) {
+    const std::string tmp = filename + ".tmp";
+    {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        if (!out) throw Error(op, "'" + filename + "': cannot write the file");
+        out << text;
+        out.flush();
+        if (!out) {
+            std::remove(tmp.c_str());
+            throw Error(op, "'" + filename + "': write failed");
+        }
+    }
+    if (std::rename(tmp.c_str(), filename.c_str()) != 0) {
+        std::remove(tmp.c_str());
+        throw Error(op, "'" + filename + "': cannot replace the file");
+    }
+}
+
+}  // namespace
+
 void ExportSVG(const Curves& c, double size, const std::string& filename, const SvgStyle& style) {
     if (!(size > 0) || !std::isfinite(size)) {
         std::ostringstream m;
         m << "size " << size << " is not a positive number";
         throw Error("ExportSVG", m.str());
     }
-    const std::string text = ToSVG(c, size, style);
-    const std::string tmp = filename + ".tmp";
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out) throw Error("ExportSVG", "'" + filename + "': cannot write the file");
-        out << text;
-        out.flush();
-        if (!out) {
-            std::remove(tmp.c_str());
-            throw Error("ExportSVG", "'" + filename + "': write failed");
-        }
-    }
-    if (std::rename(tmp.c_str(), filename.c_str()) != 0) {
-        std::remove(tmp.c_str());
-        throw Error("ExportSVG", "'" + filename + "': cannot replace the file");
-    }
+    write_atomically(ToSVG(c, size, style), filename, "ExportSVG");
 }
 
 Curves ExportSVG(const Arrangement& a, double size, const std::string& filename, const SvgStyle& style) {
@@ -472,6 +501,64 @@ Curves ExportSVG(const Arrangement& a, double size, const std::string& filename,
     }
     Curves c = a(Region::rectangle(0, 0, size, size));
     ExportSVG(c, size, filename, style);
+    return c;
+}
+
+Region FrameRegion(const Curves& frame, const std::string& op) {
+    std::vector<const std::vector<Point>*> rings;
+    for (const auto& c : frame.curves)
+        if (c.closed && c.points.size() >= 3 && signed_area(c.points) != 0.0) rings.push_back(&c.points);
+    if (rings.empty())
+        throw Error(op, "the frame" + (frame.origin.empty() ? std::string() : " '" + frame.origin + "'") +
+                            " has no closed curve with an area: it bounds no region");
+    std::size_t outer = 0;
+    for (std::size_t i = 1; i < rings.size(); ++i)
+        if (std::abs(signed_area(*rings[i])) > std::abs(signed_area(*rings[outer]))) outer = i;
+    std::vector<std::vector<Point>> holes;
+    for (std::size_t i = 0; i < rings.size(); ++i) {
+        if (i == outer) continue;
+        // A hole lies inside the outside: all of its points do.
+        for (const auto& p : *rings[i])
+            if (!point_in_ring(p, *rings[outer]))
+                throw Error(op, "a closed curve of the frame lies (partly) outside its largest one: "
+                                "a frame bounds one region, holes inside it");
+        holes.push_back(*rings[i]);
+    }
+    return Region(*rings[outer], std::move(holes), op);
+}
+
+Curves EvaluateInDomain(const Arrangement& a, const Curves& frame) {
+    const Region r = FrameRegion(frame, "ExportSVGinDomain");
+    const Curves texture = a(r);
+    Curves out = apply_mask(texture, r, CROP);
+    // Labelled points are cut too: those outside the region go.
+    out.points.erase(std::remove_if(out.points.begin(), out.points.end(),
+                                    [&](const LabeledPoint& p) { return !r.contains(p.point); }),
+                     out.points.end());
+    out.append(r.boundary());
+    return out;
+}
+
+Arrangement InDomain(Arrangement a, Curves frame) {
+    FrameRegion(frame, "InDomain");  // fail when the operator is applied, not when evaluated
+    return Arrangement([a = std::move(a), frame = std::move(frame)](const Region&) {
+        return EvaluateInDomain(a, frame);
+    });
+}
+
+Curves ExportSVGinDomain(const Arrangement& a, const Curves& frame, const std::string& filename,
+                         double margin, const SvgStyle& style) {
+    if (!(margin >= 0) || !std::isfinite(margin)) {
+        std::ostringstream m;
+        m << "margin " << margin << " is not a number >= 0";
+        throw Error("ExportSVGinDomain", m.str());
+    }
+    Curves c = EvaluateInDomain(a, frame);
+    const BBox b = FrameRegion(frame, "ExportSVGinDomain").bbox();
+    BBox view;
+    view.add(Point{b.xmin - margin, b.ymin - margin});
+    view.add(Point{b.xmax + margin, b.ymax + margin});
+    write_atomically(ToSVG(c, view, style), filename, "ExportSVGinDomain");
     return c;
 }
 

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -91,7 +92,7 @@ TEST_P(GalleryTest, SameBytesWithOneOrTwoThreadsAndAcrossRuns) {
     static const std::set<std::string> no_random = {"stripes", "grid", "teaser_c", "teaser_h", "combine_b",
                                                     "regular_a", "regular_b", "triangles", "bee_hive",
                                                     "wallpaper_p6", "wallpaper_p4m", "wallpaper_p31m", "escher_p6",
-                                                    "escher_p4m", "escher_p31m"};
+                                                    "escher_p4m", "escher_p31m", "parquetry"};
     if (!no_random.count(e.name)) {
         const std::uint64_t seed = GetSeed();
         SetSeed(seed + 7);
@@ -115,6 +116,8 @@ INSTANTIATE_TEST_SUITE_P(More, GalleryTest,
                                            "script_edit_c", "script_edit_d", "triangles", "bee_hive",
                                            "wallpaper_p6", "wallpaper_p4m", "wallpaper_p31m", "escher_p6",
                                            "escher_p4m", "escher_p31m"));
+INSTANTIATE_TEST_SUITE_P(Domain, GalleryTest,
+                         ::testing::Values("parquetry", "table", "bottle", "teapot"));
 
 TEST(Gallery, ExpectedStructure) {
     // Puzzle: a 16 x 16 grid in which every other vertical edge is removed row by row.
@@ -1329,4 +1332,141 @@ TEST(GalleryEscher, P31M_FeatheredBendsFromEveryCornerToTheCentroid) {
             EXPECT_LT(distance(p.front(), Location(IncidentVertices(faces[i])[k])), 1e-6);
             EXPECT_LT(distance(p.back(), Centroid(faces[i])), 1e-6);
         }
+}
+
+// ---- Filling an outline: Parquetry, Table, Bottle, Teapot ----
+//
+// Each drawing is its texture layer evaluated on the frame's region, cut to it, with the
+// frame's rings last; nothing lies outside the frame (or in a hole of it); the texture
+// reaches every part of the frame.
+
+#include "gallery_domain.hpp"
+
+namespace {
+
+namespace gd = gallery::domain;
+
+double distance_to_rings(const Point& p, const Region& r) {
+    double best = std::numeric_limits<double>::infinity();
+    auto ring = [&](const std::vector<Point>& pts) {
+        for (std::size_t i = 0, j = pts.size() - 1; i < pts.size(); j = i++) {
+            const Point a = pts[j], d = pts[i] - pts[j];
+            const double t = std::clamp(dot(p - a, d) / dot(d, d), 0.0, 1.0);
+            best = std::min(best, distance(p, a + d * t));
+        }
+    };
+    ring(r.outer());
+    for (const auto& h : r.holes()) ring(h);
+    return best;
+}
+
+// `reach`: every point of a 50 grid inside the frame (and 40 away from its outline) has a
+// texture curve within that distance.
+void check_filled_frame(const char* name, const char* frame_file, tex::Arrangement (*layer)(const std::string&),
+                        double reach) {
+    const Curves drawing = example(name);
+    const Curves frame = ImportSVG(elements() + "/" + frame_file);
+    const Region r = FrameRegion(frame);
+    // The layer cut to the frame, then the frame: exactly what the example draws.
+    Arrangement texture;
+    {
+        StreamScope fresh(0);
+        texture = layer(elements());
+    }
+    EXPECT_EQ(ToSVG(drawing, gallery::kSize), ToSVG(EvaluateInDomain(texture, frame), gallery::kSize)) << name;
+    const Curves rings = r.boundary();
+    ASSERT_GT(drawing.size(), rings.size() + 100) << name;
+    const std::size_t nt = drawing.size() - rings.size();
+    for (std::size_t k = 0; k < rings.size(); ++k) EXPECT_EQ(drawing.curves[nt + k].points, rings.curves[k].points);
+    // The frame lies in the 2000 window.
+    EXPECT_GE(r.bbox().xmin, 0);
+    EXPECT_GE(r.bbox().ymin, 0);
+    EXPECT_LE(r.bbox().xmax, gallery::kSize);
+    EXPECT_LE(r.bbox().ymax, gallery::kSize);
+    // Nothing outside: every point and every segment's midpoint inside (or on the outline).
+    std::size_t outside = 0;
+    for (std::size_t i = 0; i < nt; ++i) {
+        const auto& p = drawing.curves[i].points;
+        for (std::size_t k = 0; k < p.size(); ++k) {
+            const Point m = k + 1 < p.size() ? (p[k] + p[k + 1]) / 2 : p[k];
+            for (const Point& q : {p[k], m})
+                if (!r.contains(q) && distance_to_rings(q, r) > 1e-6) ++outside;
+        }
+    }
+    EXPECT_EQ(outside, 0u) << name;
+    // Filled: no empty spot inside the frame.
+    std::size_t probes = 0, empty = 0;
+    for (double x = r.bbox().xmin; x <= r.bbox().xmax; x += 50)
+        for (double y = r.bbox().ymin; y <= r.bbox().ymax; y += 50) {
+            const Point q{x, y};
+            if (!r.contains(q) || distance_to_rings(q, r) < 40) continue;
+            ++probes;
+            bool hit = false;
+            for (std::size_t i = 0; i < nt && !hit; ++i) {
+                const auto& p = drawing.curves[i].points;
+                const std::size_t ns = drawing.curves[i].closed ? p.size() : p.size() - 1;
+                for (std::size_t k = 0; k < ns && !hit; ++k) {
+                    const Point a = p[k], b = p[(k + 1) % p.size()];
+                    if (std::min(a.x, b.x) > q.x + reach || std::max(a.x, b.x) < q.x - reach ||
+                        std::min(a.y, b.y) > q.y + reach || std::max(a.y, b.y) < q.y - reach)
+                        continue;
+                    const Point d = b - a;
+                    const double dd = dot(d, d);
+                    const double t = dd > 0 ? std::clamp(dot(q - a, d) / dd, 0.0, 1.0) : 0.0;
+                    hit = distance(q, a + d * t) <= reach;
+                }
+            }
+            if (!hit) ++empty;
+        }
+    EXPECT_GT(probes, 100u) << name;
+    EXPECT_EQ(empty, 0u) << name << ": spots inside the frame with no texture within " << reach;
+}
+
+}  // namespace
+
+TEST(GalleryDomain, ParquetryFillsTheFloorWithSlats) {
+    // Gap strips 60 apart, every other one cut where the slats meet: 120 between lines.
+    check_filled_frame("parquetry", gd::kParquetryFrame, [](const std::string&) { return gd::parquet_slats(); },
+                       70);
+    // The slat rules drop edges between bounded faces only, and some of them.
+    const Region r = FrameRegion(ImportSVG(elements() + "/" + gd::kParquetryFrame));
+    const MapPtr grid = gd::parquet_grid().induce(r);
+    std::size_t dropped = 0;
+    for (std::size_t i = 0; i < grid->edges().size(); ++i) {
+        const Edge e(grid, int(i));
+        if (!gd::parquet_joint(e)) continue;
+        ++dropped;
+        EXPECT_FALSE(record(LeftFace(e)).unbounded || record(RightFace(e)).unbounded);
+    }
+    EXPECT_GT(dropped, grid->edges().size() / 10);
+    EXPECT_EQ(gd::parquet_slats()(r).size(), grid->edges().size() - dropped);
+}
+
+TEST(GalleryDomain, TableGrainFillsTheTableTop) {
+    check_filled_frame("table", gd::kTableFrame, gd::table_grain, 120);
+}
+
+TEST(GalleryDomain, BottleBubblesFillTheBottle) {
+    check_filled_frame("bottle", gd::kBottleFrame, gd::bottle_bubbles, 60);
+}
+
+TEST(GalleryDomain, TeapotDotsFillTheTeapotAndItsHandleStaysOpen) {
+    check_filled_frame("teapot", gd::kTeapotFrame, gd::teapot_dots, 70);
+    const Region r = FrameRegion(ImportSVG(elements() + "/" + gd::kTeapotFrame));
+    EXPECT_EQ(r.holes().size(), 1u);  // the handle's opening
+    // Before the cut: one ring per cell, of diameter 360 times a factor in [0.05, 0.15).
+    Arrangement dots;
+    {
+        StreamScope fresh(0);
+        dots = gd::teapot_dots(elements());
+    }
+    const Curves c = dots(r);
+    ASSERT_GT(c.size(), 100u);
+    for (const auto& cv : c.curves) {
+        EXPECT_TRUE(cv.closed);
+        BBox b;
+        for (const auto& p : cv.points) b.add(p);
+        EXPECT_GE(b.width(), 360 * 0.05 - 1e-6);
+        EXPECT_LT(b.width(), 360 * 0.15 + 1e-6);
+    }
 }

@@ -1,6 +1,7 @@
 // ImportSVG / ExportSVG (table 3.6).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -81,4 +82,150 @@ TEST(ExportSVG, DeterministicAtomicOutput) {
     EXPECT_EQ(ImportSVG(path).curves.size(), a(Region::rectangle(0, 0, 500, 500)).curves.size());
     EXPECT_TEX_ERROR(ExportSVG(a, 500, (dir / "missing_dir" / "x.svg").string()), "ExportSVG", "cannot write");
     std::filesystem::remove_all(dir);
+}
+
+namespace {
+
+// A 300 x 300 square frame with a 100 x 100 square hole, drawn as an SVG would be.
+Curves square_frame_with_hole() {
+    return ParseSVG(R"svg(<svg><rect x="100" y="100" width="300" height="300"/>
+        <rect x="200" y="200" width="100" height="100"/>
+        <line x1="0" y1="0" x2="50" y2="50"/></svg>)svg", "frame.svg");
+}
+
+bool near_boundary(const Point& p, const Region& r, double eps) {
+    auto near_ring = [&](const std::vector<Point>& ring) {
+        for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+            const Point a = ring[j], b = ring[i], d = b - a;
+            const double t = std::clamp(dot(p - a, d) / dot(d, d), 0.0, 1.0);
+            if (distance(p, a + d * t) <= eps) return true;
+        }
+        return false;
+    };
+    if (near_ring(r.outer())) return true;
+    for (const auto& h : r.holes())
+        if (near_ring(h)) return true;
+    return false;
+}
+
+}  // namespace
+
+TEST(ExportSVGinDomain, FrameRegionTakesTheLargestRingAndItsHoles) {
+    const Region r = FrameRegion(square_frame_with_hole());
+    EXPECT_DOUBLE_EQ(r.area(), 300.0 * 300 - 100.0 * 100);
+    EXPECT_EQ(r.holes().size(), 1u);
+    EXPECT_TRUE(r.contains({150, 150}));
+    EXPECT_FALSE(r.contains({250, 250}));
+    EXPECT_FALSE(r.contains({50, 50}));
+}
+
+TEST(ExportSVGinDomain, CutsToTheFrameAndDrawsIt) {
+    const Curves frame = square_frame_with_hole();
+    const Region r = FrameRegion(frame);
+    const Arrangement a = GridPartition(StripesProperties(0.3, 17), StripesProperties(1.9, 23), KEEP_OUTSIDE);
+    const Curves c = EvaluateInDomain(a, frame);
+    // The frame's two rings come last, as the region's boundary.
+    ASSERT_GE(c.curves.size(), 3u);
+    const Curves rings = r.boundary();
+    for (std::size_t k = 0; k < 2; ++k) {
+        const Curve& got = c.curves[c.curves.size() - 2 + k];
+        EXPECT_TRUE(got.closed);
+        EXPECT_EQ(got.points, rings.curves[k].points);
+    }
+    // Nothing lies outside the frame or in its hole: every point and every segment's
+    // midpoint is inside the region (or on its boundary, up to rounding).
+    BBox texture_box;
+    for (std::size_t i = 0; i + 2 < c.curves.size(); ++i) {
+        const auto& pts = c.curves[i].points;
+        for (std::size_t k = 0; k < pts.size(); ++k) {
+            texture_box.add(pts[k]);
+            EXPECT_TRUE(r.contains(pts[k]) || near_boundary(pts[k], r, 1e-6)) << pts[k].x << "," << pts[k].y;
+            if (k + 1 < pts.size()) {
+                const Point m = (pts[k] + pts[k + 1]) / 2;
+                EXPECT_TRUE(r.contains(m) || near_boundary(m, r, 1e-6)) << m.x << "," << m.y;
+            }
+        }
+    }
+    // The texture fills the frame: its pieces reach the frame on every side.
+    EXPECT_NEAR(texture_box.xmin, 100, 1e-6);
+    EXPECT_NEAR(texture_box.ymin, 100, 1e-6);
+    EXPECT_NEAR(texture_box.xmax, 400, 1e-6);
+    EXPECT_NEAR(texture_box.ymax, 400, 1e-6);
+}
+
+TEST(ExportSVGinDomain, InDomainIgnoresTheWindowAndMergeIsUnion) {
+    const Curves frame = square_frame_with_hole();
+    const Arrangement a = GridPartition(StripesProperties(0.3, 17), StripesProperties(1.9, 23), KEEP_OUTSIDE);
+    const std::string expected = ToSVG(EvaluateInDomain(a, frame), 500);
+    EXPECT_EQ(ToSVG(InDomain(a, frame)(Region::rectangle(0, 0, 500, 500)), 500), expected);
+    EXPECT_EQ(ToSVG(InDomain(a, frame)(Region::rectangle(300, 300, 310, 310)), 500), expected);
+    const Arrangement b = StripesPartition(StripesProperties(1.0, 40));
+    const Region w = Region::rectangle(0, 0, 500, 500);
+    EXPECT_EQ(ToSVG(Merge(a, b)(w), 500), ToSVG(Union(a, b)(w), 500));
+}
+
+TEST(ExportSVGinDomain, WritesTheFilledFrameWithAViewBoxAroundIt) {
+    const auto dir = std::filesystem::temp_directory_path() / "libtex_svg_domain_test";
+    std::filesystem::create_directories(dir);
+    const std::string path = (dir / "filled.svg").string();
+    const Curves frame = square_frame_with_hole();
+    const Arrangement a = GridPartition(StripesProperties(0.3, 17), StripesProperties(1.9, 23), KEEP_OUTSIDE);
+    const Curves written = ExportSVGinDomain(a, frame, path, 10);
+    std::ifstream in(path);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    BBox view;
+    view.add(Point{90, 90});
+    view.add(Point{410, 410});
+    EXPECT_EQ(text, ToSVG(written, view));
+    EXPECT_NE(text.find("width=\"320\" height=\"320\" viewBox=\"90 90 320 320\""), std::string::npos);
+    EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
+    EXPECT_EQ(ToSVG(written, 500), ToSVG(EvaluateInDomain(a, frame), 500));
+    EXPECT_TEX_ERROR(ExportSVGinDomain(a, frame, path, -1), "ExportSVGinDomain", "margin");
+    std::filesystem::remove_all(dir);
+}
+
+TEST(ExportSVGinDomain, AFrameWithoutAClosedCurveIsAnError) {
+    const Arrangement a = StripesPartition(StripesProperties(0.0, 20));
+    const Curves open = ParseSVG("<svg><path d='M0,0 L100,0 L100,100'/></svg>", "open.svg");
+    EXPECT_TEX_ERROR(EvaluateInDomain(a, open), "ExportSVGinDomain", "'open.svg' has no closed curve");
+    EXPECT_TEX_ERROR(ExportSVGinDomain(a, open, "/tmp/never_written.svg"), "ExportSVGinDomain", "no closed curve");
+    EXPECT_TEX_ERROR(InDomain(a, open), "InDomain", "no closed curve");
+    EXPECT_FALSE(std::filesystem::exists("/tmp/never_written.svg"));
+    // A closed curve outside the largest one: a frame bounds one region.
+    const Curves two = ParseSVG("<svg><rect x='0' y='0' width='100' height='100'/>"
+                                "<rect x='200' y='0' width='50' height='50'/></svg>", "two.svg");
+    EXPECT_TEX_ERROR(EvaluateInDomain(a, two), "ExportSVGinDomain", "outside its largest one");
+}
+
+TEST(ImportSVG, FaceLabelsGoOnTheInsideOfClosedCurves) {
+    // A rect (drawn clockwise on screen), the same polygon run the other way, a mirrored
+    // circle, and an open path whose face label is ignored.
+    const Curves c = ParseSVG(R"svg(<svg>
+        <rect x="0" y="0" width="100" height="100" data-face-label="ship"/>
+        <polygon points="300,0 300,100 200,100 200,0" data-face-label="ship"/>
+        <g transform="scale(-1,1)"><circle cx="-450" cy="50" r="40" data-face-label="chip"/></g>
+        <path d="M0,300 L100,300 L100,400" data-face-label="wire"/>
+        </svg>)svg");
+    ASSERT_EQ(c.curves.size(), 4u);
+    EXPECT_TRUE(c.curves[3].left.empty() && c.curves[3].right.empty());
+    const MapPtr m = PlanarMap::induce(c);
+    int ships = 0, chips = 0;
+    for (std::size_t i = 0; i < m->faces().size(); ++i) {
+        const Face f(m, int(i));
+        if (m->faces()[i].unbounded) {
+            EXPECT_FALSE(HasLabel(f, "ship") || HasLabel(f, "chip") || HasLabel(f, "wire"));
+            continue;
+        }
+        const Point p = Centroid(f);
+        if (HasLabel(f, "ship")) {
+            ++ships;
+            EXPECT_LT(p.x, 300);
+        }
+        if (HasLabel(f, "chip")) {
+            ++chips;
+            EXPECT_NEAR(p.x, 450, 1);
+        }
+    }
+    EXPECT_EQ(ships, 2);
+    EXPECT_EQ(chips, 1);
 }

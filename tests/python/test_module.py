@@ -20,8 +20,8 @@ CROP CROP_ADD_BOUNDARY KEEP_INSIDE KEEP_OUTSIDE
 MapToVertices MapToEdges MapToFaces
 IncidentFaces IncidentEdges IncidentVertices SourceVertex TargetVertex LeftFace RightFace MatchFace
 Location LocationAt Centroid Contour ToCurve HasLabel IsBoundary Random
-Union Inside Outside
-ImportSVG ExportSVG Nothing Append BBoxWidth BBoxHeight BBoxCenter Scale Rotate Translate MatchPoint MatchPoints
+Union Merge Inside Outside
+ImportSVG ExportSVG ExportSVGinDomain Nothing Append BBoxWidth BBoxHeight BBoxCenter Scale Rotate Translate MatchPoint MatchPoints
 PointLabeled CurveLabeled Point pi cos sin SetSeed SetThreads
 """.split()
 
@@ -345,3 +345,47 @@ def test_partitions_built_in_python_mappers_take_their_stream_from_the_cell():
 
     MapToFaces(one, grid)(BOX)
     assert len(seen) == 16
+
+
+FRAME_SVG = """<svg><rect x="100" y="100" width="300" height="300"/>
+<rect x="200" y="200" width="100" height="100"/></svg>"""
+
+
+def test_export_svg_in_domain_fills_the_frame(tmp_path):
+    SetSeed(0)
+    frame = ParseSVG(FRAME_SVG, "frame.svg")
+    region = FrameRegion(frame)
+    assert len(region.holes) == 1
+    a = GridPartition(StripesProperties(0.3, 17), StripesProperties(1.9, 23), KEEP_OUTSIDE)
+    path = tmp_path / "filled.svg"
+    c = ExportSVGinDomain(a, frame, str(path), margin=10)
+    text = path.read_text()
+    assert 'viewBox="90 90 320 320"' in text
+    assert not (tmp_path / "filled.svg.tmp").exists()
+    # The same curves in memory, and as an arrangement that ignores its window.
+    assert ToSVG(c, 500) == ToSVG(EvaluateInDomain(a, frame), 500)
+    assert ToSVG(InDomain(a, frame)(BOX), 500) == ToSVG(c, 500)
+    # Nothing outside the frame (up to the outline), the frame's two rings drawn last.
+    for cv in c.curves[:-2]:
+        for p in cv.points:
+            assert 100 - 1e-6 <= p.x <= 400 + 1e-6 and 100 - 1e-6 <= p.y <= 400 + 1e-6
+            assert not (200 + 1e-6 < p.x < 300 - 1e-6 and 200 + 1e-6 < p.y < 300 - 1e-6)
+    assert [cv.closed for cv in c.curves[-2:]] == [True, True]
+    assert ToSVG(Merge(a, a)(BOX), 1000) == ToSVG(Union(a, a)(BOX), 1000)
+
+
+def test_export_svg_in_domain_needs_a_closed_curve(tmp_path):
+    a = StripesPartition(StripesProperties(0.0, 20))
+    open_frame = Polyline([Point(0, 0), Point(100, 0), Point(100, 100)])
+    with pytest.raises(TexError, match="ExportSVGinDomain.*no closed curve"):
+        ExportSVGinDomain(a, open_frame, str(tmp_path / "x.svg"))
+    assert not (tmp_path / "x.svg").exists()
+
+
+def test_faces_know_whether_they_are_bounded():
+    m = PlanarMap.induce(Polyline([Point(0, 0), Point(10, 0), Point(10, 10)], True))
+    inner = m.faces()
+    assert len(inner) == 1 and inner[0].is_bounded_face()
+    assert not m.unbounded_face().is_bounded_face()
+    e = m.edges()[0]
+    assert {LeftFace(e).is_bounded_face(), RightFace(e).is_bounded_face()} == {True, False}

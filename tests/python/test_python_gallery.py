@@ -21,6 +21,8 @@ FAMILIES = {
     "script_edition": ["script_edit_a", "script_edit_b", "script_edit_c", "script_edit_d"],
     "tilings": ["triangles", "bee_hive", "wallpaper_p6", "wallpaper_p4m", "wallpaper_p31m", "escher_p6", "escher_p4m",
                 "escher_p31m"],
+    # Textures filling an outline (ExportSVGinDomain).
+    "domain": ["parquetry", "table", "bottle", "teapot"],
 }
 
 

@@ -8,6 +8,8 @@ namespace tex {
 
 // All the curves of a1 and a2.
 Arrangement Union(Arrangement a1, Arrangement a2);
+// Union under its name in the thesis's Chapter 4 (the Microprocessor script uses both).
+inline Arrangement Merge(Arrangement a1, Arrangement a2) { return Union(std::move(a1), std::move(a2)); }
 // Edges of a1 inside the bounded faces of a2. CROP cuts a1's curves along a2's face
 // boundaries; CROP_ADD_BOUNDARY also adds those boundaries; KEEP_INSIDE keeps the edges of
 // a1's planar map lying entirely inside; KEEP_OUTSIDE keeps those that meet the inside.

@@ -12,8 +12,10 @@ namespace tex {
 // element transforms applied. A circle or ellipse carrying a `data-label` or
 // `inkscape:label` attribute is a labelled point (its centre), not geometry: this is how
 // an element marks its "start" and "end". Other elements with such a label are labelled
-// curves (CurveLabeled). Throws tex::Error naming the file when it is missing, does not
-// parse or holds no curve.
+// curves (CurveLabeled). A `data-face-label` attribute labels the inside of the element's
+// closed curves (it goes on the side of each closed curve the enclosed face lies on, so the
+// face a planar map induces inside gets it; open curves ignore it). Throws tex::Error
+// naming the file when it is missing, does not parse or holds no curve.
 Curves ImportSVG(const std::string& filename);
 // Same, from SVG text (origin names the source in messages).
 Curves ParseSVG(const std::string& text, const std::string& origin = "<svg text>");
@@ -25,11 +27,38 @@ struct SvgStyle {
 
 // SVG text of curves drawn in a size x size window (viewBox 0 0 size size).
 std::string ToSVG(const Curves& c, double size, const SvgStyle& style = {});
+// SVG text of curves drawn in the window `view` (viewBox xmin ymin width height, the
+// drawing as large as the window). ToSVG(c, size) is ToSVG(c, {0, 0, size, size}).
+std::string ToSVG(const Curves& c, const BBox& view, const SvgStyle& style = {});
 // Evaluates a on the square [0, size]^2 and writes it to `filename` (atomically: written to
 // a temporary file, then renamed). Returns the curves written.
 Curves ExportSVG(const Arrangement& a, double size, const std::string& filename,
                  const SvgStyle& style = {});
 void ExportSVG(const Curves& c, double size, const std::string& filename,
                const SvgStyle& style = {});
+
+// ---- Filling an outline (the thesis's ExportSVGinDomain(arrangement, frame)) ----
+//
+// The region a frame bounds: of the frame's closed curves, the one enclosing the largest
+// area is the outside and the closed curves lying inside it are holes (one level: an
+// island in a hole is not supported). Open curves and labelled points of the frame play no
+// part. Throws tex::Error naming `op` when the frame has no closed curve with an area, or
+// when a closed curve lies outside the largest one (a region is one piece).
+Region FrameRegion(const Curves& frame, const std::string& op = "FrameRegion");
+// The arrangement evaluated on the frame's region, its curves cut to that region (CROP:
+// what lies outside the frame is cut off) and the frame's outline (the region's rings,
+// inside on the left) appended last. Labelled points outside the region are dropped.
+Curves EvaluateInDomain(const Arrangement& a, const Curves& frame);
+// An arrangement that ignores the region it is evaluated on and returns
+// EvaluateInDomain(a, frame): the filled frame as an arrangement, to combine or export in
+// a fixed window like any other.
+Arrangement InDomain(Arrangement a, Curves frame);
+// Evaluates a in the frame (EvaluateInDomain) and writes it to `filename` (atomically, as
+// ExportSVG) with a viewBox covering the frame's bounding box grown by `margin` on every
+// side (the SVG's width and height are the viewBox's). Returns the curves written. Throws
+// tex::Error naming ExportSVGinDomain when the frame bounds no region or margin is
+// negative or not finite.
+Curves ExportSVGinDomain(const Arrangement& a, const Curves& frame, const std::string& filename,
+                         double margin = 10, const SvgStyle& style = {});
 
 }  // namespace tex
