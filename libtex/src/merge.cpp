@@ -347,8 +347,26 @@ Curves mask_core(const Curves& subject, const Curves& mask, MaskSide side, Borde
                 continue;
             }
             if (!keep && on_mask && b == Border::CROP_ADD_BOUNDARY) keep = mask_bounded;
-            if (keep) loose.curves.push_back(strip(jm->edge_curve(int(ei))));
+            if (!keep) continue;
+            // The labels of the piece's own side: the subject's for a piece of it (lying on
+            // the mask or not), the mask's for a piece of the mask's boundary alone.
+            Curve c = jm->edge_curve(int(ei));
+            c.labels = Labels{};
+            c.left = Labels{};
+            c.right = Labels{};
+            for (const auto& src_ref : e.sources) {
+                if ((src_ref.curve < n_subject) != on_subject) continue;
+                const Curve& from = joint.curves[src_ref.curve];
+                c.labels.merge(from.labels);
+                c.left.merge(src_ref.forward ? from.left : from.right);
+                c.right.merge(src_ref.forward ? from.right : from.left);
+            }
+            loose.curves.push_back(strip(std::move(c)));
         }
+    if (jm && b == Border::CROP_ADD_BOUNDARY)  // the boundaries that met no subject curve
+        for (std::size_t m = 0; m < mask.curves.size(); ++m)
+            if (!included[m] && (mask.curves[m].left.has(in) || mask.curves[m].right.has(in)))
+                loose.curves.push_back(strip(mask.curves[m]));
     for (std::size_t i = 0; i < src.curves.size(); ++i)
         if (!pieces[i].empty()) stitch(pieces[i], src.curves[i], grid, out);
     for (auto& c : loose.curves) out.curves.push_back(std::move(c));
@@ -368,8 +386,8 @@ Curves apply_mask(const Curves& subject, const PlanarMap& mask_map, MaskSide sid
         const bool left_in = !mask_map.faces()[e.left].unbounded;
         const bool right_in = !mask_map.faces()[e.right].unbounded;
         if (!left_in && !right_in) continue;  // a dangling edge in the unbounded face
-        Curve c;
-        c.points = e.points;
+        // The mask's own labels ride along, for the boundaries CROP_ADD_BOUNDARY adds.
+        Curve c = mask_map.edge_curve(int(&e - mask_map.edges().data()));
         if (left_in) c.left.add(in);
         if (right_in) c.right.add(in);
         mask.curves.push_back(std::move(c));

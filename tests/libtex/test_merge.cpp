@@ -193,3 +193,29 @@ TEST(MergeMask, CropKeepsCurvesWholeBetweenCuts) {
     EXPECT_NEAR(in.curves[0].points.back().x, 10, 1e-12);
     EXPECT_EQ(Outside(Constant(c), square(), CROP)(kAny).curves.size(), 2u);
 }
+
+TEST(MergeMask, CropAddBoundaryAddsEveryMaskBoundaryWithItsLabels) {
+    // A2: two squares apart, labelled "ship" inside; A1 crosses only the first. Every
+    // boundary of A2's faces is added, and carries A2's face labels, so that the faces the
+    // result induces inside A2 are "ship" faces again (thesis 3.2: labels live on curves).
+    Curves a2 = Polyline({{0, 0}, {10, 0}, {10, 10}, {0, 10}}, true);
+    a2.append(Polyline({{20, 0}, {30, 0}, {30, 10}, {20, 10}}, true));
+    for (auto& c : a2.curves) c.left = Labels{"ship"};
+    const Curves a1 = Polyline({{-5, 5}, {5, 5}});
+    for (const Border b : {CROP_ADD_BOUNDARY}) {
+        const Curves in = Inside(Constant(a1), Constant(a2), b)(kAny);
+        EXPECT_NEAR(th::length(in), 5 + 40 + 40, 1e-12);
+        const MapPtr m = PlanarMap::induce(in);
+        std::size_t ships = 0;
+        for (const auto& f : m->faces()) ships += f.labels.has("ship");
+        EXPECT_EQ(ships, 2u);  // A1 ends inside the first square: it does not split it
+    }
+    const Curves out = Outside(Constant(a1), Constant(a2), CROP_ADD_BOUNDARY)(kAny);
+    EXPECT_NEAR(th::length(out), 5 + 40 + 40, 1e-12);
+    const MapPtr m = PlanarMap::induce(out);
+    std::size_t ships = 0;
+    for (const auto& f : m->faces()) ships += f.labels.has("ship");
+    EXPECT_EQ(ships, 2u);
+    // A1's own pieces keep their labels only (none here), not A2's.
+    for (const auto& c : Inside(Constant(a1), Constant(a2), CROP)(kAny).curves) EXPECT_FALSE(c.left.has("ship"));
+}
