@@ -14,7 +14,7 @@ import tempfile
 
 from PIL import Image, ImageDraw
 
-TILE, LABEL, GAP, COLS = 260, 18, 8, 8
+TILE, LABEL, GAP, COLS = 200, 16, 6, 9
 
 
 def main():
