@@ -2,8 +2,10 @@
 //
 // A mask is the set of boundaries of the bounded faces of a planar map (or a region's
 // rings). Subject curves that meet none of its segments lie in one of its faces: they are
-// kept or dropped whole after one exact point location (segment_index.hpp). The others are
-// inserted, with the mask boundaries, into one exact planar map. The mask boundaries carry
+// kept or dropped whole after one exact point location (segment_index.hpp). Of the others,
+// only the stretches that meet the mask are inserted, with the pieces of the mask boundary
+// they touch, into one exact planar map; the kept pieces of each curve are then joined
+// again where the mask does not cut them. The mask boundaries carry
 // a reserved marker label on the side of the mask's bounded faces, so each face of that
 // joint map knows whether it lies inside as soon as one mask edge bounds it; the other
 // faces (bounded only by subject curves) inherit the status of their neighbours, since

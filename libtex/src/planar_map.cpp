@@ -111,19 +111,9 @@ void build_with_cgal(const Curves& input, RawGraph& g) {
     using Traits = typename Types::Traits;
     using Arr = typename Types::Arr;
     std::vector<typename Traits::Curve_2> segs;
-    for (std::uint32_t ci = 0; ci < input.curves.size(); ++ci) {
-        const Curve& c = input.curves[ci];
-        const std::size_t n = c.points.size();
-        if (n < 2) continue;
-        const std::size_t nseg = c.closed ? n : n - 1;
-        for (std::size_t i = 0; i < nseg; ++i) {
-            const Point& a = c.points[i];
-            const Point& b = c.points[(i + 1) % n];
-            if (a == b || !std::isfinite(a.x) || !std::isfinite(a.y) || !std::isfinite(b.x) || !std::isfinite(b.y))
-                continue;
-            const std::uint32_t d = (ci << 1) | (left_to_right(a, b) ? 1u : 0u);
-            segs.emplace_back(KSegment(KPoint(a.x, a.y), KPoint(b.x, b.y)), d);
-        }
+    for (const detail::Seg& s : detail::curve_segments(input)) {
+        const std::uint32_t d = (s.owner << 1) | (left_to_right(s.a, s.b) ? 1u : 0u);
+        segs.emplace_back(KSegment(KPoint(s.a.x, s.a.y), KPoint(s.b.x, s.b.y)), d);
     }
     Arr arr;
     CGAL::insert(arr, segs.begin(), segs.end());
