@@ -73,11 +73,18 @@ std::uint32_t KeyedRng::poisson(double mean) {
     return k;
 }
 
-
 namespace detail {
 
 StreamState capture_stream_state() {
     return {t_stream.active, t_stream.key, t_stream.counter, t_stream.stream_key, t_stream.stream_count};
+}
+
+void restore_stream_state(const StreamState& s) {
+    t_stream.active = s.active;
+    t_stream.key = s.key;
+    t_stream.counter = s.counter;
+    t_stream.stream_key = s.stream_key;
+    t_stream.stream_count = s.stream_count;
 }
 
 ItemScope::ItemScope(const StreamState& parent, std::size_t i) : saved_(capture_stream_state()) {
@@ -89,22 +96,11 @@ ItemScope::ItemScope(const StreamState& parent, std::size_t i) : saved_(capture_
     t_stream.counter = 0;
 }
 
-ItemScope::~ItemScope() {
-    t_stream.active = saved_.active;
-    t_stream.key = saved_.key;
-    t_stream.counter = saved_.counter;
-    t_stream.stream_key = saved_.stream_key;
-    t_stream.stream_count = saved_.stream_count;
-}
+ItemScope::~ItemScope() { restore_stream_state(saved_); }
 
 }  // namespace detail
 
-RandomScope::RandomScope(std::uint64_t key)
-    : saved_key_(t_stream.key),
-      saved_counter_(t_stream.counter),
-      saved_active_(t_stream.active),
-      saved_stream_key_(t_stream.stream_key),
-      saved_stream_count_(t_stream.stream_count) {
+RandomScope::RandomScope(std::uint64_t key) : saved_(detail::capture_stream_state()) {
     t_stream.active = true;
     t_stream.key = key;
     t_stream.counter = 0;
@@ -112,13 +108,7 @@ RandomScope::RandomScope(std::uint64_t key)
     t_stream.stream_count = 0;
 }
 
-RandomScope::~RandomScope() {
-    t_stream.active = saved_active_;
-    t_stream.key = saved_key_;
-    t_stream.counter = saved_counter_;
-    t_stream.stream_key = saved_stream_key_;
-    t_stream.stream_count = saved_stream_count_;
-}
+RandomScope::~RandomScope() { detail::restore_stream_state(saved_); }
 
 double Random(double min, double max) {
     std::uint64_t h;

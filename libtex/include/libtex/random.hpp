@@ -50,6 +50,27 @@ private:
     std::uint64_t counter_ = 0;
 };
 
+namespace detail {
+// The random state of a thread, captured by parallel_for in the calling thread and derived
+// for each work item (ItemScope), whatever thread runs it.
+struct StreamState {
+    bool active;
+    std::uint64_t key, counter, stream_key, stream_count;
+};
+StreamState capture_stream_state();
+void restore_stream_state(const StreamState& s);
+class ItemScope {
+public:
+    ItemScope(const StreamState& parent, std::size_t i);
+    ~ItemScope();
+    ItemScope(const ItemScope&) = delete;
+    ItemScope& operator=(const ItemScope&) = delete;
+
+private:
+    StreamState saved_;
+};
+}  // namespace detail
+
 // Scope that binds the unkeyed Random(min, max) of the current thread to a cell key, so
 // that a mapper calling Random(min, max) gets the same values whatever thread runs it;
 // streams created inside it are numbered under the same key.
@@ -61,11 +82,7 @@ public:
     RandomScope& operator=(const RandomScope&) = delete;
 
 private:
-    std::uint64_t saved_key_;
-    std::uint64_t saved_counter_;
-    bool saved_active_;
-    std::uint64_t saved_stream_key_;
-    std::uint64_t saved_stream_count_;
+    detail::StreamState saved_;
 };
 
 // Random value in [min, max): inside a mapper it is keyed by the visited cell and the
@@ -106,24 +123,6 @@ private:
     std::uint64_t saved_count_;
 };
 
-namespace detail {
-// The random state of a thread, captured by parallel_for in the calling thread and derived
-// for each work item (ItemScope), whatever thread runs it.
-struct StreamState {
-    bool active;
-    std::uint64_t key, counter, stream_key, stream_count;
-};
-StreamState capture_stream_state();
-class ItemScope {
-public:
-    ItemScope(const StreamState& parent, std::size_t i);
-    ~ItemScope();
-    ItemScope(const ItemScope&) = delete;
-    ItemScope& operator=(const ItemScope&) = delete;
 
-private:
-    StreamState saved_;
-};
-}  // namespace detail
 
 }  // namespace tex
