@@ -885,6 +885,56 @@ def teapot(elements):
     return InDomain(MapToFaces(face_to_ring, part), load(elements, "teapot_outline.svg"))
 
 
+# ---- Microprocessor: traces, chips and solder joints ----
+
+MP_STEP = 50.0
+# The thesis's densities, thinned out 100 times (at its values every grid point of the
+# window would get nearly every trace); the density index of each of the twelve traces.
+MP_DENSITIES = [0.002, 0.00175, 0.00125, 0.00225, 0.001]
+MP_THINNING = 100.0
+MP_TRACE_DENSITY = [0, 0, 1, 0, 1, 1, 2, 1, 0, 3, 3, 4]
+
+
+def mp_snap(p):
+    return Point(MP_STEP * math.floor(p.x / MP_STEP), MP_STEP * math.floor(p.y / MP_STEP))
+
+
+def microprocessor(elements):
+    def trace_layer(i):
+        trace = load(elements, "mp_net%d.svg" % i)
+        start = PointLabeled(trace, "start")
+        density = MP_DENSITIES[MP_TRACE_DENSITY[i - 1]] / MP_THINNING
+        return MapToFaces(lambda f: MatchPoint(trace, start, mp_snap(Centroid(f))),
+                          RandomPartition(IrregularProperties(density), KEEP_OUTSIDE))
+
+    level1 = trace_layer(1)
+    for i in range(2, 13):
+        level1 = Merge(level1, trace_layer(i))
+
+    kinds = [load(elements, "mp_ship%d.svg" % k) for k in range(1, 7)]
+
+    def face_to_chip(f):
+        k = min(len(kinds) - 1, int(math.floor(Random(f, 0.0, float(len(kinds)), 0))))
+        s = 1 + math.floor(Random(f, 0.0, 4.0, 1))  # the thesis: floor(Random(f, 0, 4, 0)), 0 for no chip
+        chip = Scale(kinds[k], s)
+        return MatchPoint(chip, BBoxCenter(chip), mp_snap(Centroid(f)))
+
+    level2 = MapToFaces(face_to_chip, UniformPartition(IrregularProperties(8.0 / (2000.0 * 2000.0)), KEEP_OUTSIDE))
+
+    connector = load(elements, "mp_connector.svg")
+    joint = load(elements, "mp_joint.svg")
+
+    def pads(v):
+        if len(IncidentEdges(v)) == 3 and HasLabel(IncidentFaces(v), "ship"):
+            return MatchPoint(connector, BBoxCenter(connector), Location(v))
+        if len(IncidentEdges(v)) == 1:
+            return MatchPoint(joint, BBoxCenter(joint), Location(v))
+        return Nothing()
+
+    board = Outside(level1, level2, CROP_ADD_BOUNDARY)
+    return Outside(board, MapToVertices(pads, board), CROP_ADD_BOUNDARY)
+
+
 EXAMPLES = {
     "stripes": stripes, "grid": grid, "uniform": uniform, "random": random_, "puzzle": puzzle,
     "rosettes": rosettes, "cracks": cracks, "bimodal": bimodal, "crosses": crosses, "curves": curves,
@@ -901,6 +951,7 @@ EXAMPLES = {
     "triangles": triangles, "bee_hive": bee_hive, "wallpaper_p6": wallpaper_p6, "wallpaper_p4m": wallpaper_p4m,
     "wallpaper_p31m": wallpaper_p31m, "escher_p6": escher_p6, "escher_p4m": escher_p4m, "escher_p31m": escher_p31m,
     "parquetry": parquetry, "table": table, "bottle": bottle, "teapot": teapot,
+    "microprocessor": microprocessor,
 }
 
 

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "gallery_domain.hpp"
+#include "gallery_micro.hpp"
 #include "gallery_more.hpp"
 #include "gallery_teasers.hpp"
 
@@ -303,6 +304,7 @@ const std::vector<Example>& examples() {
         {"table", "Table: wood grain filling an oval table top", 45, domain::table},
         {"bottle", "Bottle: bubbles filling a bottle", 11, domain::bottle},
         {"teapot", "Teapot: dots of random sizes filling a teapot", 22, domain::teapot},
+        {"microprocessor", "Microprocessor: traces, chips and solder joints", 54, micro::microprocessor},
     };
     return all;
 }

@@ -119,6 +119,7 @@ INSTANTIATE_TEST_SUITE_P(More, GalleryTest,
                                            "escher_p4m", "escher_p31m"));
 INSTANTIATE_TEST_SUITE_P(Domain, GalleryTest,
                          ::testing::Values("parquetry", "table", "bottle", "teapot"));
+INSTANTIATE_TEST_SUITE_P(Micro, GalleryTest, ::testing::Values("microprocessor"));
 
 TEST(Gallery, ExpectedStructure) {
     // Puzzle: a 16 x 16 grid in which every other vertical edge is removed row by row.
@@ -1470,4 +1471,112 @@ TEST(GalleryDomain, TeapotDotsFillTheTeapotAndItsHandleStaysOpen) {
         EXPECT_GE(b.width(), 360 * 0.05 - 1e-6);
         EXPECT_LT(b.width(), 360 * 0.15 + 1e-6);
     }
+}
+
+// ---- Microprocessor (gallery_micro.cpp) ----
+//
+// The board (traces outside the chips, the chips' outlines added) checked against its two
+// levels: no trace inside a chip, the chips' faces and only they carry "ship" once the board
+// is induced, a pad on a chip outline wherever a trace enters, a joint on every free end.
+
+#include "gallery_micro.hpp"
+
+namespace {
+
+namespace gm = gallery::micro;
+
+// Inside a chip and on none of the chips' outlines (two chips may overlap).
+bool deep_in_chip(const Point& p, const std::vector<Ring>& chip_rings) {
+    return strictly_inside_any(p, chip_rings) && !on_any_ring(p, chip_rings);
+}
+
+template <class F>
+auto fresh(F f) {
+    StreamScope scope(0);
+    return f();
+}
+
+// The two levels as the board draws them: the traces' partitions created first.
+std::pair<Curves, Curves> levels() {
+    StreamScope scope(0);
+    const Arrangement traces = gm::traces(elements());
+    const Arrangement chips = gm::chips(elements());
+    return {traces(kWindow), chips(kWindow)};
+}
+
+}  // namespace
+
+TEST(GalleryMicro, TracesStayOutsideChipsWhoseFacesCarryTheirLabel) {
+    const auto [traces, chips] = levels();
+    const MapPtr board = fresh([] { return gm::board(elements()); }).induce(kWindow);
+    const std::vector<Ring> chip_rings = rings(chips);
+    ASSERT_GE(chip_rings.size(), 3u);
+    ASSERT_GT(traces.size(), 500u);
+    for (const auto& c : chips.curves) EXPECT_TRUE(c.closed);
+    // Some traces do run into chips, and are cut there.
+    std::size_t entering = 0;
+    for (const auto& s : segments(traces))
+        for (const auto& r : chip_rings) entering += r.crossed_by(s);
+    EXPECT_GT(entering, 0u);
+    // No piece of the board lies inside a chip (its outlines and inner rings aside).
+    std::size_t inside = 0;
+    for (std::size_t i = 0; i < board->edges().size(); ++i)
+        for (const auto& s : segments(ToCurve(Edge(board, int(i)))))
+            inside += deep_in_chip(s.mid(), chip_rings);
+    EXPECT_EQ(inside, 0u);
+    // Each side of every edge: its face carries "ship" exactly when that side is in a chip.
+    std::size_t ship_sides = 0, probes = 0;
+    for (std::size_t i = 0; i < board->edges().size(); ++i) {
+        const Edge e(board, int(i));
+        const Curves c = ToCurve(e);
+        const auto& p = c.curves.at(0).points;
+        const Point d = p[1] - p[0];
+        if (norm(d) < 1e-3) continue;
+        const Point n = Point{-d.y, d.x} * (1e-3 / norm(d));
+        const Point m = (p[0] + p[1]) / 2;
+        for (const auto& [side, face] : {std::pair{m + n, LeftFace(e)}, std::pair{m - n, RightFace(e)}}) {
+            const bool in_chip = strictly_inside_any(side, chip_rings);
+            EXPECT_EQ(in_chip, HasLabel(face, "ship")) << "edge " << i << " at " << m.x << "," << m.y;
+            ship_sides += in_chip;
+            ++probes;
+        }
+    }
+    EXPECT_GT(ship_sides, 20u);
+    EXPECT_GT(probes, 1000u);
+}
+
+TEST(GalleryMicro, PadsWhereTracesEnterChipsAndJointsOnFreeEnds) {
+    const auto [traces, chips] = levels();
+    const MapPtr board = fresh([] { return gm::board(elements()); }).induce(kWindow);
+    const std::vector<Ring> chip_rings = rings(chips);
+    std::vector<Point> ends;
+    for (const auto& c : traces.curves) {
+        ASSERT_FALSE(c.closed);
+        ends.push_back(c.points.front());
+        ends.push_back(c.points.back());
+    }
+    std::size_t connectors = 0, joints = 0;
+    for (std::size_t i = 0; i < board->vertices().size(); ++i) {
+        const Vertex v(board, int(i));
+        const Point p = Location(v);
+        if (gm::is_connector(v)) {
+            ++connectors;
+            EXPECT_TRUE(on_any_ring(p, chip_rings)) << "connector off the chips at " << p.x << "," << p.y;
+        } else if (gm::is_joint(v)) {
+            ++joints;
+            EXPECT_TRUE(std::any_of(ends.begin(), ends.end(), [&](const Point& q) { return distance(p, q) < 1e-6; }))
+                << "joint off the trace ends at " << p.x << "," << p.y;
+            EXPECT_FALSE(deep_in_chip(p, chip_rings));
+        }
+    }
+    EXPECT_GT(connectors, 5u);
+    EXPECT_GT(joints, 100u);
+    // One square per connector, two rings per joint.
+    const Curves pads = fresh([] { return gm::pads(elements()); })(kWindow);
+    EXPECT_EQ(pads.size(), connectors + 2 * joints);
+    // The drawing: the board cut outside the pads, the pads' outlines added.
+    const Curves drawing = example("microprocessor");
+    const Curves expected =
+        Outside(Constant(fresh([] { return gm::board(elements()); })(kWindow)), Constant(pads), CROP_ADD_BOUNDARY)(kWindow);
+    EXPECT_EQ(ToSVG(drawing, gallery::kSize), ToSVG(expected, gallery::kSize));
 }

@@ -23,6 +23,8 @@ FAMILIES = {
                 "escher_p31m"],
     # Textures filling an outline (ExportSVGinDomain).
     "domain": ["parquetry", "table", "bottle", "teapot"],
+    # Traces, chips and solder joints (two merges with CROP_ADD_BOUNDARY, face labels).
+    "micro": ["microprocessor"],
 }
 
 
