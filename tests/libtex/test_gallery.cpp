@@ -241,6 +241,14 @@ bool strictly_inside_any(const Point& p, const std::vector<Ring>& rs) {
     return false;
 }
 
+// Builds an arrangement from a fresh numbering of the random streams (as Example::build
+// does) and evaluates it on the window.
+template <class Make>
+Curves drawn_fresh(Make make) {
+    StreamScope fresh(0);
+    return make()(kWindow);
+}
+
 // The drawing starts with `first`, curve for curve (Union keeps its operands' order).
 void expect_starts_with(const Curves& drawing, const Curves& first) {
     ASSERT_GE(drawing.size(), first.size());
@@ -325,11 +333,7 @@ TEST(GalleryTeasers, A_BeadsOnEveryLatticeVertexHideTheStrokes) {
 
 TEST(GalleryTeasers, B_UpperRingLayersHideTheLowerOnes) {
     ASSERT_EQ(tz::kRingLayers, 10);  // the script stacks ten layers
-    Curves drawing;
-    {
-        StreamScope fresh(0);
-        drawing = tz::stacked_rings(elements())(kWindow);
-    }
+    const Curves drawing = drawn_fresh([] { return tz::stacked_rings(elements()); });
     // The same layers: built in the same order from a fresh numbering, they get the same
     // random streams as in the script.
     StreamScope fresh(0);
@@ -1040,11 +1044,7 @@ std::vector<std::size_t> faces_in(const Curves& drawing, const std::vector<Ring>
 }  // namespace
 
 TEST(GalleryScriptEdition, A_ACurvyGridInEveryCloud) {
-    Curves clouds;
-    {
-        StreamScope fresh(0);
-        clouds = mo::cloud_layer(elements())(kWindow);
-    }
+    const Curves clouds = drawn_fresh([] { return mo::cloud_layer(elements()); });
     const std::vector<Ring> outlines = rings(clouds);
     ASSERT_EQ(outlines.size(), clouds.size());
     // About 11 cells in the window, more with those crossing its border (kept whole).
@@ -1116,21 +1116,13 @@ std::vector<std::size_t> check_elements_on_grid(const Curves& drawing, const Cur
 }  // namespace
 
 TEST(GalleryScriptEdition, C_APebbleOnEveryGridCellInsideASwirledCell) {
-    Curves cells;
-    {
-        StreamScope fresh(0);
-        cells = mo::swirled_cells(elements())(kWindow);
-    }
+    const Curves cells = drawn_fresh([] { return mo::swirled_cells(elements()); });
     const auto sizes = check_elements_on_grid(example("script_edit_c"), cells);
     EXPECT_GT(sizes.size(), 50u);
 }
 
 TEST(GalleryScriptEdition, D_AFlowerOrALeafOnEveryGridCellInsideACurledCell) {
-    Curves cells;
-    {
-        StreamScope fresh(0);
-        cells = mo::curled_cells(elements())(kWindow);
-    }
+    const Curves cells = drawn_fresh([] { return mo::curled_cells(elements()); });
     const auto sizes = check_elements_on_grid(example("script_edit_d"), cells);
     ASSERT_GT(sizes.size(), 50u);
     // The flower and the leaf have different numbers of points: about one in two of each.
