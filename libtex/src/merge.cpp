@@ -22,6 +22,18 @@
 #include "libtex/parallel.hpp"
 
 namespace tex {
+
+namespace detail {
+namespace {
+thread_local bool g_exact_only = false;
+thread_local std::uint64_t g_fast_crops = 0;
+}
+std::uint64_t fast_crops() { return g_fast_crops; }
+bool exact_crops_only() { return g_exact_only; }
+ExactCropScope::ExactCropScope() : saved_(g_exact_only) { g_exact_only = true; }
+ExactCropScope::~ExactCropScope() { g_exact_only = saved_; }
+}  // namespace detail
+
 namespace {
 
 LabelId inside_marker() {
@@ -236,6 +248,166 @@ std::vector<char> mask_curves_needed(const Curves& mask, const detail::SegmentGr
     return included;
 }
 
+// The common case of a crop, without the exact planar map: every contact between the
+// near runs and the mask is a proper crossing of two segments (decided with exact
+// predicates), so each curve is cut at its crossing points, computed once in doubles and
+// shared by the subject piece and the mask piece that meet there, and the inside flips at
+// each crossing of a boundary that changes it. Returns false, leaving `out` alone, as
+// soon as anything else happens (a curve through a mask vertex, along a mask segment,
+// ending on the mask, two crossings too close to order): the exact path handles those.
+bool crop_by_crossings(const Curves& src, const Curves& mask, const detail::SegmentGrid& grid,
+                       const std::vector<Run>& runs, Border b, Status wanted, Curves& out) {
+    struct Cross {
+        double t;          // along the subject segment
+        double u;          // along the mask segment
+        std::uint32_t seg;  // mask segment (grid index)
+        Point x;
+    };
+    const auto& msegs = grid.segments();
+    // Crossings of each near run, segment by segment, and of each mask segment.
+    std::vector<std::vector<std::vector<Cross>>> run_cross(runs.size());
+    std::vector<std::vector<std::pair<double, Point>>> on_mask(msegs.size());
+    for (std::size_t r = 0; r < runs.size(); ++r) {
+        if (!runs[r].near) continue;
+        const auto& pts = runs[r].pts;
+        const std::size_t n = pts.size();
+        const std::size_t nseg = runs[r].closed ? n : n - 1;
+        auto& per_seg = run_cross[r];
+        per_seg.resize(nseg);
+        for (std::size_t k = 0; k < nseg; ++k) {
+            const Point& a = pts[k];
+            const Point& c = pts[(k + 1) % n];
+            BBox sb;
+            sb.add(a);
+            sb.add(c);
+            bool degenerate = false;
+            grid.for_each_in(sb, [&](std::uint32_t j) {
+                if (degenerate) return;
+                const detail::Seg& m = msegs[j];
+                if (std::max(m.a.x, m.b.x) < sb.xmin || std::min(m.a.x, m.b.x) > sb.xmax ||
+                    std::max(m.a.y, m.b.y) < sb.ymin || std::min(m.a.y, m.b.y) > sb.ymax)
+                    return;
+                const int o1 = detail::orientation(m.a, m.b, a), o2 = detail::orientation(m.a, m.b, c);
+                if (o1 == o2 && o1 != 0) return;
+                const int o3 = detail::orientation(a, c, m.a), o4 = detail::orientation(a, c, m.b);
+                if (o3 == o4 && o3 != 0) return;
+                if (o1 * o2 >= 0 || o3 * o4 >= 0) {
+                    degenerate = true;
+                    return;
+                }
+                const Point d = c - a, e = m.b - m.a;
+                const double den = cross(d, e);
+                const double t = cross(m.a - a, e) / den;
+                const double u = cross(m.a - a, d) / den;
+                // On the mask line up to one rounding (the line may be a neighbour's outline
+                // too): the point is computed in extended precision along the mask segment.
+                using LD = long double;
+                const LD ex = LD(m.b.x) - LD(m.a.x), ey = LD(m.b.y) - LD(m.a.y);
+                const LD dx = LD(c.x) - LD(a.x), dy = LD(c.y) - LD(a.y);
+                const LD lu = ((LD(m.a.x) - LD(a.x)) * dy - (LD(m.a.y) - LD(a.y)) * dx) / (dx * ey - dy * ex);
+                const Point x{double(LD(m.a.x) + ex * lu), double(LD(m.a.y) + ey * lu)};
+                if (!(t > 0 && t < 1 && u > 0 && u < 1) || x == a || x == c || x == m.a || x == m.b) {
+                    degenerate = true;
+                    return;
+                }
+                per_seg[k].push_back({t, u, j, x});
+            });
+            if (degenerate) return false;
+            auto& cs = per_seg[k];
+            std::sort(cs.begin(), cs.end(), [](const Cross& p, const Cross& q) { return p.t < q.t; });
+            for (std::size_t i = 1; i < cs.size(); ++i)
+                if (!(cs[i].t > cs[i - 1].t) || cs[i].x == cs[i - 1].x) return false;
+            for (const Cross& x : cs) on_mask[x.seg].push_back({x.u, x.x});
+        }
+    }
+    for (auto& v : on_mask) {
+        std::sort(v.begin(), v.end(), [](const auto& p, const auto& q) { return p.first < q.first; });
+        for (std::size_t i = 1; i < v.size(); ++i)
+            if (!(v[i].first > v[i - 1].first) || v[i].second == v[i - 1].second) return false;
+    }
+    // The subject's kept pieces, run by run, in the curve's direction.
+    std::vector<std::vector<std::vector<Point>>> pieces(src.curves.size());
+    for (std::size_t r = 0; r < runs.size(); ++r) {
+        const Run& run = runs[r];
+        const auto where = grid.locate(run.pts.front());
+        if (where == detail::SegmentGrid::Where::On) return false;
+        Status st = where == detail::SegmentGrid::Where::In ? Status::In : Status::Out;
+        auto& kept = pieces[run.curve];
+        if (!run.near) {
+            if (st != wanted) continue;
+            std::vector<Point> p = run.pts;
+            if (run.closed) p.push_back(p.front());
+            kept.push_back(std::move(p));
+            continue;
+        }
+        const std::size_t n = run.pts.size();
+        std::vector<Point> cur{run.pts.front()};
+        for (std::size_t k = 0; k < run_cross[r].size(); ++k) {
+            for (const Cross& x : run_cross[r][k]) {
+                cur.push_back(x.x);
+                if (st == wanted) kept.push_back(std::move(cur));
+                cur = {x.x};
+                if (msegs[x.seg].changes()) st = st == Status::In ? Status::Out : Status::In;
+            }
+            cur.push_back(run.pts[(k + 1) % n]);
+        }
+        if (st == wanted) kept.push_back(std::move(cur));
+    }
+    const LabelId in = inside_marker();
+    Curves result;
+    result.points = src.points;
+    for (std::size_t i = 0; i < src.curves.size(); ++i)
+        if (!pieces[i].empty()) stitch(pieces[i], src.curves[i], grid, result);
+    if (b == Border::CROP_ADD_BOUNDARY) {
+        // The mask's bounded boundaries, cut where the subject crosses them. Segments of one
+        // mask curve are consecutive in the grid, in the curve's order.
+        std::size_t j = 0;
+        for (std::uint32_t m = 0; m < mask.curves.size(); ++m) {
+            const Curve& mc = mask.curves[m];
+            const std::size_t first = j;
+            while (j < msegs.size() && msegs[j].owner == m) ++j;
+            if (!(mc.left.has(in) || mc.right.has(in)) || first == j) continue;
+            std::vector<std::vector<Point>> parts;
+            std::vector<Point> cur{msegs[first].a};
+            for (std::size_t k = first; k < j; ++k) {
+                if (msegs[k].a != cur.back()) {  // a point left out of the mask curve
+                    parts.push_back(std::move(cur));
+                    cur = {msegs[k].a};
+                }
+                for (const auto& [u, x] : on_mask[k]) {
+                    cur.push_back(x);
+                    parts.push_back(std::move(cur));
+                    cur = {x};
+                }
+                cur.push_back(msegs[k].b);
+            }
+            parts.push_back(std::move(cur));
+            Curve base = strip(mc);
+            base.points.clear();
+            const bool closed = mc.closed && msegs[j - 1].b == msegs[first].a;
+            if (closed && parts.size() == 1) {
+                base.points = std::move(parts[0]);
+                base.points.pop_back();
+                base.closed = true;
+                result.curves.push_back(std::move(base));
+                continue;
+            }
+            base.closed = false;
+            if (closed) {  // the last part runs on into the first
+                parts.front().insert(parts.front().begin(), parts.back().begin(), parts.back().end() - 1);
+                parts.pop_back();
+            }
+            for (auto& p : parts) {
+                Curve c = base;
+                c.points = std::move(p);
+                result.curves.push_back(std::move(c));
+            }
+        }
+    }
+    out = std::move(result);
+    return true;
+}
+
 Curves mask_core(const Curves& subject, const Curves& mask, MaskSide side, Border b) {
     const LabelId in = inside_marker();
     const bool keep_whole = (b == Border::KEEP_INSIDE || b == Border::KEEP_OUTSIDE);
@@ -258,6 +430,13 @@ Curves mask_core(const Curves& subject, const Curves& mask, MaskSide side, Borde
     std::vector<char> touched(mask.curves.size(), 0);
     const std::vector<Run> runs = split_runs(src, grid, keep_whole, touched);
     const std::vector<char> included = mask_curves_needed(mask, grid, runs, touched, keep_whole);
+    if (!keep_whole && !detail::exact_crops_only()) {
+        Curves fast;
+        if (crop_by_crossings(src, mask, grid, runs, b, wanted, fast)) {
+            ++detail::g_fast_crops;
+            return fast;
+        }
+    }
 
     std::vector<Status> run_status(runs.size(), Status::Unknown);
     Curves joint;

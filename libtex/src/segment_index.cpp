@@ -45,6 +45,10 @@ struct PointHash {
 
 }  // namespace
 
+int orientation(const Point& a, const Point& b, const Point& c) {
+    return int(CGAL::orientation(kp(a), kp(b), kp(c)));
+}
+
 bool segments_touch(const Point& a, const Point& b, const Point& c, const Point& d) {
     if (a == b) {
         if (c == d) return a == c;

@@ -25,6 +25,9 @@ struct Seg {
     std::uint32_t owner = 0;  // index of the curve (or edge) the segment comes from
 };
 
+// Exact orientation of c against the line a -> b: 1 left turn, -1 right turn, 0 collinear.
+int orientation(const Point& a, const Point& b, const Point& c);
+
 // Exact test: do the closed segments ab and cd share a point?
 bool segments_touch(const Point& a, const Point& b, const Point& c, const Point& d);
 

@@ -1572,3 +1572,59 @@ TEST(GalleryMicro, PadsWhereTracesEnterChipsAndJointsOnFreeEnds) {
         Outside(Constant(fresh([] { return gm::board(elements()); })(kWindow)), Constant(pads), CROP_ADD_BOUNDARY)(kWindow);
     EXPECT_EQ(ToSVG(drawing, gallery::kSize), ToSVG(expected, gallery::kSize));
 }
+
+// ---- The crossing-by-crossing crop draws what the exact planar map draws ----
+//
+// Crops whose curves only cross the mask properly are cut in doubles (merge.cpp,
+// crop_by_crossings); the exact path is kept for the rest. On every example that crops,
+// both draw the same length, and their planar maps differ only by the slivers that rounded
+// points make: both ways round their cut points (the exact one also rounds the points where
+// two cut curves cross), and a rounded point may fall on either side of a neighbour's line.
+namespace {
+struct Drawn {
+    std::size_t vertices, edges, faces;
+    double length;
+    std::size_t big_faces;  // faces of more than one square unit (the drawing is 2000 wide)
+    std::size_t loose_ends;  // vertices of degree 1
+};
+Drawn drawn(const gallery::Example& e) {
+    const Curves c = e.build(gallery::default_elements_dir())(Region::rectangle(0, 0, gallery::kSize, gallery::kSize));
+    const MapPtr m = PlanarMap::induce(c);
+    double len = 0;
+    for (const auto& cv : c.curves)
+        for (std::size_t i = 0; i + 1 < cv.points.size() + (cv.closed ? 1 : 0); ++i)
+            len += distance(cv.points[i], cv.points[(i + 1) % cv.points.size()]);
+    std::size_t big = 0;
+    for (std::size_t f = 0; f < m->faces().size(); ++f)
+        if (!m->faces()[f].unbounded && std::abs(signed_area(m->cycle_points(int(f), 0))) > 1) ++big;
+    std::size_t loose = 0;
+    for (std::size_t v = 0; v < m->vertices().size(); ++v)
+        if (IncidentEdges(Vertex(m, int(v))).size() == 1) ++loose;
+    return {m->vertices().size(), m->edges().size(), m->faces().size(), len, big, loose};
+}
+}  // namespace
+
+TEST(FastCrop, SameMapsAsTheExactPathOnTheGallery) {
+    const unsigned threads = GetThreads();
+    SetThreads(1);  // the exact-only switch is per thread
+    SetSeed(0);
+    for (const char* name : {"combine_e", "combine_g", "nonregular_b", "nonregular_c", "teapot", "teaser_b",
+                             "teaser_g", "teaser_h"}) {
+        SCOPED_TRACE(name);
+        const auto& e = gallery::find(name);
+        const Drawn fast = drawn(e);
+        Drawn exact;
+        {
+            detail::ExactCropScope only_exact;
+            exact = drawn(e);
+        }
+        const double tol = 0.08;  // differences of rounding only
+        EXPECT_NEAR(double(fast.edges), double(exact.edges), tol * double(exact.edges));
+        EXPECT_NEAR(double(fast.faces), double(exact.faces), tol * double(exact.faces));
+        EXPECT_NEAR(fast.length, exact.length, 1e-6 * exact.length);
+        std::printf("%-14s fast %zu/%zu/%zu/%zu/%zu exact %zu/%zu/%zu/%zu/%zu\n", name, fast.vertices, fast.edges,
+                    fast.faces, fast.big_faces, fast.loose_ends, exact.vertices, exact.edges, exact.faces,
+                    exact.big_faces, exact.loose_ends);
+    }
+    SetThreads(threads);
+}

@@ -3,6 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <string>
+#include <tuple>
 
 #include "helpers.hpp"
 
@@ -218,4 +221,92 @@ TEST(MergeMask, CropAddBoundaryAddsEveryMaskBoundaryWithItsLabels) {
     EXPECT_EQ(ships, 2u);
     // A1's own pieces keep their labels only (none here), not A2's.
     for (const auto& c : Inside(Constant(a1), Constant(a2), CROP)(kAny).curves) EXPECT_FALSE(c.left.has("ship"));
+}
+
+// ---- Crossing-by-crossing crops against the exact planar map ----
+//
+// Random polylines cropped by a region with a hole (a jagged ring): both ways keep the same
+// pieces, with the same labels, their points equal up to the rounding of the cut points.
+namespace {
+Curves jagged_ring(const Point& c, double r, int n, std::uint64_t seed, bool clockwise) {
+    KeyedRng rng(seed);
+    std::vector<Point> pts;
+    for (int i = 0; i < n; ++i) {
+        const double a = (clockwise ? -1 : 1) * 2 * pi * i / n;
+        const double rr = r * rng.uniform(0.6, 1.0);
+        pts.push_back(c + Point{std::cos(a), std::sin(a)} * rr);
+    }
+    return Polyline(pts, true);
+}
+Curves random_strokes(std::uint64_t seed, int n) {
+    KeyedRng rng(seed);
+    Curves c;
+    for (int i = 0; i < n; ++i) {
+        std::vector<Point> pts;
+        Point p{rng.uniform(-60, 60), rng.uniform(-60, 60)};
+        for (int k = 0, m = 2 + int(rng.uniform(0, 4)); k < m; ++k) {
+            pts.push_back(p);
+            p += Point{rng.uniform(-30, 30), rng.uniform(-30, 30)};
+        }
+        Curves s = Polyline(pts, i % 7 == 0 && pts.size() >= 3);
+        s.curves[0].labels.add(i % 2 ? "odd" : "even");
+        c.append(s);
+    }
+    return c;
+}
+std::vector<std::pair<std::string, std::vector<Point>>> pieces(const Curves& c) {
+    std::vector<std::pair<std::string, std::vector<Point>>> out;
+    for (const auto& cv : c.curves) {
+        std::string l;
+        for (const auto& n : cv.labels.names()) l += n + ";";
+        out.push_back({l, cv.points});
+    }
+    std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) {
+        return std::tie(a.first, a.second.front().x, a.second.front().y) <
+               std::tie(b.first, b.second.front().x, b.second.front().y);
+    });
+    return out;
+}
+}  // namespace
+
+TEST(FastCrop, SamePiecesAsTheExactPlanarMap) {
+    for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+        SCOPED_TRACE(seed);
+        Curves outline = jagged_ring({0, 0}, 50, 40, seed, false);
+        const Region region(outline.curves[0].points, {jagged_ring({5, 5}, 15, 12, seed + 100, true).curves[0].points});
+        const Curves subject = random_strokes(seed, 60);
+        for (Border b : {CROP, CROP_ADD_BOUNDARY}) {
+            const std::uint64_t before = detail::fast_crops();
+            const Curves fast = apply_mask(subject, region, b);
+            EXPECT_EQ(detail::fast_crops(), before + 1);  // no degenerate contact here
+            Curves exact;
+            {
+                detail::ExactCropScope only_exact;
+                exact = apply_mask(subject, region, b);
+            }
+            EXPECT_NEAR(th::length(fast), th::length(exact), 1e-9);
+            // The exact path also splits a piece where its curve crosses itself or another
+            // one; the cut points are the same.
+            const auto pf = pieces(fast), pe = pieces(exact);
+            EXPECT_LE(pf.size(), pe.size());
+            std::map<std::string, double> lf, le;
+            for (const auto& [l, pts] : pf) lf[l] += th::length(Polyline(pts));
+            for (const auto& [l, pts] : pe) le[l] += th::length(Polyline(pts));
+            ASSERT_EQ(lf.size(), le.size());
+            for (const auto& [l, v] : lf) EXPECT_NEAR(v, le[l], 1e-9) << l;
+            auto is_end_of_exact = [&](const Point& p) {
+                for (const auto& q : pe)
+                    if (distance(p, q.second.front()) < 1e-9 || distance(p, q.second.back()) < 1e-9) return true;
+                return false;
+            };
+            for (const auto& q : pf) {
+                EXPECT_TRUE(is_end_of_exact(q.second.front()));
+                EXPECT_TRUE(is_end_of_exact(q.second.back()));
+            }
+            // No piece of a stroke leaves the region.
+            for (const auto& c : fast.curves)
+                for (std::size_t k = 0; !c.labels.empty() && k + 1 < c.points.size(); ++k)
+                    EXPECT_TRUE(region.contains((c.points[k] + c.points[k + 1]) / 2));
+        }
+    }
 }

@@ -25,3 +25,21 @@ Curves apply_mask(const Curves& subject, const PlanarMap& mask_map, MaskSide sid
 Curves apply_mask(const Curves& subject, const Region& region, Border b);
 
 }  // namespace tex
+
+namespace tex::detail {
+// Within this scope (on this thread) every crop goes through the exact planar map, not the
+// crossing-by-crossing path; for the tests that compare both.
+class ExactCropScope {
+public:
+    ExactCropScope();
+    ~ExactCropScope();
+    ExactCropScope(const ExactCropScope&) = delete;
+    ExactCropScope& operator=(const ExactCropScope&) = delete;
+
+private:
+    bool saved_;
+};
+bool exact_crops_only();
+// How many crops this thread cut crossing by crossing.
+std::uint64_t fast_crops();
+}  // namespace tex::detail
