@@ -165,7 +165,19 @@ Region ToRegion(const Face& f) {
     if (r.unbounded) throw Error("ToRegion", "the unbounded face is not a region");
     std::vector<std::vector<Point>> holes;
     for (std::size_t k = 1; k < r.cycles.size(); ++k) holes.push_back(f.map().cycle_points(f.id(), k));
-    return Region(f.map().cycle_points(f.id(), 0), std::move(holes), "ToRegion");
+    Region region(f.map().cycle_points(f.id(), 0), std::move(holes), "ToRegion");
+    // The face's edges with their labels, and on their right the labels of the face
+    // across, so that what is evaluated on the face can see both.
+    Curves edges = Contour(f);
+    std::size_t i = 0;
+    for (const auto& cycle : r.cycles)
+        for (const Side& s : cycle) {
+            const EdgeRec& e = f.map().edges()[s.edge];
+            Curve& c = edges.curves[i++];
+            c.labels = e.labels;
+            c.right = f.map().faces()[s.left ? e.right : e.left].labels;
+        }
+    return region.with_edges(std::move(edges));
 }
 
 bool HasLabel(const Vertex& c, const std::string& l) { return record(c).labels.has(l); }

@@ -577,8 +577,15 @@ Curves apply_mask(const Curves& subject, const PlanarMap& mask_map, MaskSide sid
 }
 
 Curves apply_mask(const Curves& subject, const Region& region, Border b) {
+    return detail::crop_to_region(subject, region, b, std::nullopt);
+}
+
+Curves detail::crop_to_region(const Curves& subject, const Region& region, Border b, std::optional<LabelId> outline) {
     Curves mask = region.boundary();
-    for (auto& c : mask.curves) c.left.add(inside_marker());
+    for (auto& c : mask.curves) {
+        c.left.add(inside_marker());
+        if (outline) c.labels.add(*outline);
+    }
     return mask_core(subject, mask, MaskSide::Inside, b);
 }
 

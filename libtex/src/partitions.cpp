@@ -23,6 +23,7 @@
 #include "libtex/error.hpp"
 #include "libtex/merge.hpp"
 #include "libtex/random.hpp"
+#include "segment_index.hpp"
 
 namespace tex {
 namespace {
@@ -106,12 +107,17 @@ Curves realize(const Complex& cx, const Region& r, Border b) {
         if (eb.intersects(rb)) subject.curves.push_back(complex_edge_curve(cx, e, nullptr));
     }
     subject.points = cx.vertex_labels;
-    out = apply_mask(subject, r, b);
+    static const LabelId outline = intern_label("\x01libtex-outline");
+    out = detail::crop_to_region(subject, r, b, outline);
     if (b == Border::CROP_ADD_BOUNDARY) {
-        // Outline pieces carry no labels yet: give their inner side the labels of the cell
-        // they cross, so that a face bounded only by the outline keeps its labels.
+        // Pieces of the region's outline keep the labels of the region's edges (none for a
+        // plain region) and get on their inner side the labels of the cell they bound, so
+        // that a face bounded only by the outline keeps its labels.
         for (auto& c : out.curves) {
-            if (!c.labels.empty() || !c.left.empty() || !c.right.empty()) continue;
+            if (!c.labels.has(outline)) continue;
+            c.labels.remove(outline);
+            c.left = Labels{};
+            c.right = Labels{};
             if (c.points.size() < 2) continue;
             // Probe beside the middle of the piece's first segment (the piece may turn a
             // corner of the outline); the inside is on its left.

@@ -93,7 +93,14 @@ bool Region::contains(const Point& p) const {
     return true;
 }
 
+Region Region::with_edges(Curves edges) const {
+    Region r = *this;
+    r.edges_ = std::make_shared<const Curves>(std::move(edges));
+    return r;
+}
+
 Curves Region::boundary() const {
+    if (edges_) return *edges_;
     Curves out;
     auto add = [&](const std::vector<Point>& ring) {
         Curve c;

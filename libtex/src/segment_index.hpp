@@ -8,10 +8,12 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "libtex/curves.hpp"
 #include "libtex/geometry.hpp"
+#include "libtex/partitions.hpp"
 #include "libtex/planar_map.hpp"
 
 namespace tex::detail {
@@ -99,4 +101,10 @@ namespace tex::detail {
 MapPtr induce_with_cgal(const Curves& curves, bool caching = true);
 // How many planar maps this thread traced directly (for the tests).
 std::uint64_t direct_inductions();
+}  // namespace tex::detail
+
+namespace tex::detail {
+// apply_mask with a region, the pieces of the region's boundary that CROP_ADD_BOUNDARY adds
+// carrying the label `outline` besides their own (the cropping partitions find them so).
+Curves crop_to_region(const Curves& subject, const Region& region, Border b, std::optional<LabelId> outline);
 }  // namespace tex::detail

@@ -333,3 +333,39 @@ TEST(Streams, APartitionBuiltInAMapperTakesItsStreamFromTheCell) {
     }
     EXPECT_EQ(drawings.size(), 16u);
 }
+
+// ---- Evaluated on a face, a cropping partition keeps the labels of the face's edges ----
+//
+// Thesis App. E (ridge hatching): the sub-cells touching a ridge are found by the label of
+// the ridge on their outline. A square face whose right side is labelled "ridge" is cut by
+// a grid with CROP_ADD_BOUNDARY: exactly the sub-cells along that side see the label, and
+// the outline pieces bound their sub-cells with the sub-cells' own labels.
+TEST(PartitionOnFace, OutlineKeepsTheLabelsOfTheFaceEdges) {
+    Curves sides = Polyline({{0, 0}, {100, 0}}, false);
+    sides.append(Polyline({{100, 0}, {100, 100}}, false));
+    sides.append(Polyline({{100, 100}, {0, 100}, {0, 0}}, false));
+    sides.curves[1].labels.add("ridge");
+    const MapPtr big = PlanarMap::induce(sides);
+    Face square;
+    for (std::size_t f = 0; f < big->faces().size(); ++f)
+        if (!big->faces()[f].unbounded) square = Face(big, int(f));
+    ASSERT_TRUE(square.valid());
+    Stripes a = StripesProperties(0, 30), b = StripesProperties(pi / 2, 30);
+    SetFaceLabels(a, {"cell"});
+    const MapPtr sub = GridPartition(a, b, CROP_ADD_BOUNDARY).induce(ToRegion(square));
+    int touching = 0, bounded = 0;
+    for (std::size_t f = 0; f < sub->faces().size(); ++f) {
+        if (sub->faces()[f].unbounded) continue;
+        const Face cell(sub, int(f));
+        ++bounded;
+        EXPECT_TRUE(HasLabel(cell, "cell"));
+        const bool on_ridge = HasLabel(IncidentEdges(cell), "ridge");
+        EXPECT_EQ(on_ridge, CellBBox(cell).xmax == 100) << Centroid(cell).x << " " << Centroid(cell).y;
+        touching += on_ridge;
+    }
+    EXPECT_EQ(bounded, 16);   // columns 0-30-60-90-100, rows the same
+    EXPECT_EQ(touching, 4);
+    // A plain region has unlabelled outlines.
+    const MapPtr plain = GridPartition(a, b, CROP_ADD_BOUNDARY).induce(Region::rectangle(0, 0, 100, 100));
+    for (const auto& e : plain->edges()) EXPECT_FALSE(e.labels.has("ridge"));
+}

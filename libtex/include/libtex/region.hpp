@@ -1,6 +1,7 @@
 // Region: the domain an arrangement is evaluated on, a polygon with holes.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -28,13 +29,22 @@ public:
     double area() const;
     // Even-odd test over all rings; points on a ring count as inside.
     bool contains(const Point& p) const;
-    // The rings as closed curves, inside on the left.
+    // The boundary as curves, inside on the left: the labelled edges when the region has
+    // them (see with_edges), else the rings as closed curves.
     Curves boundary() const;
+    // The same region whose boundary is given as labelled curves (the edges of a face with
+    // their labels, inside on the left), so that a partition cropped to it with
+    // CROP_ADD_BOUNDARY keeps the labels of the face's edges on its outline (thesis: a
+    // sub-partition's border edges carry the labels of the edges they lie on). The curves
+    // must run along the rings; they are not checked.
+    Region with_edges(Curves edges) const;
+    bool has_edges() const { return edges_ != nullptr; }
 
 private:
     std::vector<Point> outer_;
     std::vector<std::vector<Point>> holes_;
     BBox bbox_;
+    std::shared_ptr<const Curves> edges_;
 };
 
 // Relation of a convex polygon to a region, decided on doubles (used by the KEEP_INSIDE /
