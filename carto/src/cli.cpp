@@ -78,7 +78,7 @@ std::vector<Option> options(CommandLine& cl) {
          [&](const std::string& v) { o.partition.density_field = v; }},
         {"--density-layer", "NAME", "point or polygon layer carrying the density field",
          [&](const std::string& v) { o.partition.density_layer = v; }},
-        {"--snap", "UNITS", "tolerance matching face borders to lines, in ground units (default 0.5)",
+        {"--snap", "UNITS", "tolerance snapping neighbouring borders together and matching them to lines (default 0.5 m)",
          [&](const std::string& v) { o.partition.snap = parse_double("--snap", v); }},
         {"--no-repair", nullptr, "refuse invalid face polygons instead of repairing them",
          [&](const std::string&) { o.partition.repair = false; }},

@@ -10,6 +10,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <unordered_map>
 
 #include "carto/error.hpp"
@@ -86,19 +87,48 @@ void add_lines(const OGRGeometry* g, LineKind kind, std::vector<LabelledLine>& o
     }
 }
 
-// Segment index on a uniform grid of cell size `cell`.
+// Segment index on a uniform grid of cell size `cell`: a segment is listed in every cell it
+// passes through, so a query finds every segment within `cell` of the point.
 struct SegmentGrid {
     double cell;
-    std::unordered_map<std::uint64_t, std::vector<int>> cells;
+    std::unordered_map<std::uint64_t, std::pair<int, int>> cells;  // first and last entry
+    std::vector<std::pair<int, int>> entries;                       // id, next entry of the cell
+    std::vector<int> long_ones;  // crossing too many cells: checked by every query
     static std::uint64_t key(long long i, long long j) {
         return (std::uint64_t(i) * 0x9E3779B97F4A7C15ULL) ^ std::uint64_t(j);
     }
     void insert(const Point& a, const Point& b, int id) {
         const long long i0 = (long long)std::floor(std::min(a.x, b.x) / cell), i1 = (long long)std::floor(std::max(a.x, b.x) / cell);
         const long long j0 = (long long)std::floor(std::min(a.y, b.y) / cell), j1 = (long long)std::floor(std::max(a.y, b.y) / cell);
-        if ((i1 - i0 + 1) * (j1 - j0 + 1) > 4096) return;  // absurdly long segment: skip index
-        for (long long i = i0; i <= i1; ++i)
-            for (long long j = j0; j <= j1; ++j) cells[key(i, j)].push_back(id);
+        if ((i1 - i0 + 1) + (j1 - j0 + 1) > 8192) {
+            long_ones.push_back(id);
+            return;
+        }
+        // Column by column, the rows the segment spans within the column.
+        const Point lo = a.x <= b.x ? a : b, hi = a.x <= b.x ? b : a;
+        const double dx = hi.x - lo.x;
+        for (long long i = i0; i <= i1; ++i) {
+            double ya = lo.y, yb = hi.y;
+            if (dx > 0) {
+                const double xa = std::max(lo.x, double(i) * cell), xb = std::min(hi.x, double(i + 1) * cell);
+                ya = lo.y + (hi.y - lo.y) * ((xa - lo.x) / dx);
+                yb = lo.y + (hi.y - lo.y) * ((xb - lo.x) / dx);
+            }
+            // A little slack against rounding at the column edges.
+            const double slack = 1e-9 * cell;
+            const long long ja = std::max(j0, (long long)std::floor((std::min(ya, yb) - slack) / cell));
+            const long long jb = std::min(j1, (long long)std::floor((std::max(ya, yb) + slack) / cell));
+            for (long long j = ja; j <= jb; ++j) add(key(i, j), id);
+        }
+    }
+    void add(std::uint64_t k, int id) {
+        entries.push_back({id, -1});
+        const int e = int(entries.size()) - 1;
+        auto [it, fresh] = cells.try_emplace(k, e, e);
+        if (!fresh) {
+            entries[std::size_t(it->second.second)].second = e;
+            it->second.second = e;
+        }
     }
     template <class F>
     void query(const Point& p, F&& f) const {
@@ -107,8 +137,9 @@ struct SegmentGrid {
             for (long long dj = -1; dj <= 1; ++dj) {
                 auto it = cells.find(key(i + di, j + dj));
                 if (it != cells.end())
-                    for (int id : it->second) f(id);
+                    for (int e = it->second.first; e >= 0; e = entries[std::size_t(e)].second) f(entries[std::size_t(e)].first);
             }
+        for (int id : long_ones) f(id);
     }
 };
 
@@ -118,6 +149,249 @@ double seg_distance(const Point& p, const Point& a, const Point& b) {
     double t = l2 > 0 ? tex::dot(p - a, d) / l2 : 0;
     t = std::clamp(t, 0.0, 1.0);
     return tex::distance(p, a + d * t);
+}
+
+// ---- Snapping borders (issue 11)
+
+// A sorted run of face indices.
+struct Faces {
+    const int *b, *e;
+};
+
+bool share_a_face(Faces x, Faces y) {
+    while (x.b != x.e && y.b != y.e) {
+        if (*x.b == *y.b) return true;
+        if (*x.b < *y.b) ++x.b;
+        else ++y.b;
+    }
+    return false;
+}
+
+// The rings of all faces over shared nodes: the distinct vertices, numbered in lexicographic
+// order of their coordinates, so that every choice made on them depends on the geometry only
+// and never on the order of the faces.
+struct RingNodes {
+    std::vector<Point> pt;                    // node coordinates, sorted
+    std::vector<std::vector<int>> ring;       // node ids of each ring
+    std::vector<int> face_begin, face_of;     // faces through each node (sorted, CSR)
+
+    RingNodes(const std::vector<std::vector<Point>>& rings, const std::vector<int>& ring_face) {
+        for (const auto& r : rings) pt.insert(pt.end(), r.begin(), r.end());
+        std::sort(pt.begin(), pt.end());
+        pt.erase(std::unique(pt.begin(), pt.end()), pt.end());
+        std::vector<std::pair<int, int>> nf;
+        ring.resize(rings.size());
+        for (std::size_t k = 0; k < rings.size(); ++k)
+            for (const Point& q : rings[k]) {
+                const int n = int(std::lower_bound(pt.begin(), pt.end(), q) - pt.begin());
+                ring[k].push_back(n);
+                nf.push_back({n, ring_face[k]});
+            }
+        std::sort(nf.begin(), nf.end());
+        nf.erase(std::unique(nf.begin(), nf.end()), nf.end());
+        face_begin.assign(pt.size() + 1, 0);
+        for (const auto& e : nf) ++face_begin[std::size_t(e.first) + 1];
+        for (std::size_t n = 0; n < pt.size(); ++n) face_begin[n + 1] += face_begin[n];
+        for (const auto& e : nf) face_of.push_back(e.second);
+    }
+    Faces faces(int n) const {
+        return {face_of.data() + face_begin[std::size_t(n)], face_of.data() + face_begin[std::size_t(n) + 1]};
+    }
+};
+
+// Vertex to vertex: the nodes in lexicographic order; a node not yet taken anchors a cluster
+// and takes the free nodes within `snap` of it, nearest first, as long as no two nodes of the
+// cluster belong to the same face (a ring is never snapped onto itself). Taken nodes move
+// onto the anchor. Returns whether a node moved.
+bool snap_vertices(std::vector<std::vector<Point>>& rings, const RingNodes& g, double snap) {
+    const int n = int(g.pt.size());
+    SegmentGrid grid{snap, {}, {}, {}};
+    grid.cells.reserve(g.pt.size());
+    for (int k = 0; k < n; ++k) grid.insert(g.pt[std::size_t(k)], g.pt[std::size_t(k)], k);
+    std::vector<int> target(std::size_t(n), -1);
+    bool moved = false;
+    std::vector<std::pair<double, int>> cand;
+    for (int a = 0; a < n; ++a) {
+        if (target[std::size_t(a)] >= 0) continue;
+        target[std::size_t(a)] = a;
+        const Point pa = g.pt[std::size_t(a)];
+        cand.clear();
+        grid.query(pa, [&](int b) {
+            if (target[std::size_t(b)] >= 0) return;
+            const double d = tex::distance(pa, g.pt[std::size_t(b)]);
+            if (d <= snap) cand.push_back({d, b});
+        });
+        if (cand.empty()) continue;
+        std::sort(cand.begin(), cand.end());
+        cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
+        const Faces fa = g.faces(a);
+        std::vector<int> fs(fa.b, fa.e);
+        for (const auto& [d, b] : cand) {
+            const Faces fb = g.faces(b);
+            if (share_a_face({fs.data(), fs.data() + fs.size()}, fb)) continue;
+            target[std::size_t(b)] = a;
+            fs.insert(fs.end(), fb.b, fb.e);
+            std::sort(fs.begin(), fs.end());
+            moved = true;
+        }
+    }
+    if (moved)
+        for (std::size_t k = 0; k < rings.size(); ++k)
+            for (std::size_t i = 0; i < rings[k].size(); ++i) rings[k][i] = g.pt[std::size_t(target[std::size_t(g.ring[k][i])])];
+    return moved;
+}
+
+// Vertex to segment: a node within `snap` of the inside of a border segment of faces it does
+// not belong to moves onto its projection there, and the projection is inserted into that
+// segment in every ring running along it. Each node takes its nearest segment (ties: the
+// lexicographically smallest end nodes); all moves are decided on the same geometry, then
+// applied together. Returns whether anything changed.
+bool snap_to_segments(std::vector<std::vector<Point>>& rings, const RingNodes& g, const std::vector<int>& ring_face,
+                      double snap) {
+    // Undirected edges (u < v), the faces along them, and the edge of every ring step.
+    struct Step {
+        int u, v, face;
+        std::size_t ring, pos;
+    };
+    std::vector<Step> steps;
+    for (std::size_t k = 0; k < g.ring.size(); ++k) {
+        const auto& r = g.ring[k];
+        for (std::size_t i = 0; i < r.size(); ++i) {
+            const int a = r[i], b = r[(i + 1) % r.size()];
+            if (a != b) steps.push_back({std::min(a, b), std::max(a, b), ring_face[k], k, i});
+        }
+    }
+    std::sort(steps.begin(), steps.end(), [](const Step& x, const Step& y) {
+        return std::tie(x.u, x.v, x.face) < std::tie(y.u, y.v, y.face);
+    });
+    struct Edge {
+        int u, v;
+        std::size_t faces;  // first of its faces in edge_faces
+    };
+    std::vector<int> edge_faces;
+    std::vector<Edge> edges;
+    std::vector<std::vector<int>> step_edge(g.ring.size());
+    for (std::size_t k = 0; k < g.ring.size(); ++k) step_edge[k].assign(g.ring[k].size(), -1);
+    double total = 0;
+    for (const Step& s : steps) {
+        if (edges.empty() || edges.back().u != s.u || edges.back().v != s.v) {
+            edges.push_back({s.u, s.v, edge_faces.size()});
+            total += tex::distance(g.pt[std::size_t(s.u)], g.pt[std::size_t(s.v)]);
+        }
+        if (edge_faces.size() == edges.back().faces || edge_faces.back() != s.face) edge_faces.push_back(s.face);
+        step_edge[s.ring][s.pos] = int(edges.size()) - 1;
+    }
+    if (edges.empty()) return false;
+    auto faces_of_edge = [&](std::size_t e) {
+        const std::size_t end = e + 1 < edges.size() ? edges[e + 1].faces : edge_faces.size();
+        return Faces{edge_faces.data() + edges[e].faces, edge_faces.data() + end};
+    };
+    // Cells about as long as the mean edge keep the index near-linear whatever the snap.
+    SegmentGrid grid{std::max(snap, total / double(edges.size())), {}, {}, {}};
+    grid.cells.reserve(2 * edges.size());
+    for (std::size_t e = 0; e < edges.size(); ++e)
+        grid.insert(g.pt[std::size_t(edges[e].u)], g.pt[std::size_t(edges[e].v)], int(e));
+
+    struct Insert {
+        int edge;
+        double t;
+        Point q;
+    };
+    std::vector<Insert> inserts;
+    std::vector<Point> moved_to(g.pt);
+    for (int n = 0; n < int(g.pt.size()); ++n) {
+        const Point p = g.pt[std::size_t(n)];
+        const Faces fn = g.faces(n);
+        int best = -1;
+        double best_d = snap, best_t = 0;
+        Point best_q;
+        grid.query(p, [&](int e) {
+            const Edge& ed = edges[std::size_t(e)];
+            const Point a = g.pt[std::size_t(ed.u)], b = g.pt[std::size_t(ed.v)];
+            const Point d = b - a;
+            const double t = tex::dot(p - a, d) / tex::dot(d, d);
+            if (!(t > 0 && t < 1)) return;
+            const Point q = a + d * t;
+            const double dist = tex::distance(p, q);
+            if (dist > best_d || q == a || q == b) return;
+            if (dist == best_d && best >= 0 && std::tie(ed.u, ed.v) >= std::tie(edges[std::size_t(best)].u, edges[std::size_t(best)].v))
+                return;
+            if (share_a_face(fn, faces_of_edge(std::size_t(e)))) return;
+            best = e;
+            best_d = dist;
+            best_t = t;
+            best_q = q;
+        });
+        if (best < 0) continue;
+        moved_to[std::size_t(n)] = best_q;
+        inserts.push_back({best, best_t, best_q});
+    }
+    if (inserts.empty()) return false;
+    std::sort(inserts.begin(), inserts.end(), [](const Insert& x, const Insert& y) {
+        return std::tie(x.edge, x.t) < std::tie(y.edge, y.t);
+    });
+    std::vector<std::size_t> first(edges.size() + 1, 0);
+    for (const Insert& in : inserts) ++first[std::size_t(in.edge) + 1];
+    for (std::size_t e = 0; e < edges.size(); ++e) first[e + 1] += first[e];
+    for (std::size_t k = 0; k < rings.size(); ++k) {
+        const auto& r = g.ring[k];
+        std::vector<Point> out;
+        out.reserve(r.size());
+        for (std::size_t i = 0; i < r.size(); ++i) {
+            out.push_back(moved_to[std::size_t(r[i])]);
+            const int e = step_edge[k][i];
+            if (e < 0) continue;
+            const std::size_t b = first[std::size_t(e)], f = first[std::size_t(e) + 1];
+            // Along the edge from u to v: increasing t.
+            if (r[i] == edges[std::size_t(e)].u)
+                for (std::size_t j = b; j < f; ++j) out.push_back(inserts[j].q);
+            else
+                for (std::size_t j = f; j > b; --j) out.push_back(inserts[j - 1].q);
+        }
+        rings[k] = std::move(out);
+    }
+    return true;
+}
+
+// A ring without repeated points in a row and without spikes (a, b, a).
+std::vector<Point> tidy_ring(const std::vector<Point>& ring) {
+    std::vector<Point> out;
+    out.reserve(ring.size());
+    for (const Point& q : ring) {
+        if (!out.empty() && out.back() == q) continue;
+        if (out.size() >= 2 && out[out.size() - 2] == q) {
+            out.pop_back();
+            continue;
+        }
+        out.push_back(q);
+    }
+    // The same at the closing point.
+    for (bool again = true; again && out.size() >= 2;) {
+        again = false;
+        if (out.front() == out.back()) {
+            out.pop_back();
+            again = true;
+        } else if (out.size() >= 3 && out[out.size() - 2] == out.front()) {
+            out.pop_back();
+            again = true;
+        } else if (out.size() >= 3 && out[1] == out.back()) {
+            out.erase(out.begin());
+            again = true;
+        }
+    }
+    return out;
+}
+
+double ring_length(const std::vector<Point>& r) {
+    double l = 0;
+    for (std::size_t i = 0; i < r.size(); ++i) l += tex::distance(r[i], r[(i + 1) % r.size()]);
+    return l;
+}
+
+// A ring that snapping left without area: fewer than three points, or a mean width below a
+// millionth of the tolerance.
+bool degenerate(const std::vector<Point>& r, double snap) {
+    return r.size() < 3 || std::abs(tex::signed_area(r)) <= 1e-6 * snap * ring_length(r);
 }
 
 }  // namespace
@@ -136,6 +410,70 @@ tex::BBox Partition::bounds() const {
     return b;
 }
 
+void snap_borders(Partition& p, double snap) {
+    if (!(snap > 0) || p.faces.empty()) return;
+    std::vector<std::vector<Point>> rings;
+    std::vector<int> ring_face;
+    for (std::size_t f = 0; f < p.faces.size(); ++f) {
+        rings.push_back(p.faces[f].region.outer());
+        ring_face.push_back(int(f));
+        for (const auto& h : p.faces[f].region.holes()) {
+            rings.push_back(h);
+            ring_face.push_back(int(f));
+        }
+    }
+    const std::vector<std::vector<Point>> before = rings;
+    // Vertices onto vertices, then vertices onto segments, until nothing moves: a vertex moved
+    // onto a segment may come near other vertices or segments.
+    for (int round = 0; round < 8; ++round) {
+        std::optional<RingNodes> g(std::in_place, rings, ring_face);
+        const bool v = snap_vertices(rings, *g, snap);
+        if (v) g.emplace(rings, ring_face);
+        const bool s = snap_to_segments(rings, *g, ring_face, snap);
+        if (!v && !s) break;
+    }
+    // Rebuild the faces whose rings changed; drop those that lost their area.
+    std::vector<RockFace> kept;
+    std::vector<std::string> dropped;
+    int lost_holes = 0;
+    for (std::size_t f = 0, k = 0; f < p.faces.size(); ++f) {
+        RockFace& face = p.faces[f];
+        const std::size_t k0 = k;
+        k += 1 + face.region.holes().size();
+        bool same = true;
+        for (std::size_t j = k0; j < k; ++j) same = same && rings[j] == before[j];
+        if (!same) {
+            const std::vector<Point> outer = tidy_ring(rings[k0]);
+            if (degenerate(outer, snap)) {
+                dropped.push_back(std::to_string(face.id));
+                continue;
+            }
+            std::vector<std::vector<Point>> holes;
+            for (std::size_t j = k0 + 1; j < k; ++j) {
+                std::vector<Point> h = tidy_ring(rings[j]);
+                if (degenerate(h, snap)) ++lost_holes;
+                else holes.push_back(std::move(h));
+            }
+            try {
+                face.region = tex::Region(outer, holes, "face");
+            } catch (const std::exception&) {
+                dropped.push_back(std::to_string(face.id));
+                continue;
+            }
+            face.boundary.clear();  // label_boundaries gives it again
+        }
+        kept.push_back(std::move(face));
+    }
+    p.faces = std::move(kept);
+    if (!dropped.empty()) {
+        std::string ids;
+        for (const auto& d : dropped) ids += (ids.empty() ? "" : ", ") + d;
+        p.notes.push_back("dropped " + std::to_string(dropped.size()) + " face(s) left without area by snapping borders (id " +
+                          ids + ")");
+    }
+    if (lost_holes) p.notes.push_back("dropped " + std::to_string(lost_holes) + " hole(s) left without area by snapping borders");
+}
+
 void label_boundaries(Partition& p, double snap) {
     // Index the labelled line segments.
     struct Seg {
@@ -146,12 +484,12 @@ void label_boundaries(Partition& p, double snap) {
     for (const auto& l : p.lines)
         for (std::size_t i = 0; i + 1 < l.points.size(); ++i) segs.push_back({l.points[i], l.points[i + 1], l.kind});
     const double cell = std::max(snap * 8, 1e-6);
-    SegmentGrid lines_grid{cell, {}};
+    SegmentGrid lines_grid{cell, {}, {}, {}};
     for (std::size_t i = 0; i < segs.size(); ++i) lines_grid.insert(segs[i].a, segs[i].b, int(i));
 
-    // Boundary segments of all faces, and an index of their midpoints for adjacency.
-    SegmentGrid mids{cell, {}};
+    // Boundary segments of all faces, keyed by their ends for adjacency.
     struct Ref {
+        Point a, b;
         int face, seg;
     };
     std::vector<Ref> refs;
@@ -182,29 +520,30 @@ void label_boundaries(Partition& p, double snap) {
                         s.kind = sg.kind;
                     }
                 });
-                mids.insert(m, m, int(refs.size()));
-                refs.push_back({int(f), int(rf.boundary.size())});
+                refs.push_back({s.a, s.b, int(f), int(rf.boundary.size())});
                 rf.boundary.push_back(s);
             }
         };
         add_ring(rf.region.outer());
         for (const auto& h : rf.region.holes()) add_ring(h);
     }
-    // Neighbours: another face's boundary segment with (nearly) the same midpoint.
+    // Neighbours: another face's boundary segment with the same ends, run the other way (the
+    // borders were snapped onto each other; several candidates: the first face).
+    auto before = [](const Ref& x, const Ref& y) {
+        if (x.a != y.a) return x.a < y.a;
+        if (x.b != y.b) return x.b < y.b;
+        return x.face < y.face;
+    };
+    std::vector<Ref> sorted = refs;
+    std::sort(sorted.begin(), sorted.end(), before);
     for (const Ref& r : refs) {
-        BoundarySegment& s = p.faces[r.face].boundary[r.seg];
-        const Point m = (s.a + s.b) / 2;
-        double best = snap;
-        mids.query(m, [&](int id) {
-            const Ref& o = refs[id];
-            if (o.face == r.face) return;
-            const BoundarySegment& t = p.faces[o.face].boundary[o.seg];
-            const double dist = tex::distance(m, (t.a + t.b) / 2);
-            if (dist <= best) {
-                best = dist;
-                s.neighbor = o.face;
+        const Ref key{r.b, r.a, -1, 0};
+        for (auto it = std::lower_bound(sorted.begin(), sorted.end(), key, before);
+             it != sorted.end() && it->a == r.b && it->b == r.a; ++it)
+            if (it->face != r.face) {
+                p.faces[std::size_t(r.face)].boundary[std::size_t(r.seg)].neighbor = it->face;
+                break;
             }
-        });
     }
 }
 
@@ -298,6 +637,9 @@ Partition load_partition(const PartitionOptions& opt, const std::string& working
     }
     if (p.faces.empty()) throw Error(Code::BadLayer, what + ": layer '" + std::string(faces->GetName()) + "' holds no polygon");
     if (repaired) p.notes.push_back("repaired " + std::to_string(repaired) + " invalid face polygon(s)");
+    // Borders digitised twice become one (neighbours are matched on identical segments).
+    snap_borders(p, opt.snap);
+    if (p.faces.empty()) throw Error(Code::BadLayer, what + ": no face keeps an area once its borders are snapped");
 
     // ---- Lines: one layer with a label attribute, or one layer per kind.
     OGRLayer* lines = find_layer(opt.lines_layer, is_line_layer, "line");

@@ -375,3 +375,19 @@ def test_shapefiles_work_too(rockhatch_exe, sample_dir, tmp_path):
             "-o", tmp_path / "o.svg")
     assert r.returncode == 0, r.stderr
     assert "20 faces" in r.stderr
+
+
+def test_borders_digitised_twice_draw_one_valley(rockhatch_exe, sample_dir, tmp_path):
+    # Two squares whose common side each digitised with its own vertices, 0.05-0.1 m apart
+    # (issue 11): the borders are snapped, the valley along them is drawn once.
+    x, y = 1004000, 6540000
+    a = f"POLYGON(({x} {y},{x + 100} {y},{x + 100.1} {y + 30},{x + 100} {y + 100},{x} {y + 100},{x} {y}))"
+    b = (f"POLYGON(({x + 100.08} {y - 0.06},{x + 200} {y},{x + 200} {y + 100},{x + 99.95} {y + 100.07},"
+         f"{x + 99.9} {y + 70},{x + 100.08} {y - 0.06}))")
+    write_partition(tmp_path / "p.gpkg", [a, b], [(f"LINESTRING({x + 100} {y},{x + 100} {y + 100})", "valley")])
+    r = run(rockhatch_exe, "-q", "--dem", sample_dir / "dem.tif", "--partition", tmp_path / "p.gpkg",
+            "--style", "high-ridges", "-o", tmp_path / "o.gpkg")
+    assert r.returncode == 0, r.stderr
+    ds = ogr.Open(str(tmp_path / "o.gpkg"))
+    length = sum(f.GetGeometryRef().Length() for f in ds.GetLayerByName("hatch_valley"))
+    assert length == pytest.approx(100, abs=0.5)  # once, not twice

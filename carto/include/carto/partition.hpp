@@ -56,7 +56,7 @@ struct PartitionOptions {
     std::string density_field = "density";          // 0..1
     std::string density_layer;            // point or polygon layer with a density field
     bool repair = true;                   // repair invalid polygons (else refuse them)
-    double snap = 0.5;                    // ground units: boundary / line matching tolerance
+    double snap = 0.5;                    // ground units: border snapping and line matching tolerance
 };
 
 // Reads the partition and reprojects it to the working CRS. Lines come either from a line
@@ -64,8 +64,18 @@ struct PartitionOptions {
 // "valleys", "thalwegs"...). Throws carto::Error naming the dataset, layer or field.
 Partition load_partition(const PartitionOptions& opt, const std::string& working_wkt);
 
+// Makes the shared borders of neighbouring faces identical when they lie within `snap` of
+// each other, whatever their vertices: vertices move onto other faces' vertices, then onto
+// other faces' segments (which gain them as vertices), until stable, so that two neighbours
+// run through the same points along their common border. A face never snaps onto itself.
+// Faces left without area are dropped (noted in p.notes); faces that do not move stay
+// bit-identical. Call it before label_boundaries, which matches neighbours on identical
+// segments.
+void snap_borders(Partition& p, double snap);
+
 // Labels the boundary segments of every face from the lines, and finds the face across
-// each segment (shared by load_partition and by tools building partitions in memory).
+// each segment: the segment of another face with the same ends (shared by load_partition and
+// by tools building partitions in memory).
 void label_boundaries(Partition& p, double snap);
 
 }  // namespace carto

@@ -1,0 +1,313 @@
+// Hand-made partitions whose shared borders are digitised twice with different vertices
+// (issue 11): load_partition snaps them onto each other, neighbours are found across every
+// shared segment, valleys are drawn once and ridge shapes fall into the darker face.
+#include <gdal_priv.h>
+#include <gtest/gtest.h>
+#include <ogrsf_frmts.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+
+#include "carto/extract.hpp"
+#include "carto/partition.hpp"
+#include "carto/pipeline.hpp"
+
+using namespace carto;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kSample = RH_SAMPLE_DIR;
+// Inside the sample DEM (Lambert-93).
+const double X0 = 1004000, Y0 = 6540000;
+
+struct HandFace {
+    std::vector<Point> ring;  // relative to (X0, Y0), not closed
+    double density = -1;      // < 0: none
+};
+struct HandLine {
+    std::vector<Point> points;
+    const char* kind;
+};
+
+OGRLineString line_string(const std::vector<Point>& pts) {
+    OGRLineString l;
+    for (const Point& q : pts) l.addPoint(X0 + q.x, Y0 + q.y);
+    return l;
+}
+
+// Writes the faces and lines to a GeoPackage in Lambert-93, as a cartographer would.
+std::string write_partition(const std::string& name, const std::vector<HandFace>& faces,
+                            const std::vector<HandLine>& lines) {
+    GDALAllRegister();
+    const fs::path dir = fs::temp_directory_path() / "rh_test_partition";
+    fs::create_directories(dir);
+    const std::string path = (dir / (name + ".gpkg")).string();
+    fs::remove(path);
+    GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GPKG");
+    std::unique_ptr<GDALDataset> ds(drv->Create(path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
+    OGRSpatialReference srs;
+    srs.importFromEPSG(2154);
+    OGRLayer* fl = ds->CreateLayer("faces", &srs, wkbPolygon, nullptr);
+    OGRFieldDefn dens("density", OFTReal);
+    fl->CreateField(&dens);
+    OGRFieldDefn orient("orientation", OFTReal);
+    fl->CreateField(&orient);
+    for (const HandFace& f : faces) {
+        OGRFeature feat(fl->GetLayerDefn());
+        OGRLinearRing ring;
+        for (const Point& q : f.ring) ring.addPoint(X0 + q.x, Y0 + q.y);
+        ring.closeRings();
+        OGRPolygon poly;
+        poly.addRing(&ring);
+        feat.SetGeometry(&poly);
+        if (f.density >= 0) feat.SetField("density", f.density);
+        feat.SetField("orientation", 90.0);  // east-west hatches, across the vertical borders
+        EXPECT_EQ(fl->CreateFeature(&feat), OGRERR_NONE);
+    }
+    OGRLayer* ll = ds->CreateLayer("lines", &srs, wkbLineString, nullptr);
+    OGRFieldDefn kind("kind", OFTString);
+    ll->CreateField(&kind);
+    for (const HandLine& l : lines) {
+        OGRFeature feat(ll->GetLayerDefn());
+        OGRLineString ls = line_string(l.points);
+        feat.SetGeometry(&ls);
+        feat.SetField("kind", l.kind);
+        EXPECT_EQ(ll->CreateFeature(&feat), OGRERR_NONE);
+    }
+    return path;
+}
+
+std::string lambert93() {
+    OGRSpatialReference srs;
+    srs.importFromEPSG(2154);
+    char* wkt = nullptr;
+    srs.exportToWkt(&wkt);
+    std::string s(wkt);
+    CPLFree(wkt);
+    return s;
+}
+
+Partition load(const std::string& path) {
+    PartitionOptions o;
+    o.path = path;
+    return load_partition(o, lambert93());
+}
+
+const RockFace& face(const Partition& p, std::int64_t id) {
+    for (const auto& f : p.faces)
+        if (f.id == id) return f;
+    throw std::runtime_error("no face " + std::to_string(id));
+}
+
+int index_of(const Partition& p, std::int64_t id) { return int(&face(p, id) - p.faces.data()); }
+
+// Segments of the face within `tol` of the vertical line x = X0 + x between y0 and y1.
+std::vector<BoundarySegment> on_vertical(const RockFace& f, double x, double y0, double y1, double tol = 0.5) {
+    std::vector<BoundarySegment> out;
+    for (const auto& s : f.boundary) {
+        const Point a = s.a - Point{X0, Y0}, b = s.b - Point{X0, Y0};
+        if (std::abs(a.x - x) <= tol && std::abs(b.x - x) <= tol && std::min(a.y, b.y) >= y0 - tol &&
+            std::max(a.y, b.y) <= y1 + tol)
+            out.push_back(s);
+    }
+    return out;
+}
+
+double length(const std::vector<Point>& pts) {
+    double l = 0;
+    for (std::size_t i = 0; i + 1 < pts.size(); ++i) l += tex::distance(pts[i], pts[i + 1]);
+    return l;
+}
+
+Drawing draw(const std::string& path, const std::string& style) {
+    Options o;
+    o.dem = kSample + "/dem.tif";
+    o.partition.path = path;
+    o.style = style;
+    o.threads = 1;
+    return hatch(prepare(o), o);
+}
+
+// Two squares side by side; their common side x = 100 is digitised by each with its own
+// vertices (A: y = 0, 30, 100; B: y = 0, 70, 100), 0.05 to 0.1 off the line.
+std::vector<HandFace> two_squares(double density_a = -1, double density_b = -1) {
+    return {
+        {{{0, 0}, {100, 0}, {100.1, 30}, {100, 100}, {0, 100}}, density_a},
+        {{{100.08, -0.06}, {200, 0}, {200, 100}, {99.95, 100.07}, {99.9, 70}}, density_b},
+    };
+}
+
+// Each side of the shared border has the other face across every segment, and both run
+// through the same points.
+void expect_shared_border(const Partition& p) {
+    const RockFace& a = face(p, 1);
+    const RockFace& b = face(p, 2);
+    const auto sa = on_vertical(a, 100, 0, 100), sb = on_vertical(b, 100, 0, 100);
+    ASSERT_GE(sa.size(), 3u);  // A's side gained B's vertex
+    ASSERT_EQ(sa.size(), sb.size());
+    for (const auto& s : sa) {
+        EXPECT_EQ(s.neighbor, index_of(p, 2));
+        EXPECT_TRUE(std::any_of(sb.begin(), sb.end(), [&](const BoundarySegment& t) { return t.a == s.b && t.b == s.a; }));
+    }
+    for (const auto& s : sb) EXPECT_EQ(s.neighbor, index_of(p, 1));
+}
+
+std::vector<std::vector<Point>> rings_of(const Partition& p) {
+    std::vector<std::vector<Point>> out;
+    for (const auto& f : p.faces) {
+        out.push_back(f.region.outer());
+        out.insert(out.end(), f.region.holes().begin(), f.region.holes().end());
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST(Partition, BordersDigitisedTwiceAreSnappedAndTheValleyIsDrawnOnce) {
+    const std::string path =
+        write_partition("valley", two_squares(), {{{{100, 0}, {100, 100}}, "valley"}});
+    const Partition p = load(path);
+    ASSERT_EQ(p.faces.size(), 2u);
+    expect_shared_border(p);
+    for (const auto& s : on_vertical(face(p, 1), 100, 0, 100)) EXPECT_EQ(s.kind, LineKind::Valley);
+    for (const auto& s : on_vertical(face(p, 2), 100, 0, 100)) EXPECT_EQ(s.kind, LineKind::Valley);
+    // Only the shared side is a valley: the outer sides stay "other".
+    for (const auto& f : p.faces)
+        for (const auto& s : f.boundary)
+            if (s.kind == LineKind::Valley) EXPECT_GE(s.neighbor, 0);
+
+    const Drawing d = draw(path, "high-ridges");
+    double valley = 0;
+    for (const auto& fh : d.faces)
+        for (const auto& h : fh.hatches)
+            if (h.family == Family::Valley) valley += length(h.points);
+    EXPECT_NEAR(valley, 100, 0.5);  // once, not twice
+}
+
+TEST(Partition, RidgeShapesFallOnlyIntoTheDarkerFace) {
+    // Both faces are darker than mid-grey; B digitised the ridge 0.35 to 0.45 m away from A,
+    // with a vertex every 5 m, so that unsnapped its border looks across into the gap
+    // (no density there) and it took itself for the darker side.
+    std::vector<HandFace> faces = {{{{0, 0}, {100, 0}, {100.1, 30}, {100, 100}, {0, 100}}, 0.9},
+                                   {{{200, 0}, {200, 100}}, 0.6}};
+    for (int k = 20; k >= 0; --k) faces[1].ring.push_back({100.4 + (k % 2 ? 0.05 : -0.05), 5.0 * k});
+    const std::string path = write_partition("ridge", faces, {{{{100.2, 0}, {100.2, 100}}, "ridge"}});
+    const Partition p = load(path);
+    expect_shared_border(p);
+    for (const char* style : {"ridge-triangles", "fine-ridges"}) {
+        const Drawing d = draw(path, style);
+        ASSERT_EQ(d.faces.size(), 2u);
+        for (const auto& fh : d.faces) {
+            const auto n = std::count_if(fh.hatches.begin(), fh.hatches.end(),
+                                         [](const Hatch& h) { return h.family == Family::Ridge; });
+            if (fh.face_id == 1) EXPECT_GT(n, 0) << style << ": no ridge shapes in the dark face";
+            else EXPECT_EQ(n, 0) << style << ": ridge shapes in the lighter face";
+        }
+    }
+}
+
+TEST(Partition, AVertexOnAnotherFacesSegmentIsInserted) {
+    // A's right side is one segment; B and C meet at (100.2, 50), just off it.
+    const std::string path = write_partition(
+        "tjunction",
+        {{{{0, 0}, {100, 0}, {100, 100}, {0, 100}}},
+         {{{100, 0}, {200, 0}, {200, 50}, {100.2, 50}}},
+         {{{100.2, 50}, {200, 50}, {200, 100}, {100, 100}}}},
+        {{{{0, 0}, {0, 100}}, "ridge"}});
+    const Partition p = load(path);
+    ASSERT_EQ(p.faces.size(), 3u);
+    const RockFace& a = face(p, 1);
+    const auto& outer = a.region.outer();
+    EXPECT_NE(std::find(outer.begin(), outer.end(), Point{X0 + 100, Y0 + 50}), outer.end());
+    const auto lower = on_vertical(a, 100, 0, 50, 0.01), upper = on_vertical(a, 100, 50, 100, 0.01);
+    ASSERT_EQ(lower.size(), 1u);
+    ASSERT_EQ(upper.size(), 1u);
+    EXPECT_EQ(lower[0].neighbor, index_of(p, 2));
+    EXPECT_EQ(upper[0].neighbor, index_of(p, 3));
+    // B and C moved their common corner onto A's side, and still share their border.
+    for (std::int64_t id : {2, 3}) {
+        const auto& r = face(p, id).region.outer();
+        EXPECT_NE(std::find(r.begin(), r.end(), Point{X0 + 100, Y0 + 50}), r.end());
+    }
+    for (const auto& s : face(p, 2).boundary)
+        if (s.a.y == Y0 + 50 && s.b.y == Y0 + 50) EXPECT_EQ(s.neighbor, index_of(p, 3));
+}
+
+TEST(Partition, SharedVerticesAreLeftBitIdentical) {
+    // The sample partition (written with shared vertices), read without snapping...
+    GDALAllRegister();
+    std::unique_ptr<GDALDataset> ds(GDALDataset::Open((kSample + "/partition.gpkg").c_str(), GDAL_OF_VECTOR));
+    ASSERT_TRUE(ds);
+    Partition raw;
+    for (auto& feat : *ds->GetLayerByName("faces")) {
+        const OGRPolygon* poly = feat->GetGeometryRef()->toPolygon();
+        auto pts = [](const OGRLinearRing* r) {
+            std::vector<Point> v;
+            for (int i = 0; i < r->getNumPoints(); ++i) v.push_back({r->getX(i), r->getY(i)});
+            return v;
+        };
+        std::vector<std::vector<Point>> holes;
+        for (int k = 0; k < poly->getNumInteriorRings(); ++k) holes.push_back(pts(poly->getInteriorRing(k)));
+        RockFace f;
+        f.id = feat->GetFID();
+        f.region = tex::Region(pts(poly->getExteriorRing()), holes);
+        raw.faces.push_back(std::move(f));
+    }
+    ASSERT_EQ(raw.faces.size(), 20u);
+    Partition snapped = raw;
+    snap_borders(snapped, 0.5);
+    EXPECT_EQ(rings_of(snapped), rings_of(raw));
+    EXPECT_TRUE(snapped.notes.empty());
+    // ... and as loaded: the same rings, every face with neighbours.
+    const Partition loaded = load(kSample + "/partition.gpkg");
+    EXPECT_EQ(rings_of(loaded), rings_of(raw));
+
+    // A partition extracted from the DEM shares its vertices too: snapping changes nothing.
+    ExtractOptions eo;
+    eo.dem = kSample + "/dem.tif";
+    const Partition extracted = extract_partition(eo).partition;
+    for (double snap : {0.5, 2.0}) {
+        Partition again = extracted;
+        snap_borders(again, snap);
+        EXPECT_EQ(rings_of(again), rings_of(extracted)) << "snap " << snap;
+    }
+}
+
+TEST(Partition, ASliverThatCollapsesIsDroppedWithANote) {
+    // A thin face digitised on its own between A's straight side and B's side 0.4 away: its
+    // corners snap onto A's, its other vertices onto A's side, and nothing is left of it. (A
+    // sliver sharing a whole side with A is a proper face and stays: a face never snaps onto
+    // itself.)
+    const std::string path = write_partition(
+        "sliver",
+        {{{{0, 0}, {100, 0}, {100, 100}, {0, 100}}},
+         {{{100.1, 0.1}, {100.3, 30}, {100.3, 70}, {100.1, 99.9}, {99.9, 50}}},
+         {{{100.4, 0}, {200, 0}, {200, 100}, {100.4, 100}}}},
+        {{{{100, 0}, {100, 100}}, "valley"}});
+    const Partition p = load(path);
+    ASSERT_EQ(p.faces.size(), 2u);
+    EXPECT_EQ(p.faces[0].id, 1);
+    EXPECT_EQ(p.faces[1].id, 3);
+    ASSERT_FALSE(p.notes.empty());
+    EXPECT_NE(p.notes.back().find("dropped 1 face"), std::string::npos) << p.notes.back();
+    EXPECT_NE(p.notes.back().find("id 2"), std::string::npos) << p.notes.back();
+    // A and B now share the border.
+    for (const auto& s : on_vertical(p.faces[0], 100, 0, 100)) EXPECT_EQ(s.neighbor, 1);
+    for (const auto& s : on_vertical(p.faces[1], 100, 0, 100)) EXPECT_EQ(s.neighbor, 0);
+    EXPECT_EQ(on_vertical(p.faces[0], 100, 0, 100).size(), 4u);
+}
+
+TEST(Partition, SnappingDoesNotDependOnTheOrderOfTheFaces) {
+    auto faces = two_squares();
+    faces.push_back({{{100, 100}, {200, 100}, {200, 150}, {100.1, 150.2}}});
+    const std::vector<HandLine> lines = {{{{100, 0}, {100, 100}}, "valley"}};
+    const Partition p = load(write_partition("order1", faces, lines));
+    std::reverse(faces.begin(), faces.end());
+    const Partition q = load(write_partition("order2", faces, lines));
+    ASSERT_EQ(p.faces.size(), q.faces.size());
+    for (std::size_t i = 0; i < p.faces.size(); ++i)
+        EXPECT_EQ(p.faces[i].region.outer(), q.faces[p.faces.size() - 1 - i].region.outer());
+}
