@@ -935,6 +935,29 @@ def microprocessor(elements):
     return Outside(board, MapToVertices(pads, board), CROP_ADD_BOUNDARY)
 
 
+def oriented_darts(elements):
+    # The control field: at every point, the direction of the image's centre.
+    centre = Point(SIZE / 2, SIZE / 2)
+    to_centre = Angle(VectorField(lambda p: centre - p))
+
+    # Controlled mapper: a face mapper for a given orientation field.
+    def turned_element(element):
+        def with_field(angle):
+            def place(face):
+                c = Centroid(face)
+                turned = Rotate(element, angle(c))
+                return MatchPoint(turned, BBoxCenter(turned), c)
+            return place
+        return with_field
+
+    # Controlled arrangement: the mapper on each face of a uniform partition.
+    def turned_elements(element, density):
+        mapper = turned_element(element)
+        return lambda angle: MapToFaces(mapper(angle), UniformPartition(IrregularProperties(density), KEEP_OUTSIDE))
+
+    return turned_elements(load(elements, "dart.svg"), 1e-4)(to_centre)
+
+
 EXAMPLES = {
     "stripes": stripes, "grid": grid, "uniform": uniform, "random": random_, "puzzle": puzzle,
     "rosettes": rosettes, "cracks": cracks, "bimodal": bimodal, "crosses": crosses, "curves": curves,
@@ -952,6 +975,7 @@ EXAMPLES = {
     "wallpaper_p31m": wallpaper_p31m, "escher_p6": escher_p6, "escher_p4m": escher_p4m, "escher_p31m": escher_p31m,
     "parquetry": parquetry, "table": table, "bottle": bottle, "teapot": teapot,
     "microprocessor": microprocessor,
+    "oriented_darts": oriented_darts,
 }
 
 

@@ -31,12 +31,6 @@ PyTerrain share(Terrain t) {
     return {own(t.elevation), own(t.slope), own(t.aspect), own(t.roughness), own(t.hillshade)};
 }
 
-// A field and what it reads, kept alive as long as the field.
-struct PyField {
-    Field fn;
-    std::string kind;  // "python", "raster", "constant", "faces", "c++"
-};
-
 // A face as a style sees it: its geometry and labels, and the ids of its neighbours.
 struct StyleFace {
     RockFace face;
@@ -70,28 +64,6 @@ RasterPtr raster_from_array(const py::array_t<double, py::array::c_style | py::a
         r->data[i] = (nodata && v == *nodata) || !std::isfinite(v) ? NAN : float(v);
     }
     return r;
-}
-
-Field python_field(py::object fn) {
-    PyRef ref(std::move(fn));
-    return [ref](const Point& p) -> double {
-        py::gil_scoped_acquire gil;
-        py::object v = ref.get()(p);
-        if (v.is_none()) return NAN;
-        return v.cast<double>();
-    };
-}
-
-// Anything usable as a field: a Field, a Raster, a number or a Python callable of a Point.
-PyField to_field(const py::object& o) {
-    if (py::isinstance<PyField>(o)) return o.cast<PyField>();
-    if (py::isinstance<Raster>(o)) {
-        RasterPtr r = o.cast<RasterPtr>();
-        return {[r](const Point& q) { return r->sample(q); }, "raster"};
-    }
-    if (py::isinstance<py::float_>(o) || py::isinstance<py::int_>(o)) return {constant_field(o.cast<double>()), "constant"};
-    if (PyCallable_Check(o.ptr())) return {python_field(o), "python"};
-    throw py::type_error("a field is a Field, a Raster, a number or a callable f(Point) -> float; got " + type_name(o));
 }
 
 // Called with or without the GIL (inside bindings that release it): takes it to keep a
@@ -226,63 +198,45 @@ void bind_carto(py::module_& m) {
         "compute_terrain", [](const Raster& dem) { return share(compute_terrain(dem)); }, py::arg("dem"),
         py::call_guard<py::gil_scoped_release>(), "slope, aspect, roughness and hillshade of a DEM in a projected CRS");
 
-    // ---- Control fields (seed 5.3) ----
-    py::class_<PyField>(m, "Field", "A control field: a function from a point of the plane to a value")
-        .def(py::init([](const py::object& o) { return to_field(o); }), py::arg("source"),
-             "from a callable f(Point) -> float, a Raster (bilinear) or a number")
-        .def_static("constant", [](double v) { return PyField{constant_field(v), "constant"}; })
+    // ---- Control fields (seed 5.3): rockhatch.tex.Field, with raster constructors ----
+    add_field_converter([](const py::object& o) -> std::optional<Field> {
+        if (!py::isinstance<Raster>(o)) return std::nullopt;
+        return raster_field(std::const_pointer_cast<const Raster>(o.cast<RasterPtr>()));
+    });
+    auto field = py::reinterpret_borrow<py::class_<Field>>(py::type::of<Field>());
+    field
         .def_static(
             "from_raster",
-            [](const RasterPtr& r, double offset, double range) {
-                return PyField{[r, offset, range](const Point& q) { return (r->sample(q) - offset) / range; }, "raster"};
-            },
+            [](const RasterPtr& r, double offset, double range) { return raster_field(RasterPtr(r), offset, range); },
             py::arg("raster"), py::arg("offset") = 0.0, py::arg("range") = 1.0,
             "bilinear, NoData-aware: (value - offset) / range")
         .def_static(
             "from_array",
             [](const py::array_t<double, py::array::c_style | py::array::forcecast>& a, const std::vector<double>& gt,
                const std::string& crs, std::optional<double> nodata) {
-                RasterPtr r = raster_from_array(a, gt, crs, nodata);
-                return PyField{[r](const Point& q) { return r->sample(q); }, "raster"};
+                return raster_field(raster_from_array(a, gt, crs, nodata));
             },
-            py::arg("array"), py::arg("geotransform"), py::arg("crs") = "", py::arg("nodata") = py::none())
-        .def_readonly("kind", &PyField::kind)
-        .def("__call__", [](const PyField& f, const Point& p) { return f.fn(p); })
-        .def("__call__", [](const PyField& f, double x, double y) { return f.fn({x, y}); })
-        .def(
-            "sample",
-            [](const PyField& f, const py::array_t<double, py::array::c_style | py::array::forcecast>& xs,
-               const py::array_t<double, py::array::c_style | py::array::forcecast>& ys) {
-                if (xs.size() != ys.size()) throw py::value_error("Field.sample: xs and ys differ in size");
-                py::array_t<double> out(xs.size());
-                const double *x = xs.data(), *y = ys.data();
-                double* o = out.mutable_data();
-                const py::ssize_t n = xs.size();
-                py::gil_scoped_release release;  // a Python field takes the GIL back itself
-                for (py::ssize_t i = 0; i < n; ++i) o[i] = f.fn({x[i], y[i]});
-                return out;
-            },
-            py::arg("xs"), py::arg("ys"), "values at many points (1-D arrays)");
-    py::implicitly_convertible<py::function, PyField>();
-    py::implicitly_convertible<Raster, PyField>();
+            py::arg("array"), py::arg("geotransform"), py::arg("crs") = "", py::arg("nodata") = py::none());
+    m.attr("Field") = field;
+    py::implicitly_convertible<Raster, Field>();
 
     py::class_<ControlFields>(m, "ControlFields", "The control fields a style is applied to")
         .def(py::init([](const py::object& o, const py::object& d, const py::object& h, const py::object& r) {
-                 return ControlFields{to_field(o).fn, to_field(d).fn, to_field(h).fn, to_field(r).fn};
+                 return ControlFields{to_field(o), to_field(d), to_field(h), to_field(r)};
              }),
              py::arg("orientation"), py::arg("density"), py::arg("height"), py::arg("roughness"))
         .def_property(
-            "orientation", [](const ControlFields& c) { return PyField{c.orientation, "c++"}; },
-            [](ControlFields& c, const py::object& o) { c.orientation = to_field(o).fn; }, "hatch direction (radians)")
+            "orientation", [](const ControlFields& c) { return c.orientation; },
+            [](ControlFields& c, const py::object& o) { c.orientation = to_field(o); }, "hatch direction (radians)")
         .def_property(
-            "density", [](const ControlFields& c) { return PyField{c.density, "c++"}; },
-            [](ControlFields& c, const py::object& o) { c.density = to_field(o).fn; }, "0..1, 1 = darkest")
+            "density", [](const ControlFields& c) { return c.density; },
+            [](ControlFields& c, const py::object& o) { c.density = to_field(o); }, "0..1, 1 = darkest")
         .def_property(
-            "height", [](const ControlFields& c) { return PyField{c.height, "c++"}; },
-            [](ControlFields& c, const py::object& o) { c.height = to_field(o).fn; }, "0..1 normalised elevation")
+            "height", [](const ControlFields& c) { return c.height; },
+            [](ControlFields& c, const py::object& o) { c.height = to_field(o); }, "0..1 normalised elevation")
         .def_property(
-            "roughness", [](const ControlFields& c) { return PyField{c.roughness, "c++"}; },
-            [](ControlFields& c, const py::object& o) { c.roughness = to_field(o).fn; }, "0..1");
+            "roughness", [](const ControlFields& c) { return c.roughness; },
+            [](ControlFields& c, const py::object& o) { c.roughness = to_field(o); }, "0..1");
 
     // ---- Partition ----
     py::enum_<LineKind>(m, "LineKind")
@@ -333,9 +287,9 @@ void bind_carto(py::module_& m) {
             if (values.size() != p.faces.size())
                 throw py::value_error("face_field: " + std::to_string(values.size()) + " values for " +
                                       std::to_string(p.faces.size()) + " faces");
-            return PyField{face_field(p, std::move(values)), "faces"};
+            return face_field(p, std::move(values));
         },
-        py::arg("partition"), py::arg("values"), py::keep_alive<0, 1>(), "value i on face i, NaN outside the faces");
+        py::arg("partition"), py::arg("values"), "value i on face i, NaN outside the faces");
     m.def("interior_point", &interior_point);
 
     py::class_<StyleFace>(m, "StyleFace", "A face handed to a style: the face and the ids of its neighbours")
@@ -351,8 +305,8 @@ void bind_carto(py::module_& m) {
         .def_readonly("height", &FaceControls::height)
         .def("neighbour_density", [](const FaceControls& c, int i) { return c.neighbour_density(i); })
         .def("neighbour_id", [](const FaceControls& c, int i) { return c.neighbour_id(i); })
-        .def_property_readonly("height_field", [](const FaceControls& c) { return PyField{c.height_field, "c++"}; })
-        .def_property_readonly("roughness_field", [](const FaceControls& c) { return PyField{c.roughness_field, "c++"}; });
+        .def_property_readonly("height_field", [](const FaceControls& c) { return c.height_field; })
+        .def_property_readonly("roughness_field", [](const FaceControls& c) { return c.roughness_field; });
     m.def(
         "face_controls",
         [](const StyleFace& f, const ControlFields& fields) {

@@ -13,7 +13,9 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl_bind.h>
 
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,7 +52,14 @@ private:
 // Name of a Python object's type, for messages.
 inline std::string type_name(const py::handle& o) { return py::str(py::type::of(o).attr("__name__")); }
 
+// Anything usable as a field: a Field, a number, a callable of a Point (it takes the GIL
+// when read), or what a registered converter accepts (carto adds its Raster).
+using FieldConverter = std::function<std::optional<tex::Field>(const py::object&)>;
+void add_field_converter(FieldConverter c);
+tex::Field to_field(const py::object& o);
+
 void bind_tex(py::module_& m);
+void bind_fields(py::module_& m);
 void bind_carto(py::module_& m);
 
 }  // namespace rhpy

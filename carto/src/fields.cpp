@@ -3,57 +3,47 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
-#include <unordered_map>
+#include <optional>
 
 #include "carto/hatching.hpp"
 
 namespace carto {
 
+namespace {
+
+// A raster read in place: no copy of its cells.
+class RasterFieldImpl : public tex::FieldImpl {
+public:
+    RasterFieldImpl(std::shared_ptr<const Raster> r, double offset, double range)
+        : r_(std::move(r)), offset_(offset), range_(range) {}
+    double eval(const Point& q) const override { return (r_->sample(q) - offset_) / range_; }
+    std::optional<tex::BBox> domain() const override { return r_->bounds(); }
+    const char* kind() const override { return "raster"; }
+
+private:
+    std::shared_ptr<const Raster> r_;
+    double offset_, range_;
+};
+
+}  // namespace
+
 Field raster_field(const Raster& r, double offset, double range) {
-    return [&r, offset, range](const Point& q) { return (r.sample(q) - offset) / range; };
+    // The caller keeps the raster alive (a non-owning pointer).
+    return raster_field(std::shared_ptr<const Raster>(std::shared_ptr<const Raster>(), &r), offset, range);
+}
+
+Field raster_field(std::shared_ptr<const Raster> r, double offset, double range) {
+    return Field(std::make_shared<RasterFieldImpl>(std::move(r), offset, range));
 }
 
 Field face_field(const Partition& p, std::vector<double> values) {
-    // A grid of face boxes, so a lookup tests only the faces near the point.
-    struct Index {
-        tex::BBox box;
-        double cell = 1;
-        int nx = 1, ny = 1;
-        std::vector<std::vector<int>> cells;
-        std::vector<double> values;
-        const Partition* part;
-    };
-    auto idx = std::make_shared<Index>();
-    idx->part = &p;
-    idx->values = std::move(values);
-    idx->box = p.bounds();
-    const double side = std::sqrt(std::max(1.0, double(p.faces.size())));
-    idx->cell = std::max(idx->box.width(), idx->box.height()) / side + 1e-9;
-    idx->nx = std::max(1, int(std::ceil(idx->box.width() / idx->cell)));
-    idx->ny = std::max(1, int(std::ceil(idx->box.height() / idx->cell)));
-    idx->cells.resize(std::size_t(idx->nx) * idx->ny);
-    for (std::size_t i = 0; i < p.faces.size(); ++i) {
-        const tex::BBox& b = p.faces[i].region.bbox();
-        const int x0 = std::clamp(int((b.xmin - idx->box.xmin) / idx->cell), 0, idx->nx - 1);
-        const int x1 = std::clamp(int((b.xmax - idx->box.xmin) / idx->cell), 0, idx->nx - 1);
-        const int y0 = std::clamp(int((b.ymin - idx->box.ymin) / idx->cell), 0, idx->ny - 1);
-        const int y1 = std::clamp(int((b.ymax - idx->box.ymin) / idx->cell), 0, idx->ny - 1);
-        for (int y = y0; y <= y1; ++y)
-            for (int x = x0; x <= x1; ++x) idx->cells[std::size_t(y) * idx->nx + x].push_back(int(i));
-    }
-    return [idx](const Point& q) {
-        if (!idx->box.contains(q)) return std::nan("");
-        const int x = std::clamp(int((q.x - idx->box.xmin) / idx->cell), 0, idx->nx - 1);
-        const int y = std::clamp(int((q.y - idx->box.ymin) / idx->cell), 0, idx->ny - 1);
-        for (int i : idx->cells[std::size_t(y) * idx->nx + x])
-            if (idx->part->faces[i].region.contains(q)) return idx->values[i];
-        return std::nan("");
-    };
+    std::vector<tex::Region> regions;
+    regions.reserve(p.faces.size());
+    for (const auto& f : p.faces) regions.push_back(f.region);
+    return tex::RegionField(std::move(regions), std::move(values));
 }
 
-Field constant_field(double v) {
-    return [v](const Point&) { return v; };
-}
+Field constant_field(double v) { return tex::ConstantField(v); }
 
 Point interior_point(const RockFace& f) {
     const Point c = ring_centroid(f.region.outer());

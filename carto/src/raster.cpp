@@ -12,6 +12,7 @@
 #include <memory>
 
 #include "carto/error.hpp"
+#include "libtex/fields.hpp"
 
 namespace carto {
 namespace {
@@ -69,9 +70,7 @@ Raster from_dataset(GDALDataset& ds, const std::string& what, const std::string&
 
 }  // namespace
 
-Point Raster::to_pixel(const Point& w) const {
-    return {(w.x - gt[0]) / gt[1], (w.y - gt[3]) / gt[5]};
-}
+Point Raster::to_pixel(const Point& w) const { return tex::grid_pixel(gt, w); }
 
 BBox Raster::bounds() const {
     BBox b;
@@ -82,32 +81,10 @@ BBox Raster::bounds() const {
     return b;
 }
 
-double Raster::sample(const Point& w) const {
-    const Point p = to_pixel(w);
-    const double fx = p.x - 0.5, fy = p.y - 0.5;
-    if (!(p.x >= 0 && p.y >= 0 && p.x <= width && p.y <= height)) return std::nan("");
-    const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
-    const double tx = fx - x0, ty = fy - y0;
-    double sum = 0, wsum = 0;
-    for (int dy = 0; dy <= 1; ++dy)
-        for (int dx = 0; dx <= 1; ++dx) {
-            const int cx = std::clamp(x0 + dx, 0, width - 1), cy = std::clamp(y0 + dy, 0, height - 1);
-            const float v = at(cx, cy);
-            if (std::isnan(v)) continue;
-            const double wgt = (dx ? tx : 1 - tx) * (dy ? ty : 1 - ty);
-            sum += wgt * v;
-            wsum += wgt;
-        }
-    if (wsum <= 1e-12) return nearest(w);
-    return sum / wsum;
-}
+// One bilinear sampler for carto and libtex: tex::sample_grid on the raster's cells.
+double Raster::sample(const Point& w) const { return tex::sample_grid(data.data(), width, height, gt, w); }
 
-double Raster::nearest(const Point& w) const {
-    const Point p = to_pixel(w);
-    const int c = int(std::floor(p.x)), r = int(std::floor(p.y));
-    if (c < 0 || r < 0 || c >= width || r >= height) return std::nan("");
-    return at(c, r);
-}
+double Raster::nearest(const Point& w) const { return tex::nearest_grid(data.data(), width, height, gt, w); }
 
 std::pair<double, double> Raster::min_max() const {
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "gallery_domain.hpp"
+#include "gallery_fields.hpp"
 #include "gallery_micro.hpp"
 #include "gallery_more.hpp"
 #include "gallery_teasers.hpp"
@@ -305,6 +306,7 @@ const std::vector<Example>& examples() {
         {"bottle", "Bottle: bubbles filling a bottle", 11, domain::bottle},
         {"teapot", "Teapot: dots of random sizes filling a teapot", 22, domain::teapot},
         {"microprocessor", "Microprocessor: traces, chips and solder joints", 54, micro::microprocessor},
+        {"oriented_darts", "Control field: darts turned towards the centre (Fig. 5.2)", -1, fields::darts},
     };
     return all;
 }

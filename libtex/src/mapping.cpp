@@ -2,6 +2,7 @@
 // parallel), concatenate the results in cell order.
 #include "libtex/mapping.hpp"
 
+#include "libtex/fields.hpp"
 #include "libtex/parallel.hpp"
 #include "libtex/random.hpp"
 
@@ -14,7 +15,13 @@ Curves map_cells(const MapPtr& map, const std::vector<int>& ids, const Mapper& m
     auto visit = [&](std::size_t i) {
         CellT cell(map, ids[i]);
         RandomScope scope(key_of(ids[i]));
-        results[i] = m(cell);
+        if (detail::locality_checked()) {
+            // Field reads of the mapper are checked against the cell's box.
+            FieldWindow window(CellBBox(cell));
+            results[i] = m(cell);
+        } else {
+            results[i] = m(cell);
+        }
     };
     if (t == MapperThreads::Serial) {
         for (std::size_t i = 0; i < ids.size(); ++i) visit(i);

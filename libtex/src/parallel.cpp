@@ -1,5 +1,6 @@
 #include "libtex/parallel.hpp"
 
+#include "libtex/fields.hpp"
 #include "libtex/random.hpp"
 
 #include <algorithm>
@@ -26,10 +27,18 @@ unsigned GetThreads() {
 }
 
 void parallel_for(std::size_t n, const std::function<void(std::size_t)>& body) {
-    // Each item runs under random streams derived from the caller's and its index.
+    // Each item runs under random streams derived from the caller's and its index, and in
+    // the caller's field window, whatever thread runs it.
     const detail::StreamState parent = detail::capture_stream_state();
+    const detail::WindowState window = detail::capture_window();
     auto item = [&](std::size_t i) {
         detail::ItemScope scope(parent, i);
+        const detail::WindowState saved = detail::capture_window();
+        detail::restore_window(window);
+        struct Restore {
+            const detail::WindowState& w;
+            ~Restore() { detail::restore_window(w); }
+        } restore{saved};
         body(i);
     };
     const unsigned threads = unsigned(std::min<std::size_t>(GetThreads(), n));

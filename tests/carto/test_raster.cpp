@@ -1,10 +1,14 @@
 // Rasters: bilinear sampling, NoData, reading errors, reprojection.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
+#include <random>
 
 #include "carto/error.hpp"
+#include "carto/fields.hpp"
 #include "carto/raster.hpp"
 #include "carto/terrain.hpp"
 
@@ -54,6 +58,67 @@ TEST(Raster, NoDataIsLeftOutOfTheInterpolation) {
     const auto [lo, hi] = r.min_max();
     EXPECT_EQ(lo, 7);
     EXPECT_EQ(hi, 7);
+}
+
+namespace {
+
+// Raster::sample as it was before it moved to libtex (north-up), to pin its results.
+double former_sample(const Raster& r, const Point& w) {
+    const Point p{(w.x - r.gt[0]) / r.gt[1], (w.y - r.gt[3]) / r.gt[5]};
+    const double fx = p.x - 0.5, fy = p.y - 0.5;
+    if (!(p.x >= 0 && p.y >= 0 && p.x <= r.width && p.y <= r.height)) return std::nan("");
+    const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
+    const double tx = fx - x0, ty = fy - y0;
+    double sum = 0, wsum = 0;
+    for (int dy = 0; dy <= 1; ++dy)
+        for (int dx = 0; dx <= 1; ++dx) {
+            const float v = r.at(std::clamp(x0 + dx, 0, r.width - 1), std::clamp(y0 + dy, 0, r.height - 1));
+            if (std::isnan(v)) continue;
+            const double wgt = (dx ? tx : 1 - tx) * (dy ? ty : 1 - ty);
+            sum += wgt * v;
+            wsum += wgt;
+        }
+    if (wsum <= 1e-12) {
+        const int c = int(std::floor(p.x)), row = int(std::floor(p.y));
+        if (c < 0 || row < 0 || c >= r.width || row >= r.height) return std::nan("");
+        return r.at(c, row);
+    }
+    return sum / wsum;
+}
+
+bool same_bits(double a, double b) {
+    if (std::isnan(a) && std::isnan(b)) return true;
+    return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+}  // namespace
+
+TEST(Raster, SamplingIsLibtexGridSamplingBitForBit) {
+    Raster r = plane(17, 11, 3.7, 0.31, -0.17, 50);
+    for (int i = 0; i < 187; i += 7) r.data[std::size_t(i)] = NAN;  // scattered NoData
+    for (int x = 0; x < 4; ++x)
+        for (int y = 0; y < 3; ++y) r.at(x, y) = NAN;  // a NoData block
+    tex::GridSamples g{r.width, r.height, r.gt, std::make_shared<const std::vector<float>>(r.data)};
+    const tex::Field grid = tex::GridField(g);
+    const Field field = raster_field(r);
+    std::mt19937 rng(5);
+    const BBox b = r.bounds().expanded(2);
+    std::uniform_real_distribution<double> ux(b.xmin, b.xmax), uy(b.ymin, b.ymax);
+    int nan = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const Point q{ux(rng), uy(rng)};
+        const double want = former_sample(r, q);
+        nan += std::isnan(want);
+        ASSERT_TRUE(same_bits(r.sample(q), want)) << q.x << " " << q.y;
+        ASSERT_TRUE(same_bits(grid(q), want)) << q.x << " " << q.y;
+        ASSERT_TRUE(same_bits(field(q), want)) << q.x << " " << q.y;
+    }
+    EXPECT_GT(nan, 100);  // outside and inside the NoData block
+    EXPECT_LT(nan, 10000);
+    EXPECT_STREQ(field.kind(), "raster");
+    // Offset and range as before: (value - offset) / range.
+    const Point q = r.to_world(5.2, 6.9);
+    EXPECT_TRUE(same_bits(raster_field(r, 3, 7)(q), (former_sample(r, q) - 3) / 7));
 }
 
 TEST(Raster, WriteReadRoundTripKeepsNoDataAndCrs) {

@@ -120,6 +120,7 @@ INSTANTIATE_TEST_SUITE_P(More, GalleryTest,
 INSTANTIATE_TEST_SUITE_P(Domain, GalleryTest,
                          ::testing::Values("parquetry", "table", "bottle", "teapot"));
 INSTANTIATE_TEST_SUITE_P(Micro, GalleryTest, ::testing::Values("microprocessor"));
+INSTANTIATE_TEST_SUITE_P(Fields, GalleryTest, ::testing::Values("oriented_darts"));
 
 TEST(Gallery, ExpectedStructure) {
     // Puzzle: a 16 x 16 grid in which every other vertical edge is removed row by row.
@@ -1627,4 +1628,39 @@ TEST(FastCrop, SameMapsAsTheExactPathOnTheGallery) {
                     exact.big_faces, exact.loose_ends);
     }
     SetThreads(threads);
+}
+
+// ---- Control field: darts turned towards the centre ----
+
+#include "gallery_fields.hpp"
+
+TEST(OrientedDarts, EveryDartPointsAtTheCentreAndReadsOnlyItsFace) {
+    namespace gf = gallery::fields;
+    const Point centre{gallery::kSize / 2, gallery::kSize / 2};
+    // The field is the direction of the centre.
+    EXPECT_DOUBLE_EQ(gf::towards(centre)({0, gallery::kSize / 2}), 0);
+    EXPECT_DOUBLE_EQ(gf::towards(centre)({gallery::kSize / 2, 0}), pi / 2);
+    LocalityCheck check(0);
+    const Curves c = example("oriented_darts");
+    EXPECT_EQ(check.violations(), 0u);  // each dart reads the field at its own face's centroid
+    EXPECT_EQ(check.reads(), c.curves.size());
+    // One closed dart and its "tail" and "tip" labels per face, in the same order.
+    ASSERT_GT(c.curves.size(), 300u);
+    ASSERT_EQ(c.points.size(), 2 * c.curves.size());
+    std::size_t far = 0;
+    for (std::size_t i = 0; i < c.curves.size(); ++i) {
+        EXPECT_TRUE(c.curves[i].closed);
+        const Point tail = c.points[2 * i].point, tip = c.points[2 * i + 1].point;
+        ASSERT_TRUE(c.points[2 * i].labels.has("tail"));
+        ASSERT_TRUE(c.points[2 * i + 1].labels.has("tip"));
+        const Point mid = (tail + tip) / 2;
+        if (distance(mid, centre) < 200) continue;  // near the centre the direction turns fast
+        ++far;
+        const Point d = tip - tail, to = centre - mid;
+        EXPECT_GT(dot(d, to) / (norm(d) * norm(to)), std::cos(0.1)) << "dart " << i << " at " << mid.x << "," << mid.y;
+    }
+    EXPECT_GT(far, 300u);
+    // The controlled arrangement takes exactly one field.
+    EXPECT_TEX_ERROR(gf::turned_elements(Polyline({{0, 0}, {1, 0}}), 1e-4)(1.0, 2.0), "turned_elements",
+                     "takes 1 field, got 2");
 }

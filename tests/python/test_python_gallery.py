@@ -25,6 +25,8 @@ FAMILIES = {
     "domain": ["parquetry", "table", "bottle", "teapot"],
     # Traces, chips and solder joints (two merges with CROP_ADD_BOUNDARY, face labels).
     "micro": ["microprocessor"],
+    # A control field turning every element (thesis 5.3).
+    "fields": ["oriented_darts"],
 }
 
 

@@ -3,21 +3,26 @@
 // of the face it hatches, which is what makes edits local and tiling exact.
 #pragma once
 
-#include <functional>
 #include <vector>
 
 #include "carto/partition.hpp"
 #include "carto/raster.hpp"
 #include "carto/terrain.hpp"
+#include "libtex/fields.hpp"
 
 namespace carto {
 
-using Field = std::function<double(const Point&)>;
+// libtex's fields: closed forms, grids, face-wise constants and their compositions.
+using Field = tex::Field;
 
-// Bilinear, NoData-aware raster field, mapped through value -> (value - offset) / range.
+// Bilinear, NoData-aware raster field (tex::sample_grid on the raster's own cells, which
+// must outlive the field), mapped through value -> (value - offset) / range. Its kind is
+// "raster".
 Field raster_field(const Raster& r, double offset = 0.0, double range = 1.0);
+// The same on a shared raster, which the field keeps alive.
+Field raster_field(std::shared_ptr<const Raster> r, double offset = 0.0, double range = 1.0);
 // Face-wise constant field: the value of the face containing the point (NaN outside all
-// faces). values[i] belongs to p.faces[i].
+// faces). values[i] belongs to p.faces[i] (a tex::RegionField on copies of the regions).
 Field face_field(const Partition& p, std::vector<double> values);
 // Closed-form fields are plain lambdas; a constant one for convenience.
 Field constant_field(double v);

@@ -28,7 +28,7 @@ struct Raster {
     Point to_world(double col, double row) const {
         return {gt[0] + col * gt[1] + row * gt[2], gt[3] + col * gt[4] + row * gt[5]};
     }
-    Point to_pixel(const Point& w) const;  // north-up rasters only
+    Point to_pixel(const Point& w) const;  // a rotated geotransform is inverted
     BBox bounds() const;
     // Bilinear interpolation at a world point over the four surrounding cell centres;
     // NoData neighbours are left out and the weights renormalised. NaN outside or when all

@@ -1,0 +1,268 @@
+// Control fields, controlled arrangements and controlled mappers (thesis 5.3).
+//
+// A field gives a value at every point of the plane, NaN where it has none (outside its
+// domain, or NoData). Fields are values: cheap to copy, immutable, safe to read from any
+// thread. They know nothing of GIS: a raster is a sampled grid with an affine transform.
+//
+// Local control: a controlled mapper should read its fields only near the cell it visits.
+// A LocalityCheck, while alive, compares every read with the window of the reading thread
+// (the bounding box of the cell being mapped, or a FieldWindow the caller opens) and counts
+// the reads that land farther than its margin outside it.
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "libtex/arrangement.hpp"
+#include "libtex/cells.hpp"
+#include "libtex/error.hpp"
+#include "libtex/geometry.hpp"
+#include "libtex/region.hpp"
+
+namespace tex {
+
+namespace detail {
+// Number of live LocalityChecks: the only thing a field read looks at when there is none.
+extern std::atomic<int> g_locality_checks;
+void locality_read(const Point& p);
+}  // namespace detail
+
+// What a field computes; subclass it for a new kind of field.
+class FieldImpl {
+public:
+    virtual ~FieldImpl() = default;
+    virtual double eval(const Point& p) const = 0;
+    // Where the field may have values (nullopt: anywhere).
+    virtual std::optional<BBox> domain() const { return std::nullopt; }
+    // A short name of the kind of field ("constant", "grid", "faces", ...), for messages.
+    virtual const char* kind() const { return "function"; }
+};
+
+class Field {
+public:
+    using Fn = std::function<double(const Point&)>;
+
+    // NaN everywhere.
+    Field();
+    // A constant.
+    Field(double v);  // NOLINT: implicit on purpose
+    // Any callable double(const Point&).
+    template <class F,
+              std::enable_if_t<!std::is_same_v<std::decay_t<F>, Field> && !std::is_arithmetic_v<std::decay_t<F>> &&
+                                   std::is_invocable_r_v<double, const std::decay_t<F>&, const Point&>,
+                               int> = 0>
+    Field(F&& f)  // NOLINT: implicit, so that lambdas are fields
+        : Field(from_function(Fn(std::forward<F>(f)))) {}
+    explicit Field(std::shared_ptr<const FieldImpl> impl);
+
+    double operator()(const Point& p) const {
+        if (detail::g_locality_checks.load(std::memory_order_relaxed) != 0) detail::locality_read(p);
+        return impl_->eval(p);
+    }
+    double operator()(double x, double y) const { return (*this)(Point{x, y}); }
+    std::optional<BBox> domain() const { return impl_->domain(); }
+    bool has_value(const Point& p) const;
+    const char* kind() const { return impl_->kind(); }
+    // The implementation (compositions read it without counting a second read).
+    const std::shared_ptr<const FieldImpl>& impl() const { return impl_; }
+
+private:
+    static Field from_function(Fn fn);
+    std::shared_ptr<const FieldImpl> impl_;
+};
+
+// ---- Builders ----
+
+Field ConstantField(double v);
+// fn inside `domain` (the whole plane when none), NaN outside.
+Field FunctionField(Field::Fn fn, std::optional<BBox> domain = std::nullopt);
+
+// A sampled grid. transform is GDAL's: x = t0 + col*t1 + row*t2, y = t3 + col*t4 + row*t5,
+// (col, row) in pixel units, (0.5, 0.5) the centre of the first cell. values: row-major,
+// NaN = NoData.
+struct GridSamples {
+    int width = 0, height = 0;
+    std::array<double, 6> transform{0, 1, 0, 0, 0, -1};
+    std::shared_ptr<const std::vector<float>> values;
+};
+// Bilinear interpolation over the four cell centres around p; NoData neighbours are left
+// out and the weights renormalised; NaN outside the grid; when no neighbour has weight,
+// the value of the cell containing p. A rotated transform is inverted.
+double sample_grid(const float* values, int width, int height, const std::array<double, 6>& t, const Point& p);
+// Value of the cell containing p (NaN outside).
+double nearest_grid(const float* values, int width, int height, const std::array<double, 6>& t, const Point& p);
+// Pixel position (col, row) of a world point.
+Point grid_pixel(const std::array<double, 6>& t, const Point& p);
+// The grid as a field (sample_grid). Throws tex::Error naming GridField on a bad grid.
+Field GridField(GridSamples g);
+
+// Face-wise constant over a planar map: values[face id] on each bounded face, NaN in the
+// unbounded one. A point on an edge takes the value of its adjacent face of smallest id.
+Field FaceField(MapPtr map, std::vector<double> values);
+// Face-wise constant over disjoint regions: values[i] inside regions[i] (borders included;
+// the smallest index wins on a shared border), NaN outside all.
+Field RegionField(std::vector<Region> regions, std::vector<double> values);
+
+// ---- Compositions (NaN in, NaN out) ----
+
+// fn of the value (fn is not called on NaN).
+Field Apply(Field f, std::function<double(double)> fn);
+// fn of both values (not called when either is NaN).
+Field Combine(Field f, Field g, std::function<double(double, double)> fn);
+Field operator+(const Field& a, const Field& b);
+Field operator-(const Field& a, const Field& b);
+Field operator*(const Field& a, const Field& b);
+Field operator/(const Field& a, const Field& b);
+Field operator-(const Field& a);
+Field Clamp(Field f, double lo, double hi);
+// f inside the box (or region, borders included), NaN outside.
+Field Restrict(Field f, const BBox& box);
+Field Restrict(Field f, Region region);
+// f where it has a value, else g.
+Field Fallback(Field f, Field g);
+
+// ---- Vector fields ----
+
+class VectorFieldImpl {
+public:
+    virtual ~VectorFieldImpl() = default;
+    virtual Point eval(const Point& p) const = 0;
+};
+
+// A vector at every point; NaN components where there is none.
+class VectorField {
+public:
+    using Fn = std::function<Point(const Point&)>;
+
+    // NaN everywhere.
+    VectorField();
+    explicit VectorField(Fn fn);
+    VectorField(Field x, Field y);
+    explicit VectorField(const Point& constant);
+    explicit VectorField(std::shared_ptr<const VectorFieldImpl> impl);
+
+    Point operator()(const Point& p) const {
+        if (detail::g_locality_checks.load(std::memory_order_relaxed) != 0) detail::locality_read(p);
+        return impl_->eval(p);
+    }
+    const std::shared_ptr<const VectorFieldImpl>& impl() const { return impl_; }
+
+private:
+    std::shared_ptr<const VectorFieldImpl> impl_;
+};
+
+// Direction of the vectors (atan2(y, x), radians).
+Field Angle(VectorField v);
+// Length of the vectors.
+Field Norm(VectorField v);
+// Central differences with step h.
+VectorField Gradient(Field f, double h);
+
+// ---- Controlled arrangements and mappers (thesis 5.3.1, 5.3.2) ----
+
+namespace detail {
+[[noreturn]] void wrong_arity(const char* what, const std::string& name, std::size_t want, std::size_t got);
+}
+
+// A function of n fields returning R, named for messages.
+template <class R>
+class Controlled {
+public:
+    using Fn = std::function<R(const std::vector<Field>&)>;
+
+    Controlled(std::string name, std::size_t arity, Fn fn)
+        : name_(std::move(name)), arity_(arity), fn_(std::move(fn)) {}
+
+    R operator()(const std::vector<Field>& fields) const {
+        if (fields.size() != arity_) detail::wrong_arity(what(), name_, arity_, fields.size());
+        return fn_(fields);
+    }
+    template <class... F, std::enable_if_t<std::conjunction_v<std::is_convertible<F, Field>...>, int> = 0>
+    R operator()(F&&... f) const {
+        return (*this)(std::vector<Field>{Field(std::forward<F>(f))...});
+    }
+    const std::string& name() const { return name_; }
+    std::size_t arity() const { return arity_; }
+
+private:
+    static const char* what() {
+        return std::is_same_v<R, Arrangement> ? "controlled arrangement" : "controlled mapper";
+    }
+    std::string name_;
+    std::size_t arity_;
+    Fn fn_;
+};
+
+// (f1..fn) -> Arrangement.
+class ControlledArrangement : public Controlled<Arrangement> {
+public:
+    using Controlled<Arrangement>::Controlled;
+};
+
+// (f1..fn) -> mapper of one kind of cell.
+template <class CellT>
+class ControlledMapper : public Controlled<std::function<Curves(const CellT&)>> {
+public:
+    using Controlled<std::function<Curves(const CellT&)>>::Controlled;
+};
+using ControlledVertexMapper = ControlledMapper<Vertex>;
+using ControlledEdgeMapper = ControlledMapper<Edge>;
+using ControlledFaceMapper = ControlledMapper<Face>;
+
+// ---- Local control ----
+
+// Counts the field reads that fall farther than `margin` outside the reading thread's
+// window, while it lives. Reads with no window open are not checked. One at a time.
+class LocalityCheck {
+public:
+    explicit LocalityCheck(double margin = 0);
+    ~LocalityCheck();
+    LocalityCheck(const LocalityCheck&) = delete;
+    LocalityCheck& operator=(const LocalityCheck&) = delete;
+
+    double margin() const;
+    // Reads checked against a window, and those that fell outside it.
+    std::size_t reads() const;
+    std::size_t violations() const;
+    // Largest distance of a read outside its window (0 when none).
+    double worst() const;
+
+    struct State;
+
+private:
+    std::unique_ptr<State> state_;
+    State* previous_;
+};
+
+namespace detail {
+// The window of a thread: follows parallel_for's work items like the random streams.
+struct WindowState {
+    bool open = false;
+    BBox box;
+};
+WindowState capture_window();
+void restore_window(const WindowState& w);
+inline bool locality_checked() { return g_locality_checks.load(std::memory_order_relaxed) != 0; }
+}  // namespace detail
+
+// Opens a window for the reads of the current thread (innermost wins), restored at the end.
+class FieldWindow {
+public:
+    explicit FieldWindow(const BBox& box);
+    ~FieldWindow();
+    FieldWindow(const FieldWindow&) = delete;
+    FieldWindow& operator=(const FieldWindow&) = delete;
+
+private:
+    detail::WindowState saved_;
+};
+
+}  // namespace tex
