@@ -144,4 +144,11 @@ Curves Polyline(std::vector<Point> pts, bool closed) {
     return out;
 }
 
+Curves Labelled(const Curves& c, const std::string& l) {
+    Curves out = c;
+    const LabelId id = intern_label(l);
+    for (auto& cv : out.curves) cv.labels.add(id);
+    return out;
+}
+
 }  // namespace tex

@@ -618,4 +618,8 @@ Arrangement Outside(Arrangement a1, Arrangement a2, Border b) {
     return masked(std::move(a1), std::move(a2), b, MaskSide::Outside);
 }
 
+Arrangement Crop(Arrangement a, Border b) {
+    return Arrangement([a = std::move(a), b](const Region& r) { return apply_mask(a(r), r, b); });
+}
+
 }  // namespace tex

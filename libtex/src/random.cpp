@@ -16,6 +16,8 @@ struct ThreadStream {
     std::uint64_t free_counter = 0;  // outside mappers
     std::uint64_t stream_key = 0;    // numbering of the streams of new operators
     std::uint64_t stream_count = 0;
+    bool has_seed = false;  // a SeedScope is open: its seed, not the global one
+    std::uint64_t seed = 0;
 };
 thread_local ThreadStream t_stream;
 
@@ -45,7 +47,15 @@ StreamScope::~StreamScope() {
     t_stream.stream_count = saved_count_;
 }
 
-std::uint64_t GetSeed() { return g_seed.load(); }
+std::uint64_t GetSeed() { return t_stream.has_seed ? t_stream.seed : g_seed.load(); }
+
+SeedScope::SeedScope(std::uint64_t seed) : saved_(detail::capture_stream_state()) {
+    t_stream.has_seed = true;
+    t_stream.seed = seed;
+    t_stream.free_counter = 0;
+}
+
+SeedScope::~SeedScope() { detail::restore_stream_state(saved_); }
 
 std::uint64_t hash_double(std::uint64_t h, double v) {
     if (v == 0.0) v = 0.0;  // -0 and +0 hash alike
@@ -76,7 +86,8 @@ std::uint32_t KeyedRng::poisson(double mean) {
 namespace detail {
 
 StreamState capture_stream_state() {
-    return {t_stream.active, t_stream.key, t_stream.counter, t_stream.stream_key, t_stream.stream_count};
+    return {t_stream.active, t_stream.key,      t_stream.counter, t_stream.stream_key,
+            t_stream.stream_count, t_stream.has_seed, t_stream.seed};
 }
 
 void restore_stream_state(const StreamState& s) {
@@ -85,6 +96,8 @@ void restore_stream_state(const StreamState& s) {
     t_stream.counter = s.counter;
     t_stream.stream_key = s.stream_key;
     t_stream.stream_count = s.stream_count;
+    t_stream.has_seed = s.has_seed;
+    t_stream.seed = s.seed;
 }
 
 ItemScope::ItemScope(const StreamState& parent, std::size_t i) : saved_(capture_stream_state()) {
@@ -94,6 +107,8 @@ ItemScope::ItemScope(const StreamState& parent, std::size_t i) : saved_(capture_
     t_stream.key = parent.active ? hash_combine(hash_combine(parent.key, parent.counter), i) : base;
     t_stream.active = true;
     t_stream.counter = 0;
+    t_stream.has_seed = parent.has_seed;
+    t_stream.seed = parent.seed;
 }
 
 ItemScope::~ItemScope() { restore_stream_state(saved_); }

@@ -310,3 +310,15 @@ TEST(FastCrop, SamePiecesAsTheExactPlanarMap) {
         }
     }
 }
+
+TEST(Crop, CutsToTheRegionItIsEvaluatedOn) {
+    const Region sq = Region::rectangle(0, 0, 10, 10);
+    EXPECT_NEAR(th::length(Crop(strokes(), CROP)(sq)), 10 + 2, 1e-12);
+    EXPECT_NEAR(th::length(Crop(strokes(), CROP_ADD_BOUNDARY)(sq)), 10 + 2 + 40, 1e-12);
+    EXPECT_NEAR(th::length(Crop(strokes(), KEEP_INSIDE)(sq)), 2, 1e-12);
+    // The same as Inside with the region's outline as the mask.
+    EXPECT_EQ(ToSVG(Crop(strokes(), CROP)(sq), 10), ToSVG(Inside(strokes(), square(), CROP)(sq), 10));
+    // Labels ride along.
+    for (const auto& c : Crop(Constant(Labelled(strokes()(sq), "fill")), CROP)(sq).curves)
+        EXPECT_TRUE(c.labels.has("fill"));
+}

@@ -369,3 +369,28 @@ TEST(PartitionOnFace, OutlineKeepsTheLabelsOfTheFaceEdges) {
     const MapPtr plain = GridPartition(a, b, CROP_ADD_BOUNDARY).induce(Region::rectangle(0, 0, 100, 100));
     for (const auto& e : plain->edges()) EXPECT_FALSE(e.labels.has("ridge"));
 }
+
+// A SeedScope gives a call its own seed without touching the global one, in the work items
+// it starts too.
+TEST(SeedScope, ScopedSeedEqualsTheGlobalSeedAndRestoresIt) {
+    const std::uint64_t before = GetSeed();
+    const Region r = Region::rectangle(0, 0, 500, 500);
+    auto draw = [&] {
+        StreamScope fresh(0);
+        return ToSVG(MapToFaces([](const Face& f) { return Scale(Contour(f), Random(f, 0.5, 0.9, 0)); },
+                                UniformPartition(IrregularProperties(40 / (500.0 * 500.0)), KEEP_OUTSIDE))(r),
+                     500);
+    };
+    SetSeed(7);
+    const std::string global = draw();
+    SetSeed(before);
+    std::string scoped;
+    {
+        SeedScope s(7);
+        EXPECT_EQ(GetSeed(), 7u);
+        scoped = draw();
+    }
+    EXPECT_EQ(GetSeed(), before);
+    EXPECT_EQ(scoped, global);
+    EXPECT_NE(draw(), global);
+}

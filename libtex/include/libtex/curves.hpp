@@ -75,6 +75,8 @@ Curves MatchPoints(const Curves& c, const Point& s1, const Point& s2, const Poin
 Point PointLabeled(const Curves& c, const std::string& l);
 // The curves of c labelled l; throws when there is none.
 Curves CurveLabeled(const Curves& c, const std::string& l);
+// c with the edge label l added to every curve (to tell kinds of strokes apart downstream).
+Curves Labelled(const Curves& c, const std::string& l);
 // A single polyline as curves.
 Curves Polyline(std::vector<Point> pts, bool closed = false);
 

@@ -17,6 +17,13 @@ Arrangement Inside(Arrangement a1, Arrangement a2, Border b);
 // Same as Inside with "outside the bounded faces of a2".
 Arrangement Outside(Arrangement a1, Arrangement a2, Border b);
 
+// a evaluated on the region and cut to it: CROP cuts its curves at the region's boundary,
+// CROP_ADD_BOUNDARY also adds the boundary (with the labels of a face's edges when the
+// region comes from a face), KEEP_INSIDE / KEEP_OUTSIDE keep the edges of a's planar map
+// lying wholly inside / meeting the inside. A region's own outline as the mask, so it costs
+// one crop, not a planar map of the outline (Inside(a, outline, b) means the same).
+Arrangement Crop(Arrangement a, Border b);
+
 // The mask computation shared by the merges and the cropping partitions: `subject` curves
 // cut by the boundaries of the bounded faces of `mask_map`; returns the kept pieces.
 enum class MaskSide { Inside, Outside };

@@ -56,6 +56,8 @@ namespace detail {
 struct StreamState {
     bool active;
     std::uint64_t key, counter, stream_key, stream_count;
+    bool has_seed;
+    std::uint64_t seed;
 };
 StreamState capture_stream_state();
 void restore_stream_state(const StreamState& s);
@@ -80,6 +82,20 @@ public:
     ~RandomScope();
     RandomScope(const RandomScope&) = delete;
     RandomScope& operator=(const RandomScope&) = delete;
+
+private:
+    detail::StreamState saved_;
+};
+
+// Scope in which GetSeed() on this thread, and in the work items it starts, is `seed`
+// instead of the global seed: a library call (a pipeline run) draws from its own seed
+// without changing the process's (SetSeed is global).
+class SeedScope {
+public:
+    explicit SeedScope(std::uint64_t seed);
+    ~SeedScope();
+    SeedScope(const SeedScope&) = delete;
+    SeedScope& operator=(const SeedScope&) = delete;
 
 private:
     detail::StreamState saved_;
