@@ -1591,10 +1591,7 @@ struct Drawn {
 Drawn drawn(const gallery::Example& e) {
     const Curves c = e.build(gallery::default_elements_dir())(Region::rectangle(0, 0, gallery::kSize, gallery::kSize));
     const MapPtr m = PlanarMap::induce(c);
-    double len = 0;
-    for (const auto& cv : c.curves)
-        for (std::size_t i = 0; i + 1 < cv.points.size() + (cv.closed ? 1 : 0); ++i)
-            len += distance(cv.points[i], cv.points[(i + 1) % cv.points.size()]);
+    const double len = th::length(c);
     std::size_t big = 0;
     for (std::size_t f = 0; f < m->faces().size(); ++f)
         if (!m->faces()[f].unbounded && std::abs(signed_area(m->cycle_points(int(f), 0))) > 1) ++big;
