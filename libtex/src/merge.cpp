@@ -618,6 +618,10 @@ Arrangement Outside(Arrangement a1, Arrangement a2, Border b) {
     return masked(std::move(a1), std::move(a2), b, MaskSide::Outside);
 }
 
+Arrangement Outline() {
+    return Arrangement([](const Region& r) { return r.boundary(); });
+}
+
 Arrangement Crop(Arrangement a, Border b) {
     return Arrangement([a = std::move(a), b](const Region& r) { return apply_mask(a(r), r, b); });
 }

@@ -294,16 +294,11 @@ TEST(Fields, FaceWiseRasterAndClosedFormFieldsDriveAStyle) {
     // A controlled arrangement applied to other fields: a closed-form orientation of 30
     // degrees everywhere and a constant density.
     const double theta = 30 * M_PI / 180;
-    const ControlFields fields{constant_field(theta), constant_field(0.8),
-                               raster_field(sample().terrain.elevation, sample().zmin, sample().zmax - sample().zmin),
-                               raster_field(sample().terrain.roughness)};
-    const StyleInfo& s = find_style("noisy");
-    const ParamValues p = resolve_params(s, {{"jitter", 0.0}}, 10000);
-    const RockFace& f = part.faces[3];
-    const FaceControls c = face_controls(f, fields, [](int) { return std::int64_t(-1); });
-    EXPECT_DOUBLE_EQ(c.orientation, theta);
-    EXPECT_DOUBLE_EQ(c.density, 0.8);
-    const auto hatches = hatch_face(s, p, f, c, 0);
+    const ControlFields fields{constant_field(theta), constant_field(0.8), raster_field(sample().relief),
+                               raster_field(sample().terrain.roughness), raster_field(sample().terrain.slope)};
+    const Style s = builtin_style("noisy");
+    const ParamValues p = resolve_params(s.info, {{"jitter", 0.0}}, 10000);
+    const auto hatches = hatch_face(s.program(fields, p), part, 3, 0);
     ASSERT_GT(hatches.size(), 10u);
     for (const auto& h : hatches) {
         const Point d = h.points.back() - h.points.front();
