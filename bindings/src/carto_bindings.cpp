@@ -70,12 +70,15 @@ Progress to_progress(const py::object& cb) {
 }
 
 // A Python style: fn(fields, params) returns the arrangement drawn in each face (a program
-// of libtex operators whose mappers may be Python functions: faces are drawn one after the
-// other, see Style::serial).
-std::shared_ptr<const Style> python_style(StyleInfo info, py::object fn) {
+// of libtex operators whose mappers may be Python functions). Faces are drawn on the
+// engine's threads: every evaluation of an arrangement releases the interpreter's lock, so
+// the native operators of one face (partitions, crops, stock mappers) run while another
+// face's Python mapper holds it. `serial` draws them one after the other instead (a style
+// whose time goes into Python code, see Style::serial). The drawing is the same either way.
+std::shared_ptr<const Style> python_style(StyleInfo info, py::object fn, bool serial) {
     auto s = std::make_shared<Style>();
     s->info = std::move(info);
-    s->serial = true;
+    s->serial = serial;
     PyRef ref(std::move(fn));
     const std::string name = s->info.name;
     s->program = [ref, name](const ControlFields& fields, const ParamValues& params) -> tex::Arrangement {
@@ -337,9 +340,13 @@ void bind_carto(py::module_& m) {
         .def_property_readonly("name", [](const Style& s) { return s.info.name; });
     m.def(
         "python_style",
-        [](const StyleInfo& info, py::object fn) { return std::const_pointer_cast<Style>(python_style(info, std::move(fn))); },
-        py::arg("info"), py::arg("fn"),
-        "a style from fn(fields, params) -> Arrangement drawn in each face; params are in ground units");
+        [](const StyleInfo& info, py::object fn, bool serial) {
+            return std::const_pointer_cast<Style>(python_style(info, std::move(fn), serial));
+        },
+        py::arg("info"), py::arg("fn"), py::arg("serial") = false,
+        "a style from fn(fields, params) -> Arrangement drawn in each face; params are in ground units. Faces are "
+        "drawn on the engine's threads (native operators release the interpreter's lock); serial=True draws them "
+        "one after the other, for a style whose time goes into Python mappers. The drawing is the same.");
     m.def("builtin_style", [](const std::string& n) { return std::make_shared<Style>(builtin_style(n)); });
 
     // ---- Pipeline ----

@@ -349,7 +349,7 @@ def test_bad_inputs_raise_the_pipelines_message(qgis, sample_dir, tmp_path, case
 
 
 def test_style_script_error_raises(qgis, sample_dir, tmp_path):
-    body = ("NAME = 'broken'\nPARAMS = []\n\ndef style(fields, params, seed):\n"
+    body = ("NAME = 'broken'\nPARAMS = []\n\ndef style(fields, params):\n"
             "    raise ValueError('this style is broken')\n")
     with pytest.raises(QgsProcessingException, match="ValueError: this style is broken"):
         run("rockhatch:rockhatching", sample_params(sample_dir, tmp_path / "x.gpkg",

@@ -82,26 +82,9 @@ double spacing_for(const ParamValues& p, double density, double height, bool lin
     return p.at("spacing_min") + (p.at("spacing_max") - p.at("spacing_min")) * (1 - d);
 }
 
-EdgeMapper jitter_edges(const std::string& label, double theta, double across, double along, double r, double gap,
-                        Field slope, double slope_min) {
-    const LabelId id = intern_label(label);
-    return [=](const Edge& e) -> Curves {
-        if (!record(e).labels.has(id)) return Nothing();
-        if (slope_min > 0 && !(slope(LocationAt(e, 0.5)) >= slope_min)) return Nothing();
-        const Point d = dir(theta), n{-d.y, d.x};
-        auto shift = [&](const Vertex& v) {
-            return Location(v) + n * Random(v, -across * r / 2, across * r / 2, 0) +
-                   d * Random(v, -along * r / 2, along * r / 2, 1);
-        };
-        const Vertex s = SourceVertex(e), t = TargetVertex(e);
-        Curves c = MatchPoints(ToCurve(e), Location(s), Location(t), shift(s), shift(t));
-        return gap < 1 ? Scale(c, gap) : c;
-    };
-}
-
 Arrangement noisy_lines(const std::string& label, double theta, double spacing, double length, double r, double gap,
                         Field slope, double slope_min) {
-    return MapToEdges(jitter_edges(label, theta, spacing, length, r, gap, std::move(slope), slope_min),
+    return MapToEdges(JitterEdges(label, theta, spacing, length, r, gap, std::move(slope), slope_min),
                       GridPartition(stripes(theta, spacing, label), stripes(theta + pi / 2, length), KEEP_OUTSIDE));
 }
 
@@ -109,13 +92,13 @@ Arrangement cell_hatching(const ControlFields& f, const ParamValues& p, const Fa
                           double gap) {
     const double cs = p.at("cell_spacing"), len = p.at("length"), theta = face.theta;
     const Arrangement grid =
-        MapToEdges(jitter_edges("grid", theta, cs, len, 0.5 * p.at("cell_jitter")),
+        MapToEdges(JitterEdges("grid", theta, cs, len, 0.5 * p.at("cell_jitter")),
                    GridPartition(stripes(theta, cs, "grid"), stripes(theta + pi / 2, len, "grid"), KEEP_OUTSIDE));
     auto hatch_cell = [f, p, face, linear, gap, len](const Face& cell) {
         double h = f.height(Centroid(cell));
         if (std::isnan(h)) h = face.height;
         const double s = spacing_for(p, face.density, h, linear);
-        return MapToEdges(jitter_edges("fill", face.theta, s, len, p.at("jitter"), gap, f.slope, p.at("slope_min")),
+        return MapToEdges(JitterEdges("fill", face.theta, s, len, p.at("jitter"), gap, f.slope, p.at("slope_min")),
                           StripesPartition(stripes(face.theta, s, "fill")))(cell);
     };
     return MapToFaces(hatch_cell, grid);
@@ -183,7 +166,7 @@ Arrangement cross_hatching(const ControlFields& f, const ParamValues& p, const F
         if (!(rough > r0)) return Nothing();
         const double t = clamp01((rough - r0) / (r1 - r0));
         const double s = p.at("cross_spacing_max") - (p.at("cross_spacing_max") - p.at("cross_spacing_min")) * t;
-        return MapToEdges(jitter_edges("cross", angle, s, p.at("length"), 0.5, p.at("gap")),
+        return MapToEdges(JitterEdges("cross", angle, s, p.at("length"), 0.5, p.at("gap")),
                           StripesPartition(stripes(angle, s, "cross")))(cell);
     };
     return MapToFaces(hatch_cell, GridPartition(stripes(theta, cs), stripes(theta + pi / 2, cs), KEEP_OUTSIDE));

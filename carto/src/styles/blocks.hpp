@@ -29,15 +29,9 @@ FaceReading read_face(const ControlFields& f, const tex::Region& r);
 // Hatch spacing from density and height (App. E `stripes_cycle`; `linear` from (e) on).
 double spacing_for(const ParamValues& p, double density, double height, bool linear);
 
-// The jitter mapper of App. E: an edge labelled `label` moved so that its ends land on its
-// end vertices shifted at random, by up to r x across / 2 across the direction theta and
-// r x along / 2 along it, then scaled by `gap` about its middle; other edges: nothing.
-// With a slope field and slope_min > 0, an edge whose middle is flatter is dropped.
-tex::EdgeMapper jitter_edges(const std::string& label, double theta, double across, double along, double r,
-                             double gap = 1.0, Field slope = Field(), double slope_min = 0);
-
 // One axis of a jittered grid: lines labelled `label` every `spacing` at theta, broken
-// every `length`, jittered by r (App. E "noisy hatching").
+// every `length`, jittered by r (App. E "noisy hatching", tex::JitterEdges); with a slope
+// field and slope_min > 0, no hatch where the middle of a piece is flatter.
 Arrangement noisy_lines(const std::string& label, double theta, double spacing, double length, double r,
                         double gap = 1.0, Field slope = Field(), double slope_min = 0);
 
