@@ -91,7 +91,7 @@ _PARTITION_KEYS = ("faces_layer", "lines_layer", "label_field", "id_field", "ori
 
 def make_options(dem="", partition="", outputs=(), style=None, params=None, scale=10000.0, seed=0, threads=0,
                  overwrite=False, slope="", roughness="", window=None, png_pixels=1600, spatial_index=True,
-                 **partition_options):
+                 relief_radius=1000.0, **partition_options):
     """The Options of the rockhatch command from keyword arguments (same names as its
     options, partition layer and field options included)."""
     o = Options()  # noqa: F405
@@ -109,6 +109,7 @@ def make_options(dem="", partition="", outputs=(), style=None, params=None, scal
         o.style = style
     o.params = dict(params or {})
     o.scale = float(scale)
+    o.relief_radius = float(relief_radius)
     o.seed = int(seed)
     o.threads = int(threads)
     o.overwrite = bool(overwrite)

@@ -72,8 +72,9 @@ using StyleProgram = std::function<tex::Arrangement(const ControlFields&, const 
 struct Style {
     StyleInfo info;
     StyleProgram program;
-    // Faces are drawn one after the other (a program with Python mappers: they hold the
-    // interpreter's lock, so several threads would only pass it around).
+    // Faces are drawn one after the other when set, for a program whose mappers cannot run
+    // on several threads (Python styles run in parallel by default: their native operators
+    // release the interpreter's lock; python_style(..., serial=True) asks for this).
     bool serial = false;
 };
 
