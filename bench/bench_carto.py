@@ -49,14 +49,14 @@ PARTITION_MARK = "<!-- partition: written by bench/bench_carto.py -->"
 STYLES_MARK = "<!-- styles: written by bench/bench_carto.py -->"
 
 
-def styles_section(build_dir, runs, tmp, baseline=None):
+def styles_section(build_dir, runs, tmp, baseline=None, baseline_label=None):
     """Markdown of the style programs' costs: the budgeted whole runs (Chamonix.tif with
     --partition auto, the sample), then each built-in style against its Python script."""
     exe = build_dir / "carto" / "rockhatch"
     env = dict(__import__("os").environ, PYTHONPATH=str(build_dir / "python"))
     lines = [STYLES_MARK, "", "### Style programs", "",
              f"Whole command runs, bidirectional style, 1:10000, 2 threads, median of {runs} runs"
-             + (f"; `before`: {baseline.name} (the version before the style rewrite)" if baseline else "") + ".", "",
+             + (f"; `before`: {baseline_label or baseline}" if baseline else "") + ".", "",
              "| case | output | wall time (median) | " + ("before | " if baseline else "") + "hatches |",
              "|---|---|---:|" + ("---:|" if baseline else "") + "---:|"]
     cases = [("sample (20 faces)", ["--dem", SAMPLE / "dem.tif", "--partition", SAMPLE / "partition.gpkg"])]
@@ -157,13 +157,15 @@ def main():
     ap.add_argument("--only", choices=["partition", "styles"],
                     help="run only this section (the rest of the report is kept)")
     ap.add_argument("--baseline", type=pathlib.Path, help="another rockhatch executable to compare in the styles section")
+    ap.add_argument("--baseline-label", help="what the baseline executable is (for the report)")
     args = ap.parse_args()
     if args.only:
         with tempfile.TemporaryDirectory() as tmp:
             if args.only == "partition":
                 mark, section = PARTITION_MARK, partition_section(args.build_dir, max(args.runs, 5), pathlib.Path(tmp))
             else:
-                mark, section = STYLES_MARK, styles_section(args.build_dir, args.runs, pathlib.Path(tmp), args.baseline)
+                mark, section = STYLES_MARK, styles_section(args.build_dir, args.runs, pathlib.Path(tmp), args.baseline,
+                                                             args.baseline_label)
         if args.markdown:
             rewrite_section(args.markdown, mark, section)
             print(f"report written to {args.markdown}")
@@ -207,7 +209,7 @@ def main():
                 case(f"{label}, bidirectional, SVG", SHARED_DEM, grid, [], t, ".svg")
         else:
             print(f"bench_carto: {SHARED_DEM} absent, real-DEM rows skipped")
-        styles = styles_section(args.build_dir, args.runs, tmp, args.baseline)
+        styles = styles_section(args.build_dir, args.runs, tmp, args.baseline, args.baseline_label)
         partition = partition_section(args.build_dir, max(args.runs, 5), tmp)
     if args.markdown:
         with open(args.markdown, "w") as f:

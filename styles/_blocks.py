@@ -130,8 +130,8 @@ def cell_hatching(f, p, face, linear, gap):
     """Coarse jittered cells, each hatched with the spacing of the relief at its centre
     (App. E "multiscale density variations")."""
     cs, length, theta = p["cell_spacing"], p["length"], face.theta
-    grid = MapToEdges(JitterEdges("grid", theta, cs, length, 0.5 * p["cell_jitter"]),
-                      GridPartition(stripes(theta, cs, "grid"), stripes(theta + pi / 2, length, "grid"), KEEP_OUTSIDE))
+    grid = MapToEdges(JitterEdges("grid", theta, cs, cs, 0.5 * p["cell_jitter"]),
+                      GridPartition(stripes(theta, cs, "grid"), stripes(theta + pi / 2, cs, "grid"), KEEP_OUTSIDE))
     height, slope, jitter, slope_min = f.height, f.slope, p["jitter"], p["slope_min"]
 
     def hatch_cell(cell):
@@ -139,8 +139,9 @@ def cell_hatching(f, p, face, linear, gap):
         if isnan(h):
             h = face.height
         s = spacing_for(p, face.density, h, linear)
-        return MapToEdges(JitterEdges("fill", theta, s, length, jitter, gap, slope, slope_min),
-                          StripesPartition(stripes(theta, s, "fill")))(cell)
+        # The noisy lines of the cell's spacing, cut to the cell: lines of equal spacing
+        # run on across cells.
+        return Crop(noisy_lines("fill", theta, s, length, jitter, gap, slope, slope_min), CROP)(cell)
 
     return MapToFaces(hatch_cell, grid)
 
@@ -232,7 +233,7 @@ def cross_hatching(f, p, face):
         t = clamp01((rough - r0) / (r1 - r0))
         s = s_max - (s_max - s_min) * t
         return MapToEdges(JitterEdges("cross", angle, s, length, 0.5, gap),
-                          StripesPartition(stripes(angle, s, "cross")))(cell)
+                          StripesPartition(stripes(angle, s, "cross"), CROP))(cell)
 
     return MapToFaces(hatch_cell, GridPartition(stripes(theta, cs), stripes(theta + pi / 2, cs), KEEP_OUTSIDE))
 

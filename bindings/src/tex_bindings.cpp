@@ -426,7 +426,7 @@ void bind_tex(py::module_& m) {
             return SetWeightedFaceLabels(p, weighted_args(a, "SetWeightedFaceLabels"));
         },
         py::return_value_policy::reference);
-    m.def("StripesPartition", &StripesPartition, py::arg("p"));
+    m.def("StripesPartition", &StripesPartition, py::arg("p"), py::arg("border") = Border::CROP_ADD_BOUNDARY);
     m.def("GridPartition", &GridPartition, py::arg("s1"), py::arg("s2"), py::arg("border"));
     m.def("UniformPartition", &UniformPartition, py::arg("p"), py::arg("border"), py::arg("seed") = py::none(),
           "Voronoi cells of Poisson-disk sites; each call draws its own sites unless `seed` repeats them");

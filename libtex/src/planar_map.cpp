@@ -383,7 +383,9 @@ bool build_directly(const Curves& input, RawGraph& g, bool& many_crossings) {
     std::vector<int> holder(std::size_t(ncomp), -2);  // face holding each piece
     std::function<int(int)> holding = [&](int c) -> int {
         if (holder[c] != -2) return holder[c];
-        if (ncomp == 1) return holder[c] = 0;
+        // One piece, or no cycle at all (a forest: as many vertices as segments plus
+        // pieces): the unbounded face is the only face.
+        if (ncomp == 1 || nv == ns + std::size_t(ncomp)) return holder[c] = 0;
         bool on = false;
         const int k = grid().first_above(g.vpt[v0[c]], [&](std::uint32_t i) {
             return comp[g.he[2 * i].source] != c;

@@ -92,14 +92,16 @@ Arrangement cell_hatching(const ControlFields& f, const ParamValues& p, const Fa
                           double gap) {
     const double cs = p.at("cell_spacing"), len = p.at("length"), theta = face.theta;
     const Arrangement grid =
-        MapToEdges(JitterEdges("grid", theta, cs, len, 0.5 * p.at("cell_jitter")),
-                   GridPartition(stripes(theta, cs, "grid"), stripes(theta + pi / 2, len, "grid"), KEEP_OUTSIDE));
+        MapToEdges(JitterEdges("grid", theta, cs, cs, 0.5 * p.at("cell_jitter")),
+                   GridPartition(stripes(theta, cs, "grid"), stripes(theta + pi / 2, cs, "grid"), KEEP_OUTSIDE));
+    // Each cell: the noisy lines of its spacing (broken every `len` at jittered points the
+    // pieces share), cut to the cell; lines of equal spacing run on across cells.
     auto hatch_cell = [f, p, face, linear, gap, len](const Face& cell) {
         double h = f.height(Centroid(cell));
         if (std::isnan(h)) h = face.height;
         const double s = spacing_for(p, face.density, h, linear);
-        return MapToEdges(JitterEdges("fill", face.theta, s, len, p.at("jitter"), gap, f.slope, p.at("slope_min")),
-                          StripesPartition(stripes(face.theta, s, "fill")))(cell);
+        return Crop(noisy_lines("fill", face.theta, s, len, p.at("jitter"), gap, f.slope, p.at("slope_min")),
+                    CROP)(cell);
     };
     return MapToFaces(hatch_cell, grid);
 }
@@ -167,7 +169,7 @@ Arrangement cross_hatching(const ControlFields& f, const ParamValues& p, const F
         const double t = clamp01((rough - r0) / (r1 - r0));
         const double s = p.at("cross_spacing_max") - (p.at("cross_spacing_max") - p.at("cross_spacing_min")) * t;
         return MapToEdges(JitterEdges("cross", angle, s, p.at("length"), 0.5, p.at("gap")),
-                          StripesPartition(stripes(angle, s, "cross")))(cell);
+                          StripesPartition(stripes(angle, s, "cross"), CROP))(cell);
     };
     return MapToFaces(hatch_cell, GridPartition(stripes(theta, cs), stripes(theta + pi / 2, cs), KEEP_OUTSIDE));
 }
