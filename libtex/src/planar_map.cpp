@@ -76,6 +76,7 @@ struct RawGraph {
     std::vector<Point> vpt;
     std::vector<int> vrank;       // exact order among vertices with equal doubles
     std::vector<char> visolated;
+    std::vector<char> vend;       // the end of an open curve (direct way only; empty otherwise)
     std::vector<int> vout_start;  // outgoing half-edges of each vertex, counter-clockwise
     std::vector<int> vout;
     struct HalfEdge {
@@ -290,6 +291,15 @@ bool build_directly(const Curves& input, RawGraph& g, bool& many_crossings) {
     }
     g.data_start[ns] = std::uint32_t(ns);
     const std::size_t nv = g.vpt.size();
+    // The ends of open curves: the first and last segment kept of each (segments of a curve
+    // are consecutive).
+    g.vend.assign(nv, 0);
+    for (std::size_t k = 0; k < ns; ++k) {
+        const std::uint32_t owner = segs[k].owner;
+        if (input.curves[owner].closed) continue;
+        if (k == 0 || segs[k - 1].owner != owner) g.vend[std::size_t(g.he[2 * k].source)] = 1;
+        if (k + 1 == ns || segs[k + 1].owner != owner) g.vend[std::size_t(g.he[2 * k].target)] = 1;
+    }
     // Connected pieces of the drawing.
     std::vector<int> comp(nv);
     int ncomp = 0;
@@ -428,27 +438,6 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way) {
     auto map = std::make_shared<PlanarMap>();
     PlanarMap& pm = *map;
 
-    // The end points of open curves and the labelled points: vertices whatever their degree.
-    std::vector<Point> ends;
-    for (const Curve& c : input.curves) {
-        if (c.closed) continue;
-        const Point* first = nullptr;
-        const Point* last = nullptr;
-        for (std::size_t i = 0; i + 1 < c.points.size(); ++i) {
-            const Point& a = c.points[i];
-            const Point& b = c.points[i + 1];
-            if (a == b || !std::isfinite(a.x) || !std::isfinite(a.y) || !std::isfinite(b.x) || !std::isfinite(b.y))
-                continue;
-            if (!first) first = &a;
-            last = &b;
-        }
-        if (first) {
-            ends.push_back(*first);
-            ends.push_back(*last);
-        }
-    }
-    std::sort(ends.begin(), ends.end());
-    auto is_end = [&](const Point& p) { return std::binary_search(ends.begin(), ends.end(), p); };
     std::unordered_map<Point, Labels, PointHash> point_labels;
     for (const auto& lp : input.points) point_labels[lp.point].merge(lp.labels);
 
@@ -466,6 +455,33 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way) {
     const std::size_t nv = g.vpt.size();
     const std::size_t nh = g.he.size();
 
+    // The end points of open curves: vertices whatever their degree, like labelled points
+    // (the direct way marked them in the graph).
+    std::vector<Point> ends;
+    for (const Curve& c : input.curves) {
+        if (!g.vend.empty()) break;
+        if (c.closed) continue;
+        const Point* first = nullptr;
+        const Point* last = nullptr;
+        for (std::size_t i = 0; i + 1 < c.points.size(); ++i) {
+            const Point& a = c.points[i];
+            const Point& b = c.points[i + 1];
+            if (a == b || !std::isfinite(a.x) || !std::isfinite(a.y) || !std::isfinite(b.x) || !std::isfinite(b.y))
+                continue;
+            if (!first) first = &a;
+            last = &b;
+        }
+        if (first) {
+            ends.push_back(*first);
+            ends.push_back(*last);
+        }
+    }
+    std::sort(ends.begin(), ends.end());
+    auto is_end = [&](int v) {
+        if (!g.vend.empty()) return g.vend[std::size_t(v)] != 0;
+        return std::binary_search(ends.begin(), ends.end(), g.vpt[v]);
+    };
+
     // 1. Break vertices: curve ends, labelled points, degree other than two, and points
     //    where the set of source curves changes.
     std::vector<char> is_break(nv, 0);
@@ -478,7 +494,7 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way) {
             out.erase(std::unique(out.begin(), out.end()), out.end());
         };
         for (std::size_t v = 0; v < nv; ++v) {
-            bool brk = g.visolated[v] || g.degree(int(v)) != 2 || is_end(g.vpt[v]) ||
+            bool brk = g.visolated[v] || g.degree(int(v)) != 2 || is_end(int(v)) ||
                        (!point_labels.empty() && point_labels.count(g.vpt[v]));
             if (!brk) {
                 ids(g.vout[g.vout_start[v]], ids_a);
@@ -557,6 +573,7 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way) {
 
     // 4. Vertices: the break vertices, in the order of their points.
     std::vector<int> breaks;
+    breaks.reserve(nv);
     for (std::size_t v = 0; v < nv; ++v)
         if (is_break[v]) breaks.push_back(int(v));
     std::sort(breaks.begin(), breaks.end(), [&](int a, int b) {
