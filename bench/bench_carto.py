@@ -5,9 +5,12 @@ wall time, peak memory (GNU time) and hatches per second, and writes a Markdown 
 Then times `rockhatch partition` (the partition from the DEM alone) on the sample and the
 real DEM, with the precision and recall of its lines against the sample's true lines.
 
-    bench/bench_carto.py BUILD_DIR [--runs N] [--markdown FILE] [--only partition]
+    bench/bench_carto.py BUILD_DIR [--runs N] [--markdown FILE] [--only partition|styles] [--baseline EXE]
 
-With --only partition, only the partition section of the Markdown file is rewritten.
+With --only, only that section of the Markdown file is rewritten. The styles section times
+the built-in styles against their Python scripts (styles/*.py) and the whole runs the
+style rewrite was budgeted on; --baseline adds the times of another rockhatch executable
+(the version before a change) to the latter.
 """
 import argparse
 import pathlib
@@ -43,6 +46,63 @@ def median_run(cmd, runs):
 
 
 PARTITION_MARK = "<!-- partition: written by bench/bench_carto.py -->"
+STYLES_MARK = "<!-- styles: written by bench/bench_carto.py -->"
+
+
+def styles_section(build_dir, runs, tmp, baseline=None, baseline_label=None):
+    """Markdown of the style programs' costs: the budgeted whole runs (Chamonix.tif with
+    --partition auto, the sample), then each built-in style against its Python script."""
+    exe = build_dir / "carto" / "rockhatch"
+    env = dict(__import__("os").environ, PYTHONPATH=str(build_dir / "python"))
+    lines = [STYLES_MARK, "", "### Style programs", "",
+             f"Whole command runs, bidirectional style, 1:10000, 2 threads, median of {runs} runs"
+             + (f"; `before`: {baseline_label or baseline}" if baseline else "") + ".", "",
+             "| case | output | wall time (median) | " + ("before | " if baseline else "") + "hatches |",
+             "|---|---|---:|" + ("---:|" if baseline else "") + "---:|"]
+    cases = [("sample (20 faces)", ["--dem", SAMPLE / "dem.tif", "--partition", SAMPLE / "partition.gpkg"])]
+    if SHARED_DEM.exists():
+        cases.append(("Chamonix.tif, --partition auto (616 faces)", ["--dem", SHARED_DEM, "--partition", "auto"]))
+    else:
+        print(f"bench_carto: {SHARED_DEM} absent, real-DEM style rows skipped")
+    for label, inputs in cases:
+        for ext in (".gpkg", ".svg"):
+            cmd = ["-q", "--overwrite", "--threads", "2", *inputs, "-o", tmp / f"style{ext}"]
+            wall, _, hatches = median_run([exe, *cmd], runs)
+            before = f" {median_run([baseline, *cmd], runs)[0]:.2f} s |" if baseline else ""
+            print(f"styles {label:45s} {ext} {wall:6.2f} s{before} {hatches} hatches", flush=True)
+            lines.append(f"| {label} | {ext[1:]} | {wall:.2f} s |{before} {hatches} |")
+    lines += ["", f"Each built-in style (C++) against its script in styles/ (Python, same bytes), on the sample, "
+              f"GeoPackage, 2 threads, median of {runs} runs (the script's time includes starting Python):", "",
+              "| style | C++ built-in | Python script | ratio |", "|---|---:|---:|---:|"]
+    inputs = ["--dem", SAMPLE / "dem.tif", "--partition", SAMPLE / "partition.gpkg", "--threads", "2", "-q",
+              "--overwrite", "-o", tmp / "s.gpkg"]
+    for style in STYLES:
+        c = statistics.median(timed([exe, "--style", style, *inputs])[0] for _ in range(runs))
+        script = ROOT / "styles" / (style.replace("-", "_") + ".py")
+        py = []
+        for _ in range(runs):
+            r = subprocess.run(["/usr/bin/time", "-f", "RH_TIME %e", "/usr/bin/python3", str(script),
+                                *map(str, inputs)], capture_output=True, text=True, env=env)
+            if r.returncode != 0:
+                sys.exit(f"bench_carto: {script} failed:\n{r.stderr}")
+            py.append(float(re.search(r"RH_TIME ([\d.]+)", r.stderr).group(1)))
+        p = statistics.median(py)
+        print(f"styles {style:16s} C++ {c:5.2f} s  Python {p:5.2f} s  {p / c:4.2f}x", flush=True)
+        lines.append(f"| {style} | {c:.2f} s | {p:.2f} s | {p / c:.2f}x |")
+    return "\n".join(lines) + "\n"
+
+
+def rewrite_section(markdown, mark, section):
+    """Replaces (or adds) the section that starts at `mark` in the report: the report is its
+    head, then the styles section, then the partition section."""
+    old = markdown.read_text() if markdown.exists() else ""
+    order = (STYLES_MARK, PARTITION_MARK)
+    starts = sorted((old.index(m), m) for m in order if m in old)
+    head = old[:starts[0][0]] if starts else old
+    parts = {m: old[a:(starts[k + 1][0] if k + 1 < len(starts) else len(old))] for k, (a, m) in enumerate(starts)}
+    parts[mark] = section
+    chunks = [head.strip("\n")] + [parts[m].strip("\n") for m in order if m in parts]
+    markdown.write_text("\n\n".join(c for c in chunks if c) + "\n")
 
 
 def partition_section(build_dir, runs, tmp):
@@ -94,15 +154,20 @@ def main():
     ap.add_argument("build_dir", type=pathlib.Path)
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--markdown", type=pathlib.Path)
-    ap.add_argument("--only", choices=["partition"], help="run only this section (the rest of the report is kept)")
+    ap.add_argument("--only", choices=["partition", "styles"],
+                    help="run only this section (the rest of the report is kept)")
+    ap.add_argument("--baseline", type=pathlib.Path, help="another rockhatch executable to compare in the styles section")
+    ap.add_argument("--baseline-label", help="what the baseline executable is (for the report)")
     args = ap.parse_args()
-    if args.only == "partition":
+    if args.only:
         with tempfile.TemporaryDirectory() as tmp:
-            section = partition_section(args.build_dir, max(args.runs, 5), pathlib.Path(tmp))
+            if args.only == "partition":
+                mark, section = PARTITION_MARK, partition_section(args.build_dir, max(args.runs, 5), pathlib.Path(tmp))
+            else:
+                mark, section = STYLES_MARK, styles_section(args.build_dir, args.runs, pathlib.Path(tmp), args.baseline,
+                                                             args.baseline_label)
         if args.markdown:
-            old = args.markdown.read_text() if args.markdown.exists() else ""
-            head = old.split(PARTITION_MARK)[0].rstrip("\n")
-            args.markdown.write_text((head + "\n\n" if head else "") + section)
+            rewrite_section(args.markdown, mark, section)
             print(f"report written to {args.markdown}")
         return
     exe = args.build_dir / "carto" / "rockhatch"
@@ -144,6 +209,7 @@ def main():
                 case(f"{label}, bidirectional, SVG", SHARED_DEM, grid, [], t, ".svg")
         else:
             print(f"bench_carto: {SHARED_DEM} absent, real-DEM rows skipped")
+        styles = styles_section(args.build_dir, args.runs, tmp, args.baseline, args.baseline_label)
         partition = partition_section(args.build_dir, max(args.runs, 5), tmp)
     if args.markdown:
         with open(args.markdown, "w") as f:
@@ -156,7 +222,7 @@ def main():
                     f.write(f"| {label} | {t} | {wall:.2f}x | | | |\n")
                 else:
                     f.write(f"| {label} | {t} | {wall:.2f} s | {rss:.0f} MB | {hatches} | {rate:.0f} |\n")
-            f.write("\n" + partition)
+            f.write("\n" + styles + "\n" + partition)
         print(f"report written to {args.markdown}")
 
 

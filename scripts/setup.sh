@@ -13,6 +13,7 @@ PACKAGES=(
   libgdal-dev gdal-bin libproj-dev proj-bin         # carto: rasters, vectors, CRSs
   libgeographiclib-dev                              # carto: UTM zone of geographic DEMs
   libsqlite3-dev                                    # carto: bulk-loaded GeoPackage R-tree
+  libjemalloc-dev                                   # the rockhatch command's allocator (many small maps)
   libgtest-dev                                      # C++ tests
   python3 python3-dev pybind11-dev                  # the Python module, for /usr/bin/python3
   python3-pytest python3-gdal python3-numpy         # Python tests (Debian's interpreter)

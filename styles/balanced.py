@@ -10,6 +10,7 @@ Parameters (--param NAME=VALUE; "mm" are millimetres on paper at --scale):
     length        2.0  mm     length of a hatch between two jittered break points
     jitter        0.5  ratio  jitter of the break points (fraction of spacing and length)
     contrast      1.0  ratio  how much height pushes dark faces darker, light faces lighter
+    slope_min     0.0  %      no fill hatch where the slope is below this (percent; 0: everywhere)
     cell_spacing  3.0  mm     width of the coarse jittered cells that carry local density
     cell_jitter   1.0  ratio  jitter of the coarse cells
     peak_spacing  2.0  mm     distance between two ridge shapes
@@ -18,32 +19,30 @@ Parameters (--param NAME=VALUE; "mm" are millimetres on paper at --scale):
     peak_fill     0.2  mm     spacing of the fine hatching inside ridge shapes
     gap           0.95 ratio  each hatch is shortened to this fraction, leaving gaps
 
+The style is a program of libtex operators (carto/src/styles/balanced.cpp in Python, its
+blocks in _blocks.py): style(fields, params) returns the arrangement drawn in each face.
+
+Run on its own, or through the rockhatch command:
     /usr/bin/python3 styles/balanced.py --dem DEM.tif --partition faces.gpkg -o out.svg
+    rockhatch --script styles/balanced.py --dem DEM.tif --partition faces.gpkg -o out.gpkg
 """
 import sys
 
-from density_cells import COARSE, fill_cells
-from fine_ridges import PEAKS, ridge_peaks
-from noisy import fill_params
-from rockhatch.carto import Hatches, face_controls
+from _blocks import BALANCED, COARSE, PEAKS, cell_hatching, fill_params, per_face, ridge_peaks
+from rockhatch.tex import Union
 
 NAME = "balanced"
 FIGURE = "5.4e"
 TITLE = "balanced density: linear height term, hatches broken into strokes"
-
-BALANCED = [("gap", 0.95, "ratio", "each hatch is shortened to this fraction, leaving gaps between strokes")]
 PARAMS = fill_params(2.0, 0.5) + COARSE + PEAKS + BALANCED
 
 
-def style(fields, params, seed):
-    def hatch(face):
-        c = face_controls(face, fields)
-        out = Hatches()
-        fill_cells(out, params, face, c, seed, linear=True, gap=params["gap"])
-        ridge_peaks(out, params, face, c, seed, 0.0)
-        return out
+def fill(f, p, face):
+    return Union(cell_hatching(f, p, face, True, p["gap"]), ridge_peaks(f, p, face, 0.0))
 
-    return hatch
+
+def style(fields, params):
+    return per_face(fields, params, fill)
 
 
 if __name__ == "__main__":

@@ -12,6 +12,7 @@ Parameters (--param NAME=VALUE; "mm" are millimetres on paper at --scale):
     length             1.5  mm     length of a hatch between two jittered break points
     jitter             0.5  ratio  jitter of the break points (fraction of spacing and length)
     contrast           1.0  ratio  how much height pushes dark faces darker, light faces lighter
+    slope_min          0.0  %      no fill hatch where the slope is below this (percent; 0: everywhere)
     cell_spacing       3.0  mm     width of the coarse jittered cells that carry local density
     cell_jitter        1.0  ratio  jitter of the coarse cells
     peak_spacing       2.0  mm     distance between two ridge shapes
@@ -26,63 +27,32 @@ Parameters (--param NAME=VALUE; "mm" are millimetres on paper at --scale):
     cross_spacing_max  2.5  mm     cross hatch spacing at the lowest roughness
     cross_angle        90.0 deg    angle between fill and cross hatches
 
+The style is a program of libtex operators (carto/src/styles/bidirectional.cpp in Python, its
+blocks in _blocks.py): style(fields, params) returns the arrangement drawn in each face.
+
+Run on its own, or through the rockhatch command:
     /usr/bin/python3 styles/bidirectional.py --dem DEM.tif --partition faces.gpkg -o out.svg
+    rockhatch --script styles/bidirectional.py --dem DEM.tif --partition faces.gpkg -o out.gpkg
 """
 import sys
 
-from balanced import BALANCED
-from density_cells import COARSE, fill_cells, grid_cells
-from fine_ridges import PEAKS, ridge_peaks
-from high_ridges import HIGH, valleys
-from noisy import clamp01, emit, fill_params
-from rockhatch.carto import (Family, Hatches, RegionClipper, clip_to_convex, face_controls, jittered_lines,
-                             ring_centroid)
+from _blocks import (BALANCED, COARSE, CROSS, HIGH, PEAKS, cell_hatching, cross_hatching, fill_params, per_face,
+                     ridge_peaks)
+from rockhatch.tex import Union
 
 NAME = "bidirectional"
 FIGURE = "5.4g"
 TITLE = "bidirectional hatching: cross hatches where the terrain is rough"
-
-CROSS = [
-    ("roughness_min", 0.01, "ratio", "roughness (0..1) below which no cross hatching is drawn"),
-    ("roughness_max", 0.08, "ratio", "roughness at which cross hatching is densest"),
-    ("cross_spacing_min", 0.6, "mm", "cross hatch spacing at the highest roughness"),
-    ("cross_spacing_max", 2.5, "mm", "cross hatch spacing at the lowest roughness"),
-    ("cross_angle", 90.0, "deg", "angle between fill and cross hatches"),
-]
 PARAMS = fill_params(1.5, 0.5) + COARSE + PEAKS + BALANCED + HIGH + CROSS
 
 
-def cross_hatch(out, p, face, c, seed):
-    r0 = p["roughness_min"]
-    r1 = max(p["roughness_max"], r0 + 1e-9)
-    cs = p["cell_spacing"]
-    angle = c.orientation + p["cross_angle"]
-    region = face.region
-    rows = jittered_lines(region.bbox(), c.orientation, cs, cs, 0, 0, seed, 6)
-    clip = RegionClipper(region)
-    roughness = c.roughness_field
-    s_min, s_max = p["cross_spacing_min"], p["cross_spacing_max"]
-    for quad, box in grid_cells(rows, region.bbox()):
-        rough = roughness(ring_centroid(quad))
-        if not rough > r0:
-            continue
-        s = s_max - (s_max - s_min) * clamp01((rough - r0) / (r1 - r0))
-        for line in jittered_lines(box, angle, s, p["length"], 0.5, 0.5, seed, 7):
-            for piece in clip_to_convex(line, quad):
-                emit(out, clip.clip(piece), Family.CROSS, p["gap"])
+def fill(f, p, face):
+    return Union(Union(cell_hatching(f, p, face, True, p["gap"]), ridge_peaks(f, p, face, p["peak_height_gain"])),
+                 cross_hatching(f, p, face))
 
 
-def style(fields, params, seed):
-    def hatch(face):
-        c = face_controls(face, fields)
-        out = Hatches()
-        fill_cells(out, params, face, c, seed, linear=True, gap=params["gap"])
-        ridge_peaks(out, params, face, c, seed, params["peak_height_gain"])
-        valleys(out, face)
-        cross_hatch(out, params, face, c, seed)
-        return out
-
-    return hatch
+def style(fields, params):
+    return per_face(fields, params, fill, with_valleys=True)
 
 
 if __name__ == "__main__":

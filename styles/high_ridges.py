@@ -11,6 +11,7 @@ Parameters (--param NAME=VALUE; "mm" are millimetres on paper at --scale):
     length            2.0  mm     length of a hatch between two jittered break points
     jitter            0.5  ratio  jitter of the break points (fraction of spacing and length)
     contrast          1.0  ratio  how much height pushes dark faces darker, light faces lighter
+    slope_min         0.0  %      no fill hatch where the slope is below this (percent; 0: everywhere)
     cell_spacing      3.0  mm     width of the coarse jittered cells that carry local density
     cell_jitter       1.0  ratio  jitter of the coarse cells
     peak_spacing      2.0  mm     distance between two ridge shapes
@@ -20,53 +21,30 @@ Parameters (--param NAME=VALUE; "mm" are millimetres on paper at --scale):
     gap               0.95 ratio  each hatch is shortened to this fraction, leaving gaps
     peak_height_gain  1.0  ratio  ridge shapes grow by this fraction on the highest ground
 
+The style is a program of libtex operators (carto/src/styles/high_ridges.cpp in Python, its
+blocks in _blocks.py): style(fields, params) returns the arrangement drawn in each face.
+
+Run on its own, or through the rockhatch command:
     /usr/bin/python3 styles/high_ridges.py --dem DEM.tif --partition faces.gpkg -o out.svg
+    rockhatch --script styles/high_ridges.py --dem DEM.tif --partition faces.gpkg -o out.gpkg
 """
 import sys
 
-from balanced import BALANCED
-from density_cells import COARSE, fill_cells
-from fine_ridges import PEAKS, ridge_peaks
-from noisy import fill_params
-from rockhatch.carto import Family, Hatch, Hatches, LineKind, face_controls
+from _blocks import BALANCED, COARSE, HIGH, PEAKS, cell_hatching, fill_params, per_face, ridge_peaks
+from rockhatch.tex import Union
 
 NAME = "high-ridges"
 FIGURE = "5.4f"
 TITLE = "ridge shapes enhanced on higher ground, valleys drawn"
-
-HIGH = [("peak_height_gain", 1.0, "ratio", "ridge shapes grow by this fraction on the highest ground")]
 PARAMS = fill_params(2.0, 0.5) + COARSE + PEAKS + BALANCED + HIGH
 
 
-def valleys(out, face):
-    """The face's valley segments as strokes, runs of consecutive segments joined."""
-    run = []
-    for i, seg in enumerate(face.boundary):
-        other = face.neighbour_id(i)
-        if seg.kind == LineKind.VALLEY and (other < 0 or face.id < other):
-            if not run or run[-1] != seg.a:
-                if len(run) >= 2:
-                    out.append(Hatch(run, False, Family.VALLEY))
-                run = [seg.a]
-            run.append(seg.b)
-        elif run:
-            if len(run) >= 2:
-                out.append(Hatch(run, False, Family.VALLEY))
-            run = []
-    if len(run) >= 2:
-        out.append(Hatch(run, False, Family.VALLEY))
+def fill(f, p, face):
+    return Union(cell_hatching(f, p, face, True, p["gap"]), ridge_peaks(f, p, face, p["peak_height_gain"]))
 
 
-def style(fields, params, seed):
-    def hatch(face):
-        c = face_controls(face, fields)
-        out = Hatches()
-        fill_cells(out, params, face, c, seed, linear=True, gap=params["gap"])
-        ridge_peaks(out, params, face, c, seed, params["peak_height_gain"])
-        valleys(out, face)
-        return out
-
-    return hatch
+def style(fields, params):
+    return per_face(fields, params, fill, with_valleys=True)
 
 
 if __name__ == "__main__":

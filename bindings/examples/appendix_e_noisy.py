@@ -1,11 +1,11 @@
 #!/usr/bin/python3
 """Noisy hatching written with the libtex operators, the way the thesis's Appendix E
 writes it: a controlled arrangement whose grid partition is laid along the face's
-orientation, with a jitter mapper moving every vertex, cropped to the face.
+orientation, with a jitter mapper moving every vertex, cut to the face by an Inside merge.
 
-It is slower than styles/noisy.py (each face induces a planar map of its hatch grid) and
-does not draw the same hatches (the jitter is keyed by the grid's vertices, not by plane
-positions), but it shows a style built from partitions, mappers and merges.
+The jitter mapper is written out in Python here, as in the appendix: one Python call per
+edge. The engine's stock mapper JitterEdges(label, angle, spacing, length, jitter) makes
+the same calls to Random natively (styles/noisy.py uses it), and draws the same hatches.
 
 Parameters (--param NAME=VALUE; "mm" are millimetres on paper at --scale):
     spacing_min  0.35 mm     hatch spacing in the darkest faces
@@ -16,8 +16,9 @@ Parameters (--param NAME=VALUE; "mm" are millimetres on paper at --scale):
     build/carto/rockhatch --script bindings/examples/appendix_e_noisy.py --dem DEM.tif --partition P.gpkg -o out.svg
 """
 import sys
+from math import isnan
 
-from rockhatch.carto import Family, face_controls, hatches_from_curves
+from rockhatch.carto import interior_point
 from rockhatch.tex import *  # noqa: F401,F403
 
 NAME = "appendix-e-noisy"
@@ -30,15 +31,22 @@ PARAMS = [
 ]
 
 
-def style(fields, params, seed):
-    SetSeed(seed)
+def face_controls(fields, region):
+    """The hatch direction and spacing of a face, read at a point inside it."""
+    inside = interior_point(region)
+    angle, density = fields.orientation(inside), fields.density(inside)
+    angle = 0.0 if isnan(angle) else angle
+    density = 0.5 if isnan(density) else density
+    return angle, density
+
+
+def style(fields, params):
     randomization = params["jitter"]
     length = params["length"]
 
-    def arrangement(face):
-        c = face_controls(face, fields)
-        angle = c.orientation
-        spacing = params["spacing_min"] + (params["spacing_max"] - params["spacing_min"]) * (1 - c.density)
+    def arrangement(region):
+        angle, density = face_controls(fields, region)
+        spacing = params["spacing_min"] + (params["spacing_max"] - params["spacing_min"]) * (1 - density)
         hatch_lines = StripesProperties(angle, spacing)
         SetEdgeLabels(hatch_lines, "hatches")
         grid = GridPartition(hatch_lines, StripesProperties(angle + pi / 2, length), KEEP_OUTSIDE)
@@ -55,11 +63,10 @@ def style(fields, params, seed):
             s, t = SourceVertex(e), TargetVertex(e)
             return MatchPoints(ToCurve(e), Location(s), Location(t), jitter(s), jitter(t))
 
-        outline = Constant(face.region.boundary())
-        hatches = Inside(MapToEdges(randomize_hatches, grid), outline, CROP)
-        return hatches_from_curves(hatches(face.region), Family.FILL)
+        hatches = Inside(MapToEdges(randomize_hatches, grid), Outline(), CROP)
+        return hatches(region)
 
-    return arrangement
+    return Arrangement(arrangement)
 
 
 if __name__ == "__main__":

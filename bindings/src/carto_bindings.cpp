@@ -7,7 +7,6 @@
 #include "carto/error.hpp"
 #include "carto/extract.hpp"
 #include "carto/fields.hpp"
-#include "carto/hatching.hpp"
 #include "carto/output.hpp"
 #include "carto/partition.hpp"
 #include "carto/pipeline.hpp"
@@ -32,15 +31,6 @@ PyTerrain share(Terrain t) {
 }
 
 // A face as a style sees it: its geometry and labels, and the ids of its neighbours.
-struct StyleFace {
-    RockFace face;
-    std::vector<std::int64_t> neighbour_ids;  // per boundary segment (-1: none)
-    std::int64_t neighbour_id(int i) const {
-        if (i < 0 || std::size_t(i) >= neighbour_ids.size()) throw py::index_error("boundary segment index out of range");
-        return neighbour_ids[std::size_t(i)];
-    }
-};
-
 std::string wkt_of(const std::string& crs) {
     if (crs.rfind("EPSG:", 0) == 0 || crs.rfind("epsg:", 0) == 0) return epsg_wkt(std::stoi(crs.substr(5)));
     return crs;
@@ -79,46 +69,27 @@ Progress to_progress(const py::object& cb) {
     };
 }
 
-std::vector<Hatch> to_hatches(const py::object& r, const std::string& style) {
-    if (py::isinstance<std::vector<Hatch>>(r)) return r.cast<const std::vector<Hatch>&>();
-    if (py::isinstance<py::list>(r) || py::isinstance<py::tuple>(r)) {
-        std::vector<Hatch> out;
-        for (const auto& h : r) {
-            if (!py::isinstance<Hatch>(h))
-                throw py::type_error("style '" + style + "': a face function returned a list holding " + type_name(h) +
-                                     "; it must hold Hatch objects");
-            out.push_back(h.cast<const Hatch&>());
-        }
-        return out;
-    }
-    throw py::type_error("style '" + style + "': a face function returned " + type_name(r) +
-                         "; it must return Hatches or a list of Hatch");
-}
-
-// A Python style: fn(fields, params, seed) returns the function hatching one face.
-std::shared_ptr<const Style> python_style(StyleInfo info, py::object fn) {
+// A Python style: fn(fields, params) returns the arrangement drawn in each face (a program
+// of libtex operators whose mappers may be Python functions). Faces are drawn on the
+// engine's threads: every evaluation of an arrangement releases the interpreter's lock, so
+// the native operators of one face (partitions, crops, stock mappers) run while another
+// face's Python mapper holds it. `serial` draws them one after the other instead (a style
+// whose time goes into Python code, see Style::serial). The drawing is the same either way.
+std::shared_ptr<const Style> python_style(StyleInfo info, py::object fn, bool serial) {
     auto s = std::make_shared<Style>();
     s->info = std::move(info);
+    s->serial = serial;
     PyRef ref(std::move(fn));
     const std::string name = s->info.name;
-    s->bind = [ref, name](const ControlFields& fields, const ParamValues& params, std::uint64_t seed) -> FaceHatcher {
-        PyRef face_fn;
-        {
-            py::gil_scoped_acquire gil;
-            py::dict p;
-            for (const auto& [k, v] : params) p[py::str(k)] = v;
-            py::object f = ref.get()(fields, p, seed);
-            if (!PyCallable_Check(f.ptr()))
-                throw py::type_error("style '" + name + "': it returned " + type_name(f) +
-                                     "; a style returns the function hatching one face");
-            face_fn = PyRef(f);
-        }
-        return [face_fn, name](const RockFace& face, const NeighbourId& nid) {
-            StyleFace sf{face, {}};
-            for (std::size_t i = 0; i < face.boundary.size(); ++i) sf.neighbour_ids.push_back(nid(int(i)));
-            py::gil_scoped_acquire gil;
-            return to_hatches(face_fn.get()(std::move(sf)), name);
-        };
+    s->program = [ref, name](const ControlFields& fields, const ParamValues& params) -> tex::Arrangement {
+        py::gil_scoped_acquire gil;
+        py::dict p;
+        for (const auto& [k, v] : params) p[py::str(k)] = v;
+        py::object a = ref.get()(fields, p);
+        if (!py::isinstance<tex::Arrangement>(a))
+            throw py::type_error("style '" + name + "': it returned " + type_name(a) +
+                                 "; a style returns the arrangement drawn in each face (an Arrangement)");
+        return a.cast<tex::Arrangement>();
     };
     return s;
 }
@@ -221,10 +192,12 @@ void bind_carto(py::module_& m) {
     py::implicitly_convertible<Raster, Field>();
 
     py::class_<ControlFields>(m, "ControlFields", "The control fields a style is applied to")
-        .def(py::init([](const py::object& o, const py::object& d, const py::object& h, const py::object& r) {
-                 return ControlFields{to_field(o), to_field(d), to_field(h), to_field(r)};
+        .def(py::init([](const py::object& o, const py::object& d, const py::object& h, const py::object& r,
+                         const py::object& sl) {
+                 return ControlFields{to_field(o), to_field(d), to_field(h), to_field(r), to_field(sl)};
              }),
-             py::arg("orientation"), py::arg("density"), py::arg("height"), py::arg("roughness"))
+             py::arg("orientation"), py::arg("density"), py::arg("height"), py::arg("roughness"),
+             py::arg("slope") = py::float_(std::nan("")))
         .def_property(
             "orientation", [](const ControlFields& c) { return c.orientation; },
             [](ControlFields& c, const py::object& o) { c.orientation = to_field(o); }, "hatch direction (radians)")
@@ -236,7 +209,10 @@ void bind_carto(py::module_& m) {
             [](ControlFields& c, const py::object& o) { c.height = to_field(o); }, "0..1 normalised elevation")
         .def_property(
             "roughness", [](const ControlFields& c) { return c.roughness; },
-            [](ControlFields& c, const py::object& o) { c.roughness = to_field(o); }, "0..1");
+            [](ControlFields& c, const py::object& o) { c.roughness = to_field(o); }, "0..1")
+        .def_property(
+            "slope", [](const ControlFields& c) { return c.slope; },
+            [](ControlFields& c, const py::object& o) { c.slope = to_field(o); }, "percent");
 
     // ---- Partition ----
     py::enum_<LineKind>(m, "LineKind")
@@ -290,31 +266,11 @@ void bind_carto(py::module_& m) {
             return face_field(p, std::move(values));
         },
         py::arg("partition"), py::arg("values"), "value i on face i, NaN outside the faces");
-    m.def("interior_point", &interior_point);
+    m.def("interior_point", py::overload_cast<const tex::Region&>(&interior_point), py::arg("region"));
 
-    py::class_<StyleFace>(m, "StyleFace", "A face handed to a style: the face and the ids of its neighbours")
-        .def_property_readonly("face", [](const StyleFace& s) { return s.face; })
-        .def_property_readonly("id", [](const StyleFace& s) { return s.face.id; })
-        .def_property_readonly("region", [](const StyleFace& s) { return s.face.region; })
-        .def_property_readonly("boundary", [](const StyleFace& s) { return s.face.boundary; })
-        .def("neighbour_id", &StyleFace::neighbour_id, "feature id of the face across boundary segment i (-1: none)");
-
-    py::class_<FaceControls>(m, "FaceControls", "What a style reads about one face from the control fields")
-        .def_readonly("orientation", &FaceControls::orientation)
-        .def_readonly("density", &FaceControls::density)
-        .def_readonly("height", &FaceControls::height)
-        .def("neighbour_density", [](const FaceControls& c, int i) { return c.neighbour_density(i); })
-        .def("neighbour_id", [](const FaceControls& c, int i) { return c.neighbour_id(i); })
-        .def_property_readonly("height_field", [](const FaceControls& c) { return c.height_field; })
-        .def_property_readonly("roughness_field", [](const FaceControls& c) { return c.roughness_field; });
-    m.def(
-        "face_controls",
-        [](const StyleFace& f, const ControlFields& fields) {
-            const std::vector<std::int64_t> ids = f.neighbour_ids;
-            return face_controls(f.face, fields, [ids](int i) { return ids[std::size_t(i)]; });
-        },
-        py::arg("face"), py::arg("fields"),
-        "orientation and density at an interior point, height on the border, density across the ridges");
+    m.def("face_region", &face_region, py::arg("partition"), py::arg("face"),
+          "the region a style draws face i in: its rings, its border as edges labelled ridge / valley / other "
+          "(and owned where this face draws what lies on a shared border)");
 
     // ---- Hatches and their building blocks ----
     py::enum_<Family>(m, "Family")
@@ -343,29 +299,8 @@ void bind_carto(py::module_& m) {
             },
             py::arg("lines"), py::arg("family"), "appends every line as an open hatch (the lines are moved)");
 
-    m.def(
-        "hatches_from_curves",
-        [](const tex::Curves& c, Family f) {
-            std::vector<Hatch> out;
-            out.reserve(c.curves.size());
-            for (const auto& curve : c.curves)
-                if (curve.points.size() >= 2) out.push_back({curve.points, curve.closed, f});
-            return out;
-        },
-        py::arg("curves"), py::arg("family"), "libtex curves (an evaluated arrangement) as hatches of one family");
-    m.def("jittered_lines", &jittered_lines, py::arg("box"), py::arg("angle"), py::arg("spacing"), py::arg("length"),
-          py::arg("jitter_across"), py::arg("jitter_along"), py::arg("seed"), py::arg("stream"),
-          "hatch lines at angle covering box, broken every length, break points jittered (anchored to the plane)");
-    py::class_<RegionClipper>(m, "RegionClipper", "Clips many polylines to one region (edges indexed once)")
-        .def(py::init<const tex::Region&>(), py::arg("region"), py::keep_alive<1, 2>())
-        .def("clip", &RegionClipper::clip, py::arg("line"));
-    m.def("clip_to_region", &clip_to_region, py::arg("line"), py::arg("region"));
-    m.def("clip_to_convex", &clip_to_convex, py::arg("line"), py::arg("convex"));
-    m.def("clip_polygon_convex", &clip_polygon_convex, py::arg("subject"), py::arg("convex"));
-    m.def("jitter_at", &jitter_at, py::arg("p"), py::arg("seed"), py::arg("stream"));
-    m.def("split_strokes", &split_strokes, py::arg("line"), py::arg("gap"));
-    m.def("ring_centroid", &ring_centroid);
-    m.def("scale_ring", &scale_ring, py::arg("ring"), py::arg("s"));
+    m.def("hatches_from_curves", &hatches_from_curves, py::arg("curves"),
+          "libtex curves (an evaluated style) as hatches, their family read from their labels");
 
     // ---- Styles ----
     py::class_<StyleParam>(m, "StyleParam")
@@ -391,19 +326,27 @@ void bind_carto(py::module_& m) {
           "parameters in ground units ('mm' x scale / 1000, 'deg' to radians)");
     m.def(
         "hatch_face",
-        [](const StyleInfo& s, const ParamValues& p, const StyleFace& f, const FaceControls& c, std::uint64_t seed) {
-            return hatch_face(s, p, f.face, c, seed);
+        [](const Style& s, const ParamValues& p, const ControlFields& f, const Partition& part, std::size_t face,
+           std::uint64_t seed) {
+            if (face >= part.faces.size()) throw py::index_error("hatch_face: no face " + std::to_string(face));
+            const tex::Arrangement a = s.program(f, p);
+            py::gil_scoped_release release;  // a Python mapper takes the lock back itself
+            return hatch_face(a, part, face, seed);
         },
-        py::arg("style"), py::arg("params"), py::arg("face"), py::arg("controls"), py::arg("seed"),
-        "the hatches of one face by a built-in style");
+        py::arg("style"), py::arg("params"), py::arg("fields"), py::arg("partition"), py::arg("face"),
+        py::arg("seed") = 0, "the hatches of face i of the partition drawn by a style");
     py::class_<Style, std::shared_ptr<Style>>(m, "Style", "A style: its description and its controlled arrangement")
         .def_property_readonly("info", [](const Style& s) { return s.info; })
         .def_property_readonly("name", [](const Style& s) { return s.info.name; });
     m.def(
         "python_style",
-        [](const StyleInfo& info, py::object fn) { return std::const_pointer_cast<Style>(python_style(info, std::move(fn))); },
-        py::arg("info"), py::arg("fn"),
-        "a style from fn(fields, params, seed) -> (face -> hatches); params are in ground units");
+        [](const StyleInfo& info, py::object fn, bool serial) {
+            return std::const_pointer_cast<Style>(python_style(info, std::move(fn), serial));
+        },
+        py::arg("info"), py::arg("fn"), py::arg("serial") = false,
+        "a style from fn(fields, params) -> Arrangement drawn in each face; params are in ground units. Faces are "
+        "drawn on the engine's threads (native operators release the interpreter's lock); serial=True draws them "
+        "one after the other, for a style whose time goes into Python mappers. The drawing is the same.");
     m.def("builtin_style", [](const std::string& n) { return std::make_shared<Style>(builtin_style(n)); });
 
     // ---- Pipeline ----
@@ -419,6 +362,7 @@ void bind_carto(py::module_& m) {
             [](Options& o, std::shared_ptr<Style> s) { o.custom_style = std::move(s); })
         .def_readwrite("params", &Options::params)
         .def_readwrite("scale", &Options::scale)
+        .def_readwrite("relief_radius", &Options::relief_radius)
         .def_readwrite("seed", &Options::seed)
         .def_readwrite("threads", &Options::threads)
         .def_readwrite("outputs", &Options::outputs)
@@ -438,8 +382,7 @@ void bind_carto(py::module_& m) {
     py::class_<Prepared>(m, "Prepared", "The inputs read and prepared: terrain in the working CRS and the partition")
         .def_property_readonly("terrain", [](const Prepared& p) { return share(p.terrain); })
         .def_readonly("partition", &Prepared::partition)
-        .def_readonly("zmin", &Prepared::zmin)
-        .def_readonly("zmax", &Prepared::zmax)
+        .def_property_readonly("relief", [](const Prepared& p) { return std::make_shared<Raster>(p.relief); })
         .def_readonly("notes", &Prepared::notes);
     py::class_<FaceHatches>(m, "FaceHatches")
         .def_readonly("face_id", &FaceHatches::face_id)

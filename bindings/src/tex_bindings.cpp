@@ -34,6 +34,50 @@ std::function<Curves(const CellT&)> mapper(py::function fn, const char* op) {
     };
 }
 
+// A mapper the engine runs natively (a stock mapper such as JitterEdges): the mapping
+// operators take it as it is, so no Python call is made per cell and it runs on the
+// engine's worker threads.
+template <class CellT>
+struct NativeMapper {
+    std::function<Curves(const CellT&)> fn;
+    std::string name;
+};
+
+template <class CellT>
+void bind_native_mapper(py::module_& m, const char* name, const char* doc) {
+    using N = NativeMapper<CellT>;
+    py::class_<N>(m, name, doc)
+        .def("__call__", [](const N& n, const CellT& c) { return n.fn(c); }, py::arg("cell"),
+             py::call_guard<py::gil_scoped_release>(), "the curves the mapper gives this cell")
+        .def_property_readonly("name", [](const N& n) { return n.name; })
+        .def("__repr__", [name](const N& n) { return std::string(name) + "(" + n.name + ")"; });
+}
+
+// Scope classes of libtex (SeedScope, StreamScope) as Python context managers.
+template <class S>
+struct PyGuard {
+    std::uint64_t value;
+    std::unique_ptr<S> live;
+};
+
+template <class S>
+void bind_guard(py::module_& m, const char* name, const char* arg, const char* doc) {
+    using G = PyGuard<S>;
+    py::class_<G>(m, name, doc)
+        .def(py::init([](std::uint64_t v) { return G{v, nullptr}; }), py::arg(arg))
+        .def(
+            "__enter__",
+            [](G& g) -> G& {
+                g.live = std::make_unique<S>(g.value);
+                return g;
+            },
+            py::return_value_policy::reference_internal)
+        .def("__exit__", [](G& g, const py::args&) {
+            g.live.reset();
+            return false;
+        });
+}
+
 template <class Tag>
 py::class_<Cell<Tag>> bind_cell(py::module_& m, const char* name, const char* doc) {
     using C = Cell<Tag>;
@@ -150,7 +194,12 @@ void bind_tex(py::module_& m) {
         .def("bbox", &Region::bbox)
         .def("area", &Region::area)
         .def("contains", &Region::contains, "even-odd test; points on a ring count as inside")
-        .def("boundary", &Region::boundary, "the rings as closed curves, inside on the left");
+        .def("boundary", &Region::boundary,
+             "the boundary as curves, inside on the left: its labelled edges when it has them, else its rings")
+        .def("with_edges", &Region::with_edges, py::arg("edges"),
+             "the same region with its boundary given as labelled curves (a face's edges), which partitions "
+             "cropped to it with CROP_ADD_BOUNDARY keep on their outline")
+        .def("has_edges", &Region::has_edges);
 
     // ---- Curves ----
     py::class_<Curve>(m, "Curve", "A labelled polyline")
@@ -214,6 +263,7 @@ void bind_tex(py::module_& m) {
           "the similarity sending s1 to t1 and s2 to t2");
     m.def("PointLabeled", &PointLabeled, py::arg("c"), py::arg("label"));
     m.def("CurveLabeled", &CurveLabeled, py::arg("c"), py::arg("label"));
+    m.def("Labelled", &Labelled, py::arg("c"), py::arg("label"), "the curves with one more label");
     m.def("Polyline", &polyline, py::arg("points"), py::arg("closed") = false, "one polyline as curves");
 
     // ---- Planar maps and cells ----
@@ -376,7 +426,7 @@ void bind_tex(py::module_& m) {
             return SetWeightedFaceLabels(p, weighted_args(a, "SetWeightedFaceLabels"));
         },
         py::return_value_policy::reference);
-    m.def("StripesPartition", &StripesPartition, py::arg("p"));
+    m.def("StripesPartition", &StripesPartition, py::arg("p"), py::arg("border") = Border::CROP_ADD_BOUNDARY);
     m.def("GridPartition", &GridPartition, py::arg("s1"), py::arg("s2"), py::arg("border"));
     m.def("UniformPartition", &UniformPartition, py::arg("p"), py::arg("border"), py::arg("seed") = py::none(),
           "Voronoi cells of Poisson-disk sites; each call draws its own sites unless `seed` repeats them");
@@ -389,6 +439,26 @@ void bind_tex(py::module_& m) {
     // ---- Mapping (table 3.3) and merging (table 3.5) ----
     // A Python mapper runs one call at a time (the interpreter's lock): the engine calls it
     // cell after cell on the evaluating thread, instead of handing the lock between workers.
+    bind_native_mapper<Edge>(m, "EdgeMapper",
+                             "A native edge mapper (e.g. JitterEdges): MapToEdges runs it with no Python call per "
+                             "edge, on the engine's threads");
+    m.def(
+        "JitterEdges",
+        [](const std::string& label, double theta, double across, double along, double r, double gap,
+           const py::object& gate, double gate_min) {
+            const Field g = gate.is_none() ? Field() : to_field(gate);
+            return NativeMapper<Edge>{JitterEdges(label, theta, across, along, r, gap, g, gate_min),
+                                      "JitterEdges '" + label + "'"};
+        },
+        py::arg("label"), py::arg("theta"), py::arg("across"), py::arg("along"), py::arg("r"), py::arg("gap") = 1.0,
+        py::arg("gate") = py::none(), py::arg("gate_min") = 0.0,
+        "the jitter mapper of App. E: an edge labelled `label` moved so that its end vertices land on themselves "
+        "shifted by Random(v, -r*across/2, r*across/2, 0) across theta and Random(v, -r*along/2, r*along/2, 1) "
+        "along it, then scaled by gap about its middle when gap < 1; other edges give nothing, and so do edges "
+        "whose middle reads below gate_min (or NaN) in the gate field when gate_min > 0");
+    m.def(
+        "MapToEdges", [](const NativeMapper<Edge>& f, Arrangement a) { return MapToEdges(f.fn, a); },
+        py::arg("mapper"), py::arg("arrangement"));
     m.def(
         "MapToVertices", [](py::function f, Arrangement a) { return MapToVertices(mapper<Vertex>(f, "MapToVertices"), a, MapperThreads::Serial); },
         py::arg("mapper"), py::arg("arrangement"));
@@ -399,6 +469,9 @@ void bind_tex(py::module_& m) {
         "MapToFaces", [](py::function f, Arrangement a) { return MapToFaces(mapper<Face>(f, "MapToFaces"), a, MapperThreads::Serial); },
         py::arg("mapper"), py::arg("arrangement"), "visits the bounded faces");
     m.def("Union", &Union, py::arg("a1"), py::arg("a2"));
+    m.def("Crop", &Crop, py::arg("a"), py::arg("border"),
+          "a evaluated on the region and cut to it (CROP_ADD_BOUNDARY adds the region's labelled outline)");
+    m.def("Outline", &Outline, "the region evaluated on as an arrangement: its labelled edges, else its rings");
     m.def("Merge", &Merge, py::arg("a1"), py::arg("a2"), "Union's name in the thesis's Chapter 4");
     m.def("Inside", &Inside, py::arg("a1"), py::arg("a2"), py::arg("border"));
     m.def("Outside", &Outside, py::arg("a1"), py::arg("a2"), py::arg("border"));
@@ -433,6 +506,11 @@ void bind_tex(py::module_& m) {
     m.def("SetSeed", &SetSeed, py::arg("seed"),
           "sets the global seed and restarts the numbering of the partitions' random streams");
     m.def("GetSeed", &GetSeed);
+    bind_guard<SeedScope>(m, "SeedScope", "seed",
+                          "with SeedScope(seed): GetSeed() is seed on this thread (and its work items) inside");
+    bind_guard<StreamScope>(m, "StreamScope", "key",
+                            "with StreamScope(key): the numbering of random streams restarts under key inside");
+    m.def("hash_combine", &hash_combine, py::arg("h"), py::arg("v"), "the 64-bit mix libtex keys streams with");
     m.def("SetThreads", &SetThreads, py::arg("n"), "worker threads (0: all cores); never changes the result");
     m.def("GetThreads", &GetThreads);
 }

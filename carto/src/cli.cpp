@@ -58,6 +58,10 @@ std::vector<Option> options(CommandLine& cl) {
          }},
         {"--scale", "N", "map scale denominator; style parameters are millimetres on paper at 1:N (default 10000)",
          [&](const std::string& v) { o.scale = parse_double("--scale", v); }},
+        {"--relief-radius", "M",
+         "height is the elevation between the lowest and highest ground within M metres (default 1000): editing "
+         "the DEM changes the drawing only that far",
+         [&](const std::string& v) { o.relief_radius = parse_double("--relief-radius", v); }},
         {"--seed", "N", "random seed (default 0); same inputs and seed give the same bytes",
          [&](const std::string& v) { o.seed = parse_uint("--seed", v); }},
         {"--threads", "N", "worker threads (default 0: all cores); does not change the output",

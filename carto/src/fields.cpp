@@ -5,7 +5,6 @@
 #include <memory>
 #include <optional>
 
-#include "carto/hatching.hpp"
 
 namespace carto {
 
@@ -45,11 +44,18 @@ Field face_field(const Partition& p, std::vector<double> values) {
 
 Field constant_field(double v) { return tex::ConstantField(v); }
 
-Point interior_point(const RockFace& f) {
-    const Point c = ring_centroid(f.region.outer());
-    if (f.region.contains(c)) return c;
+Point interior_point(const tex::Region& r) {
+    const auto& ring = r.outer();
+    Point c{0, 0};
+    double a = 0;
+    for (std::size_t i = 0, n = ring.size(); i < n; ++i) {
+        const double w = tex::cross(ring[i], ring[(i + 1) % n]);
+        a += w;
+        c += (ring[i] + ring[(i + 1) % n]) * w;
+    }
+    if (a != 0) c = c / (3 * a);
+    if (a != 0 && r.contains(c)) return c;
     // Step inwards from the middle of the longest border segment of the outer ring.
-    const auto& ring = f.region.outer();
     std::size_t best = 0;
     double len = -1;
     for (std::size_t i = 0; i < ring.size(); ++i) {
@@ -59,14 +65,70 @@ Point interior_point(const RockFace& f) {
             best = i;
         }
     }
-    const Point a = ring[best], b = ring[(best + 1) % ring.size()];
-    const Point d = (b - a) / std::max(len, 1e-300);
+    const Point p = ring[best], q = ring[(best + 1) % ring.size()];
+    const Point d = (q - p) / std::max(len, 1e-300);
     const Point inward{-d.y, d.x};  // the outer ring is counter-clockwise: inside on the left
     for (double eps = len * 0.25; eps > len * 1e-6; eps /= 2) {
-        const Point q = (a + b) / 2 + inward * eps;
-        if (f.region.contains(q)) return q;
+        const Point x = (p + q) / 2 + inward * eps;
+        if (r.contains(x)) return x;
     }
-    return (a + b) / 2;
+    return (p + q) / 2;
+}
+
+namespace {
+
+// Running minimum (or maximum, with `less` reversed) over windows of 2k + 1 values, NaN
+// values left out (NaN where a window has none); a monotonic queue, linear time.
+template <class Less>
+void running_extreme(const float* in, float* out, int n, int stride, int k, Less less) {
+    std::vector<int> q(std::size_t(n) + 1);
+    int head = 0, tail = 0;
+    int next = 0;  // next index to push
+    for (int i = 0; i < n; ++i) {
+        while (next < n && next <= i + k) {
+            const float v = in[std::size_t(next) * stride];
+            if (!std::isnan(v)) {
+                while (tail > head && !less(in[std::size_t(q[tail - 1]) * stride], v)) --tail;
+                q[tail++] = next;
+            }
+            ++next;
+        }
+        while (tail > head && q[head] < i - k) ++head;
+        out[std::size_t(i) * stride] = tail > head ? in[std::size_t(q[head]) * stride] : NAN;
+    }
+}
+
+Raster window_extreme(const Raster& z, int kx, int ky, bool max) {
+    Raster tmp = z, out = z;
+    auto lt = [](float a, float b) { return a < b; };
+    auto gt = [](float a, float b) { return a > b; };
+    for (int r = 0; r < z.height; ++r) {
+        const float* in = z.data.data() + std::size_t(r) * z.width;
+        float* o = tmp.data.data() + std::size_t(r) * z.width;
+        max ? running_extreme(in, o, z.width, 1, kx, gt) : running_extreme(in, o, z.width, 1, kx, lt);
+    }
+    for (int c = 0; c < z.width; ++c) {
+        const float* in = tmp.data.data() + c;
+        float* o = out.data.data() + c;
+        max ? running_extreme(in, o, z.height, z.width, ky, gt) : running_extreme(in, o, z.height, z.width, ky, lt);
+    }
+    return out;
+}
+
+}  // namespace
+
+Raster local_relief(const Raster& dem, double radius) {
+    const int kx = std::max(1, int(std::ceil(radius / dem.cell_x())));
+    const int ky = std::max(1, int(std::ceil(radius / dem.cell_y())));
+    const Raster lo = window_extreme(dem, kx, ky, false), hi = window_extreme(dem, kx, ky, true);
+    Raster out = dem;
+    for (std::size_t i = 0; i < out.data.size(); ++i) {
+        const float z = dem.data[i];
+        if (std::isnan(z)) continue;
+        const float range = hi.data[i] - lo.data[i];
+        out.data[i] = range > 0 ? (z - lo.data[i]) / range : 0.5f;
+    }
+    return out;
 }
 
 namespace {

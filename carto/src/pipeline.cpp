@@ -50,6 +50,8 @@ void validate(const Options& o) {
     if (o.partition.path.empty()) throw Error(Code::Usage, "--partition is required");
     if (o.outputs.empty()) throw Error(Code::Usage, "-o is required (.gpkg, .svg or .png)");
     if (!(o.partition.snap > 0)) throw Error(Code::Usage, "--snap must be positive");
+    if (!(o.relief_radius > 0) || !std::isfinite(o.relief_radius))
+        throw Error(Code::Usage, "--relief-radius: " + std::to_string(o.relief_radius) + " is not a positive number");
     for (const auto& out : o.outputs) {
         const std::string e = extension(out);
         if (e != ".gpkg" && e != ".svg" && e != ".png")
@@ -79,8 +81,7 @@ Prepared prepare(const Options& o, const Progress& progress) {
                 throw Error(Code::BadLayer, "--roughness '" + o.roughness + "': values must lie in 0..1 (found " +
                                                 std::to_string(v) + ")");
     }
-    std::tie(p.zmin, p.zmax) = dem.min_max();
-    if (!(p.zmax > p.zmin)) p.zmax = p.zmin + 1;
+    p.relief = local_relief(dem, o.relief_radius);
 
     tick(progress, 0.15, "reading the partition");
     if (o.partition.path == "auto") {
@@ -125,34 +126,42 @@ Drawing hatch(const Prepared& p, const Options& o, const Progress& progress) {
     d.style = style.info.name;
     d.scale = o.scale;
     d.faces.resize(selected.size());
-    // The control fields (seed 5.3): face-wise orientation and density, elevation scaled to
-    // 0..1 over the DEM's range, roughness.
+    // The control fields (seed 5.3): face-wise orientation and density, the relief of the
+    // elevation in its neighbourhood, roughness and slope.
     std::vector<double> orient, dens;
     for (const auto& f : part.faces) {
         orient.push_back(*f.orientation);
         dens.push_back(*f.density);
     }
-    ControlFields fields{face_field(part, std::move(orient)), face_field(part, std::move(dens)),
-                         raster_field(p.terrain.elevation, p.zmin, p.zmax - p.zmin), raster_field(p.terrain.roughness)};
-    const FaceHatcher hatcher = style.bind(fields, params, o.seed);
+    const ControlFields fields{face_field(part, std::move(orient)), face_field(part, std::move(dens)),
+                               raster_field(p.relief), raster_field(p.terrain.roughness),
+                               raster_field(p.terrain.slope)};
+    const tex::Arrangement program = style.program(fields, params);
     tex::SetThreads(o.threads);
     std::atomic<std::size_t> done{0};
     std::atomic<bool> cancelled{false};
     std::mutex progress_mutex;
-    tex::parallel_for(selected.size(), [&](std::size_t k) {
+    auto draw = [&](std::size_t k) {
         if (cancelled) return;
         const RockFace& f = part.faces[selected[k]];
-        const NeighbourId neighbour_id = [&](int i) {
-            const int n = f.boundary[std::size_t(i)].neighbor;
-            return n < 0 ? std::int64_t(-1) : part.faces[std::size_t(n)].id;
-        };
-        d.faces[k] = {f.id, hatcher(f, neighbour_id)};
+        try {
+            d.faces[k] = {f.id, hatch_face(program, part, std::size_t(selected[k]), o.seed)};
+        } catch (const Error&) {
+            throw;
+        } catch (const std::exception& e) {
+            throw Error(Code::Failure, "style '" + style.info.name + "', face " + std::to_string(f.id) + ": " + e.what());
+        }
         const std::size_t n = ++done;
         if (progress) {
             std::lock_guard lock(progress_mutex);
             if (!progress(0.2 + 0.7 * double(n) / double(selected.size()), "hatching")) cancelled = true;
         }
-    });
+    };
+    if (style.serial) {
+        for (std::size_t k = 0; k < selected.size(); ++k) draw(k);
+    } else {
+        tex::parallel_for(selected.size(), draw);
+    }
     if (cancelled) throw Error(Code::Cancelled, "cancelled during hatching");
     for (std::size_t k = 0; k < selected.size(); ++k) d.bounds.add(part.faces[selected[k]].region.bbox());
     return d;

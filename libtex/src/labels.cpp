@@ -43,11 +43,26 @@ const std::string& label_name(LabelId id) {
 }
 
 bool find_label(std::string_view name, LabelId& out) {
+    // Mappers ask for the same few names over and over (HasLabel(e, "ridge")): a small
+    // per-thread cache of names already interned spares the shared lock. Ids never change.
+    struct Hit {
+        std::string name;
+        LabelId id;
+    };
+    thread_local std::vector<Hit> cache;
+    for (const Hit& h : cache)
+        if (h.name == name) {
+            out = h.id;
+            return true;
+        }
     LabelTable& t = table();
-    std::shared_lock lock(t.mutex);
-    auto it = t.ids.find(std::string(name));
-    if (it == t.ids.end()) return false;
-    out = it->second;
+    {
+        std::shared_lock lock(t.mutex);
+        auto it = t.ids.find(std::string(name));
+        if (it == t.ids.end()) return false;
+        out = it->second;
+    }
+    if (cache.size() < 16) cache.push_back({std::string(name), out});
     return true;
 }
 
@@ -61,40 +76,83 @@ Labels Labels::from_names(const std::vector<std::string>& names) {
     return l;
 }
 
+void Labels::assign(const LabelId* first, std::uint32_t n) {
+    if (n <= kInline) {
+        std::copy(first, first + n, small_);
+        big_.clear();
+    } else {
+        big_.assign(first, first + n);
+    }
+    n_ = n;
+}
+
 void Labels::add(LabelId id) {
-    auto it = std::lower_bound(ids_.begin(), ids_.end(), id);
-    if (it == ids_.end() || *it != id) ids_.insert(it, id);
+    const LabelId* b = begin();
+    const LabelId* at = std::lower_bound(b, end(), id);
+    if (at != end() && *at == id) return;
+    LabelId tmp[kInline + 1];
+    if (n_ < kInline) {  // stays inline
+        const std::size_t k = std::size_t(at - b);
+        std::copy_backward(small_ + k, small_ + n_, small_ + n_ + 1);
+        small_[k] = id;
+        ++n_;
+        return;
+    }
+    if (n_ == kInline) {
+        const std::size_t k = std::size_t(at - b);
+        std::copy(small_, small_ + k, tmp);
+        tmp[k] = id;
+        std::copy(small_ + k, small_ + n_, tmp + k + 1);
+        big_.assign(tmp, tmp + n_ + 1);
+    } else {
+        big_.insert(big_.begin() + (at - b), id);
+    }
+    ++n_;
 }
 
 void Labels::merge(const Labels& other) {
-    if (other.ids_.empty()) return;
-    if (ids_.empty()) {
-        ids_ = other.ids_;
+    if (other.n_ == 0) return;
+    if (n_ == 0) {
+        *this = other;
         return;
     }
-    std::vector<LabelId> out;
-    out.reserve(ids_.size() + other.ids_.size());
-    std::set_union(ids_.begin(), ids_.end(), other.ids_.begin(), other.ids_.end(),
-                   std::back_inserter(out));
-    ids_.swap(out);
+    LabelId local[2 * kInline];
+    std::vector<LabelId> heap;
+    LabelId* out = local;
+    if (n_ + other.n_ > 2 * kInline) {
+        heap.resize(n_ + other.n_);
+        out = heap.data();
+    }
+    LabelId* last = std::set_union(begin(), end(), other.begin(), other.end(), out);
+    assign(out, std::uint32_t(last - out));
 }
 
 void Labels::remove(LabelId id) {
-    auto it = std::lower_bound(ids_.begin(), ids_.end(), id);
-    if (it != ids_.end() && *it == id) ids_.erase(it);
+    const LabelId* at = std::lower_bound(begin(), end(), id);
+    if (at == end() || *at != id) return;
+    std::vector<LabelId> rest(begin(), end());
+    rest.erase(rest.begin() + (at - begin()));
+    assign(rest.data(), std::uint32_t(rest.size()));
 }
 
-bool Labels::has(LabelId id) const { return std::binary_search(ids_.begin(), ids_.end(), id); }
+bool Labels::has(LabelId id) const {
+    for (const LabelId* p = begin(); p != end(); ++p)
+        if (*p >= id) return *p == id;
+    return false;
+}
 
 bool Labels::has(std::string_view name) const {
+    if (n_ == 0) return false;
     LabelId id;
     return find_label(name, id) && has(id);
 }
 
+bool Labels::operator==(const Labels& o) const { return n_ == o.n_ && std::equal(begin(), end(), o.begin()); }
+
 std::vector<std::string> Labels::names() const {
     std::vector<std::string> out;
-    out.reserve(ids_.size());
-    for (LabelId id : ids_) out.push_back(label_name(id));
+    out.reserve(n_);
+    for (LabelId id : *this) out.push_back(label_name(id));
     std::sort(out.begin(), out.end());
     return out;
 }

@@ -157,6 +157,20 @@ std::vector<Run> split_runs(const Curves& subject, const detail::SegmentGrid& gr
 void stitch(std::vector<std::vector<Point>>& pieces, const Curve& source, const detail::SegmentGrid& grid,
             Curves& out) {
     const std::size_t n = pieces.size();
+    if (n == 1) {  // the common case: one piece, kept as it is (a loop when it closes away from the mask)
+        Curve c;
+        c.labels = source.labels;
+        c.left = source.left;
+        c.right = source.right;
+        c.points = std::move(pieces[0]);
+        const Point p = c.points.front();
+        if (c.points.size() > 2 && p == c.points.back() && !grid.touches(p, p, false)) {
+            c.points.pop_back();
+            c.closed = true;
+        }
+        out.curves.push_back(std::move(c));
+        return;
+    }
     std::vector<int> next(n, -1), prev(n, -1);
     {
         std::map<Point, std::vector<int>> starts, ends;
@@ -256,7 +270,12 @@ std::vector<char> mask_curves_needed(const Curves& mask, const detail::SegmentGr
 // soon as anything else happens (a curve through a mask vertex, along a mask segment,
 // ending on the mask, two crossings too close to order): the exact path handles those.
 bool crop_by_crossings(const Curves& src, const Curves& mask, const detail::SegmentGrid& grid,
-                       const std::vector<Run>& runs, Border b, Status wanted, Curves& out) {
+                       const std::vector<Run>& runs, Border b, Status wanted, Curves& out, std::vector<char>& hard) {
+    // With CROP alone, a curve that meets the mask in a degenerate way is left to the exact
+    // path on its own (`hard`); the mask's own pieces (CROP_ADD_BOUNDARY) are cut by every
+    // curve, so there any degeneracy sends the whole crop to the exact path.
+    const bool per_curve = b == Border::CROP;
+    hard.assign(src.curves.size(), 0);
     struct Cross {
         double t;          // along the subject segment
         double u;          // along the mask segment
@@ -305,21 +324,32 @@ bool crop_by_crossings(const Curves& src, const Curves& mask, const detail::Segm
                 const LD ex = LD(m.b.x) - LD(m.a.x), ey = LD(m.b.y) - LD(m.a.y);
                 const LD dx = LD(c.x) - LD(a.x), dy = LD(c.y) - LD(a.y);
                 const LD lu = ((LD(m.a.x) - LD(a.x)) * dy - (LD(m.a.y) - LD(a.y)) * dx) / (dx * ey - dy * ex);
-                const Point x{double(LD(m.a.x) + ex * lu), double(LD(m.a.y) + ey * lu)};
+                Point x{double(LD(m.a.x) + ex * lu), double(LD(m.a.y) + ey * lu)};
+                // A horizontal or vertical subject keeps its coordinate exactly (window
+                // outlines, axis-aligned stripes).
+                if (a.y == c.y) x.y = a.y;
+                if (a.x == c.x) x.x = a.x;
                 if (!(t > 0 && t < 1 && u > 0 && u < 1) || x == a || x == c || x == m.a || x == m.b) {
                     degenerate = true;
                     return;
                 }
                 per_seg[k].push_back({t, u, j, x});
             });
-            if (degenerate) return false;
             auto& cs = per_seg[k];
             std::sort(cs.begin(), cs.end(), [](const Cross& p, const Cross& q) { return p.t < q.t; });
-            for (std::size_t i = 1; i < cs.size(); ++i)
-                if (!(cs[i].t > cs[i - 1].t) || cs[i].x == cs[i - 1].x) return false;
-            for (const Cross& x : cs) on_mask[x.seg].push_back({x.u, x.x});
+            for (std::size_t i = 1; i < cs.size() && !degenerate; ++i)
+                degenerate = !(cs[i].t > cs[i - 1].t) || cs[i].x == cs[i - 1].x;
+            if (degenerate) {
+                if (!per_curve) return false;
+                hard[runs[r].curve] = 1;
+                break;
+            }
         }
     }
+    if (!per_curve)
+        for (std::size_t r = 0; r < runs.size(); ++r)
+            for (const auto& cs : run_cross[r])
+                for (const Cross& x : cs) on_mask[x.seg].push_back({x.u, x.x});
     for (auto& v : on_mask) {
         std::sort(v.begin(), v.end(), [](const auto& p, const auto& q) { return p.first < q.first; });
         for (std::size_t i = 1; i < v.size(); ++i)
@@ -329,8 +359,14 @@ bool crop_by_crossings(const Curves& src, const Curves& mask, const detail::Segm
     std::vector<std::vector<std::vector<Point>>> pieces(src.curves.size());
     for (std::size_t r = 0; r < runs.size(); ++r) {
         const Run& run = runs[r];
+        if (hard[run.curve]) continue;
         const auto where = grid.locate(run.pts.front());
-        if (where == detail::SegmentGrid::Where::On) return false;
+        if (where == detail::SegmentGrid::Where::On) {
+            if (!per_curve) return false;
+            hard[run.curve] = 1;
+            pieces[run.curve].clear();
+            continue;
+        }
         Status st = where == detail::SegmentGrid::Where::In ? Status::In : Status::Out;
         auto& kept = pieces[run.curve];
         if (!run.near) {
@@ -356,8 +392,9 @@ bool crop_by_crossings(const Curves& src, const Curves& mask, const detail::Segm
     const LabelId in = inside_marker();
     Curves result;
     result.points = src.points;
+    result.curves.reserve(src.curves.size() + (b == Border::CROP_ADD_BOUNDARY ? 2 * msegs.size() : 0));
     for (std::size_t i = 0; i < src.curves.size(); ++i)
-        if (!pieces[i].empty()) stitch(pieces[i], src.curves[i], grid, result);
+        if (!pieces[i].empty() && !hard[i]) stitch(pieces[i], src.curves[i], grid, result);
     if (b == Border::CROP_ADD_BOUNDARY) {
         // The mask's bounded boundaries, cut where the subject crosses them. Segments of one
         // mask curve are consecutive in the grid, in the curve's order.
@@ -432,8 +469,17 @@ Curves mask_core(const Curves& subject, const Curves& mask, MaskSide side, Borde
     const std::vector<char> included = mask_curves_needed(mask, grid, runs, touched, keep_whole);
     if (!keep_whole && !detail::exact_crops_only()) {
         Curves fast;
-        if (crop_by_crossings(src, mask, grid, runs, b, wanted, fast)) {
+        std::vector<char> hard;
+        if (crop_by_crossings(src, mask, grid, runs, b, wanted, fast, hard)) {
             ++detail::g_fast_crops;
+            Curves rest;  // the curves that meet the mask degenerately: exact path
+            for (std::size_t i = 0; i < src.curves.size(); ++i)
+                if (hard[i]) rest.curves.push_back(src.curves[i]);
+            if (!rest.curves.empty()) {
+                detail::ExactCropScope exact;
+                Curves cut = mask_core(rest, mask, side, b);
+                for (auto& c : cut.curves) fast.curves.push_back(std::move(c));
+            }
             return fast;
         }
     }
@@ -616,6 +662,10 @@ Arrangement Inside(Arrangement a1, Arrangement a2, Border b) {
 
 Arrangement Outside(Arrangement a1, Arrangement a2, Border b) {
     return masked(std::move(a1), std::move(a2), b, MaskSide::Outside);
+}
+
+Arrangement Outline() {
+    return Arrangement([](const Region& r) { return r.boundary(); });
 }
 
 Arrangement Crop(Arrangement a, Border b) {

@@ -596,9 +596,9 @@ Irregular& SetWeightedFaceLabels(Irregular& p, std::vector<WeightedLabel> labels
     return p;
 }
 
-Arrangement StripesPartition(const Stripes& p) {
+Arrangement StripesPartition(const Stripes& p, Border b) {
     check_stripes(p, "StripesPartition");
-    return Arrangement([p](const Region& r) { return realize(stripes_complex(p, r), r, Border::CROP_ADD_BOUNDARY); });
+    return Arrangement([p, b](const Region& r) { return realize(stripes_complex(p, r), r, b); });
 }
 
 Arrangement GridPartition(const Stripes& s1, const Stripes& s2, Border b) {

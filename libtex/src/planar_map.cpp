@@ -30,6 +30,7 @@
 #include <climits>
 #include <functional>
 #include <numeric>
+#include <optional>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -75,6 +76,7 @@ struct RawGraph {
     std::vector<Point> vpt;
     std::vector<int> vrank;       // exact order among vertices with equal doubles
     std::vector<char> visolated;
+    std::vector<char> vend;       // the end of an open curve (direct way only; empty otherwise)
     std::vector<int> vout_start;  // outgoing half-edges of each vertex, counter-clockwise
     std::vector<int> vout;
     struct HalfEdge {
@@ -195,23 +197,30 @@ bool ccw_before(const Point& p, const Point& a, const Point& b) {
 bool build_directly(const Curves& input, RawGraph& g, bool& many_crossings) {
     std::vector<detail::Seg> segs = detail::curve_segments(input);
     if (segs.empty()) return false;
+    // The grid index pays off from a few dozen segments on; the maps of small cells (a
+    // polygon and a few chords) compare every pair directly, and build the grid only if
+    // they need it to place their pieces.
+    constexpr std::size_t kSmall = 48;
+    std::optional<detail::SegmentGrid> grid_store;
+    auto grid = [&]() -> const detail::SegmentGrid& {
+        if (!grid_store) grid_store.emplace(segs);
+        return *grid_store;
+    };
     // Clean: two segments meet only at a common end point, without overlapping. Otherwise,
     // count the segments that cross another one (not overlaps) to choose the CGAL traits.
-    const detail::SegmentGrid grid(segs);
     bool clean = true;
     {
-        const auto& gs = grid.segments();
-        const std::size_t enough = gs.size() / 10 + 1;
+        const std::size_t enough = segs.size() / 10 + 1;
         std::size_t crossings = 0;
-        for (std::uint32_t i = 0; i < gs.size(); ++i) {
-            const detail::Seg& s = gs[i];
+        for (std::uint32_t i = 0; i < segs.size(); ++i) {
+            const detail::Seg& s = segs[i];
             BBox b;
             b.add(s.a);
             b.add(s.b);
             bool crossing = false;
-            grid.for_each_in(b, [&](std::uint32_t j) {
+            auto visit = [&](std::uint32_t j) {
                 if (crossing || j <= i) return;
-                const detail::Seg& t = gs[j];
+                const detail::Seg& t = segs[j];
                 if (std::max(t.a.x, t.b.x) < b.xmin || std::min(t.a.x, t.b.x) > b.xmax ||
                     std::max(t.a.y, t.b.y) < b.ymin || std::min(t.a.y, t.b.y) > b.ymax)
                     return;
@@ -229,7 +238,12 @@ bool build_directly(const Curves& input, RawGraph& g, bool& many_crossings) {
                     crossing = CGAL::orientation(ik(s.a), ik(s.b), ik(t.a)) != CGAL::COLLINEAR ||
                                CGAL::orientation(ik(s.a), ik(s.b), ik(t.b)) != CGAL::COLLINEAR;
                 }
-            });
+            };
+            if (segs.size() <= kSmall) {
+                for (std::uint32_t j = i + 1; j < segs.size() && !crossing; ++j) visit(j);
+            } else {
+                grid().for_each_in(b, visit);
+            }
             if (crossing && ++crossings >= enough) {
                 many_crossings = true;
                 return false;
@@ -237,29 +251,55 @@ bool build_directly(const Curves& input, RawGraph& g, bool& many_crossings) {
         }
     }
     if (!clean) return false;
-    // Vertices, segments.
-    std::unordered_map<Point, int, PointHash> vid;
-    auto vertex = [&](const Point& p) {
-        auto [it, fresh] = vid.emplace(p, int(g.vpt.size()));
-        if (fresh) g.vpt.push_back(p);
-        return it->second;
-    };
+    // Vertices (numbered in the order their points first appear), segments.
     const std::size_t ns = segs.size();
-    g.he.resize(2 * ns);
-    g.data_start.resize(ns + 1);
-    g.data.resize(ns);
-    for (std::size_t k = 0; k < ns; ++k) {
-        const Point& a = segs[k].a;
-        const Point& b = segs[k].b;
-        const int u = vertex(a), v = vertex(b);
-        const bool l2r = left_to_right(a, b);
-        g.he[2 * k] = {u, v, -1, -1, l2r};
-        g.he[2 * k + 1] = {v, u, -1, -1, !l2r};
-        g.data_start[k] = std::uint32_t(k);
-        g.data[k] = (segs[k].owner << 1) | (l2r ? 1u : 0u);
+    {
+        std::vector<std::uint32_t> ends(2 * ns);
+        std::iota(ends.begin(), ends.end(), 0u);
+        auto end_point = [&](std::uint32_t k) -> const Point& { return (k & 1u) ? segs[k >> 1].b : segs[k >> 1].a; };
+        std::sort(ends.begin(), ends.end(), [&](std::uint32_t x, std::uint32_t y) {
+            const Point& p = end_point(x);
+            const Point& q = end_point(y);
+            if (p != q) return p < q;
+            return x < y;
+        });
+        std::vector<std::uint32_t> first(2 * ns);  // the first end at the same point
+        for (std::size_t i = 0; i < ends.size(); ++i)
+            first[ends[i]] = (i > 0 && end_point(ends[i]) == end_point(ends[i - 1])) ? first[ends[i - 1]] : ends[i];
+        std::vector<int> id(2 * ns, -1);
+        g.he.resize(2 * ns);
+        g.data_start.resize(ns + 1);
+        g.data.resize(ns);
+        for (std::size_t k = 0; k < ns; ++k) {
+            int uv[2];
+            for (std::uint32_t e = 0; e < 2; ++e) {
+                int& v = id[first[2 * k + e]];
+                if (v < 0) {
+                    v = int(g.vpt.size());
+                    g.vpt.push_back(end_point(std::uint32_t(2 * k + e)));
+                }
+                uv[e] = v;
+            }
+            const Point& a = segs[k].a;
+            const Point& b = segs[k].b;
+            const bool l2r = left_to_right(a, b);
+            g.he[2 * k] = {uv[0], uv[1], -1, -1, l2r};
+            g.he[2 * k + 1] = {uv[1], uv[0], -1, -1, !l2r};
+            g.data_start[k] = std::uint32_t(k);
+            g.data[k] = (segs[k].owner << 1) | (l2r ? 1u : 0u);
+        }
     }
     g.data_start[ns] = std::uint32_t(ns);
     const std::size_t nv = g.vpt.size();
+    // The ends of open curves: the first and last segment kept of each (segments of a curve
+    // are consecutive).
+    g.vend.assign(nv, 0);
+    for (std::size_t k = 0; k < ns; ++k) {
+        const std::uint32_t owner = segs[k].owner;
+        if (input.curves[owner].closed) continue;
+        if (k == 0 || segs[k - 1].owner != owner) g.vend[std::size_t(g.he[2 * k].source)] = 1;
+        if (k + 1 == ns || segs[k + 1].owner != owner) g.vend[std::size_t(g.he[2 * k].target)] = 1;
+    }
     // Connected pieces of the drawing.
     std::vector<int> comp(nv);
     int ncomp = 0;
@@ -353,9 +393,11 @@ bool build_directly(const Curves& input, RawGraph& g, bool& many_crossings) {
     std::vector<int> holder(std::size_t(ncomp), -2);  // face holding each piece
     std::function<int(int)> holding = [&](int c) -> int {
         if (holder[c] != -2) return holder[c];
-        if (ncomp == 1) return holder[c] = 0;
+        // One piece, or no cycle at all (a forest: as many vertices as segments plus
+        // pieces): the unbounded face is the only face.
+        if (ncomp == 1 || nv == ns + std::size_t(ncomp)) return holder[c] = 0;
         bool on = false;
-        const int k = grid.first_above(g.vpt[v0[c]], [&](std::uint32_t i) {
+        const int k = grid().first_above(g.vpt[v0[c]], [&](std::uint32_t i) {
             return comp[g.he[2 * i].source] != c;
         }, on);
         if (k < 0) return holder[c] = 0;
@@ -396,25 +438,6 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way) {
     auto map = std::make_shared<PlanarMap>();
     PlanarMap& pm = *map;
 
-    // The end points of open curves and the labelled points: vertices whatever their degree.
-    std::unordered_set<Point, PointHash> ends;
-    for (const Curve& c : input.curves) {
-        if (c.closed) continue;
-        const Point* first = nullptr;
-        const Point* last = nullptr;
-        for (std::size_t i = 0; i + 1 < c.points.size(); ++i) {
-            const Point& a = c.points[i];
-            const Point& b = c.points[i + 1];
-            if (a == b || !std::isfinite(a.x) || !std::isfinite(a.y) || !std::isfinite(b.x) || !std::isfinite(b.y))
-                continue;
-            if (!first) first = &a;
-            last = &b;
-        }
-        if (first) {
-            ends.insert(*first);
-            ends.insert(*last);
-        }
-    }
     std::unordered_map<Point, Labels, PointHash> point_labels;
     for (const auto& lp : input.points) point_labels[lp.point].merge(lp.labels);
 
@@ -432,6 +455,33 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way) {
     const std::size_t nv = g.vpt.size();
     const std::size_t nh = g.he.size();
 
+    // The end points of open curves: vertices whatever their degree, like labelled points
+    // (the direct way marked them in the graph).
+    std::vector<Point> ends;
+    for (const Curve& c : input.curves) {
+        if (!g.vend.empty()) break;
+        if (c.closed) continue;
+        const Point* first = nullptr;
+        const Point* last = nullptr;
+        for (std::size_t i = 0; i + 1 < c.points.size(); ++i) {
+            const Point& a = c.points[i];
+            const Point& b = c.points[i + 1];
+            if (a == b || !std::isfinite(a.x) || !std::isfinite(a.y) || !std::isfinite(b.x) || !std::isfinite(b.y))
+                continue;
+            if (!first) first = &a;
+            last = &b;
+        }
+        if (first) {
+            ends.push_back(*first);
+            ends.push_back(*last);
+        }
+    }
+    std::sort(ends.begin(), ends.end());
+    auto is_end = [&](int v) {
+        if (!g.vend.empty()) return g.vend[std::size_t(v)] != 0;
+        return std::binary_search(ends.begin(), ends.end(), g.vpt[v]);
+    };
+
     // 1. Break vertices: curve ends, labelled points, degree other than two, and points
     //    where the set of source curves changes.
     std::vector<char> is_break(nv, 0);
@@ -444,7 +494,8 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way) {
             out.erase(std::unique(out.begin(), out.end()), out.end());
         };
         for (std::size_t v = 0; v < nv; ++v) {
-            bool brk = g.visolated[v] || g.degree(int(v)) != 2 || ends.count(g.vpt[v]) || point_labels.count(g.vpt[v]);
+            bool brk = g.visolated[v] || g.degree(int(v)) != 2 || is_end(int(v)) ||
+                       (!point_labels.empty() && point_labels.count(g.vpt[v]));
             if (!brk) {
                 ids(g.vout[g.vout_start[v]], ids_a);
                 ids(g.vout[g.vout_start[v] + 1], ids_b);
@@ -458,10 +509,12 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way) {
     //    closed curves meeting nothing, which start at their smallest point.
     struct Chain {
         std::vector<int> hs;  // half-edges in the chain's direction
-        std::vector<Point> points, canon;
+        std::vector<Point> points;
+        bool canon_reversed = false;  // the canonical reading runs from the last point
         int source = -1, target = -1;
     };
     std::vector<Chain> chains;
+    chains.reserve(nh / 2);
     std::vector<int> he_chain(nh, -1);
     auto walk = [&](int start) {
         Chain ch;
@@ -514,11 +567,13 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way) {
             for (auto& s : src) s.forward = !s.forward;
             std::sort(src.begin(), src.end(), by_curve);
         }
-        ch.canon = canonical_points(ch.points);
+        ch.canon_reversed = std::lexicographical_compare(ch.points.rbegin(), ch.points.rend(), ch.points.begin(),
+                                                         ch.points.end());
     }
 
     // 4. Vertices: the break vertices, in the order of their points.
     std::vector<int> breaks;
+    breaks.reserve(nv);
     for (std::size_t v = 0; v < nv; ++v)
         if (is_break[v]) breaks.push_back(int(v));
     std::sort(breaks.begin(), breaks.end(), [&](int a, int b) {
@@ -550,7 +605,15 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way) {
         const Chain& y = chains[b];
         const auto kx = std::minmax(x.source, x.target), ky = std::minmax(y.source, y.target);
         if (kx != ky) return kx < ky;
-        return std::lexicographical_compare(x.canon.begin(), x.canon.end(), y.canon.begin(), y.canon.end());
+        auto lex = [](const auto& a0, const auto& a1, const auto& b0, const auto& b1) {
+            return std::lexicographical_compare(a0, a1, b0, b1);
+        };
+        const auto& p = x.points;
+        const auto& q = y.points;
+        if (!x.canon_reversed && !y.canon_reversed) return lex(p.begin(), p.end(), q.begin(), q.end());
+        if (!x.canon_reversed) return lex(p.begin(), p.end(), q.rbegin(), q.rend());
+        if (!y.canon_reversed) return lex(p.rbegin(), p.rend(), q.begin(), q.end());
+        return lex(p.rbegin(), p.rend(), q.rbegin(), q.rend());
     });
     pm.edges_.resize(chains.size());
     std::vector<int> eid(chains.size());
@@ -593,14 +656,13 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way) {
     pm.faces_.resize(nf);
 
     for (std::size_t k = 0; k < chains.size(); ++k) {
-        const Chain& ch = chains[k];
+        Chain& ch = chains[k];
         EdgeRec& rec = pm.edges_[eid[k]];
         rec.source = ch.source;
         rec.target = ch.target;
-        rec.points = ch.points;
         rec.left = fid[g.he[ch.hs.front()].face];
         rec.right = fid[g.he[ch.hs.front() ^ 1].face];
-        rec.sources = chain_sources[k];
+        rec.sources = std::move(chain_sources[k]);
         for (const auto& s : rec.sources) {
             const Curve& c = input.curves[s.curve];
             rec.labels.merge(c.labels);
@@ -609,8 +671,12 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way) {
         }
         // Key of the geometry, whatever the orientation and the numbering.
         std::uint64_t key = 0x45444745ULL;
-        for (const Point& p : ch.canon) key = hash_point(key, p);
+        if (ch.canon_reversed)
+            for (auto it = ch.points.rbegin(); it != ch.points.rend(); ++it) key = hash_point(key, *it);
+        else
+            for (const Point& p : ch.points) key = hash_point(key, p);
         rec.key = key;
+        rec.points = std::move(ch.points);  // the chain is not read after this
     }
 
     // 7. Vertex incidences, counter-clockwise from the smallest edge id.

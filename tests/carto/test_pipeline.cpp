@@ -4,10 +4,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unistd.h>
+
+#include <filesystem>
 #include <numeric>
 
 #include "carto/error.hpp"
 #include "carto/pipeline.hpp"
+#include "carto/raster.hpp"
+#include "libtex/tex.hpp"
 
 using namespace carto;
 
@@ -209,6 +214,74 @@ TEST(Pipeline, ChangingAFieldInAWindowChangesOnlyNearby) {
     EXPECT_GT(changed_faces, 0);
 }
 
+// Local control of the height field: the styles read the elevation relative to the lowest
+// and highest ground within --relief-radius, so raising the ground in a 100 m box changes
+// the drawing only within that radius of it (plus the reach of a coarse cell or a ridge
+// shape), not over the whole DEM as a global normalisation did.
+TEST(Pipeline, EditingElevationInAWindowChangesOnlyNearby) {
+    Raster dem = read_raster(std::string(RH_SAMPLE_DIR) + "/dem.tif", "--dem");
+    const tex::BBox win{1004300, 6540100, 1004400, 6540200};
+    for (int y = 0; y < dem.height; ++y)
+        for (int x = 0; x < dem.width; ++x)
+            if (win.contains(dem.to_world(x + 0.5, y + 0.5))) dem.at(x, y) += 150.0f;
+    const std::string edited_dem =
+        (std::filesystem::temp_directory_path() / ("rh_edited_dem_" + std::to_string(::getpid()) + ".tif")).string();
+    write_geotiff(dem, edited_dem);
+    auto changed_faces = [&](double radius) {  // faces whose hatches changed
+        Options o = sample_options("high-ridges");
+        o.relief_radius = radius;
+        Options e = o;
+        e.dem = edited_dem;
+        const Drawing before = hatch(prepare(o), o), after = hatch(prepare(e), e);
+        EXPECT_EQ(before.faces.size(), after.faces.size());
+        const tex::BBox reach = win.expanded(radius + 70);
+        int n = 0;
+        for (std::size_t i = 0; i < before.faces.size() && i < after.faces.size(); ++i) {
+            const auto& a = before.faces[i].hatches;
+            const auto& b = after.faces[i].hatches;
+            bool same = a.size() == b.size();
+            for (std::size_t k = 0; same && k < a.size(); ++k) same = a[k].points == b[k].points;
+            if (same) continue;
+            ++n;
+            const RockFace& f = face_by_id(sample().partition, before.faces[i].face_id);
+            EXPECT_TRUE(f.region.bbox().intersects(reach)) << "face " << f.id << " changed far from the edit";
+            for (const auto& h : b)
+                if (std::find_if(a.begin(), a.end(), [&](const Hatch& x) { return x.points == h.points; }) == a.end())
+                    for (const auto& q : h.points)
+                        EXPECT_TRUE(reach.contains(q)) << "face " << f.id << ": " << q.x << "," << q.y;
+        }
+        return n;
+    };
+    EXPECT_GT(changed_faces(150), 0);
+    EXPECT_GT(changed_faces(400), 0);
+    std::filesystem::remove(edited_dem);
+}
+
+// A bad value computed inside a style is reported with the style, the face and the value,
+// as a failure of the run (not as a usage error of the command line).
+TEST(Pipeline, AnErrorInAStyleNamesTheStyleTheFaceAndTheValue) {
+    auto broken = std::make_shared<Style>();
+    broken->info = {"broken", "", "stripes of a width computed per face", {}};
+    broken->program = [](const ControlFields&, const ParamValues&) {
+        return tex::Arrangement([](const tex::Region& r) {
+            const double width = r.area() > 0 ? -2.5 : 1.0;  // a bad spacing, as from a bad field value
+            return tex::StripesPartition(tex::StripesProperties(0.0, width))(r);
+        });
+    };
+    Options o = sample_options("");
+    o.custom_style = broken;
+    try {
+        hatch(sample(), o);
+        FAIL() << "the style's error was not reported";
+    } catch (const Error& e) {
+        const std::string m = e.what();
+        EXPECT_NE(e.code(), Code::Usage);
+        EXPECT_NE(m.find("style 'broken'"), std::string::npos) << m;
+        EXPECT_NE(m.find("face "), std::string::npos) << m;
+        EXPECT_NE(m.find("-2.5"), std::string::npos) << m;
+    }
+}
+
 TEST(Pipeline, TwoHalvesGiveTheSameHatchesAsTheWhole) {
     Options o = sample_options("bidirectional");
     const Drawing whole = hatch(sample(), o);
@@ -294,16 +367,11 @@ TEST(Fields, FaceWiseRasterAndClosedFormFieldsDriveAStyle) {
     // A controlled arrangement applied to other fields: a closed-form orientation of 30
     // degrees everywhere and a constant density.
     const double theta = 30 * M_PI / 180;
-    const ControlFields fields{constant_field(theta), constant_field(0.8),
-                               raster_field(sample().terrain.elevation, sample().zmin, sample().zmax - sample().zmin),
-                               raster_field(sample().terrain.roughness)};
-    const StyleInfo& s = find_style("noisy");
-    const ParamValues p = resolve_params(s, {{"jitter", 0.0}}, 10000);
-    const RockFace& f = part.faces[3];
-    const FaceControls c = face_controls(f, fields, [](int) { return std::int64_t(-1); });
-    EXPECT_DOUBLE_EQ(c.orientation, theta);
-    EXPECT_DOUBLE_EQ(c.density, 0.8);
-    const auto hatches = hatch_face(s, p, f, c, 0);
+    const ControlFields fields{constant_field(theta), constant_field(0.8), raster_field(sample().relief),
+                               raster_field(sample().terrain.roughness), raster_field(sample().terrain.slope)};
+    const Style s = builtin_style("noisy");
+    const ParamValues p = resolve_params(s.info, {{"jitter", 0.0}}, 10000);
+    const auto hatches = hatch_face(s.program(fields, p), part, 3, 0);
     ASSERT_GT(hatches.size(), 10u);
     for (const auto& h : hatches) {
         const Point d = h.points.back() - h.points.front();

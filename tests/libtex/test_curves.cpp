@@ -1,4 +1,5 @@
 // Curves utilities and the adjacency built-ins on curves (tables 3.4 and 3.6).
+#include <set>
 #include <gtest/gtest.h>
 
 #include "helpers.hpp"
@@ -105,4 +106,39 @@ TEST(Curves, MatchPointsLandsExactlyOnItsTargets) {
     EXPECT_EQ(PointLabeled(m, "end"), t2);
     const Curves one = MatchPoint(bar, {100, 0}, t2);
     EXPECT_EQ(one.curves[0].points.back(), t2);
+}
+
+// Labels keep a few ids inline and more on the heap: the set behaves the same across the
+// change of storage (sorted, unique, merge, remove, copy, move).
+TEST(Labels, SetSemanticsAcrossInlineAndHeapStorage) {
+    std::vector<std::string> names = {"e", "b", "g", "a", "f", "c", "d"};
+    Labels l;
+    std::set<LabelId> want;
+    for (const auto& n : names) {
+        l.add(n);
+        l.add(n);  // twice: no duplicate
+        want.insert(intern_label(n));
+        ASSERT_EQ(l.ids(), std::vector<LabelId>(want.begin(), want.end()));
+    }
+    for (const auto& n : names) EXPECT_TRUE(l.has(n));
+    EXPECT_FALSE(l.has("not a label of this set"));
+    Labels small{"a", "zz"};
+    Labels merged = small;
+    merged.merge(l);
+    EXPECT_EQ(merged.size(), 8u);
+    EXPECT_TRUE(merged.has("zz"));
+    Labels moved = std::move(merged);
+    EXPECT_EQ(moved.size(), 8u);
+    for (const auto& n : names) {
+        moved.remove(intern_label(n));
+        EXPECT_FALSE(moved.has(n));
+    }
+    EXPECT_EQ(moved, Labels({"zz"}));
+    EXPECT_NE(moved, small);
+    Labels three{"x", "y", "z"};
+    Labels four = three;
+    four.add("w");
+    EXPECT_EQ(four.names(), (std::vector<std::string>{"w", "x", "y", "z"}));
+    four.remove(intern_label("w"));
+    EXPECT_EQ(four, three);
 }

@@ -311,6 +311,35 @@ TEST(FastCrop, SamePiecesAsTheExactPlanarMap) {
     }
 }
 
+TEST(FastCrop, ADegenerateCurveAloneTakesTheExactPath) {
+    // Strokes through a vertex of the region, along its edge or ending on it: with CROP the
+    // other strokes are still cut crossing by crossing, and the result is the exact one.
+    const Region region = Region::rectangle(0, 0, 10, 10);
+    Curves subject = random_strokes(3, 40);
+    subject.append(Labelled(Polyline({{-5, -5}, {15, 15}}), "through corners"));
+    subject.append(Labelled(Polyline({{-2, 0}, {12, 0}}), "along an edge"));
+    subject.append(Labelled(Polyline({{5, 5}, {10, 5}}), "ending on it"));
+    const std::uint64_t before = detail::fast_crops();
+    const Curves fast = apply_mask(subject, region, CROP);
+    EXPECT_EQ(detail::fast_crops(), before + 1);
+    Curves exact;
+    {
+        detail::ExactCropScope only_exact;
+        exact = apply_mask(subject, region, CROP);
+    }
+    std::map<std::string, double> lf, le;
+    for (const auto& [l, pts] : pieces(fast)) lf[l] += th::length(Polyline(pts));
+    for (const auto& [l, pts] : pieces(exact)) le[l] += th::length(Polyline(pts));
+    ASSERT_EQ(lf.size(), le.size());
+    for (const auto& [l, v] : lf) EXPECT_NEAR(v, le[l], 1e-9) << l;
+    EXPECT_NEAR(lf["through corners;"], std::sqrt(200.0), 1e-12);
+    EXPECT_NEAR(lf["ending on it;"], 5, 1e-12);
+    // With CROP_ADD_BOUNDARY the region's outline is cut by every stroke: all exact.
+    const std::uint64_t before_boundary = detail::fast_crops();
+    apply_mask(subject, region, CROP_ADD_BOUNDARY);
+    EXPECT_EQ(detail::fast_crops(), before_boundary);
+}
+
 TEST(Crop, CutsToTheRegionItIsEvaluatedOn) {
     const Region sq = Region::rectangle(0, 0, 10, 10);
     EXPECT_NEAR(th::length(Crop(strokes(), CROP)(sq)), 10 + 2, 1e-12);

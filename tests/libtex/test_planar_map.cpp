@@ -436,6 +436,36 @@ TEST(PlanarMapWays, DirectTraceAndExactArrangementAgree) {
     EXPECT_EQ(traced, cases.size() - 2);
 }
 
+TEST(PlanarMapWays, SmallMapsAndForestsTraceLikeCgal) {
+    // Small maps are checked pair by pair, larger ones through the grid index; a drawing
+    // without cycles (parallel stripes cut to a cell) has only the unbounded face. Every
+    // case gives CGAL's map, and StripesPartition(s, CROP) draws the stripes of the
+    // partition without its outline.
+    const Region cell({{0, 0}, {31, 1}, {30, 28}, {2, 30}});
+    const Region big({{0, 0}, {300, 10}, {310, 280}, {20, 300}});
+    Stripes s = StripesProperties(0.3, 2.5);
+    SetEdgeLabels(s, {"fill"});
+    std::size_t traced = 0;
+    for (const Region* r : {&cell, &big})
+        for (Border b : {CROP, CROP_ADD_BOUNDARY}) {
+            const Curves c = StripesPartition(s, b)(*r);
+            const std::uint64_t before = detail::direct_inductions();
+            const MapPtr direct = PlanarMap::induce(c);
+            traced += detail::direct_inductions() - before;
+            expect_same_map(*direct, *detail::induce_with_cgal(c), r == &cell ? "cell" : "big region");
+            if (b == CROP) {
+                EXPECT_EQ(direct->faces().size(), 1u);
+                for (const auto& cv : c.curves) EXPECT_TRUE(cv.labels.has("fill"));
+                double with_outline = 0, alone = 0;
+                for (const auto& cv : StripesPartition(s)(*r).curves)
+                    if (cv.labels.has("fill")) with_outline += th::length(Curves{{cv}});
+                for (const auto& cv : c.curves) alone += th::length(Curves{{cv}});
+                EXPECT_NEAR(alone, with_outline, 1e-9);
+            }
+        }
+    EXPECT_EQ(traced, 4u);
+}
+
 TEST(PlanarMapWays, BothCgalTraitsGiveTheSameCells) {
     // Crossing strokes and overlapping outlines: the caching and non-caching segment traits
     // (chosen by how much the segments cross) must give the same cells.

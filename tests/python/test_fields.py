@@ -183,20 +183,24 @@ def test_control_fields_of_carto_accept_tex_fields():
 
 
 def test_python_field_read_by_a_style_on_the_pipeline_workers(sample_dir, tmp_path):
-    # The faces are hatched on C++ worker threads; the style reads a Python field there.
-    seen = []
+    # A Python style reads a Python field once per face, and hands another one to the
+    # native JitterEdges mapper as its gate: the engine reads that one on its worker
+    # threads, once per hatch piece. The drawing is the same on any number of threads.
+    seen, gate_reads = [], []
     spacing = Field(lambda p: seen.append(1) or 2.0)
+    gate = Field(lambda p: gate_reads.append(1) or (1.0 if p.x % 50 < 40 else 0.0))
 
-    def style(fields, params, seed):
-        def face_fn(face):
-            out = carto.Hatches()
-            clip = carto.RegionClipper(face.region)
-            step = spacing(carto.interior_point(face.face)) * params["spacing"]
-            for line in carto.jittered_lines(face.region.bbox(), fields.orientation(face.region.bbox().center()),
-                                             step, 5 * step, 0, 0, seed, 1):
-                out.add_lines(clip.clip(line), carto.Family.FILL)
-            return out
-        return face_fn
+    def style(fields, params):
+        def face_fn(region):
+            inside = carto.interior_point(region)
+            step = spacing(inside) * params["spacing"]
+            theta = fields.orientation(inside)
+            hatch_lines = tex.StripesProperties(theta, step)
+            tex.SetEdgeLabels(hatch_lines, "fill")
+            grid = tex.GridPartition(hatch_lines, tex.StripesProperties(theta + tex.pi / 2, 5 * step), tex.KEEP_OUTSIDE)
+            hatches = tex.MapToEdges(tex.JitterEdges("fill", theta, step, 5 * step, 0.0, gate=gate, gate_min=0.5), grid)
+            return tex.Crop(hatches, tex.CROP)(region)
+        return tex.Arrangement(face_fn)
 
     info = carto.StyleInfo("field-probe", "", "test", [carto.StyleParam("spacing", 1.0, "mm")])
     outs = []
@@ -207,3 +211,4 @@ def test_python_field_read_by_a_style_on_the_pipeline_workers(sample_dir, tmp_pa
         assert s.hatches > 50
         outs.append(out.read_bytes())
     assert outs[0] == outs[1] and len(seen) == 40
+    assert len(gate_reads) % 2 == 0 and len(gate_reads) > 100

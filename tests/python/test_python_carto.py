@@ -3,6 +3,7 @@ fields from numpy, rasters and callables; the pipeline from Python, with progres
 cancellation, Python styles and their errors."""
 import math
 import subprocess
+import sys
 import traceback
 
 import numpy as np
@@ -10,7 +11,9 @@ import pytest
 
 import rockhatch
 from rockhatch import carto
-from rockhatch.tex import Point, Region
+from rockhatch.tex import (CROP, KEEP_OUTSIDE, Arrangement, Crop, GridPartition, HasLabel, Inside, JitterEdges,
+                           MapToEdges, MapToFaces, Nothing, Outline, Point, Region, SetEdgeLabels, StripesPartition,
+                           StripesProperties, ToCurve, pi)
 
 GT = [1000.0, 5.0, 0.0, 2000.0, 0.0, -5.0]
 
@@ -132,17 +135,13 @@ def test_prepare_hatch_write_in_steps(sample_dir, tmp_path):
     assert (tmp_path / "d.svg").stat().st_size > 10000
 
 
-def stripes_style(fields, params, seed):
-    """A minimal Python style: horizontal hatches clipped to the face."""
-
-    def face_fn(face):
-        out = carto.Hatches()
-        clip = carto.RegionClipper(face.region)
-        for line in carto.jittered_lines(face.region.bbox(), 0.0, params["spacing"], 5 * params["spacing"], 0, 0, seed, 1):
-            out.add_lines(clip.clip(line), carto.Family.FILL)
-        return out
-
-    return face_fn
+def stripes_style(fields, params):
+    """A minimal Python style: horizontal hatches cut to the face, broken every five
+    spacings (one arrangement for every face)."""
+    hatch_lines = StripesProperties(0.0, params["spacing"])
+    SetEdgeLabels(hatch_lines, "fill")
+    grid = GridPartition(hatch_lines, StripesProperties(pi / 2, 5 * params["spacing"]), KEEP_OUTSIDE)
+    return Crop(MapToEdges(lambda e: ToCurve(e) if HasLabel(e, "fill") else Nothing(), grid), CROP)
 
 
 def make_style(fn, name="test-stripes"):
@@ -164,53 +163,76 @@ def test_a_python_style_on_any_thread_count(sample_dir, tmp_path):
 
 
 def test_errors_inside_a_python_style(sample_dir, tmp_path):
-    def failing_style(fields, params, seed):
-        def face_fn(face):
-            if face.id == 7:
-                raise ZeroDivisionError("face 7 is cursed")
-            return []
+    # An exception raised while a face is drawn stops the run; the pipeline reports it with
+    # the style, the face, the Python exception and its traceback (where it was raised).
+    drawn = []
 
-        return face_fn
+    def failing_style(fields, params):
+        def face_fn(region):
+            drawn.append(region.area())
+            if len(drawn) == 8:
+                raise ZeroDivisionError("face 8 is cursed")
+            return Nothing()
 
-    with pytest.raises(ZeroDivisionError, match="face 7 is cursed") as e:
+        return Arrangement(face_fn)
+
+    with pytest.raises(rockhatch.RockhatchError,
+                       match=r"style 'test-stripes', face \d+: ZeroDivisionError: face 8 is cursed") as e:
         carto.run(sample_dir / "dem.tif", sample_dir / "partition.gpkg", [tmp_path / "x.svg"],
                   style=make_style(failing_style), threads=2)
-    assert "face_fn" in [f.name for f in traceback.extract_tb(e.value.__traceback__)]
+    assert "face_fn" in str(e.value) and e.value.code == 1
     assert not (tmp_path / "x.svg").exists()
 
-    def wrong_type(fields, params, seed):
-        return lambda face: "hatches"
+    def failing_mapper(fields, params):
+        def cell_fn(cell):
+            raise KeyError("no such cell")
 
-    with pytest.raises(TypeError, match="style 'test-stripes': a face function returned str"):
-        carto.run(sample_dir / "dem.tif", sample_dir / "partition.gpkg", [tmp_path / "x.svg"],
-                  style=make_style(wrong_type))
+        return MapToFaces(cell_fn, StripesPartition(StripesProperties(0.0, params["spacing"])))
 
-    with pytest.raises(TypeError, match="a style returns the function hatching one face"):
+    with pytest.raises(rockhatch.RockhatchError, match="KeyError: 'no such cell'") as e:
         carto.run(sample_dir / "dem.tif", sample_dir / "partition.gpkg", [tmp_path / "x.svg"],
-                  style=make_style(lambda fields, params, seed: 42))
+                  style=make_style(failing_mapper), threads=2)
+    assert "cell_fn" in str(e.value)
+
+    with pytest.raises(rockhatch.RockhatchError, match="Arrangement: the function returned str, not Curves"):
+        carto.run(sample_dir / "dem.tif", sample_dir / "partition.gpkg", [tmp_path / "x.svg"],
+                  style=make_style(lambda fields, params: Arrangement(lambda region: "hatches")))
+
+    with pytest.raises(rockhatch.RockhatchError, match="MapToEdges: the mapper returned int"):
+        carto.run(sample_dir / "dem.tif", sample_dir / "partition.gpkg", [tmp_path / "x.svg"],
+                  style=make_style(lambda fields, params: MapToEdges(lambda e: 1, Outline())))
+
+    with pytest.raises(TypeError, match="style 'test-stripes': it returned int; a style returns the arrangement"):
+        carto.run(sample_dir / "dem.tif", sample_dir / "partition.gpkg", [tmp_path / "x.svg"],
+                  style=make_style(lambda fields, params: 42))
+    assert not (tmp_path / "x.svg").exists()
 
 
 def test_faces_and_controls_seen_by_a_python_style(sample_dir, tmp_path):
-    seen = {}
+    """A style sees each face as a region whose border edges carry their kind (ridge,
+    valley, other) and "owned" where this face draws what lies on a shared border; the
+    fields read inside it are in range."""
+    seen = []
 
-    def probe(fields, params, seed):
-        def face_fn(face):
-            c = carto.face_controls(face, fields)
-            ridges = [i for i, s in enumerate(face.boundary) if s.kind == carto.LineKind.RIDGE]
-            seen[face.id] = (c.orientation, c.density, c.height, len(ridges),
-                             [face.neighbour_id(i) for i in range(len(face.boundary))])
-            assert face.region.contains(carto.interior_point(face.face))
-            return carto.Hatches()
+    def probe(fields, params):
+        def face_fn(region):
+            inside = carto.interior_point(region)
+            assert region.has_edges() and region.contains(inside)
+            edges = Outline()(region).curves
+            kinds = [[k for k in ("ridge", "valley", "other") if k in e.labels] for e in edges]
+            assert all(len(k) == 1 for k in kinds), kinds
+            seen.append((fields.orientation(inside), fields.density(inside), fields.height(inside),
+                         sum(k == ["ridge"] for k in kinds), sum("owned" in e.labels for e in edges), len(edges)))
+            return Nothing()
 
-        return face_fn
+        return Arrangement(face_fn)
 
     carto.run(sample_dir / "dem.tif", sample_dir / "partition.gpkg", [tmp_path / "x.svg"], style=make_style(probe))
     assert len(seen) == 20
-    assert all(0 <= d <= 1 and 0 <= h <= 1 for _, d, h, _, _ in seen.values())
-    assert sum(r for *_, r, _ in seen.values()) > 0, "some faces border ridges"
-    ids = set(seen)
-    for fid, (*_, neighbours) in seen.items():
-        assert all(n == -1 or (n in ids and n != fid) for n in neighbours)
+    assert all(not math.isnan(o) and 0 <= d <= 1 and 0 <= h <= 1 for o, d, h, *_ in seen)
+    assert sum(r for *_, r, _, _ in seen) > 0, "some faces border ridges"
+    # A border shared by two faces is owned by one of them: some edges are not owned.
+    assert 0 < sum(o for *_, o, _ in seen) < sum(n for *_, n in seen)
 
 
 def test_a_style_built_from_libtex_operators(sample_dir, tmp_path):
@@ -223,6 +245,25 @@ def test_a_style_built_from_libtex_operators(sample_dir, tmp_path):
     drawings = [carto.hatch(prepared, style=script, threads=t, seed=4) for t in (1, 2)]
     assert drawings[0].hatch_count() > 5000
     for a, b in zip(drawings[0].faces, drawings[1].faces):
+        assert a.face_id == b.face_id and list(a.hatches) == list(b.hatches)
+    # The engine's stock mapper makes the same calls to Random natively: the same hatches.
+    example = carto.load_style(script)
+    module = sys.modules["rockhatch_style_appendix_e_noisy"]
+
+    def native(fields, params):
+        def arrangement(region):
+            angle, density = module.face_controls(fields, region)
+            spacing = params["spacing_min"] + (params["spacing_max"] - params["spacing_min"]) * (1 - density)
+            hatch_lines = StripesProperties(angle, spacing)
+            SetEdgeLabels(hatch_lines, "hatches")
+            grid = GridPartition(hatch_lines, StripesProperties(angle + pi / 2, params["length"]), KEEP_OUTSIDE)
+            jitter = JitterEdges("hatches", angle, spacing, params["length"], params["jitter"])
+            return Inside(MapToEdges(jitter, grid), Outline(), CROP)(region)
+
+        return Arrangement(arrangement)
+
+    stock = carto.hatch(prepared, style=carto.python_style(example.info, native), threads=2, seed=4)
+    for a, b in zip(drawings[0].faces, stock.faces):
         assert a.face_id == b.face_id and list(a.hatches) == list(b.hatches)
     faces = {f.id: f for f in prepared.partition.faces}
     for fh in drawings[0].faces:

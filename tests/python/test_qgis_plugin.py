@@ -2,6 +2,7 @@
 plugin loading, the provider's algorithms through processing.run, errors, cancellation, and
 qgis_process on the command line with a throwaway profile."""
 import json
+import pathlib
 import os
 import shutil
 import subprocess
@@ -164,6 +165,20 @@ def test_style_seed_params_and_script(qgis, sample_dir, tmp_path):
     run("rockhatch:rockhatching", sample_params(sample_dir, tmp_path / "s.gpkg", STYLE_SCRIPT=str(
         ROOT / "styles" / "noisy.py"), SEED=3, SCALE=5000, PARAMS="spacing_min=0.5"))
     assert layer_counts(tmp_path / "s.gpkg") == layer_counts(tmp_path / "q.gpkg")
+
+
+def test_an_operator_style_of_the_tests_through_the_algorithm(qgis, rockhatch_exe, sample_dir, tmp_path):
+    # A style none of the seven, from libtex operators only (style_scripts/framed_tiles.py):
+    # the algorithm draws what `rockhatch --script` draws.
+    script = pathlib.Path(__file__).resolve().parent / "style_scripts" / "framed_tiles.py"
+    subprocess.run([str(rockhatch_exe), "-q", "--dem", str(sample_dir / "dem.tif"), "--partition",
+                    str(sample_dir / "partition.gpkg"), "--script", str(script), "--param", "tile=5",
+                    "-o", str(tmp_path / "cli.svg"), "-o", str(tmp_path / "cli.gpkg")], check=True, env=python_env())
+    run("rockhatch:rockhatching", sample_params(sample_dir, tmp_path / "q.gpkg", STYLE_SCRIPT=str(script),
+                                                PARAMS="tile=5", SVG=str(tmp_path / "q.svg")))
+    assert (tmp_path / "q.svg").read_bytes() == (tmp_path / "cli.svg").read_bytes()
+    counts = layer_counts(tmp_path / "q.gpkg")
+    assert counts == layer_counts(tmp_path / "cli.gpkg") and counts["hatch_ridge"] > 50
 
 
 def test_layers_load_styled(qgis, sample_dir, tmp_path):
@@ -349,7 +364,7 @@ def test_bad_inputs_raise_the_pipelines_message(qgis, sample_dir, tmp_path, case
 
 
 def test_style_script_error_raises(qgis, sample_dir, tmp_path):
-    body = ("NAME = 'broken'\nPARAMS = []\n\ndef style(fields, params, seed):\n"
+    body = ("NAME = 'broken'\nPARAMS = []\n\ndef style(fields, params):\n"
             "    raise ValueError('this style is broken')\n")
     with pytest.raises(QgsProcessingException, match="ValueError: this style is broken"):
         run("rockhatch:rockhatching", sample_params(sample_dir, tmp_path / "x.gpkg",

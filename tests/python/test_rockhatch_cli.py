@@ -132,7 +132,7 @@ def test_parameters_change_the_drawing(rockhatch_exe, sample_dir, tmp_path):
 
 # ---- errors: one line naming the input, a distinct exit code, no output left behind
 
-def write_partition(path, polygons, lines, srs_epsg=2154, label_field="kind"):
+def write_partition(path, polygons, lines, srs_epsg=2154, label_field="kind", densities=None):
     drv = ogr.GetDriverByName("GPKG")
     ds = drv.CreateDataSource(str(path))
     srs = None
@@ -140,8 +140,12 @@ def write_partition(path, polygons, lines, srs_epsg=2154, label_field="kind"):
         srs = osr.SpatialReference()
         srs.ImportFromEPSG(srs_epsg)
     faces = ds.CreateLayer("faces", srs, ogr.wkbPolygon)
-    for wkt in polygons:
+    if densities:
+        faces.CreateField(ogr.FieldDefn("density", ogr.OFTReal))
+    for i, wkt in enumerate(polygons):
         f = ogr.Feature(faces.GetLayerDefn())
+        if densities:
+            f.SetField("density", densities[i])
         f.SetGeometry(ogr.CreateGeometryFromWkt(wkt))
         faces.CreateFeature(f)
     ll = ds.CreateLayer("lines", srs, ogr.wkbLineString)
@@ -391,3 +395,101 @@ def test_borders_digitised_twice_draw_one_valley(rockhatch_exe, sample_dir, tmp_
     ds = ogr.Open(str(tmp_path / "o.gpkg"))
     length = sum(f.GetGeometryRef().Length() for f in ds.GetLayerByName("hatch_valley"))
     assert length == pytest.approx(100, abs=0.5)  # once, not twice
+
+
+def test_no_stroke_segment_leaves_a_concave_face_with_a_hole(rockhatch_exe, sample_dir, tmp_path):
+    # A comb (three teeth: a concave outline) with a rectangular hole, a ridge along its foot
+    # and a valley along one tooth (issue 11: ridge shapes were clipped to the outer ring
+    # only, with zero-width bridges on concave outlines). Every segment of every stroke stays
+    # in the face, its holes excluded.
+    x, y = 1004000, 6540000
+    outer = [(0, 0), (300, 0), (300, 200), (240, 200), (240, 60), (180, 60), (180, 200), (120, 200), (120, 60),
+             (60, 60), (60, 200), (0, 200), (0, 0)]
+    hole = [(200, 10), (200, 40), (280, 40), (280, 10), (200, 10)]
+    ring = lambda pts: "(" + ",".join(f"{x + a} {y + b}" for a, b in pts) + ")"
+    comb = f"POLYGON({ring(outer)},{ring(hole)})"
+    write_partition(tmp_path / "comb.gpkg", [comb],
+                    [(f"LINESTRING({x} {y},{x + 300} {y})", "ridge"),
+                     (f"LINESTRING({x + 60} {y + 200},{x + 60} {y + 60},{x + 120} {y + 60})", "valley"),
+                     (f"LINESTRING({x + 200} {y + 10},{x + 200} {y + 40},{x + 280} {y + 40})", "ridge")],
+                    densities=[0.9])  # dark: the ridge shapes fall into it
+    face = ogr.CreateGeometryFromWkt(comb)
+    inside = face.Buffer(0.01)
+    hole_core = ogr.CreateGeometryFromWkt(f"POLYGON({ring(hole)})").Buffer(-0.01)
+    for style in ("ridge-triangles", "fine-ridges", "bidirectional"):
+        out = tmp_path / f"{style}.gpkg"
+        r = run(rockhatch_exe, "-q", "--dem", sample_dir / "dem.tif", "--partition", tmp_path / "comb.gpkg",
+                "--style", style, "--param", "peak_length=6" if style != "ridge-triangles" else "ridge_length=4",
+                "-o", out)
+        assert r.returncode == 0, r.stderr
+        ds = ogr.Open(str(out))
+        segments = 0
+        for layer in ("hatch_fill", "hatch_ridge", "hatch_valley", "hatch_cross"):
+            for f in ds.GetLayerByName(layer):
+                g = f.GetGeometryRef()
+                for k in range(g.GetPointCount() - 1):
+                    seg = ogr.Geometry(ogr.wkbLineString)
+                    seg.AddPoint_2D(*g.GetPoint_2D(k))
+                    seg.AddPoint_2D(*g.GetPoint_2D(k + 1))
+                    assert inside.Contains(seg), f"{style}: {layer} segment {seg.ExportToWkt()} leaves the face"
+                    assert not hole_core.Intersects(seg), f"{style}: {layer} segment in the hole"
+                    segments += 1
+        ridge = sum(1 for _ in ds.GetLayerByName("hatch_ridge"))
+        assert segments > 100 and ridge > 0, (style, segments, ridge)
+
+
+def test_slope_min_leaves_flat_ground_unhatched(rockhatch_exe, sample_dir, tmp_path):
+    # --slope is a real input of the styles: with slope_min, no fill hatch lies where the
+    # slope raster given reads below it; a flat slope raster leaves no fill at all.
+    def fill_midpoints(path):
+        ds = ogr.Open(str(path))
+        pts = []
+        for f in ds.GetLayerByName("hatch_fill"):
+            g = f.GetGeometryRef()
+            n = g.GetPointCount()
+            a, b = g.GetPoint_2D(0), g.GetPoint_2D(n - 1)
+            pts.append(((a[0] + b[0]) / 2, (a[1] + b[1]) / 2))
+        return pts
+
+    base = run(rockhatch_exe, "-q", *sample_args(sample_dir), "--style", "noisy", "-o", tmp_path / "all.gpkg")
+    assert base.returncode == 0, base.stderr
+    r = run(rockhatch_exe, "-q", *sample_args(sample_dir), "--style", "noisy", "--param", "slope_min=80",
+            "-o", tmp_path / "steep.gpkg")
+    assert r.returncode == 0, r.stderr
+    every, steep = fill_midpoints(tmp_path / "all.gpkg"), fill_midpoints(tmp_path / "steep.gpkg")
+    assert 0 < len(steep) < 0.9 * len(every)
+    # A slope raster given with --slope: half of it flat (0 %), half steep (100 %).
+    dem = gdal.Open(str(sample_dir / "dem.tif"))
+    gt, w, h = dem.GetGeoTransform(), dem.RasterXSize, dem.RasterYSize
+    mid_x = gt[0] + gt[1] * w / 2
+    drv = gdal.GetDriverByName("GTiff")
+    slope = drv.Create(str(tmp_path / "slope.tif"), w, h, 1, gdal.GDT_Float32)
+    slope.SetGeoTransform(gt)
+    slope.SetProjection(dem.GetProjection())
+    import numpy as np
+    values = np.zeros((h, w), dtype=np.float32)
+    values[:, w // 2:] = 100
+    slope.GetRasterBand(1).WriteArray(values)
+    slope = None
+    r = run(rockhatch_exe, "-q", *sample_args(sample_dir), "--style", "noisy", "--slope", tmp_path / "slope.tif",
+            "--param", "slope_min=50", "-o", tmp_path / "half.gpkg")
+    assert r.returncode == 0, r.stderr
+    half = fill_midpoints(tmp_path / "half.gpkg")
+    # The gate reads the slope at the middle of each stroke before its jitter, which moves it
+    # by up to half a hatch length (3 mm: 30 m at 1:10000) along.
+    assert half and all(px >= mid_x - 30 for px, _ in half)
+    assert sum(1 for px, _ in every if px >= mid_x) * 0.8 < len(half)
+
+
+def test_relief_radius_option(rockhatch_exe, sample_dir, tmp_path):
+    # --relief-radius sets the neighbourhood of the height field; a bad value is a usage error.
+    near = run(rockhatch_exe, "-q", *sample_args(sample_dir), "--style", "high-ridges", "--relief-radius", "200",
+               "-o", tmp_path / "near.svg")
+    wide = run(rockhatch_exe, "-q", *sample_args(sample_dir), "--style", "high-ridges", "-o", tmp_path / "wide.svg")
+    assert near.returncode == 0 and wide.returncode == 0, near.stderr + wide.stderr
+    assert (tmp_path / "near.svg").read_bytes() != (tmp_path / "wide.svg").read_bytes()
+    for bad in ("0", "-5", "nan", "far"):
+        r = run(rockhatch_exe, *sample_args(sample_dir), "--relief-radius", bad, "-o", tmp_path / "x.svg")
+        assert r.returncode == 2 and "--relief-radius" in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
+        assert not (tmp_path / "x.svg").exists()
+    assert "--relief-radius" in run(rockhatch_exe, "--help").stdout

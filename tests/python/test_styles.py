@@ -23,8 +23,12 @@ def load(name):
 
 
 def test_one_script_per_iteration():
+    # One script per built-in style; what they share lives in modules named _*.py, which
+    # are not styles (they define no style()).
     assert len(SCRIPTS) == 7
-    assert sorted(p.name for p in STYLES.glob("*.py")) == sorted(SCRIPTS.values())
+    assert sorted(p.name for p in STYLES.glob("*.py") if not p.name.startswith("_")) == sorted(SCRIPTS.values())
+    for shared in STYLES.glob("_*.py"):
+        assert not re.search(r"^def style\(", shared.read_text(), re.M), shared.name
 
 
 @pytest.mark.parametrize("name", sorted(SCRIPTS))
@@ -71,9 +75,10 @@ def test_script_errors(rockhatch_exe, sample_dir, tmp_path):
     assert r.returncode == 3 and "missing.py': no such file" in r.stderr
     (tmp_path / "empty.py").write_text("NAME = 'empty'\n")
     r = run([rockhatch_exe, *inputs, "--script", tmp_path / "empty.py"])
-    assert r.returncode == 7 and "defines no style(fields, params, seed)" in r.stderr
+    assert r.returncode == 7 and "defines no style(fields, params)" in r.stderr
     (tmp_path / "broken.py").write_text(
-        "def style(fields, params, seed):\n    def face_fn(face):\n        return 1 / 0\n    return face_fn\n")
+        "from rockhatch.tex import Arrangement\n\n"
+        "def style(fields, params):\n    def face_fn(region):\n        return 1 / 0\n    return Arrangement(face_fn)\n")
     r = run([rockhatch_exe, *inputs, "--script", tmp_path / "broken.py"])
     assert r.returncode == 1 and "ZeroDivisionError" in r.stderr and "face_fn" in r.stderr
     r = run([rockhatch_exe, *inputs, "--script", STYLES / "noisy.py", "--style", "noisy"])

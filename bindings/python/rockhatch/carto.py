@@ -31,8 +31,11 @@ def error(code, message):
 
 
 def load_style(path):
-    """Loads a style script: a Python file defining NAME, PARAMS and style(fields, params,
-    seed). Its folder is on sys.path while it loads, so a script may build on another."""
+    """Loads a style script: a Python file defining NAME, PARAMS and style(fields, params),
+    which returns the tex.Arrangement drawn in each face (evaluated on the face's labelled
+    region; the pipeline sets the seed and random streams around it). Its folder is on
+    sys.path while it loads, so a script may import shared blocks (styles/_blocks.py) or
+    another script."""
     if not os.path.isfile(path):
         raise error(3, f"--script '{path}': no such file")
     name = "rockhatch_style_" + os.path.splitext(os.path.basename(path))[0].replace("-", "_")
@@ -52,11 +55,12 @@ def load_style(path):
 
 
 def style_of_module(module, where=None):
-    """The Style defined by a script module (NAME, FIGURE, TITLE, PARAMS, style)."""
+    """The Style defined by a script module (NAME, FIGURE, TITLE, PARAMS and
+    style(fields, params) -> tex.Arrangement drawn in each face)."""
     where = where or getattr(module, "__file__", repr(module))
     fn = getattr(module, "style", None)
     if not callable(fn):
-        raise error(7, f"--script '{where}': defines no style(fields, params, seed) function")
+        raise error(7, f"--script '{where}': defines no style(fields, params) function")
     params = []
     for p in getattr(module, "PARAMS", []):
         if isinstance(p, StyleParam):  # noqa: F405
@@ -87,7 +91,7 @@ _PARTITION_KEYS = ("faces_layer", "lines_layer", "label_field", "id_field", "ori
 
 def make_options(dem="", partition="", outputs=(), style=None, params=None, scale=10000.0, seed=0, threads=0,
                  overwrite=False, slope="", roughness="", window=None, png_pixels=1600, spatial_index=True,
-                 **partition_options):
+                 relief_radius=1000.0, **partition_options):
     """The Options of the rockhatch command from keyword arguments (same names as its
     options, partition layer and field options included)."""
     o = Options()  # noqa: F405
@@ -105,6 +109,7 @@ def make_options(dem="", partition="", outputs=(), style=None, params=None, scal
         o.style = style
     o.params = dict(params or {})
     o.scale = float(scale)
+    o.relief_radius = float(relief_radius)
     o.seed = int(seed)
     o.threads = int(threads)
     o.overwrite = bool(overwrite)

@@ -3,9 +3,11 @@
     from rockhatch.tex import *
 
 gives partitions (StripesProperties, GridPartition, UniformPartition...), label setters,
-the border constants, MapToVertices / MapToEdges / MapToFaces with Python mappers, every
-table 3.4 built-in, Union / Inside / Outside, ImportSVG / ExportSVG, Point, Scale, Rotate,
-Translate, Nothing, Random, pi, and the names of `math` the thesis's scripts use bare
+the border constants, MapToVertices / MapToEdges / MapToFaces with Python mappers (a Python
+call per cell) or the engine's stock mappers (MapToEdges(JitterEdges(...), a): native, no
+Python call per edge), every table 3.4 built-in, Union / Inside / Outside / Crop / Outline,
+ImportSVG / ExportSVG, Point, Scale, Rotate, Translate, Labelled, Nothing, Random, SeedScope,
+StreamScope, pi, and the names of `math` the thesis's scripts use bare
 (cos, sin, tan, acos, asin, atan, atan2, sqrt, hypot, exp, log, pow, fabs, floor, ceil:
 `curves[floor(Random(edge, 0, len(curves), 0))]` runs as written). `pow` is math.pow: after
 the star import it shadows the built-in pow (always a float, no modulus argument).

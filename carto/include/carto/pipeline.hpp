@@ -25,6 +25,9 @@ struct Options {
     std::shared_ptr<const Style> custom_style;
     std::map<std::string, double> params;  // --param name=value
     double scale = 10000;                // --scale (1:scale)
+    // Half-side (ground units) of the square over which elevation is normalised into the
+    // styles' height field (--relief-radius): local, so an edit moves the output nearby only.
+    double relief_radius = 1000;
     std::uint64_t seed = 0;              // --seed
     unsigned threads = 0;                // --threads (0 = all)
     std::vector<std::string> outputs;    // .gpkg, .svg, .png
@@ -50,7 +53,8 @@ using Progress = std::function<bool(double, const std::string&)>;
 struct Prepared {
     Terrain terrain;  // in the working CRS
     Partition partition;
-    double zmin = 0, zmax = 1;
+    // Elevation within its neighbourhood (Options::relief_radius), the styles' height field.
+    Raster relief;
     std::vector<std::string> notes;
 };
 

@@ -1,9 +1,14 @@
-// The rock-hatching styles: the design iterations of the seed's Fig. 5.4 (a) to (g).
+// The rock-hatching styles: the design iterations of the seed's Fig. 5.4 (a) to (g), each a
+// program of libtex operators.
 //
-// A style is a controlled arrangement (seed 5.3): given the control fields (face-wise
-// orientation and density, elevation, roughness) it returns, for one face, the hatches of
-// that face. It reads the fields only inside the face and at its boundary, so changing a
-// field in a window changes the output only near that window.
+// A style is a controlled arrangement (thesis 5.3): given the control fields it returns the
+// arrangement drawn in every face of the cartographic partition. The face is a region whose
+// edges carry the labels "ridge", "valley" or "other" (and "owned" on the edges this face
+// draws when two faces share them), so that partitions cropped to it with
+// CROP_ADD_BOUNDARY see the ridges on their outline. Every stroke a style returns carries
+// its family as a label ("fill", "ridge", "valley", "cross"). Fields are read only inside
+// the face and just across its border, so editing a field in a window changes the output
+// only near that window.
 #pragma once
 
 #include <cstdint>
@@ -13,10 +18,13 @@
 #include <vector>
 
 #include "carto/fields.hpp"
-#include "carto/hatching.hpp"
 #include "carto/partition.hpp"
+#include "libtex/arrangement.hpp"
+#include "libtex/curves.hpp"
 
 namespace carto {
+
+using Polyline = std::vector<Point>;
 
 enum class Family { Fill = 0, Ridge = 1, Valley = 2, Cross = 3 };
 inline constexpr int kFamilies = 4;
@@ -33,7 +41,7 @@ struct Hatch {
 struct StyleParam {
     std::string name;
     double value;      // default
-    std::string unit;  // "mm" (on paper, converted with the scale), "ratio", "deg"
+    std::string unit;  // "mm" (on paper, converted with the scale), "ratio", "deg", "%"
     std::string help;
 };
 
@@ -44,61 +52,51 @@ struct StyleInfo {
     std::vector<StyleParam> params;
 };
 
+// The control fields f1..fn a style reads (thesis 5.3.1).
+struct ControlFields {
+    Field orientation;  // hatch direction, radians (axial); face-wise constant
+    Field density;      // 0..1, 1 = darkest; face-wise constant
+    Field height;       // 0..1: elevation within its neighbourhood (local relief)
+    Field roughness;    // 0..1
+    Field slope;        // percent
+};
+
+// Style parameters resolved to ground units (mm x scale / 1000 for "mm" parameters,
+// radians for "deg").
+using ParamValues = std::map<std::string, double>;
+
+// A style program: the controlled arrangement (fields) -> arrangement, its parameters
+// bound. The arrangement is evaluated on each face of the partition (a labelled region).
+using StyleProgram = std::function<tex::Arrangement(const ControlFields&, const ParamValues&)>;
+
+struct Style {
+    StyleInfo info;
+    StyleProgram program;
+    // Faces are drawn one after the other when set, for a program whose mappers cannot run
+    // on several threads (Python styles run in parallel by default: their native operators
+    // release the interpreter's lock; python_style(..., serial=True) asks for this).
+    bool serial = false;
+};
+
 // All built-in styles, (a) to (g); the default is the last one.
 const std::vector<StyleInfo>& styles();
 const std::string& default_style();
 // Throws carto::Error(UnknownStyle) listing the known names.
 const StyleInfo& find_style(const std::string& name);
+// The built-in style of that name (see find_style) with its program.
+Style builtin_style(const std::string& name);
 
-// The control fields f1..fn a style is applied to (seed 5.3: a style is the controlled
-// arrangement f1..fn -> arrangement).
-struct ControlFields {
-    Field orientation;  // hatch direction, radians (axial); face-wise constant in practice
-    Field density;      // 0..1, 1 = darkest; face-wise constant in practice
-    Field height;       // 0..1 normalised elevation
-    Field roughness;    // 0..1
-};
-
-// What a style reads about one face, evaluated from the fields inside the face and just
-// across its border (the seed reads orientation and density at the face's centroid).
-struct FaceControls {
-    double orientation;  // hatch direction, radians (axial)
-    double density;      // 0..1, 1 = darkest
-    double height;       // 0..1, highest point of the face's boundary in the DEM's range
-    // Density of the face across boundary segment i (NaN: none).
-    std::function<double(int)> neighbour_density;
-    // Feature id of the face across boundary segment i (-1: none).
-    std::function<std::int64_t(int)> neighbour_id;
-    Field height_field;     // 0..1 normalised elevation
-    Field roughness_field;  // 0..1
-};
-
-// Style parameters resolved to ground units (mm x scale / 1000 for "mm" parameters).
-using ParamValues = std::map<std::string, double>;
 ParamValues resolve_params(const StyleInfo& s, const std::map<std::string, double>& overrides, double scale);
 
-// Evaluates the fields for one face; neighbour_id comes from the partition's adjacency.
-FaceControls face_controls(const RockFace& face, const ControlFields& f,
-                           std::function<std::int64_t(int)> neighbour_id);
+// The region a style draws a face in: the face's rings, with its border as labelled edges.
+tex::Region face_region(const Partition& p, std::size_t face);
 
-// The hatches of one face.
-std::vector<Hatch> hatch_face(const StyleInfo& style, const ParamValues& p, const RockFace& face,
-                              const FaceControls& c, std::uint64_t seed);
+// The strokes of an evaluated style, their family read from their labels.
+std::vector<Hatch> hatches_from_curves(const tex::Curves& c);
 
-// Feature id of the face across boundary segment i of a face (-1: none).
-using NeighbourId = std::function<std::int64_t(int)>;
-// A style bound to its fields, parameters and seed: the hatches of one face. It is called
-// for several faces at once, from several threads.
-using FaceHatcher = std::function<std::vector<Hatch>(const RockFace&, const NeighbourId&)>;
-
-// A style as the seed's controlled arrangement (f1..fn) -> arrangement: its description
-// (name, parameters and their defaults) and the function binding it to the control
-// fields. Built-in styles and styles written in Python (rockhatch --script) share it.
-struct Style {
-    StyleInfo info;
-    std::function<FaceHatcher(const ControlFields&, const ParamValues&, std::uint64_t seed)> bind;
-};
-// The built-in style of that name (see find_style) as a Style.
-Style builtin_style(const std::string& name);
+// The hatches of one face: the style's arrangement evaluated on face_region (its random
+// values follow `seed`, whatever else the process set).
+std::vector<Hatch> hatch_face(const tex::Arrangement& style, const Partition& p, std::size_t face,
+                              std::uint64_t seed);
 
 }  // namespace carto

@@ -2,9 +2,11 @@
 //
 // Labels are compared and merged very often while planar maps are induced (every edge
 // and face collects the labels of its source curves), so they are stored as sorted
-// vectors of integer ids; the strings live once in a process-wide table.
+// arrays of integer ids, a few of them inline; the strings live once in a process-wide
+// table.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <initializer_list>
 #include <string>
@@ -26,6 +28,19 @@ bool find_label(std::string_view name, LabelId& out);
 class Labels {
 public:
     Labels() = default;
+    Labels(const Labels&) = default;
+    Labels& operator=(const Labels&) = default;
+    Labels(Labels&& o) noexcept : n_(o.n_), big_(std::move(o.big_)) {
+        std::copy(o.small_, o.small_ + kInline, small_);
+        o.n_ = 0;
+    }
+    Labels& operator=(Labels&& o) noexcept {
+        n_ = o.n_;
+        std::copy(o.small_, o.small_ + kInline, small_);
+        big_ = std::move(o.big_);
+        o.n_ = 0;
+        return *this;
+    }
     Labels(std::initializer_list<std::string_view> names);
     static Labels from_names(const std::vector<std::string>& names);
 
@@ -35,15 +50,23 @@ public:
     void remove(LabelId id);
     bool has(LabelId id) const;
     bool has(std::string_view name) const;
-    bool empty() const { return ids_.empty(); }
-    std::size_t size() const { return ids_.size(); }
-    const std::vector<LabelId>& ids() const { return ids_; }
+    bool empty() const { return n_ == 0; }
+    std::size_t size() const { return n_; }
+    const LabelId* begin() const { return n_ <= kInline ? small_ : big_.data(); }
+    const LabelId* end() const { return begin() + n_; }
+    std::vector<LabelId> ids() const { return {begin(), end()}; }
     std::vector<std::string> names() const;
-    bool operator==(const Labels& o) const { return ids_ == o.ids_; }
-    bool operator!=(const Labels& o) const { return ids_ != o.ids_; }
+    bool operator==(const Labels& o) const;
+    bool operator!=(const Labels& o) const { return !(*this == o); }
 
 private:
-    std::vector<LabelId> ids_;  // sorted, unique
+    // Most cells carry at most a few labels: those live inline, so that copying a curve or
+    // an edge record does not allocate; larger sets use the vector.
+    static constexpr std::uint32_t kInline = 3;
+    void assign(const LabelId* first, std::uint32_t n);
+    std::uint32_t n_ = 0;
+    LabelId small_[kInline] = {};
+    std::vector<LabelId> big_;  // sorted, unique; used when n_ > kInline
 };
 
 }  // namespace tex

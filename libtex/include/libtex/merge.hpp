@@ -23,6 +23,9 @@ Arrangement Outside(Arrangement a1, Arrangement a2, Border b);
 // lying wholly inside / meeting the inside. A region's own outline as the mask, so it costs
 // one crop, not a planar map of the outline (Inside(a, outline, b) means the same).
 Arrangement Crop(Arrangement a, Border b);
+// The region itself as an arrangement: its boundary, as the labelled edges of the face it
+// comes from when it has them (Region::with_edges), else its rings.
+Arrangement Outline();
 
 // The mask computation shared by the merges and the cropping partitions: `subject` curves
 // cut by the boundaries of the bounded faces of `mask_map`; returns the kept pieces.

@@ -60,9 +60,10 @@ Irregular& SetWeightedVertexLabels(Irregular& p, std::vector<WeightedLabel> labe
 Irregular& SetWeightedEdgeLabels(Irregular& p, std::vector<WeightedLabel> labels);
 Irregular& SetWeightedFaceLabels(Irregular& p, std::vector<WeightedLabel> labels);
 
-// Parallel stripes; always cropped to the region, with its outline (the bands are
-// infinite, so the outline is what closes them into faces).
-Arrangement StripesPartition(const Stripes& p);
+// Parallel stripes cropped to the region, with its outline (the bands are infinite, so the
+// outline is what closes them into faces). With a border mode other than CROP_ADD_BOUNDARY (the partition of the region, the default):
+// CROP gives the stripe boundaries cut to the region alone, KEEP_* whole stripes.
+Arrangement StripesPartition(const Stripes& p, Border b = Border::CROP_ADD_BOUNDARY);
 // Cells between two families of stripes.
 Arrangement GridPartition(const Stripes& s1, const Stripes& s2, Border b);
 // Voronoi diagram of Poisson-disk sites (density sites per unit area). Sites are a

@@ -9,6 +9,7 @@
 #include "libtex/geometry.hpp"
 #include "libtex/labels.hpp"
 #include "libtex/mapping.hpp"
+#include "libtex/mappers.hpp"
 #include "libtex/merge.hpp"
 #include "libtex/parallel.hpp"
 #include "libtex/partitions.hpp"

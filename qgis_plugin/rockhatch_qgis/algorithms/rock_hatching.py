@@ -85,6 +85,7 @@ class RockHatching(RockhatchAlgorithm):
         "ORIENTATION_FIELD", "DENSITY_FIELD", "ID_FIELD", "ORIENTATION_LAYER")
     SLOPE, ROUGHNESS, STYLE, STYLE_SCRIPT, PARAMS = "SLOPE", "ROUGHNESS", "STYLE", "STYLE_SCRIPT", "PARAMS"
     SCALE, SEED, OUTPUT, SVG = "SCALE", "SEED", "OUTPUT", "SVG"
+    RELIEF_RADIUS = "RELIEF_RADIUS"
 
     def name(self):
         return "rockhatching"
@@ -145,7 +146,7 @@ class RockHatching(RockhatchAlgorithm):
         self.add(style, f"Built-in style (thesis Fig. 5.4 a to g). Default: {default}. See the algorithm's help for "
                    "each style's parameters.")
         self.add(QgsProcessingParameterFile(self.STYLE_SCRIPT, "Style script (Python)", extension="py", optional=True),
-            "A Python style script (styles/*.py of rockhatch: NAME, PARAMS, style(fields, params, seed)); "
+            "A Python style script (styles/*.py of rockhatch: NAME, PARAMS, style(fields, params) returning a libtex arrangement); "
             "replaces the built-in style when given.")
         self.add(QgsProcessingParameterString(self.PARAMS, "Style parameters", optional=True),
             "Overrides of the style's parameters: NAME=VALUE separated by ';', lengths in mm on paper at the "
@@ -154,6 +155,10 @@ class RockHatching(RockhatchAlgorithm):
                                          minValue=100),
             "Scale denominator of the map: the style's mm on paper become ground metres at this scale. "
             "Default: 10000.")
+        self.add(QgsProcessingParameterNumber(self.RELIEF_RADIUS, "Relief radius (m)",
+                                              QgsProcessingParameterNumber.Double, 1000, minValue=1),
+            "The styles' height is the elevation between the lowest and the highest ground within this "
+            "distance: an edit of the DEM changes the drawing only that far. Default: 1000 m.", advanced=True)
         self.add(QgsProcessingParameterNumber(self.SEED, "Random seed", QgsProcessingParameterNumber.Integer, 0,
                                          minValue=0),
             "Seed of the styles' jitter: the same seed gives the same hatches. Default: 0.")
@@ -258,6 +263,7 @@ class RockHatching(RockhatchAlgorithm):
             carto.run, dem, partition, outputs, progress=Progress(feedback),
             style=style, params=parse_params(self.parameterAsString(parameters, self.PARAMS, context)),
             scale=self.parameterAsDouble(parameters, self.SCALE, context),
+            relief_radius=self.parameterAsDouble(parameters, self.RELIEF_RADIUS, context),
             seed=self.parameterAsInt(parameters, self.SEED, context), overwrite=True,
             slope=self.raster_path(parameters, self.SLOPE, context, feedback),
             roughness=self.raster_path(parameters, self.ROUGHNESS, context, feedback), **layers, **fields)

@@ -1,0 +1,81 @@
+// Building blocks shared by the style programs: controlled mappers and arrangements in the
+// thesis's idiom (App. E), each a small composition of libtex operators.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "carto/styles.hpp"
+#include "libtex/tex.hpp"
+
+namespace carto::blocks {
+
+using tex::Arrangement;
+
+// Parameter lists (defaults follow App. E at 1:10000).
+std::vector<StyleParam> fill_params(double length_mm, double jitter);
+extern const std::vector<StyleParam> kTriangles, kCoarse, kPeaks, kBalanced, kHigh, kCross;
+std::vector<StyleParam> operator+(std::vector<StyleParam> a, const std::vector<StyleParam>& b);
+
+// What a style reads about the face it draws (the region it is evaluated on): the
+// orientation and density at a point inside it, the highest relief on its outer ring.
+struct FaceReading {
+    double theta = 0;    // hatch direction (radians)
+    double density = 0.5;
+    double height = 0.5;
+};
+FaceReading read_face(const ControlFields& f, const tex::Region& r);
+
+// Hatch spacing from density and height (App. E `stripes_cycle`; `linear` from (e) on).
+double spacing_for(const ParamValues& p, double density, double height, bool linear);
+
+// One axis of a jittered grid: lines labelled `label` every `spacing` at theta, broken
+// every `length`, jittered by r (App. E "noisy hatching", tex::JitterEdges); with a slope
+// field and slope_min > 0, no hatch where the middle of a piece is flatter.
+Arrangement noisy_lines(const std::string& label, double theta, double spacing, double length, double r,
+                        double gap = 1.0, Field slope = Field(), double slope_min = 0);
+
+// Coarse jittered cells each hatched with the spacing of the relief at its centre (App. E
+// "multiscale density variations"; `linear` and `gap` from (e) on).
+Arrangement cell_hatching(const ControlFields& f, const ParamValues& p, const FaceReading& face, bool linear,
+                          double gap);
+
+// Whether the face is the darker side of the ridge edge e of a cell inside it: the density
+// just across e (NaN: no face there) against the face's own.
+bool darker_across(const ControlFields& f, const FaceReading& face, const tex::Edge& e, const tex::Face& cell);
+
+// (b) triangles falling from the ridges into the darker face: cells of a grid at theta and
+// theta + 45 degrees cut by the face, kept when they touch a ridge on its darker side.
+Arrangement ridge_triangles(const ControlFields& f, const ParamValues& p, const FaceReading& face);
+
+// (d) ridge shapes: triangles hanging from the dark ridges where stripes at theta meet
+// them, filled with sub-scale hatching; `gain` grows them on high ground (f).
+Arrangement ridge_peaks(const ControlFields& f, const ParamValues& p, const FaceReading& face, double gain);
+
+// (f) the valleys the face owns (a valley between two faces is drawn once).
+Arrangement valleys();
+
+// (g) cross hatches in the coarse cells rough enough, denser when rougher.
+Arrangement cross_hatching(const ControlFields& f, const ParamValues& p, const FaceReading& face);
+
+// A style program from the arrangement it draws in one face (read_face done once per face),
+// cut to the face; with `valleys`, the face's valleys (which lie on its border) added uncut.
+using FaceBody = std::function<Arrangement(const ControlFields&, const ParamValues&, const FaceReading&)>;
+StyleProgram per_face(FaceBody body, bool with_valleys = false);
+
+// One built-in style: its description and the body of its program.
+struct Builtin {
+    StyleInfo info;
+    FaceBody body;
+    bool valleys = false;
+};
+// The built-ins, one per file (noisy.cpp ... bidirectional.cpp).
+Builtin noisy();
+Builtin ridge_triangles_style();
+Builtin density_cells();
+Builtin fine_ridges();
+Builtin balanced();
+Builtin high_ridges();
+Builtin bidirectional();
+
+}  // namespace carto::blocks

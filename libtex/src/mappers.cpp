@@ -1,0 +1,31 @@
+#include "libtex/mappers.hpp"
+
+#include <cmath>
+#include <utility>
+
+#include "libtex/cells.hpp"
+#include "libtex/curves.hpp"
+#include "libtex/labels.hpp"
+#include "libtex/random.hpp"
+
+namespace tex {
+
+EdgeMapper JitterEdges(const std::string& label, double theta, double across, double along, double r, double gap,
+                       Field gate, double gate_min) {
+    const LabelId id = intern_label(label);
+    const Point d{std::cos(theta), std::sin(theta)}, n{-d.y, d.x};
+    const double half_across = across * r / 2, half_along = along * r / 2;
+    return [=, gate = std::move(gate)](const Edge& e) -> Curves {
+        if (!record(e).labels.has(id)) return Nothing();
+        if (gate_min > 0 && !(gate(LocationAt(e, 0.5)) >= gate_min)) return Nothing();
+        auto moved = [&](const Vertex& v) {
+            return Location(v) + n * Random(v, -half_across, half_across, 0) +
+                   d * Random(v, -half_along, half_along, 1);
+        };
+        const Vertex s = SourceVertex(e), t = TargetVertex(e);
+        Curves c = MatchPoints(ToCurve(e), Location(s), Location(t), moved(s), moved(t));
+        return gap < 1 ? Scale(c, gap) : c;
+    };
+}
+
+}  // namespace tex

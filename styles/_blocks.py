@@ -1,0 +1,254 @@
+"""Building blocks shared by the style scripts: the Python side of carto/src/styles/blocks.cpp.
+
+Not a style: the scripts of this folder import it (its name starts with an underscore).
+Each block is a small program of libtex operators in the thesis's App. E idiom. The
+hatch lines are never looped over here: partitions make them, the native JitterEdges
+mapper moves them, Crop cuts them to the face; the Python mappers visit coarse cells and
+the vertices of a few stripes, and loop only over the edges of one cell. Every block
+calls the operators, and draws the random values (Random(cell, lo, hi, n)), the C++
+block of the same name does, so a script draws what the built-in style draws, bit for bit.
+"""
+from math import cos, isnan, sin
+
+from rockhatch.carto import interior_point
+from rockhatch.tex import (CROP, CROP_ADD_BOUNDARY, KEEP_OUTSIDE, Arrangement, Centroid, Contour, Crop,
+                           GridPartition, HasLabel, IncidentEdges, JitterEdges, Labelled, LeftFace, Location,
+                           LocationAt, MapToEdges, MapToFaces, MapToVertices, Nothing, Outline, Point, Random,
+                           Region, RightFace, Scale, SetEdgeLabels, StripesPartition, StripesProperties, ToCurve,
+                           distance, dot, pi)
+
+# ---- Parameters (defaults follow App. E at 1:10000) ----
+
+def fill_params(length, jitter):
+    """The parameters of the fill hatching, shared by every iteration."""
+    return [
+        ("spacing_min", 0.35, "mm", "hatch spacing in the darkest faces"),
+        ("spacing_max", 1.5, "mm", "hatch spacing in the lightest faces"),
+        ("length", length, "mm", "length of a hatch between two jittered break points"),
+        ("jitter", jitter, "ratio", "jitter of the break points, as a fraction of spacing and length"),
+        ("contrast", 1.0, "ratio", "how much height pushes dark faces darker and light faces lighter"),
+        ("slope_min", 0.0, "%", "no fill hatch where the slope is below this (percent; 0: everywhere)"),
+    ]
+
+
+TRIANGLES = [
+    ("ridge_spacing", 3.0, "mm", "spacing of the triangle grid along the ridges"),
+    ("ridge_length", 1.5, "mm", "side of the triangles falling from the ridges"),
+]
+COARSE = [
+    ("cell_spacing", 3.0, "mm", "width of the coarse jittered cells that carry local density"),
+    ("cell_jitter", 1.0, "ratio", "jitter of the coarse cells"),
+]
+PEAKS = [
+    ("peak_spacing", 2.0, "mm", "distance between two ridge shapes"),
+    ("peak_length", 2.0, "mm", "length of a ridge shape down the slope"),
+    ("peak_width", 0.8, "mm", "width of a ridge shape at its base"),
+    ("peak_fill", 0.2, "mm", "spacing of the fine hatching inside ridge shapes"),
+]
+BALANCED = [
+    ("gap", 0.95, "ratio", "each hatch is shortened to this fraction, leaving gaps between strokes"),
+]
+HIGH = [
+    ("peak_height_gain", 1.0, "ratio", "ridge shapes grow by this fraction on the highest ground"),
+]
+CROSS = [
+    ("roughness_min", 0.01, "ratio", "roughness (0..1) below which no cross hatching is drawn"),
+    ("roughness_max", 0.08, "ratio", "roughness at which cross hatching is densest"),
+    ("cross_spacing_min", 0.6, "mm", "cross hatch spacing at the highest roughness"),
+    ("cross_spacing_max", 2.5, "mm", "cross hatch spacing at the lowest roughness"),
+    ("cross_angle", 90.0, "deg", "angle between fill and cross hatches"),
+]
+
+
+# ---- Small helpers ----
+
+def clamp01(v):
+    return min(max(v, 0.0), 1.0)
+
+
+def unit(angle):
+    return Point(cos(angle), sin(angle))
+
+
+def stripes(angle, width, label=""):
+    """StripesProperties(angle, width), its lines labelled `label` when given."""
+    s = StripesProperties(angle, width)
+    if label:
+        SetEdgeLabels(s, label)
+    return s
+
+
+# ---- What a style reads about its face ----
+
+class FaceReading:
+    """The orientation and density at a point inside the face, the highest relief on its
+    outer ring (defaults where the fields have no value)."""
+    __slots__ = ("theta", "density", "height")
+
+    def __init__(self, theta=0.0, density=0.5, height=0.5):
+        self.theta, self.density, self.height = theta, density, height
+
+
+def read_face(f, region):
+    out = FaceReading()
+    inside = interior_point(region)
+    t, d = f.orientation(inside), f.density(inside)
+    if not isnan(t):
+        out.theta = t
+    if not isnan(d):
+        out.density = d
+    # The highest relief on the face's outer ring (App. E `highest_height`).
+    height, h = f.height, -1e300
+    for q in region.outer:
+        v = height(q)
+        if not isnan(v):
+            h = max(h, v)
+    if h > -1e300:
+        out.height = clamp01(h)
+    return out
+
+
+def spacing_for(p, density, height, linear):
+    """Hatch spacing from density and height (App. E `stripes_cycle`); `linear` from (e) on,
+    where height acts linearly instead of squared."""
+    h = height if linear else height * height
+    d = clamp01(0.5 + (density - 0.5) * (1 + p["contrast"] * h))
+    return p["spacing_min"] + (p["spacing_max"] - p["spacing_min"]) * (1 - d)
+
+
+# ---- Arrangements ----
+
+def noisy_lines(label, theta, spacing, length, r, gap=1.0, slope=None, slope_min=0.0):
+    """One axis of a jittered grid: lines labelled `label` every `spacing` at theta, broken
+    every `length`, jittered by r (App. E "noisy hatching"); no hatch where the slope is
+    below slope_min (when > 0)."""
+    return MapToEdges(JitterEdges(label, theta, spacing, length, r, gap, slope, slope_min),
+                      GridPartition(stripes(theta, spacing, label), stripes(theta + pi / 2, length), KEEP_OUTSIDE))
+
+
+def cell_hatching(f, p, face, linear, gap):
+    """Coarse jittered cells, each hatched with the spacing of the relief at its centre
+    (App. E "multiscale density variations")."""
+    cs, length, theta = p["cell_spacing"], p["length"], face.theta
+    grid = MapToEdges(JitterEdges("grid", theta, cs, cs, 0.5 * p["cell_jitter"]),
+                      GridPartition(stripes(theta, cs, "grid"), stripes(theta + pi / 2, cs, "grid"), KEEP_OUTSIDE))
+    height, slope, jitter, slope_min = f.height, f.slope, p["jitter"], p["slope_min"]
+
+    def hatch_cell(cell):
+        h = height(Centroid(cell))
+        if isnan(h):
+            h = face.height
+        s = spacing_for(p, face.density, h, linear)
+        # The noisy lines of the cell's spacing, cut to the cell: lines of equal spacing
+        # run on across cells.
+        return Crop(noisy_lines("fill", theta, s, length, jitter, gap, slope, slope_min), CROP)(cell)
+
+    return MapToFaces(hatch_cell, grid)
+
+
+def darker_across(f, face, e, cell):
+    """Whether the face is the darker side of the ridge edge e of a cell inside it: the
+    density just across e (NaN: no face there) against the face's own."""
+    a, b, mid = LocationAt(e, 0.49), LocationAt(e, 0.51), LocationAt(e, 0.5)
+    l = distance(a, b)
+    if l == 0:
+        return False
+    ab = b - a
+    out = Point(ab.y / l, -ab.x / l)  # right of the edge
+    if RightFace(e) == cell:
+        out = -out
+    eps = min(0.5, 2.5 * l)  # 2.5 l: 5 % of the edge's length
+    other = f.density(mid + out * eps)
+    return face.density >= 0.5 if isnan(other) else face.density > other
+
+
+def ridge_triangles(f, p, face):
+    """(b) Triangles falling from the ridges into the darker face: cells of a grid at theta
+    and theta + 45 degrees cut by the face, kept when they touch a ridge on its darker side."""
+    def keep_ridge(cell):
+        for e in IncidentEdges(cell):
+            if HasLabel(e, "ridge") and darker_across(f, face, e, cell):
+                return Labelled(Scale(Contour(cell), 0.98), "ridge")
+        return Nothing()
+
+    return MapToFaces(keep_ridge, GridPartition(stripes(face.theta, p["ridge_spacing"]),
+                                                stripes(face.theta + pi / 4, p["ridge_length"]), CROP_ADD_BOUNDARY))
+
+
+def ridge_peaks(f, p, face, gain):
+    """(d) Ridge shapes: triangles hanging from the dark ridges where stripes at theta meet
+    them, filled with sub-scale hatching; `gain` grows them on high ground (f)."""
+    height, theta = f.height, face.theta
+    d = unit(theta)
+    n = Point(-d.y, d.x)
+    fill = stripes(theta, p["peak_fill"])
+
+    def shape(v):
+        dark, into = False, None
+        for e in IncidentEdges(v):
+            if HasLabel(e, "ridge"):
+                if not dark:
+                    left = LeftFace(e)
+                    dark = darker_across(f, face, e, left if left.is_bounded_face() else RightFace(e))
+            elif not HasLabel(e, "valley") and not HasLabel(e, "other"):
+                into = e
+        if not dark or into is None:
+            return Nothing()
+        apex = Location(v)
+        # Down the slope: along the stripe that leaves the ridge into the face.
+        down = d if dot(LocationAt(into, 0.5) - apex, d) >= 0 else -d
+        h = height(apex)
+        if isnan(h):
+            h = face.height
+        length = p["peak_length"] * (1 + gain * h) * Random(v, 0.7, 1.0, 4)
+        half = p["peak_width"] / 2 * (1 + 0.5 * gain * h)
+        tri = Region([apex, apex + down * length + n * half, apex + down * length - n * half], [], "ridge shape")
+        return Labelled(StripesPartition(fill)(tri), "ridge")
+
+    return MapToVertices(shape, StripesPartition(stripes(theta, p["peak_spacing"])))
+
+
+def _owned_valley(e):
+    return ToCurve(e) if HasLabel(e, "valley") and HasLabel(e, "owned") else Nothing()
+
+
+def valleys():
+    """(f) The valleys the face owns (a valley between two faces is drawn once)."""
+    return MapToEdges(_owned_valley, Outline())
+
+
+def cross_hatching(f, p, face):
+    """(g) Cross hatches in the coarse cells rough enough, denser when rougher."""
+    cs, theta = p["cell_spacing"], face.theta
+    angle = theta + p["cross_angle"]
+    roughness, length, gap = f.roughness, p["length"], p["gap"]
+    r0 = p["roughness_min"]
+    r1 = max(p["roughness_max"], r0 + 1e-9)
+    s_min, s_max = p["cross_spacing_min"], p["cross_spacing_max"]
+
+    def hatch_cell(cell):
+        rough = roughness(Centroid(cell))
+        if not rough > r0:
+            return Nothing()
+        t = clamp01((rough - r0) / (r1 - r0))
+        s = s_max - (s_max - s_min) * t
+        return MapToEdges(JitterEdges("cross", angle, s, length, 0.5, gap),
+                          StripesPartition(stripes(angle, s, "cross"), CROP))(cell)
+
+    return MapToFaces(hatch_cell, GridPartition(stripes(theta, cs), stripes(theta + pi / 2, cs), KEEP_OUTSIDE))
+
+
+# ---- Programs ----
+
+def per_face(fields, params, body, with_valleys=False):
+    """The arrangement a style draws in each face: body(fields, params, face) with the face
+    read once, cut to the face; with `with_valleys`, the face's valleys (on its border)
+    added uncut."""
+    def draw(region):
+        face = read_face(fields, region)
+        out = Crop(body(fields, params, face), CROP)(region)
+        if with_valleys:
+            out.append(valleys()(region))
+        return out
+
+    return Arrangement(draw)
