@@ -11,10 +11,10 @@ block of the same name does, so a script draws what the built-in style draws, bi
 from math import cos, isnan, sin
 
 from rockhatch.carto import interior_point
-from rockhatch.tex import (CROP, CROP_ADD_BOUNDARY, KEEP_OUTSIDE, Arrangement, Centroid, Contour, Crop,
-                           GridPartition, HasLabel, IncidentEdges, JitterEdges, Labelled, LeftFace, Location,
-                           LocationAt, MapToEdges, MapToFaces, MapToVertices, Nothing, Outline, Point, Random,
-                           Region, RightFace, Scale, SetEdgeLabels, StripesPartition, StripesProperties, ToCurve,
+from rockhatch.tex import (CROP, CROP_ADD_BOUNDARY, KEEP_OUTSIDE, Arrangement, Centroid, Crop, GridPartition,
+                           HasLabel, IncidentEdges, JitterEdges, Labelled, LeftFace, Location, LocationAt,
+                           MapToEdges, MapToFaces, MapToVertices, Nothing, Outline, Point, Polyline, Random, Region,
+                           RightFace, Scale, SetEdgeLabels, StripesPartition, StripesProperties, ToCurve, ToRegion,
                            distance, dot, pi)
 
 # ---- Parameters (defaults follow App. E at 1:10000) ----
@@ -168,7 +168,7 @@ def ridge_triangles(f, p, face):
     def keep_ridge(cell):
         for e in IncidentEdges(cell):
             if HasLabel(e, "ridge") and darker_across(f, face, e, cell):
-                return Labelled(Scale(Contour(cell), 0.98), "ridge")
+                return Labelled(Scale(Polyline(ToRegion(cell).outer, True), 0.98), "ridge")  # one closed stroke
         return Nothing()
 
     return MapToFaces(keep_ridge, GridPartition(stripes(face.theta, p["ridge_spacing"]),

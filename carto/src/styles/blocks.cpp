@@ -120,7 +120,8 @@ bool darker_across(const ControlFields& f, const FaceReading& face, const Edge& 
 Arrangement ridge_triangles(const ControlFields& f, const ParamValues& p, const FaceReading& face) {
     auto keep_ridge = [f, face](const Face& cell) {
         for (const Edge& e : IncidentEdges(cell))
-            if (HasLabel(e, "ridge") && darker_across(f, face, e, cell)) return Labelled(Scale(Contour(cell), 0.98), "ridge");
+            if (HasLabel(e, "ridge") && darker_across(f, face, e, cell))  // the outline as one closed stroke
+                return Labelled(Scale(tex::Polyline(ToRegion(cell).outer(), true), 0.98), "ridge");
         return Nothing();
     };
     return MapToFaces(keep_ridge, GridPartition(stripes(face.theta, p.at("ridge_spacing")),
