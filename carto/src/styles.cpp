@@ -152,15 +152,8 @@ std::vector<Hatch> hatches_from_curves(const tex::Curves& c) {
     const tex::LabelId ridge = tex::intern_label("ridge"), valley = tex::intern_label("valley"),
                        cross = tex::intern_label("cross");
     for (const auto& cv : c.curves) {
-        // Repeated points (a cut on a stroke's vertex) would draw zero-length segments.
-        std::vector<Point> pts;
-        pts.reserve(cv.points.size());
-        for (const Point& q : cv.points)
-            if (pts.empty() || q != pts.back()) pts.push_back(q);
-        if (cv.closed && pts.size() > 1 && pts.front() == pts.back()) pts.pop_back();
-        if (pts.size() < 2) continue;
-        const bool closed = cv.closed && pts.size() > 2;
-        Hatch h{std::move(pts), closed, Family::Fill};
+        if (cv.points.size() < 2) continue;
+        Hatch h{cv.points, cv.closed, Family::Fill};
         if (cv.labels.has(valley)) h.family = Family::Valley;
         else if (cv.labels.has(ridge)) h.family = Family::Ridge;
         else if (cv.labels.has(cross)) h.family = Family::Cross;

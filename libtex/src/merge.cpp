@@ -600,6 +600,17 @@ Curves mask_core(const Curves& subject, const Curves& mask, MaskSide side, Borde
     if (!jm && b == Border::CROP_ADD_BOUNDARY)
         for (const Curve& mc : mask.curves)
             if (mc.left.has(in) || mc.right.has(in)) out.curves.push_back(strip(mc));
+    // Distinct exact points of the planar map may round to the same doubles: no piece keeps
+    // a repeated point (a zero-length segment), none is left with fewer than two points.
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < out.curves.size(); ++i) {
+        Curve& c = out.curves[i];
+        c.points = clean_points(c);
+        if (c.points.size() < 2) continue;
+        if (kept != i) out.curves[kept] = std::move(c);
+        ++kept;
+    }
+    out.curves.resize(kept);
     return out;
 }
 

@@ -32,7 +32,6 @@
 #include <numeric>
 #include <optional>
 #include <unordered_map>
-#include <unordered_set>
 
 #include "libtex/random.hpp"
 #include "segment_index.hpp"
@@ -99,11 +98,6 @@ struct RawGraph {
         const int e = h / 2;
         for (std::uint32_t k = data_start[e]; k < data_start[e + 1]; ++k) f(data[k]);
     }
-};
-
-struct Inputs {
-    std::unordered_set<Point, PointHash> ends;
-    std::unordered_map<Point, Labels, PointHash> point_labels;
 };
 
 // ---- Way 1: CGAL ----

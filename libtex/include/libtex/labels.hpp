@@ -35,6 +35,7 @@ public:
         o.n_ = 0;
     }
     Labels& operator=(Labels&& o) noexcept {
+        if (this == &o) return *this;
         n_ = o.n_;
         std::copy(o.small_, o.small_ + kInline, small_);
         big_ = std::move(o.big_);
