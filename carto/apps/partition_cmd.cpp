@@ -2,6 +2,7 @@
 // written as the GeoPackage `rockhatch --partition` reads.
 #include <cmath>
 #include <cstdio>
+#include <new>
 #include <cstdlib>
 #include <filesystem>
 #include <functional>
@@ -156,6 +157,10 @@ int partition_main(int argc, char** argv) {
         if (open_line) std::fprintf(stderr, "\n");
         std::fprintf(stderr, "rockhatch partition: %s\n", e.what());
         return e.exit_code();
+    } catch (const std::bad_alloc&) {
+        if (open_line) std::fprintf(stderr, "\n");
+        std::fprintf(stderr, "rockhatch partition: out of memory: --dem is too large for this machine (crop or coarsen it)\n");
+        return 1;
     } catch (const std::exception& e) {
         if (open_line) std::fprintf(stderr, "\n");
         std::fprintf(stderr, "rockhatch partition: %s\n", e.what());

@@ -6,6 +6,7 @@
 // with the script's style.
 #include <cmath>
 #include <cstdio>
+#include <new>
 #include <cerrno>
 #include <cstring>
 #include <cstdlib>
@@ -107,6 +108,11 @@ int main(int argc, char** argv) {
         bar.finish();
         std::fprintf(stderr, "rockhatch: %s\n", e.what());
         return e.exit_code();
+    } catch (const std::bad_alloc&) {
+        bar.finish();
+        std::fprintf(stderr, "rockhatch: out of memory: the inputs or options ask for more than this machine holds "
+                             "(try a --window, a larger --scale or coarser rasters)\n");
+        return 1;
     } catch (const std::exception& e) {
         bar.finish();
         std::fprintf(stderr, "rockhatch: %s\n", e.what());

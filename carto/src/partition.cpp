@@ -581,8 +581,17 @@ Partition load_partition(const PartitionOptions& opt, const std::string& working
     const int id_idx = opt.id_field.empty() ? -1 : fdef->GetFieldIndex(opt.id_field.c_str());
     if (!opt.id_field.empty() && id_idx < 0)
         throw Error(Code::BadLayer, what + ": layer '" + faces->GetName() + "' has no field '" + opt.id_field + "'");
-    const int orient_idx = fdef->GetFieldIndex(opt.orientation_field.c_str());
-    const int dens_idx = fdef->GetFieldIndex(opt.density_field.c_str());
+    const std::string orient_name = opt.orientation_field.empty() ? "orientation" : opt.orientation_field;
+    const std::string dens_name = opt.density_field.empty() ? "density" : opt.density_field;
+    const int orient_idx = fdef->GetFieldIndex(orient_name.c_str());
+    const int dens_idx = fdef->GetFieldIndex(dens_name.c_str());
+    // A field the user named must be there (the density may come from --density-layer instead).
+    auto missing = [&](const std::string& field, const char* option) {
+        return Error(Code::BadLayer, what + ": layer '" + faces->GetName() + "' has no field '" + field + "' (" +
+                                         option + ")");
+    };
+    if (!opt.orientation_field.empty() && orient_idx < 0) throw missing(orient_name, "--orientation-field");
+    if (!opt.density_field.empty() && opt.density_layer.empty() && dens_idx < 0) throw missing(dens_name, "--density-field");
     int repaired = 0;
     faces->ResetReading();
     for (auto& feat : *faces) {
@@ -622,13 +631,13 @@ Partition load_partition(const PartitionOptions& opt, const std::string& working
             if (orient_idx >= 0 && feat->IsFieldSetAndNotNull(orient_idx)) {
                 const double az = feat->GetFieldAsDouble(orient_idx);
                 if (!std::isfinite(az))
-                    throw Error(Code::BadLayer, what + ": face " + std::to_string(rf.id) + ": bad " + opt.orientation_field);
+                    throw Error(Code::BadLayer, what + ": face " + std::to_string(rf.id) + ": bad " + orient_name);
                 rf.orientation = (90.0 - az) * M_PI / 180.0;
             }
             if (dens_idx >= 0 && feat->IsFieldSetAndNotNull(dens_idx)) {
                 const double d = feat->GetFieldAsDouble(dens_idx);
                 if (!(d >= 0 && d <= 1))
-                    throw Error(Code::BadLayer, what + ": face " + std::to_string(rf.id) + ": " + opt.density_field + " " +
+                    throw Error(Code::BadLayer, what + ": face " + std::to_string(rf.id) + ": " + dens_name + " " +
                                                     std::to_string(d) + " is not in [0, 1]");
                 rf.density = d;
             }
@@ -726,9 +735,8 @@ Partition load_partition(const PartitionOptions& opt, const std::string& working
     OGRLayer* dlayer = find_layer(opt.density_layer, nullptr, "");
     if (dlayer) {
         const Reprojector proj = reprojector(dlayer, working_wkt, what);
-        const int idx = dlayer->GetLayerDefn()->GetFieldIndex(opt.density_field.c_str());
-        if (idx < 0)
-            throw Error(Code::BadLayer, what + ": layer '" + opt.density_layer + "' has no field '" + opt.density_field + "'");
+        const int idx = dlayer->GetLayerDefn()->GetFieldIndex(dens_name.c_str());
+        if (idx < 0) throw Error(Code::BadLayer, what + ": layer '" + opt.density_layer + "' has no field '" + dens_name + "'");
         dlayer->ResetReading();
         for (auto& feat : *dlayer) {
             if (!feat->GetGeometryRef() || !feat->IsFieldSetAndNotNull(idx)) continue;

@@ -1,9 +1,12 @@
 #include "carto/pipeline.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <atomic>
 #include <filesystem>
+#include <iomanip>
+#include <sstream>
 #include <mutex>
 
 #include "carto/error.hpp"
@@ -42,6 +45,30 @@ Style selected_style(const Options& o) {
     return builtin_style(o.style.empty() ? default_style() : o.style);
 }
 
+// The number of squares of the style's finest length (a "mm" parameter, in ground units)
+// over the faces to hatch: beyond this, a scale or a parameter asks for more geometry than
+// a machine holds, so the run is refused before it starts (at 1:10000 the sample and
+// Chamonix.tif need about 1e6).
+constexpr double kMaxFinestCells = 1e8;
+
+void check_workload(const StyleInfo& info, const ParamValues& params, const Partition& part,
+                    const std::vector<int>& selected, double scale) {
+    const StyleParam* finest = nullptr;
+    for (const auto& sp : info.params)
+        if (sp.unit == "mm" && (!finest || params.at(sp.name) < params.at(finest->name))) finest = &sp;
+    if (!finest) return;
+    double area = 0;
+    for (int i : selected) area += part.faces[std::size_t(i)].region.area();
+    const double side = params.at(finest->name), cells = area / (side * side);
+    if (cells <= kMaxFinestCells) return;
+    std::ostringstream m;
+    m << std::setprecision(3) << "--scale " << scale << " and --param " << finest->name << "=" << side * 1000 / scale
+      << " mm (" << side << " on the ground): the faces (" << area << " square units) would hold about " << cells
+      << " squares of that side, more than " << kMaxFinestCells << "; raise --scale or " << finest->name
+      << ", or hatch a --window";
+    throw Error(Code::Usage, m.str());
+}
+
 void validate(const Options& o) {
     if (!(o.scale > 0) || !std::isfinite(o.scale))
         throw Error(Code::Usage, "--scale: " + std::to_string(o.scale) + " is not a positive number");
@@ -59,6 +86,9 @@ void validate(const Options& o) {
         check_output(out, o.overwrite);
     }
     if (o.png_pixels < 16 || o.png_pixels > 20000) throw Error(Code::Usage, "--png-size must be in 16..20000");
+    if (o.threads > kMaxThreads)
+        throw Error(Code::Usage, "--threads: " + std::to_string(o.threads) + " is more than " +
+                                     std::to_string(kMaxThreads));
 }
 
 Prepared prepare(const Options& o, const Progress& progress) {
@@ -72,6 +102,8 @@ Prepared prepare(const Options& o, const Progress& progress) {
         if (!same_crs(r.crs_wkt, dem.crs_wkt) || r.width != dem.width || r.height != dem.height || r.gt != dem.gt)
             r = resample_like(r, dem);
         target = std::move(r);
+        if (std::none_of(target.data.begin(), target.data.end(), [](float v) { return std::isfinite(v); }))
+            throw Error(Code::NoOverlap, std::string(what) + " '" + path + "' does not overlap --dem '" + o.dem + "'");
     };
     if (!o.slope.empty()) load_like(o.slope, "--slope", p.terrain.slope);
     if (!o.roughness.empty()) {
@@ -121,6 +153,7 @@ Drawing hatch(const Prepared& p, const Options& o, const Progress& progress) {
         }
         selected.push_back(int(i));
     }
+    check_workload(style.info, params, part, selected, o.scale);
     Drawing d;
     d.crs_wkt = part.crs_wkt;
     d.style = style.info.name;

@@ -39,6 +39,19 @@ struct QuietGdal {
 
 const float kNaN = std::numeric_limits<float>::quiet_NaN();
 
+// The terrain steps hold several float grids of the DEM's size at once: a raster beyond this
+// would exhaust a workstation's memory, so it is refused up front (a larger area is run
+// tiled, window by window).
+constexpr double kMaxRasterCells = 1e8;
+
+void check_size(double width, double height, const std::string& subject) {
+    if (width * height <= kMaxRasterCells) return;
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%.0f x %.0f cells, more than the %.0e read at once (crop it, coarsen it or run tiled)",
+                  width, height, kMaxRasterCells);
+    throw Error(Code::InputMissing, subject + ": the raster is " + buf);
+}
+
 Raster from_dataset(GDALDataset& ds, const std::string& what, const std::string& path) {
     Raster r;
     r.width = ds.GetRasterXSize();
@@ -47,6 +60,7 @@ Raster from_dataset(GDALDataset& ds, const std::string& what, const std::string&
         throw Error(Code::InputMissing, what + " '" + path + "': no raster band");
     if (ds.GetGeoTransform(r.gt.data()) != CE_None)
         throw Error(Code::NoCrs, what + " '" + path + "': no georeferencing (geotransform)");
+    check_size(r.width, r.height, what + " '" + path + "'");
     if (const OGRSpatialReference* srs = ds.GetSpatialRef()) {
         char* wkt = nullptr;
         const char* opts[] = {"FORMAT=WKT2_2019", nullptr};
@@ -209,6 +223,7 @@ Raster warp(const Raster& src, const std::string& dst_wkt, double cell) {
         // Resample to square cells of the requested size over the same extent.
         Raster target;
         const BBox bb = out.bounds();
+        check_size(std::ceil(bb.width() / cell), std::ceil(bb.height() / cell), "reprojecting to square cells");
         target.width = std::max(1, int(std::ceil(bb.width() / cell)));
         target.height = std::max(1, int(std::ceil(bb.height() / cell)));
         target.gt = {bb.xmin, cell, 0, bb.ymax, 0, -cell};

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
 #include <map>
 
 #include "helpers.hpp"
@@ -75,8 +76,15 @@ TEST(Mapping, SubScaleArrangementInAMapper) {
     const Region r = Region::rectangle(0, 0, 200, 100);
     const Curves c = nested(r);
     EXPECT_GT(c.curves.size(), 8u * 6u);
-    for (const auto& cv : c.curves)
-        for (const auto& p : cv.points) EXPECT_TRUE(r.bbox().expanded(1e-9).contains(p));
+    // Each curve lies in one 50 x 50 cell of the outer grid: the one holding its middle.
+    for (const auto& cv : c.curves) {
+        ASSERT_GE(cv.points.size(), 2u);
+        const Point mid = (cv.points[0] + cv.points[1]) / 2;
+        const double x0 = 50 * std::floor(mid.x / 50), y0 = 50 * std::floor(mid.y / 50);
+        const BBox cell = BBox{x0, y0, x0 + 50, y0 + 50}.expanded(1e-9);
+        for (const auto& p : cv.points) EXPECT_TRUE(cell.contains(p)) << p.x << "," << p.y << " outside its cell";
+        EXPECT_TRUE(r.bbox().expanded(1e-9).contains(mid));
+    }
     // Each of the 8 cells is closed by its outline: 8 cells cut into bands.
     const MapPtr m = nested.induce(r);
     EXPECT_GT(th::bounded_faces(*m), 8u * 5u);

@@ -14,6 +14,7 @@ a module with the script attributes, or a Style from ``python_style``.
 import importlib.util
 import os
 import sys
+import traceback
 
 from ._rockhatch import RockhatchError
 from ._rockhatch.carto import *  # noqa: F401,F403
@@ -47,7 +48,16 @@ def load_style(path):
         spec = importlib.util.spec_from_file_location(name, path)
         module = importlib.util.module_from_spec(spec)
         sys.modules[name] = module
-        spec.loader.exec_module(module)
+        try:
+            spec.loader.exec_module(module)
+        except SyntaxError as e:  # a bad input: one line naming the script and the line
+            sys.modules.pop(name, None)
+            raise error(7, f"--script '{path}': line {e.lineno}: {e.msg}") from None
+        except Exception as e:
+            sys.modules.pop(name, None)
+            frames = [f for f in traceback.extract_tb(e.__traceback__) if f.filename == spec.origin]
+            where = f"line {frames[-1].lineno}: " if frames else ""
+            raise error(7, f"--script '{path}': {where}{type(e).__name__}: {e}") from None
     finally:
         if added:
             sys.path.remove(folder)

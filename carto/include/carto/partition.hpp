@@ -51,9 +51,11 @@ struct PartitionOptions {
     std::string lines_layer;              // "" = the first line layer (attribute labels)
     std::string label_field = "kind";     // ridge / valley / other
     std::string id_field;                 // "" = feature ids
-    std::string orientation_field = "orientation";  // degrees, azimuth of the hatches
+    // Face attributes. "" = the field named "orientation" / "density" when the layer has one;
+    // a name given here must exist (a misspelt name is an error, not a silent default).
+    std::string orientation_field;        // degrees, azimuth of the hatches
     std::string orientation_layer;        // line layer, one line per face ("" = look for one)
-    std::string density_field = "density";          // 0..1
+    std::string density_field;            // 0..1
     std::string density_layer;            // point or polygon layer with a density field
     bool repair = true;                   // repair invalid polygons (else refuse them)
     double snap = 0.5;                    // ground units: border snapping and line matching tolerance

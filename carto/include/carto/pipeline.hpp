@@ -16,6 +16,9 @@
 
 namespace carto {
 
+// More worker threads than this is a typo, not a machine (each thread holds its own buffers).
+inline constexpr unsigned kMaxThreads = 1024;
+
 struct Options {
     std::string dem;                     // --dem
     PartitionOptions partition;          // --partition and its layer / field options
@@ -29,7 +32,7 @@ struct Options {
     // styles' height field (--relief-radius): local, so an edit moves the output nearby only.
     double relief_radius = 1000;
     std::uint64_t seed = 0;              // --seed
-    unsigned threads = 0;                // --threads (0 = all)
+    unsigned threads = 0;                // --threads (0 = all; at most kMaxThreads)
     std::vector<std::string> outputs;    // .gpkg, .svg, .png
     bool overwrite = false;
     int png_pixels = 1600;

@@ -119,14 +119,15 @@ class RockHatching(RockhatchAlgorithm):
         self.add(QgsProcessingParameterField(self.LABEL_FIELD, "Label field of the lines", "kind", self.LINES,
                                         QgsProcessingParameterField.String, optional=True),
             "Field of the line layer holding ridge / valley / other. Default: kind.")
-        self.add(QgsProcessingParameterField(self.ORIENTATION_FIELD, "Orientation field of the faces", "orientation",
+        self.add(QgsProcessingParameterField(self.ORIENTATION_FIELD, "Orientation field of the faces", None,
                                         self.FACES, QgsProcessingParameterField.Numeric, optional=True),
             "Field of the faces with the hatching direction, azimuth in degrees clockwise from north. "
-            "Default: orientation; faces without it take the orientation layer or the mean aspect.")
-        self.add(QgsProcessingParameterField(self.DENSITY_FIELD, "Density field of the faces", "density", self.FACES,
+            "Default: a field named orientation if there is one; faces without it take the orientation "
+            "layer or the mean aspect. A field chosen here must exist.")
+        self.add(QgsProcessingParameterField(self.DENSITY_FIELD, "Density field of the faces", None, self.FACES,
                                         QgsProcessingParameterField.Numeric, optional=True),
-            "Field of the faces with the hatching density, 0 (light) to 1 (dark). Default: density; "
-            "faces without it are shaded from the terrain.")
+            "Field of the faces with the hatching density, 0 (light) to 1 (dark). Default: a field named "
+            "density if there is one; faces without it are shaded from the terrain. A field chosen here must exist.")
         self.add(QgsProcessingParameterField(self.ID_FIELD, "Identifier field of the faces", None, self.FACES,
                                         QgsProcessingParameterField.Numeric, optional=True),
             "Integer field copied to face_id of the hatches. Default: the feature id.", advanced=True)
