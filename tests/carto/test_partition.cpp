@@ -264,6 +264,10 @@ TEST(Partition, SharedVerticesAreLeftBitIdentical) {
     // ... and as loaded: the same rings, every face with neighbours.
     const Partition loaded = load(kSample + "/partition.gpkg");
     EXPECT_EQ(rings_of(loaded), rings_of(raw));
+    for (const RockFace& f : loaded.faces)
+        EXPECT_TRUE(std::any_of(f.boundary.begin(), f.boundary.end(), [](const BoundarySegment& b) {
+            return b.neighbor >= 0;
+        })) << "face " << f.id << " found no neighbour";
 
     // A partition extracted from the DEM shares its vertices too: snapping changes nothing.
     ExtractOptions eo;

@@ -286,22 +286,34 @@ TEST(Pipeline, TwoHalvesGiveTheSameHatchesAsTheWhole) {
     Options o = sample_options("bidirectional");
     const Drawing whole = hatch(sample(), o);
     const tex::BBox b = sample().partition.bounds();
-    const double mid = b.center().x;
-    o.window = tex::BBox{b.xmin - 1, b.ymin - 1, mid, b.ymax + 1};
-    const Drawing left = hatch(sample(), o);
-    o.window = tex::BBox{mid, b.ymin - 1, b.xmax + 1, b.ymax + 1};
-    const Drawing right = hatch(sample(), o);
-    EXPECT_GT(left.faces.size(), 0u);
-    EXPECT_GT(right.faces.size(), 0u);
-    ASSERT_EQ(left.faces.size() + right.faces.size(), whole.faces.size());
-    std::map<std::int64_t, const FaceHatches*> parts;
-    for (const auto& f : left.faces) parts[f.face_id] = &f;
-    for (const auto& f : right.faces) parts[f.face_id] = &f;
-    for (const auto& f : whole.faces) {
-        ASSERT_TRUE(parts.count(f.face_id));
-        const auto& h = parts[f.face_id]->hatches;
-        ASSERT_EQ(h.size(), f.hatches.size());
-        for (std::size_t k = 0; k < h.size(); ++k) EXPECT_EQ(h[k].points, f.hatches[k].points);
+    // Split in the middle, and exactly through the centre of one face's box: that face goes
+    // to the tile whose window starts there (half-open windows), and only to it.
+    const RockFace& f0 = sample().partition.faces.front();
+    for (const double mid : {b.center().x, f0.region.bbox().center().x}) {
+        SCOPED_TRACE(mid);
+        o.window = tex::BBox{b.xmin - 1, b.ymin - 1, mid, b.ymax + 1};
+        const Drawing left = hatch(sample(), o);
+        o.window = tex::BBox{mid, b.ymin - 1, b.xmax + 1, b.ymax + 1};
+        const Drawing right = hatch(sample(), o);
+        EXPECT_GT(left.faces.size(), 0u);
+        EXPECT_GT(right.faces.size(), 0u);
+        ASSERT_EQ(left.faces.size() + right.faces.size(), whole.faces.size());
+        std::map<std::int64_t, const FaceHatches*> parts;
+        for (const auto& f : left.faces) parts[f.face_id] = &f;
+        for (const auto& f : right.faces) parts[f.face_id] = &f;
+        if (mid == f0.region.bbox().center().x)
+            EXPECT_TRUE(std::any_of(right.faces.begin(), right.faces.end(),
+                                    [&](const FaceHatches& f) { return f.face_id == f0.id; }));
+        for (const auto& f : whole.faces) {
+            ASSERT_TRUE(parts.count(f.face_id));
+            const auto& h = parts[f.face_id]->hatches;
+            ASSERT_EQ(h.size(), f.hatches.size());
+            for (std::size_t k = 0; k < h.size(); ++k) {
+                EXPECT_EQ(h[k].points, f.hatches[k].points);
+                EXPECT_EQ(h[k].family, f.hatches[k].family);
+                EXPECT_EQ(h[k].closed, f.hatches[k].closed);
+            }
+        }
     }
 }
 

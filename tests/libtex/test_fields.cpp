@@ -323,13 +323,15 @@ TEST(LocalityCheck, ReadsOutsideAnyWindowAreNotChecked) {
 
 TEST(LocalityCheck, NoCheckNoCount) {
     const Field f = [](const Point& p) { return p.x; };
-    std::size_t reads;
+    FieldWindow w(BBox{0, 0, 1, 1});
     {
         LocalityCheck c;
-        reads = c.reads();
+        EXPECT_EQ(f({0.5, 0.5}), 0.5);
+        EXPECT_EQ(c.reads(), 1u);  // a live check counts
     }
-    FieldWindow w(BBox{0, 0, 1, 1});
     EXPECT_EQ(f({100, 0}), 100);  // no check alive: nothing recorded, nothing fails
-    EXPECT_EQ(reads, 0u);
+    LocalityCheck fresh;           // and the read above left nothing behind for the next check
+    EXPECT_EQ(fresh.reads(), 0u);
+    EXPECT_EQ(fresh.violations(), 0u);
     EXPECT_THROW(LocalityCheck(-1), Error);
 }

@@ -60,9 +60,9 @@ TEST(Golden, EveryExampleDrawsItsGoldenBytes) {
         now << line;
     }
     SetSeed(seed);
-    if (std::getenv("RH_UPDATE_GOLDEN")) {  // the regenerating run: write, do not compare
+    if (std::getenv("RH_UPDATE_GOLDEN")) {  // the regenerating run: write, and never pass
         std::ofstream(path) << now.str();
-        std::printf("wrote %s\n", path.c_str());
+        ADD_FAILURE() << "regenerated " << path << ": check the diff, then rerun without RH_UPDATE_GOLDEN";
         return;
     }
     std::ifstream in(path);
@@ -103,24 +103,14 @@ TEST_P(GalleryTest, SameBytesWithOneOrTwoThreadsAndAcrossRuns) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Appendix, GalleryTest,
-                         ::testing::Values("stripes", "grid", "uniform", "random", "puzzle", "rosettes",
-                                           "cracks", "bimodal", "crosses", "curves", "clusters", "overview",
-                                           "combine_a", "combine_b", "combine_c"));
-INSTANTIATE_TEST_SUITE_P(Teasers, GalleryTest,
-                         ::testing::Values("teaser_a", "teaser_b", "teaser_c", "teaser_d", "teaser_e",
-                                           "teaser_f", "teaser_g", "teaser_h"));
-INSTANTIATE_TEST_SUITE_P(More, GalleryTest,
-                         ::testing::Values("regular_a", "regular_b", "regular_c", "regular_d",
-                                           "nonregular_a_left", "nonregular_a_right", "nonregular_b",
-                                           "nonregular_c", "nonregular_d", "script_edit_a", "script_edit_b",
-                                           "script_edit_c", "script_edit_d", "triangles", "bee_hive",
-                                           "wallpaper_p6", "wallpaper_p4m", "wallpaper_p31m", "escher_p6",
-                                           "escher_p4m", "escher_p31m"));
-INSTANTIATE_TEST_SUITE_P(Domain, GalleryTest,
-                         ::testing::Values("parquetry", "table", "bottle", "teapot"));
-INSTANTIATE_TEST_SUITE_P(Micro, GalleryTest, ::testing::Values("microprocessor"));
-INSTANTIATE_TEST_SUITE_P(Fields, GalleryTest, ::testing::Values("oriented_darts"));
+// Every example of the gallery, by name (a new example is covered without touching this file).
+std::vector<std::string> all_example_names() {
+    std::vector<std::string> names;
+    for (const auto& e : gallery::examples()) names.push_back(e.name);
+    return names;
+}
+INSTANTIATE_TEST_SUITE_P(Gallery, GalleryTest, ::testing::ValuesIn(all_example_names()),
+                         [](const ::testing::TestParamInfo<std::string>& i) { return i.param; });
 
 TEST(Gallery, ExpectedStructure) {
     // Puzzle: a 16 x 16 grid in which every other vertical edge is removed row by row.
@@ -1618,6 +1608,7 @@ Drawn drawn(const gallery::Example& e) {
 
 TEST(FastCrop, SameMapsAsTheExactPathOnTheGallery) {
     const unsigned threads = GetThreads();
+    const std::uint64_t seed = GetSeed();
     SetThreads(1);  // the exact-only switch is per thread
     SetSeed(0);
     for (const char* name : {"combine_e", "combine_g", "nonregular_b", "nonregular_c", "teapot", "teaser_b",
@@ -1634,10 +1625,15 @@ TEST(FastCrop, SameMapsAsTheExactPathOnTheGallery) {
         EXPECT_NEAR(double(fast.edges), double(exact.edges), tol * double(exact.edges));
         EXPECT_NEAR(double(fast.faces), double(exact.faces), tol * double(exact.faces));
         EXPECT_NEAR(fast.length, exact.length, 1e-6 * exact.length);
+        // Faces of visible size too (not only slivers) may differ: a rounded cut point that
+        // misses a neighbour's line by 1e-12 leaves a loose end where the exact path closes a
+        // face (teaser_b: 292 big faces fast, 311 exact; loose ends are not compared).
+        EXPECT_NEAR(double(fast.big_faces), double(exact.big_faces), tol * double(exact.big_faces));
         std::printf("%-14s fast %zu/%zu/%zu/%zu/%zu exact %zu/%zu/%zu/%zu/%zu\n", name, fast.vertices, fast.edges,
                     fast.faces, fast.big_faces, fast.loose_ends, exact.vertices, exact.edges, exact.faces,
                     exact.big_faces, exact.loose_ends);
     }
+    SetSeed(seed);
     SetThreads(threads);
 }
 

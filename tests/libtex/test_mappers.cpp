@@ -72,12 +72,15 @@ TEST(JitterEdges, SameSeedSameValuesOtherSeedOthers) {
     EXPECT_EQ(a, b);
     ASSERT_EQ(a.size(), c.size());
     EXPECT_NE(a, c);
-    // Through MapToEdges, on the worker threads or not: the same curves.
+    // Through MapToEdges, on two worker threads or on this one: the same curves.
+    const unsigned threads = GetThreads();
+    SetThreads(2);
     SetSeed(7);
     const Curves par = MapToEdges(JitterEdges("hatch", kTheta, 10, 20, 1.0),
                                   Constant(hatch_grid()->edge_curves()))(kBox);
     const Curves ser = MapToEdges(JitterEdges("hatch", kTheta, 10, 20, 1.0),
                                   Constant(hatch_grid()->edge_curves()), MapperThreads::Serial)(kBox);
+    SetThreads(threads);
     ASSERT_EQ(par.curves.size(), ser.curves.size());
     for (std::size_t i = 0; i < par.curves.size(); ++i) EXPECT_EQ(par.curves[i].points, ser.curves[i].points);
 }

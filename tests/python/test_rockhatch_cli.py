@@ -199,6 +199,26 @@ def real_partition(tmp_path_factory):
     return path, n
 
 
+def test_a_geographic_dem_with_nodata_is_reprojected_to_utm(rockhatch_exe, sample_dir, tmp_path):
+    """The same path as the real DEM below, without ../shared: the sample warped to
+    longitude / latitude, with a NoData border, is drawn in UTM 32N."""
+    geo = tmp_path / "geo.tif"
+    gdal.Warp(str(geo), str(sample_dir / "dem.tif"), dstSRS="EPSG:4326", dstNodata=-9999, resampleAlg="bilinear")
+    ds = gdal.Open(str(geo))
+    arr = ds.GetRasterBand(1).ReadAsArray()
+    assert (arr == -9999).any()  # the warped square's corners
+    ds = None
+    r = run(rockhatch_exe, "--dem", geo, "--partition", sample_dir / "partition.gpkg", "-o", tmp_path / "g.gpkg")
+    assert r.returncode == 0, r.stderr
+    assert "reprojected to EPSG:32632" in r.stderr and "working CRS EPSG:32632" in r.stderr, r.stderr
+    out = ogr.Open(str(tmp_path / "g.gpkg"))
+    layer = out.GetLayerByName("hatch_fill")
+    assert layer.GetSpatialRef().GetAuthorityCode(None) == "32632"
+    assert layer.GetFeatureCount() > 10000
+    xmin, xmax, ymin, ymax = layer.GetExtent()  # Mont Blanc in UTM 32N
+    assert 320000 < xmin < xmax < 360000 and 5060000 < ymin < ymax < 5110000
+
+
 def test_real_dem_geographic_with_nodata(rockhatch_exe, real_partition, tmp_path):
     path, n = real_partition
     r = run(rockhatch_exe, "--dem", SHARED_DEM, "--partition", path, "--no-spatial-index",
@@ -382,6 +402,13 @@ def test_slope_min_leaves_flat_ground_unhatched(rockhatch_exe, sample_dir, tmp_p
     # by up to half a hatch length (3 mm: 30 m at 1:10000) along.
     assert half and all(px >= mid_x - 30 for px, _ in half)
     assert sum(1 for px, _ in every if px >= mid_x) * 0.8 < len(half)
+    # All flat: no fill at all.
+    flat = gdal.Translate(str(tmp_path / "flat.tif"), str(tmp_path / "slope.tif"), scaleParams=[[0, 100, 0, 0]])
+    flat = None
+    r = run(rockhatch_exe, "-q", *sample_args(sample_dir), "--style", "noisy", "--slope", tmp_path / "flat.tif",
+            "--param", "slope_min=50", "-o", tmp_path / "flat.gpkg")
+    assert r.returncode == 0, r.stderr
+    assert fill_midpoints(tmp_path / "flat.gpkg") == []
 
 
 def test_relief_radius_option(rockhatch_exe, sample_dir, tmp_path):

@@ -103,7 +103,8 @@ def test_crop_outline_labelled_and_labelled_regions():
     assert len(Outline()(BOX)) == 1  # the ring
     small = Region.rectangle(10, 10, 30, 30)
     cut = Crop(grid(), CROP)(small)
-    assert len(cut) > 0 and all(10 - 1e-9 <= q.x <= 30 + 1e-9 for c in cut.curves for q in c.points)
+    assert len(cut) > 0 and all(10 - 1e-9 <= q.x <= 30 + 1e-9 and 10 - 1e-9 <= q.y <= 30 + 1e-9
+                                for c in cut.curves for q in c.points)
     marked = Labelled(cut, "ridge")
     assert all("ridge" in c.labels for c in marked.curves)
 
