@@ -163,9 +163,22 @@ TEST(Extract, OutlineLabelsCanBeTurnedOff) {
     o.label_outline = false;
     const ExtractResult r = extract_partition(o);
     EXPECT_EQ(r.partition.faces.size(), sample().partition.faces.size());
+    // The outline (no face across) is all 'other'; the inner borders keep their labels.
+    std::size_t inner_labelled = 0, default_inner_labelled = 0;
     for (const RockFace& f : r.partition.faces)
-        for (const auto& s : f.boundary)
-            if (s.kind != LineKind::Other) EXPECT_GE(s.neighbor, 0);
+        for (const auto& s : f.boundary) {
+            if (s.neighbor < 0) EXPECT_EQ(s.kind, LineKind::Other);
+            inner_labelled += s.neighbor >= 0 && s.kind != LineKind::Other;
+        }
+    std::size_t default_outline_labelled = 0;  // what the option turns off
+    for (const RockFace& f : sample().partition.faces)
+        for (const auto& s : f.boundary) {
+            default_inner_labelled += s.neighbor >= 0 && s.kind != LineKind::Other;
+            default_outline_labelled += s.neighbor < 0 && s.kind != LineKind::Other;
+        }
+    EXPECT_GT(default_outline_labelled, 0u);
+    EXPECT_GT(inner_labelled, 20u);
+    EXPECT_EQ(inner_labelled, default_inner_labelled);
 }
 
 TEST(Extract, FacesTileTheRockMask) {
@@ -317,6 +330,20 @@ TEST(Extract, MaskLayerLimitsTheRock) {
     for (float v : sample().rock.data) in += v == 1.0f;
     EXPECT_LT(all, in);
     EXPECT_GT(all, 0.3 * in);
+    // Every extracted face lies in the mask (up to a cell: borders follow cell edges).
+    GDALDatasetUniquePtr mask(GDALDataset::Open(o.mask.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+    ASSERT_TRUE(mask);
+    OGRMultiPolygon parts;
+    for (auto& feat : *mask->GetLayerByName("faces")) parts.addGeometry(feat->GetGeometryRef());
+    std::unique_ptr<OGRGeometry> inside(parts.UnionCascaded());
+    std::unique_ptr<OGRGeometry> tolerant(inside->Buffer(r.rock.cell_x()));
+    ASSERT_FALSE(r.partition.faces.empty());
+    for (const RockFace& f : r.partition.faces) {
+        auto face = polygon(f.region);
+        std::unique_ptr<OGRGeometry> out(face->Difference(tolerant.get()));
+        const double area = out ? OGR_G_Area(OGRGeometry::ToHandle(out.get())) : 0.0;
+        EXPECT_LT(area, 1e-6 * face->get_Area()) << "face " << f.id << ": " << area << " outside the mask";
+    }
 }
 
 TEST(Extract, AutoPartitionInThePipeline) {

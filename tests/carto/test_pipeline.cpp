@@ -136,8 +136,13 @@ TEST(Pipeline, EveryHatchStaysInsideItsFace) {
         for (const auto& fh : d.faces) {
             const RockFace& f = face_by_id(p, fh.face_id);
             for (const auto& h : fh.hatches)
-                for (const auto& q : h.points) {
-                    // On the border or inside (0.01 m of slack for the clipping arithmetic).
+                for (std::size_t i = 0, n = h.points.size(); i < (h.closed ? 2 * n : 2 * n - 1); ++i) {
+                    // Every vertex and every segment's middle (a chord between two border
+                    // points of a concave face leaves it in between; a closed stroke has one
+                    // more segment): on the border or inside (0.01 m of slack for the
+                    // clipping arithmetic).
+                    const tex::Point q = i % 2 == 0 ? h.points[i / 2]
+                                                    : (h.points[i / 2] + h.points[(i / 2 + 1) % n]) / 2;
                     bool ok = f.region.contains(q);
                     for (const auto& s : f.boundary) {
                         if (ok) break;
@@ -166,10 +171,14 @@ TEST(Pipeline, HatchDensityFollowsTheDensityField) {
 }
 
 TEST(Pipeline, HatchDirectionsFollowTheOrientationField) {
+    // The strokes are jittered (across by a share of the spacing, so light faces stray
+    // more: 6 to 9 degrees in the median), single strokes further; a face drawn in another
+    // direction would be off by 45 degrees on average.
     const Drawing d = hatch(sample(), sample_options("noisy"));
-    std::vector<double> errors;
+    std::vector<double> all;
     for (const auto& fh : d.faces) {
         const double theta = *face_by_id(sample().partition, fh.face_id).orientation;
+        std::vector<double> errors;
         for (const auto& h : fh.hatches) {
             if (h.family != Family::Fill) continue;
             const Point a = h.points.front(), b = h.points.back();
@@ -177,10 +186,14 @@ TEST(Pipeline, HatchDirectionsFollowTheOrientationField) {
             double e = std::fmod(std::abs(std::atan2(b.y - a.y, b.x - a.x) - theta), M_PI);
             errors.push_back(std::min(e, M_PI - e) * 180 / M_PI);
         }
+        all.insert(all.end(), errors.begin(), errors.end());
+        if (errors.size() < 20) continue;  // a sliver face: too few strokes for a median
+        std::nth_element(errors.begin(), errors.begin() + errors.size() / 2, errors.end());
+        EXPECT_LT(errors[errors.size() / 2], 12.0) << "face " << fh.face_id;
     }
-    ASSERT_GT(errors.size(), 1000u);
-    std::nth_element(errors.begin(), errors.begin() + errors.size() / 2, errors.end());
-    EXPECT_LT(errors[errors.size() / 2], 5.0);
+    ASSERT_GT(all.size(), 1000u);
+    std::nth_element(all.begin(), all.begin() + all.size() / 2, all.end());
+    EXPECT_LT(all[all.size() / 2], 5.0);
 }
 
 TEST(Pipeline, ChangingAFieldInAWindowChangesOnlyNearby) {

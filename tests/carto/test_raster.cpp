@@ -1,6 +1,8 @@
 // Rasters: bilinear sampling, NoData, reading errors, reprojection.
 #include <gtest/gtest.h>
 
+#include <GeographicLib/UTMUPS.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -163,7 +165,10 @@ TEST(Raster, GeographicRastersWarpToUtm) {
     g.height = 20;
     g.gt = {6.90, 1.0 / 3600, 0, 45.95, 0, -1.0 / 3600};
     g.crs_wkt = epsg_wkt(4326);
-    g.data.assign(600, 2000.0f);
+    // A plane: 10 per column eastwards, 1 per row southwards (bilinear warps keep it).
+    g.data.resize(600);
+    for (int r = 0; r < 20; ++r)
+        for (int c = 0; c < 30; ++c) g.at(c, r) = float(1000 + 10 * c + r);
     EXPECT_TRUE(is_geographic(g.crs_wkt));
     EXPECT_EQ(utm_epsg(6.9, 45.9), 32632);
     EXPECT_EQ(utm_epsg(-3.0, -10.0), 32730);
@@ -172,7 +177,17 @@ TEST(Raster, GeographicRastersWarpToUtm) {
     EXPECT_DOUBLE_EQ(u.cell_x(), 30.0);
     // 30 arc-seconds east-west at 45.9 N is about 645 m: 21 to 23 cells of 30 m.
     EXPECT_NEAR(u.width, 22, 2);
-    EXPECT_NEAR(u.sample(u.bounds().center()), 2000.0, 1e-3);
+    // A known place lands where GeographicLib puts it, with its value: a shifted or mirrored
+    // warp would be off by 10 per 30 m column.
+    for (const auto& [lon, lat] : {std::pair{6.90 + 15.0 / 3600, 45.95 - 10.0 / 3600},
+                                   std::pair{6.90 + 9.0 / 3600, 45.95 - 13.0 / 3600}}) {
+        int zone = 0;
+        bool north = true;
+        double x = 0, y = 0;
+        GeographicLib::UTMUPS::Forward(lat, lon, zone, north, x, y, 32);
+        const double col = (lon - 6.90) * 3600 - 0.5, row = (45.95 - lat) * 3600 - 0.5;
+        EXPECT_NEAR(u.sample({x, y}), 1000 + 10 * col + row, 0.5) << lon << " " << lat;
+    }
 }
 
 TEST(Terrain, SlopeAspectRoughnessOfAPlane) {

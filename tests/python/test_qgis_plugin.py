@@ -137,16 +137,19 @@ def test_two_files_and_memory_layers(qgis, sample_dir, reference, tmp_path):
     params = {"DEM": str(sample_dir / "dem.tif"), "FACES": str(tmp_path / "faces.shp"),
               "LINES": str(tmp_path / "lines.shp"), "ORIENTATION_LAYER": str(tmp_path / "orientation.shp"),
               "OUTPUT": str(tmp_path / "a.gpkg")}
-    run("rockhatch:rockhatching", params)
+    run("rockhatch:rockhatching", {**params, "SVG": str(tmp_path / "a.svg")})
     assert layer_counts(tmp_path / "a.gpkg") == reference["counts"]
+    assert (tmp_path / "a.svg").read_bytes() == reference["svg"].read_bytes()
 
     faces = QgsVectorLayer(f"{gpkg}|layername=faces", "faces", "ogr").materialize(
         qgis_core.QgsFeatureRequest())
     assert faces.providerType() == "memory"
     QgsProject.instance().addMapLayer(faces)
     try:
-        run("rockhatch:rockhatching", {**params, "FACES": faces.id(), "OUTPUT": str(tmp_path / "b.gpkg")})
+        run("rockhatch:rockhatching", {**params, "FACES": faces.id(), "OUTPUT": str(tmp_path / "b.gpkg"),
+                                       "SVG": str(tmp_path / "b.svg")})
         assert layer_counts(tmp_path / "b.gpkg") == reference["counts"]
+        assert (tmp_path / "b.svg").read_bytes() == reference["svg"].read_bytes()
         with pytest.raises(QgsProcessingException, match="give the labelled lines layer"):
             run("rockhatch:rockhatching", {"DEM": params["DEM"], "FACES": faces.id(),
                                            "OUTPUT": str(tmp_path / "c.gpkg")})
@@ -163,8 +166,9 @@ def test_style_seed_params_and_script(qgis, sample_dir, tmp_path):
     assert (tmp_path / "q.svg").read_bytes() == (tmp_path / "m.svg").read_bytes()
     # The style script twin of a built-in gives its hatches.
     run("rockhatch:rockhatching", sample_params(sample_dir, tmp_path / "s.gpkg", STYLE_SCRIPT=str(
-        ROOT / "styles" / "noisy.py"), SEED=3, SCALE=5000, PARAMS="spacing_min=0.5"))
+        ROOT / "styles" / "noisy.py"), SEED=3, SCALE=5000, PARAMS="spacing_min=0.5", SVG=str(tmp_path / "s.svg")))
     assert layer_counts(tmp_path / "s.gpkg") == layer_counts(tmp_path / "q.gpkg")
+    assert (tmp_path / "s.svg").read_bytes() == (tmp_path / "q.svg").read_bytes()
 
 
 def test_an_operator_style_of_the_tests_through_the_algorithm(qgis, rockhatch_exe, sample_dir, tmp_path):
@@ -445,12 +449,14 @@ def test_qgis_process_runs_rock_hatching(sample_dir, reference, tmp_path):
     t = time.perf_counter()
     p = subprocess.run([QGIS_PROCESS, "--json", "run", "rockhatch:rockhatching", "--",
                         f"DEM={sample_dir / 'dem.tif'}", f"FACES={sample_dir / 'partition.gpkg'}|layername=faces",
-                        "STYLE=bidirectional", f"OUTPUT={out}"], env=env, capture_output=True, text=True, timeout=120)
+                        "STYLE=bidirectional", f"OUTPUT={out}", f"SVG={tmp_path / 'qp.svg'}"], env=env,
+                       capture_output=True, text=True, timeout=120)
     print(f"qgis_process run: {time.perf_counter() - t:.2f} s")
     assert p.returncode == 0, p.stderr + p.stdout
     results = json.loads(p.stdout[p.stdout.index("{"):])["results"]
     assert results["OUTPUT"] == str(out)
     assert layer_counts(out) == reference["counts"]
+    assert (tmp_path / "qp.svg").read_bytes() == reference["svg"].read_bytes()
     # Bad input: a non-zero exit with the pipeline's message.
     p = subprocess.run([QGIS_PROCESS, "run", "rockhatch:rockhatching", "--", f"DEM={sample_dir / 'dem.tif'}",
                         f"FACES={sample_dir / 'partition.gpkg'}|layername=faces", "LABEL_FIELD=nope",
