@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <set>
 
 #include "helpers.hpp"
@@ -317,10 +318,15 @@ TEST(Streams, APartitionBuiltInAMapperTakesItsStreamFromTheCell) {
     // square: what each face draws depends only on the face, not on the thread that visits
     // it nor on the order of visits, and two faces draw differently.
     const Region fixed = Region::rectangle(0, 0, 300, 300);
+    std::mutex seen_mutex;
+    std::set<std::string> seen;  // what the mapper itself drew, face by face
     auto per_face = MapToFaces(
         [&](const Face&) {
             const Arrangement inner = UniformPartition(IrregularProperties(3e-4), KEEP_INSIDE);
-            return inner(fixed);
+            Curves c = inner(fixed);
+            std::lock_guard lock(seen_mutex);
+            seen.insert(ToSVG(c, 300));
+            return c;
         },
         GridPartition(StripesProperties(0, 250), StripesProperties(pi / 2, 250), KEEP_INSIDE));
     const Region window = Region::rectangle(0, 0, 1000, 1000);
@@ -331,7 +337,8 @@ TEST(Streams, APartitionBuiltInAMapperTakesItsStreamFromTheCell) {
     const Curves two = per_face(window);
     SetThreads(saved);
     EXPECT_EQ(ToSVG(one, 1000), ToSVG(two, 1000));
-    // 16 faces, each its own drawing of the fixed square: no two alike.
+    EXPECT_EQ(seen.size(), 16u);  // two runs of 16 faces: 16 drawings, none alike
+    // ... and each is the stream its cell's key names.
     const MapPtr grid = GridPartition(StripesProperties(0, 250), StripesProperties(pi / 2, 250), KEEP_INSIDE).induce(window);
     std::set<std::string> drawings;
     for (std::size_t f = 0; f < grid->faces().size(); ++f) {
@@ -339,7 +346,7 @@ TEST(Streams, APartitionBuiltInAMapperTakesItsStreamFromTheCell) {
         RandomScope cell(grid->faces()[f].key);
         drawings.insert(ToSVG(UniformPartition(IrregularProperties(3e-4), KEEP_INSIDE)(fixed), 300));
     }
-    EXPECT_EQ(drawings.size(), 16u);
+    EXPECT_EQ(drawings, seen);
 }
 
 // ---- Evaluated on a face, a cropping partition keeps the labels of the face's edges ----
