@@ -49,7 +49,7 @@ std::vector<Option> options(CommandLine& cl) {
         {"--style", "NAME", "hatching style (see --list-styles; default: the final design, bidirectional)",
          [&](const std::string& v) { o.style = v; }},
         {"--script", "PATH", "a Python style script (see styles/); its parameters are set with --param",
-         [&](const std::string& v) { cl.script = v; }},
+         [&](const std::string& v) { cl.script = o.style_file = v; }},
         {"--param", "NAME=VALUE", "set a style parameter (units as listed by --list-styles); repeatable",
          [&](const std::string& v) {
              const auto eq = v.find('=');

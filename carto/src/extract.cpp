@@ -1225,6 +1225,10 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
     return res;
 }
 
+void check_extract_files(const ExtractOptions& o, const std::string& out, const std::string& png, bool overwrite) {
+    check_outputs({{o.what, o.dem}, {"--mask", o.mask}}, {{"-o", out}, {"--png", png}}, overwrite);
+}
+
 void write_partition_gpkg(const Partition& p, const std::string& path, bool overwrite,
                           const std::vector<LabelledLine>* network) {
     check_output(path, overwrite);

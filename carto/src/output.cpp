@@ -43,12 +43,50 @@ std::string xml_escape(const std::string& in) {
 
 }  // namespace
 
-void check_output(const std::string& path, bool overwrite) {
+void check_output(const std::string& path, bool overwrite, const std::string& what) {
     const fs::path p(path);
     const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
-    if (!fs::is_directory(dir)) throw Error(Code::OutputExists, "-o '" + path + "': the folder does not exist");
+    if (!fs::is_directory(dir)) throw Error(Code::OutputExists, what + " '" + path + "': the folder does not exist");
     if (fs::exists(p) && !overwrite)
-        throw Error(Code::OutputExists, "-o '" + path + "': the file exists (use --overwrite to replace it)");
+        throw Error(Code::OutputExists, what + " '" + path + "': the file exists (use --overwrite to replace it)");
+}
+
+namespace {
+
+// Whether two paths name the same file: the file itself when both exist (symbolic and hard
+// links included), else the absolute paths with symbolic links and ./.. resolved.
+bool same_file(const std::string& a, const std::string& b) {
+    std::error_code ea, eb;
+    const bool has_a = fs::exists(a, ea), has_b = fs::exists(b, eb);
+    if (has_a && has_b) {
+        std::error_code ec;
+        return fs::equivalent(a, b, ec);
+    }
+    if (has_a || has_b) return false;
+    const fs::path ca = fs::weakly_canonical(fs::absolute(a, ea), ea);
+    const fs::path cb = fs::weakly_canonical(fs::absolute(b, eb), eb);
+    return !ea && !eb && ca == cb;
+}
+
+}  // namespace
+
+void check_outputs(const std::vector<FileArg>& inputs, const std::vector<FileArg>& outputs, bool overwrite) {
+    auto named = [](const FileArg& f) { return f.what + " '" + f.path + "'"; };
+    for (std::size_t i = 0; i < outputs.size(); ++i) {
+        const FileArg& out = outputs[i];
+        if (out.path.empty()) continue;
+        // An output onto an input would replace the user's data with the result (--overwrite
+        // says outputs may be replaced, never inputs).
+        for (const FileArg& in : inputs)
+            if (!in.path.empty() && fs::exists(in.path) && same_file(out.path, in.path))
+                throw Error(Code::OutputExists, named(out) + " is the input " + named(in) +
+                                                    ": refusing to write onto an input (choose another output)");
+        for (std::size_t j = 0; j < i; ++j)
+            if (!outputs[j].path.empty() && same_file(out.path, outputs[j].path))
+                throw Error(Code::OutputExists,
+                            named(out) + " and " + named(outputs[j]) + " are the same file (choose two outputs)");
+        check_output(out.path, overwrite, out.what);
+    }
 }
 
 void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index,

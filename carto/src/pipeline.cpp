@@ -52,13 +52,23 @@ void validate(const Options& o) {
     if (!(o.partition.snap > 0)) throw Error(Code::Usage, "--snap must be positive");
     if (!(o.relief_radius > 0) || !std::isfinite(o.relief_radius))
         throw Error(Code::Usage, "--relief-radius: " + std::to_string(o.relief_radius) + " is not a positive number");
+    // First: an output onto an input is refused as such, whatever its format.
+    check_files(o);
     for (const auto& out : o.outputs) {
         const std::string e = extension(out);
         if (e != ".gpkg" && e != ".svg" && e != ".png")
             throw Error(Code::Usage, "-o '" + out + "': unknown format (use .gpkg, .svg or .png)");
-        check_output(out, o.overwrite);
     }
     if (o.png_pixels < 16 || o.png_pixels > 20000) throw Error(Code::Usage, "--png-size must be in 16..20000");
+}
+
+void check_files(const Options& o) {
+    std::vector<FileArg> outputs;
+    for (const auto& out : o.outputs) outputs.push_back({"-o", out});
+    const std::string partition = o.partition.path == "auto" ? "" : o.partition.path;
+    check_outputs({{"--dem", o.dem}, {"--partition", partition}, {"--slope", o.slope}, {"--roughness", o.roughness},
+                   {"--script", o.style_file}},
+                  outputs, o.overwrite);
 }
 
 Prepared prepare(const Options& o, const Progress& progress) {
