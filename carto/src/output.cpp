@@ -11,6 +11,7 @@
 #include <fstream>
 
 #include "carto/error.hpp"
+#include "gdal_scope.hpp"
 #include "gpkg_rtree.hpp"
 #include "temp_file.hpp"
 
@@ -97,16 +98,16 @@ void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index,
         if (keep_going && ++written % 4096 == 0 && !keep_going(double(written) / double(2 * total)))
             throw Error(Code::Cancelled, "cancelled while writing '" + path + "'");
     };
-    GDALAllRegister();
-    // A fixed timestamp in gpkg_contents, so that the same run writes the same bytes.
-    CPLSetConfigOption("OGR_CURRENT_DATE", "2000-01-01T00:00:00.000Z");
+    register_gdal();
     TempFile tmp(path, ".gpkg");
     {
+        // Set on this thread, which writes the file, for this call only (gdal_scope.hpp).
+        const ReproducibleGpkg reproducible;
+        // The file is a temporary one renamed at the end, so SQLite need not journal or sync.
+        const ConfigScope sync("OGR_SQLITE_SYNCHRONOUS", "OFF"), journal("OGR_SQLITE_JOURNAL", "OFF");
+        const QuietGdal quiet;
         GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GPKG");
         if (!drv) throw Error(Code::Failure, "GDAL has no GeoPackage driver");
-        // The file is a temporary one renamed at the end, so SQLite need not journal or sync.
-        CPLSetConfigOption("OGR_SQLITE_SYNCHRONOUS", "OFF");
-        CPLSetConfigOption("OGR_SQLITE_JOURNAL", "OFF");
         std::unique_ptr<GDALDataset> ds(drv->Create(tmp.path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
         if (!ds) throw Error(Code::OutputExists, "-o '" + path + "': cannot create (" + CPLGetLastErrorMsg() + ")");
         OGRSpatialReference srs;
@@ -278,7 +279,7 @@ void write_png_pixels(const std::vector<unsigned char>& pixels, int w, int h, in
     // GDAL writes the PNG (through an in-memory raster): it is loaded anyway, whereas
     // OpenImageIO would add some 150 shared libraries to every start of the program.
     TempFile tmp(path, ".png");
-    GDALAllRegister();
+    register_gdal();
     GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
     GDALDriver* png = GetGDALDriverManager()->GetDriverByName("PNG");
     if (!mem || !png) throw Error(Code::Failure, "GDAL has no PNG driver");
@@ -287,9 +288,11 @@ void write_png_pixels(const std::vector<unsigned char>& pixels, int w, int h, in
     if (src->RasterIO(GF_Write, 0, 0, w, h, buf.data(), w, h, GDT_Byte, bands, nullptr, bands,
                       std::size_t(w) * bands, 1, nullptr) != CE_None)
         throw Error(Code::OutputExists, what + " '" + path + "': cannot build the preview");
-    CPLPushErrorHandler(CPLQuietErrorHandler);
-    std::unique_ptr<GDALDataset> out(png->CreateCopy(tmp.path.c_str(), src.get(), FALSE, nullptr, nullptr, nullptr));
-    CPLPopErrorHandler();
+    std::unique_ptr<GDALDataset> out;
+    {
+        const QuietGdal quiet;
+        out.reset(png->CreateCopy(tmp.path.c_str(), src.get(), FALSE, nullptr, nullptr, nullptr));
+    }
     if (!out) throw Error(Code::OutputExists, what + " '" + path + "': cannot write the PNG (" + CPLGetLastErrorMsg() + ")");
     out.reset();
     std::error_code ec;

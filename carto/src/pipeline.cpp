@@ -10,6 +10,7 @@
 #include "carto/extract.hpp"
 #include "carto/fields.hpp"
 #include "libtex/parallel.hpp"
+#include "libtex/random.hpp"
 
 namespace carto {
 namespace {
@@ -146,8 +147,15 @@ Drawing hatch(const Prepared& p, const Options& o, const Progress& progress) {
     const ControlFields fields{face_field(part, std::move(orient)), face_field(part, std::move(dens)),
                                raster_field(p.relief), raster_field(p.terrain.roughness),
                                raster_field(p.terrain.slope)};
-    const tex::Arrangement program = style.program(fields, params);
-    tex::SetThreads(o.threads);
+    // The run's thread count, on this thread only: the process's (tex::SetThreads) is left
+    // as it was, and the next call does not inherit this one's.
+    const tex::ThreadsScope threads(o.threads);
+    const tex::Arrangement program = [&] {
+        // A style script may call SetSeed (the faces draw from o.seed, see hatch_face): the
+        // process's seed and stream numbering come back after it.
+        const tex::SavedSeed saved;
+        return style.program(fields, params);
+    }();
     std::atomic<std::size_t> done{0};
     std::atomic<bool> cancelled{false};
     std::mutex progress_mutex;

@@ -1,5 +1,11 @@
-// Outputs (issue 17): no output onto an input or onto another output, however spelt.
+// Outputs (issue 17): no output onto an input or onto another output, however spelt, and the
+// GDAL settings of a write (timestamp, SQLite journal, quiet errors) scoped to the call, so
+// that a host program (QGIS, a user's Python) keeps its own.
+#include <cpl_conv.h>
+#include <cpl_error.h>
+#include <gdal_priv.h>
 #include <gtest/gtest.h>
+#include <ogrsf_frmts.h>
 
 #include <filesystem>
 #include <fstream>
@@ -9,6 +15,7 @@
 
 #include "carto/error.hpp"
 #include "carto/output.hpp"
+#include "carto/raster.hpp"
 
 using namespace carto;
 namespace fs = std::filesystem;
@@ -39,6 +46,34 @@ std::optional<std::string> refusal(const std::vector<FileArg>& in, const std::ve
     }
     return std::nullopt;
 }
+
+Drawing small_drawing(std::size_t hatches) {
+    Drawing d;
+    d.crs_wkt = epsg_wkt(2154);
+    d.style = "test";
+    FaceHatches f{1, {}};
+    for (std::size_t i = 0; i < hatches; ++i)
+        f.hatches.push_back({{{1000000.0 + double(i), 6500000}, {1000000.5 + double(i), 6500001}}, false, Family::Fill});
+    d.faces.push_back(f);
+    d.bounds = {1000000, 6500000, 1000000 + double(hatches) + 1, 6500001};
+    return d;
+}
+
+const char* const kKeys[] = {"OGR_CURRENT_DATE", "OGR_SQLITE_JOURNAL", "OGR_SQLITE_SYNCHRONOUS", "CPL_LOG"};
+
+// Every option carto sets, as the process (global) and this thread see it.
+std::vector<std::string> settings() {
+    std::vector<std::string> v;
+    for (const char* k : kKeys) {
+        const char* g = CPLGetConfigOption(k, nullptr);
+        const char* t = CPLGetThreadLocalConfigOption(k, nullptr);
+        v.push_back(std::string(k) + "=" + (g ? g : "<unset>") + "/" + (t ? t : "<unset>"));
+    }
+    return v;
+}
+
+int g_host_errors = 0;
+void host_handler(CPLErr, CPLErrorNum, const char*) { ++g_host_errors; }
 
 }  // namespace
 
@@ -91,4 +126,49 @@ TEST(CheckOutputs, AcceptsOtherFilesAndLeavesMissingInputsToTheirReader) {
     } catch (const Error& e) {
         EXPECT_EQ(std::string(e.what()).rfind("--png '" + dem + "': the file exists", 0), 0u) << e.what();
     }
+}
+
+TEST(GdalSettings, WriteGpkgPutsBackTheHostsOptionsAndErrorHandler) {
+    GDALAllRegister();
+    const fs::path dir = fresh_dir("settings");
+    // The host's own values, globally and on this thread.
+    CPLSetConfigOption("OGR_SQLITE_JOURNAL", "WAL");
+    CPLSetThreadLocalConfigOption("OGR_CURRENT_DATE", "2024-05-06T07:08:09.000Z");
+    CPLPushErrorHandler(host_handler);
+    const std::vector<std::string> before = settings();
+
+    const std::string path = (dir / "h.gpkg").string();
+    write_gpkg(small_drawing(3), path);
+    EXPECT_EQ(settings(), before);
+    // The fixed timestamp still reaches the file (the same run writes the same bytes).
+    {
+        std::unique_ptr<GDALDataset> ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR));
+        ASSERT_TRUE(ds);
+        OGRLayer* rs = ds->ExecuteSQL("SELECT DISTINCT last_change FROM gpkg_contents", nullptr, nullptr);
+        ASSERT_TRUE(rs);
+        std::unique_ptr<OGRFeature> f(rs->GetNextFeature());
+        ASSERT_TRUE(f);
+        EXPECT_STREQ(f->GetFieldAsString(0), "2000/01/01 00:00:00+00");  // OGR_CURRENT_DATE, as OGR reads it
+        ds->ReleaseResultSet(rs);
+    }
+    const std::string first = bytes(path);
+    write_gpkg(small_drawing(3), (dir / "again.gpkg").string());
+    EXPECT_EQ(bytes(dir / "again.gpkg"), first);
+
+    // Cancelled in the middle of the write: the same, and nothing left behind.
+    EXPECT_THROW(write_gpkg(small_drawing(5000), (dir / "c.gpkg").string(), true, [](double) { return false; }),
+                 Error);
+    EXPECT_FALSE(fs::exists(dir / "c.gpkg"));
+    EXPECT_EQ(settings(), before);
+    // A failed read (no such raster) leaves CPL_LOG and the handler too.
+    EXPECT_THROW(read_raster((dir / "none.tif").string(), "--dem"), Error);
+    EXPECT_EQ(settings(), before);
+
+    // The host's handler is still the one GDAL calls.
+    const int errors = g_host_errors;
+    CPLError(CE_Warning, CPLE_AppDefined, "a message of the host");
+    EXPECT_EQ(g_host_errors, errors + 1);
+    CPLPopErrorHandler();
+    CPLSetThreadLocalConfigOption("OGR_CURRENT_DATE", nullptr);
+    CPLSetConfigOption("OGR_SQLITE_JOURNAL", nullptr);
 }

@@ -1,6 +1,7 @@
 """Issue 17, reliability: no command writes onto one of its inputs (however the output is
-spelt: ./x, a/../x, a symbolic or a hard link) nor twice onto one file. The QGIS
-algorithms: test_qgis_plugin.py."""
+spelt: ./x, a/../x, a symbolic or a hard link) nor twice onto one file, and a library call
+leaves the process as it found it (GDAL configuration options, libtex's thread count and
+seed). The QGIS algorithms: test_qgis_plugin.py."""
 import hashlib
 import os
 import pathlib
@@ -8,12 +9,17 @@ import shutil
 import subprocess
 
 import pytest
+from osgeo import gdal, ogr
+
 import rockhatch
-from rockhatch import carto
+from rockhatch import carto, tex
 from conftest import python_env
 
 FRAMED_TILES = pathlib.Path(__file__).resolve().parent / "style_scripts" / "framed_tiles.py"
 SPELLINGS = ["same", "dot", "dotdot", "symlink", "hardlink"]
+# Every GDAL configuration option carto sets (scoped to its calls since issue 17).
+GDAL_KEYS = ["OGR_CURRENT_DATE", "OGR_SQLITE_JOURNAL", "OGR_SQLITE_SYNCHRONOUS", "CPL_LOG"]
+FIXED_DATE = "2000/01/01 00:00:00+00"  # carto's OGR_CURRENT_DATE, as OGR reads it back
 
 
 def digest(path):
@@ -153,3 +159,82 @@ def test_partition_from_dem_refuses_to_write_onto_an_input(data, tmp_path):
     with pytest.raises(rockhatch.RockhatchError, match="SLOPE .* is the input DEM"):
         carto.check_outputs([("DEM", str(data / "dem.tif"))], [("SLOPE", str(data / "sub/../dem.tif"))], True)
     carto.check_outputs([("DEM", str(data / "dem.tif"))], [("SLOPE", str(tmp_path / "slope.tif"))], True)
+
+
+# ---- the host's settings
+
+
+def gdal_settings():
+    return {k: gdal.GetConfigOption(k) for k in GDAL_KEYS}
+
+
+@pytest.fixture
+def host_settings():
+    """Values of the host program (QGIS, a user's script) that carto must keep."""
+    gdal.SetConfigOption("OGR_SQLITE_JOURNAL", "WAL")
+    yield gdal_settings()
+    gdal.SetConfigOption("OGR_SQLITE_JOURNAL", None)
+
+
+def last_change(gpkg):
+    ds = ogr.Open(str(gpkg))
+    rows = ds.ExecuteSQL("SELECT DISTINCT last_change FROM gpkg_contents")
+    values = {f.GetField(0) for f in rows}
+    ds.ReleaseResultSet(rows)
+    return values
+
+
+def test_gdal_options_are_the_hosts_after_every_call(sample_dir, tmp_path, host_settings):
+    assert host_settings["OGR_SQLITE_JOURNAL"] == "WAL"
+    carto.run(sample_dir / "dem.tif", sample_dir / "partition.gpkg", [tmp_path / "a.gpkg", tmp_path / "a.png"])
+    assert gdal_settings() == host_settings
+    carto.partition_from_dem(sample_dir / "dem.tif", tmp_path / "p.gpkg", png=tmp_path / "p.png")
+    assert gdal_settings() == host_settings
+    # Failed calls: a bad input, and a cancel while the GeoPackage is written.
+    with pytest.raises(rockhatch.RockhatchError):
+        carto.run(tmp_path / "none.tif", sample_dir / "partition.gpkg", [tmp_path / "x.gpkg"])
+    assert gdal_settings() == host_settings
+    with pytest.raises(rockhatch.RockhatchError) as e:
+        carto.run(sample_dir / "dem.tif", sample_dir / "partition.gpkg", [tmp_path / "c.gpkg"],
+                  progress=lambda f, stage: stage != "writing" or f <= 0.92)
+    assert e.value.code == 10 and not (tmp_path / "c.gpkg").exists()
+    assert gdal_settings() == host_settings
+    # carto's GeoPackages keep the fixed date (same bytes every run) ...
+    assert last_change(tmp_path / "a.gpkg") == last_change(tmp_path / "p.gpkg") == {FIXED_DATE}
+    carto.run(sample_dir / "dem.tif", sample_dir / "partition.gpkg", [tmp_path / "b.gpkg"])
+    assert (tmp_path / "b.gpkg").read_bytes() == (tmp_path / "a.gpkg").read_bytes()
+    # ... and the host's own GeoPackages are dated again.
+    ds = ogr.GetDriverByName("GPKG").CreateDataSource(str(tmp_path / "host.gpkg"))
+    ds.CreateLayer("notes", geom_type=ogr.wkbPoint)
+    ds = None
+    assert not last_change(tmp_path / "host.gpkg") & {FIXED_DATE}
+
+
+def test_threads_and_seed_are_the_processes_after_a_run(data, tmp_path):
+    """A run with threads=1 and a style script calling SetSeed(123): GetThreads() and
+    GetSeed() are what they were, and the drawing is the one without SetSeed."""
+    script = tmp_path / "seeding.py"
+    script.write_text(
+        "import runpy\nfrom rockhatch.tex import SetSeed\nSetSeed(122)  # as the thesis's scripts start\n"
+        f"_base = runpy.run_path({str(FRAMED_TILES)!r})\n"
+        "NAME, PARAMS = _base['NAME'], _base['PARAMS']\n\n"
+        "def style(fields, params):\n    SetSeed(123)\n    return _base['style'](fields, params)\n")
+    saved = tex.GetThreads(), tex.GetSeed()
+    try:
+        tex.SetThreads(3)
+        tex.SetSeed(9)
+        carto.run(data / "dem.tif", data / "partition.gpkg", [tmp_path / "s.svg"], style=str(script), threads=1)
+        assert (tex.GetThreads(), tex.GetSeed()) == (3, 9)
+        carto.run(data / "dem.tif", data / "partition.gpkg", [tmp_path / "f.svg"], style=str(FRAMED_TILES),
+                  threads=2)
+        assert (tex.GetThreads(), tex.GetSeed()) == (3, 9)
+        assert (tmp_path / "s.svg").read_bytes() == (tmp_path / "f.svg").read_bytes()
+        # A script that fails after its SetSeed.
+        script.write_text(script.read_text() + "\n\ndef style(fields, params):\n"
+                          "    SetSeed(124)\n    raise ValueError('broken')\n")
+        with pytest.raises(Exception, match="broken"):
+            carto.run(data / "dem.tif", data / "partition.gpkg", [tmp_path / "x.svg"], style=str(script), threads=1)
+        assert (tex.GetThreads(), tex.GetSeed()) == (3, 9)
+    finally:
+        tex.SetThreads(saved[0])
+        tex.SetSeed(saved[1])

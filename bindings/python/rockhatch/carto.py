@@ -18,6 +18,7 @@ import sys
 from ._rockhatch import RockhatchError
 from ._rockhatch.carto import *  # noqa: F401,F403
 from ._rockhatch import carto as _carto
+from ._rockhatch import tex as _tex
 
 __all__ = [n for n in dir(_carto) if not n.startswith("_")] + [
     "run", "run_options", "prepare", "hatch", "make_options", "load_style", "as_style", "error", "partition_from_dem",
@@ -48,7 +49,8 @@ def load_style(path):
         spec = importlib.util.spec_from_file_location(name, path)
         module = importlib.util.module_from_spec(spec)
         sys.modules[name] = module
-        spec.loader.exec_module(module)
+        with _tex.SavedSeed():  # a script may call SetSeed as it loads: the process keeps its seed
+            spec.loader.exec_module(module)
     finally:
         if added:
             sys.path.remove(folder)
