@@ -52,7 +52,7 @@ const char* kUsage =
     "  -q                      quiet: no progress\n"
     "  --help                  this help\n\n"
     "exit codes: 0 ok, 1 failure, 2 usage, 3 missing input, 4 no CRS, 6 bad layer or no rock,\n"
-    "9 output exists or cannot be written, 10 cancelled\n";
+    "9 output exists, is an input or cannot be written, 10 cancelled\n";
 
 double number(const std::string& opt, const std::string& v) {
     char* end = nullptr;

@@ -139,7 +139,7 @@ std::string help_text() {
     out << styles_text();
     out << "\nexit codes: 0 ok, 1 failure, 2 usage, 3 missing input, 4 no CRS, 5 no overlap,\n"
                  "6 bad layer or attribute, 7 unknown style or parameter, 8 invalid geometry,\n"
-                 "9 output exists or cannot be written, 10 cancelled\n";
+                 "9 output exists, is an input or cannot be written, 10 cancelled\n";
     return out.str();
 }
 
