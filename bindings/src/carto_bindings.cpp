@@ -357,6 +357,7 @@ void bind_carto(py::module_& m) {
         .def_readwrite("slope", &Options::slope)
         .def_readwrite("roughness", &Options::roughness)
         .def_readwrite("style", &Options::style)
+        .def_readwrite("style_file", &Options::style_file, "the style script's path (an input: never written onto)")
         .def_property(
             "custom_style", [](const Options& o) { return std::const_pointer_cast<Style>(o.custom_style); },
             [](Options& o, std::shared_ptr<Style> s) { o.custom_style = std::move(s); })
@@ -426,7 +427,23 @@ void bind_carto(py::module_& m) {
         },
         py::arg("drawing"), py::arg("path"), py::arg("pixels") = 1600, py::arg("hillshade") = nullptr,
         py::call_guard<py::gil_scoped_release>());
-    m.def("check_output", &check_output, py::arg("path"), py::arg("overwrite"));
+    m.def("check_output", &check_output, py::arg("path"), py::arg("overwrite"), py::arg("what") = "-o");
+    m.def(
+        "check_outputs",
+        [](const std::vector<std::pair<std::string, std::string>>& inputs,
+           const std::vector<std::pair<std::string, std::string>>& outputs, bool overwrite) {
+            auto args = [](const std::vector<std::pair<std::string, std::string>>& v) {
+                std::vector<FileArg> out;
+                for (const auto& [what, path] : v) out.push_back({what, path});
+                return out;
+            };
+            check_outputs(args(inputs), args(outputs), overwrite);
+        },
+        py::arg("inputs"), py::arg("outputs"), py::arg("overwrite"),
+        "inputs and outputs as (name, path) pairs: raises RockhatchError (code 9) when an output exists without "
+        "overwrite, is one of the inputs or another output (however spelt: ./x, a/../x, links)");
+    m.def("check_files", &check_files, py::arg("options"),
+          "the outputs of a run against the files it reads (check_outputs); run does it first");
 
     // ---- The partition from the DEM alone ----
     py::class_<ExtractOptions>(m, "ExtractOptions", "Options of rockhatch partition (see its --help for units)")
@@ -475,6 +492,8 @@ void bind_carto(py::module_& m) {
         },
         py::arg("partition"), py::arg("path"), py::arg("overwrite") = false, py::arg("network") = nullptr,
         py::call_guard<py::gil_scoped_release>(), "layers faces, lines, mask (and network), as rockhatch reads them");
+    m.def("check_extract_files", &check_extract_files, py::arg("options"), py::arg("output"), py::arg("png") = "",
+          py::arg("overwrite") = false, "the outputs of partition_from_dem against its inputs (check_outputs)");
     m.def("write_partition_png", &write_partition_png, py::arg("result"), py::arg("path"), py::arg("pixels") = 1600,
           py::call_guard<py::gil_scoped_release>());
 

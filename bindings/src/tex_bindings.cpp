@@ -53,7 +53,8 @@ void bind_native_mapper(py::module_& m, const char* name, const char* doc) {
         .def("__repr__", [name](const N& n) { return std::string(name) + "(" + n.name + ")"; });
 }
 
-// Scope classes of libtex (SeedScope, StreamScope) as Python context managers.
+// Scope classes of libtex (SeedScope, StreamScope, SavedSeed) as Python context managers;
+// `arg` names the value a scope takes (nullptr: it takes none).
 template <class S>
 struct PyGuard {
     std::uint64_t value;
@@ -63,15 +64,17 @@ struct PyGuard {
 template <class S>
 void bind_guard(py::module_& m, const char* name, const char* arg, const char* doc) {
     using G = PyGuard<S>;
-    py::class_<G>(m, name, doc)
-        .def(py::init([](std::uint64_t v) { return G{v, nullptr}; }), py::arg(arg))
-        .def(
-            "__enter__",
-            [](G& g) -> G& {
-                g.live = std::make_unique<S>(g.value);
-                return g;
-            },
-            py::return_value_policy::reference_internal)
+    py::class_<G> c(m, name, doc);
+    if constexpr (std::is_default_constructible_v<S>) c.def(py::init([] { return G{0, nullptr}; }));
+    else c.def(py::init([](std::uint64_t v) { return G{v, nullptr}; }), py::arg(arg));
+    c.def(
+         "__enter__",
+         [](G& g) -> G& {
+             if constexpr (std::is_default_constructible_v<S>) g.live = std::make_unique<S>();
+             else g.live = std::make_unique<S>(g.value);
+             return g;
+         },
+         py::return_value_policy::reference_internal)
         .def("__exit__", [](G& g, const py::args&) {
             g.live.reset();
             return false;
@@ -510,6 +513,9 @@ void bind_tex(py::module_& m) {
                           "with SeedScope(seed): GetSeed() is seed on this thread (and its work items) inside");
     bind_guard<StreamScope>(m, "StreamScope", "key",
                             "with StreamScope(key): the numbering of random streams restarts under key inside");
+    bind_guard<SavedSeed>(m, "SavedSeed", nullptr,
+                          "with SavedSeed(): the global seed (SetSeed) and this thread's numbering of random streams "
+                          "are put back at the end");
     m.def("hash_combine", &hash_combine, py::arg("h"), py::arg("v"), "the 64-bit mix libtex keys streams with");
     m.def("SetThreads", &SetThreads, py::arg("n"), "worker threads (0: all cores); never changes the result");
     m.def("GetThreads", &GetThreads);

@@ -53,7 +53,7 @@ const char* kUsage =
     "  -q                      quiet: no progress\n"
     "  --help                  this help\n\n"
     "exit codes: 0 ok, 1 failure, 2 usage, 3 missing input, 4 no CRS, 6 bad layer or no rock,\n"
-    "9 output exists or cannot be written, 10 cancelled\n";
+    "9 output exists, is an input or cannot be written, 10 cancelled\n";
 
 double number(const std::string& opt, const std::string& v) {
     char* end = nullptr;
@@ -115,19 +115,13 @@ int partition_main(int argc, char** argv) {
         }
         if (o.dem.empty()) throw Error(Code::Usage, "--dem is required");
         if (out.empty()) throw Error(Code::Usage, "-o is required (a .gpkg file)");
+        // First: an output onto an input is refused as such, whatever its format.
+        carto::check_extract_files(o, out, png, overwrite);
         if (std::filesystem::path(out).extension() != ".gpkg")
             throw Error(Code::Usage, "-o '" + out + "': the partition is written as a GeoPackage (.gpkg)");
         if (png_size < 16 || png_size > 20000) throw Error(Code::Usage, "--png-size must be in 16..20000");
-        carto::check_output(out, overwrite);
-        if (!png.empty()) {
-            if (std::filesystem::path(png).extension() != ".png")
-                throw Error(Code::Usage, "--png '" + png + "': not a .png file");
-            try {
-                carto::check_output(png, overwrite);
-            } catch (const Error& e) {
-                throw Error(e.code(), "--png" + std::string(e.what()).substr(2));
-            }
-        }
+        if (!png.empty() && std::filesystem::path(png).extension() != ".png")
+            throw Error(Code::Usage, "--png '" + png + "': not a .png file");
         int last = -1;
         const carto::ExtractResult r = carto::extract_partition(o, [&](double f, const std::string& stage) {
             const int pct = int(f * 100 + 0.5);

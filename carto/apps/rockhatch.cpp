@@ -96,7 +96,10 @@ int main(int argc, char** argv) {
             std::cout << carto::styles_text();
             return 0;
         }
-        if (!cl.script.empty()) return run_script(argv);
+        if (!cl.script.empty()) {
+            carto::check_files(cl.options);  // before Python starts: never write onto an input
+            return run_script(argv);
+        }
         bar = ProgressBar(!cl.quiet);
         const carto::Stats s = carto::run(cl.options, [&](double f, const std::string& stage) { return bar(f, stage); });
         if (!cl.quiet)

@@ -49,7 +49,7 @@ std::vector<Option> options(CommandLine& cl) {
         {"--style", "NAME", "hatching style (see --list-styles; default: the final design, bidirectional)",
          [&](const std::string& v) { o.style = v; }},
         {"--script", "PATH", "a Python style script (see styles/); its parameters are set with --param",
-         [&](const std::string& v) { cl.script = v; }},
+         [&](const std::string& v) { cl.script = o.style_file = v; }},
         {"--param", "NAME=VALUE", "set a style parameter (units as listed by --list-styles); repeatable",
          [&](const std::string& v) {
              const auto eq = v.find('=');
@@ -139,7 +139,7 @@ std::string help_text() {
     out << styles_text();
     out << "\nexit codes: 0 ok, 1 failure, 2 usage, 3 missing input, 4 no CRS, 5 no overlap,\n"
                  "6 bad layer or attribute, 7 unknown style or parameter, 8 invalid geometry,\n"
-                 "9 output exists or cannot be written, 10 cancelled\n";
+                 "9 output exists, is an input or cannot be written, 10 cancelled\n";
     return out.str();
 }
 

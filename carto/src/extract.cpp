@@ -17,6 +17,7 @@
 #include "carto/error.hpp"
 #include "carto/fields.hpp"
 #include "carto/output.hpp"
+#include "gdal_scope.hpp"
 #include "temp_file.hpp"
 
 namespace carto {
@@ -129,11 +130,10 @@ NonRock non_rock_pieces(const Grid& g, const std::vector<char>& rock, const std:
 std::vector<char> rasterize_mask(const std::string& path, const Raster& grid) {
     const std::string what = "--mask '" + path + "'";
     if (!std::filesystem::exists(path)) throw Error(Code::InputMissing, what + ": no such file");
-    GDALAllRegister();
-    CPLPushErrorHandler(CPLQuietErrorHandler);
+    register_gdal();
+    const QuietGdal quiet;
     std::unique_ptr<GDALDataset> ds(GDALDataset::FromHandle(
         GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
-    CPLPopErrorHandler();
     if (!ds) throw Error(Code::InputMissing, what + ": not a vector dataset OGR can read");
     OGRLayer* layer = nullptr;
     for (int i = 0; i < ds->GetLayerCount() && !layer; ++i) {
@@ -1225,13 +1225,18 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
     return res;
 }
 
+void check_extract_files(const ExtractOptions& o, const std::string& out, const std::string& png, bool overwrite) {
+    check_outputs({{o.what, o.dem}, {"--mask", o.mask}}, {{"-o", out}, {"--png", png}}, overwrite);
+}
+
 void write_partition_gpkg(const Partition& p, const std::string& path, bool overwrite,
                           const std::vector<LabelledLine>* network) {
     check_output(path, overwrite);
-    GDALAllRegister();
-    CPLSetConfigOption("OGR_CURRENT_DATE", "2000-01-01T00:00:00.000Z");
+    register_gdal();
     TempFile tmp(path, ".gpkg");
     {
+        const ReproducibleGpkg reproducible;  // on this thread, for this call (gdal_scope.hpp)
+        const QuietGdal quiet;
         GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GPKG");
         if (!drv) throw Error(Code::Failure, "GDAL has no GeoPackage driver");
         std::unique_ptr<GDALDataset> ds(drv->Create(tmp.path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));

@@ -12,6 +12,7 @@
 #include <fstream>
 
 #include "carto/error.hpp"
+#include "gdal_scope.hpp"
 #include "libtex/parallel.hpp"
 #include "gpkg_rtree.hpp"
 #include "temp_file.hpp"
@@ -45,12 +46,50 @@ std::string xml_escape(const std::string& in) {
 
 }  // namespace
 
-void check_output(const std::string& path, bool overwrite) {
+void check_output(const std::string& path, bool overwrite, const std::string& what) {
     const fs::path p(path);
     const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
-    if (!fs::is_directory(dir)) throw Error(Code::OutputExists, "-o '" + path + "': the folder does not exist");
+    if (!fs::is_directory(dir)) throw Error(Code::OutputExists, what + " '" + path + "': the folder does not exist");
     if (fs::exists(p) && !overwrite)
-        throw Error(Code::OutputExists, "-o '" + path + "': the file exists (use --overwrite to replace it)");
+        throw Error(Code::OutputExists, what + " '" + path + "': the file exists (use --overwrite to replace it)");
+}
+
+namespace {
+
+// Whether two paths name the same file: the file itself when both exist (symbolic and hard
+// links included), else the absolute paths with symbolic links and ./.. resolved.
+bool same_file(const std::string& a, const std::string& b) {
+    std::error_code ea, eb;
+    const bool has_a = fs::exists(a, ea), has_b = fs::exists(b, eb);
+    if (has_a && has_b) {
+        std::error_code ec;
+        return fs::equivalent(a, b, ec);
+    }
+    if (has_a || has_b) return false;
+    const fs::path ca = fs::weakly_canonical(fs::absolute(a, ea), ea);
+    const fs::path cb = fs::weakly_canonical(fs::absolute(b, eb), eb);
+    return !ea && !eb && ca == cb;
+}
+
+}  // namespace
+
+void check_outputs(const std::vector<FileArg>& inputs, const std::vector<FileArg>& outputs, bool overwrite) {
+    auto named = [](const FileArg& f) { return f.what + " '" + f.path + "'"; };
+    for (std::size_t i = 0; i < outputs.size(); ++i) {
+        const FileArg& out = outputs[i];
+        if (out.path.empty()) continue;
+        // An output onto an input would replace the user's data with the result (--overwrite
+        // says outputs may be replaced, never inputs).
+        for (const FileArg& in : inputs)
+            if (!in.path.empty() && fs::exists(in.path) && same_file(out.path, in.path))
+                throw Error(Code::OutputExists, named(out) + " is the input " + named(in) +
+                                                    ": refusing to write onto an input (choose another output)");
+        for (std::size_t j = 0; j < i; ++j)
+            if (!outputs[j].path.empty() && same_file(out.path, outputs[j].path))
+                throw Error(Code::OutputExists,
+                            named(out) + " and " + named(outputs[j]) + " are the same file (choose two outputs)");
+        check_output(out.path, overwrite, out.what);
+    }
 }
 
 void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index,
@@ -61,16 +100,16 @@ void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index,
         if (keep_going && ++written % 4096 == 0 && !keep_going(double(written) / double(2 * total)))
             throw Error(Code::Cancelled, "cancelled while writing '" + path + "'");
     };
-    GDALAllRegister();
-    // A fixed timestamp in gpkg_contents, so that the same run writes the same bytes.
-    CPLSetConfigOption("OGR_CURRENT_DATE", "2000-01-01T00:00:00.000Z");
+    register_gdal();
     TempFile tmp(path, ".gpkg");
     {
+        // Set on this thread, which writes the file, for this call only (gdal_scope.hpp).
+        const ReproducibleGpkg reproducible;
+        // The file is a temporary one renamed at the end, so SQLite need not journal or sync.
+        const ConfigScope sync("OGR_SQLITE_SYNCHRONOUS", "OFF"), journal("OGR_SQLITE_JOURNAL", "OFF");
+        const QuietGdal quiet;
         GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GPKG");
         if (!drv) throw Error(Code::Failure, "GDAL has no GeoPackage driver");
-        // The file is a temporary one renamed at the end, so SQLite need not journal or sync.
-        CPLSetConfigOption("OGR_SQLITE_SYNCHRONOUS", "OFF");
-        CPLSetConfigOption("OGR_SQLITE_JOURNAL", "OFF");
         std::unique_ptr<GDALDataset> ds(drv->Create(tmp.path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
         if (!ds) throw Error(Code::OutputExists, "-o '" + path + "': cannot create (" + CPLGetLastErrorMsg() + ")");
         OGRSpatialReference srs;
@@ -255,7 +294,7 @@ void write_png_pixels(const std::vector<unsigned char>& pixels, int w, int h, in
     // GDAL writes the PNG (through an in-memory raster): it is loaded anyway, whereas
     // OpenImageIO would add some 150 shared libraries to every start of the program.
     TempFile tmp(path, ".png");
-    GDALAllRegister();
+    register_gdal();
     GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
     GDALDriver* png = GetGDALDriverManager()->GetDriverByName("PNG");
     if (!mem || !png) throw Error(Code::Failure, "GDAL has no PNG driver");
@@ -264,9 +303,11 @@ void write_png_pixels(const std::vector<unsigned char>& pixels, int w, int h, in
     if (src->RasterIO(GF_Write, 0, 0, w, h, buf.data(), w, h, GDT_Byte, bands, nullptr, bands,
                       std::size_t(w) * bands, 1, nullptr) != CE_None)
         throw Error(Code::OutputExists, what + " '" + path + "': cannot build the preview");
-    CPLPushErrorHandler(CPLQuietErrorHandler);
-    std::unique_ptr<GDALDataset> out(png->CreateCopy(tmp.path.c_str(), src.get(), FALSE, nullptr, nullptr, nullptr));
-    CPLPopErrorHandler();
+    std::unique_ptr<GDALDataset> out;
+    {
+        const QuietGdal quiet;
+        out.reset(png->CreateCopy(tmp.path.c_str(), src.get(), FALSE, nullptr, nullptr, nullptr));
+    }
     if (!out) throw Error(Code::OutputExists, what + " '" + path + "': cannot write the PNG (" + CPLGetLastErrorMsg() + ")");
     out.reset();
     std::error_code ec;

@@ -14,6 +14,7 @@
 #include <unordered_map>
 
 #include "carto/error.hpp"
+#include "gdal_scope.hpp"
 
 namespace carto {
 namespace {
@@ -548,13 +549,12 @@ void label_boundaries(Partition& p, double snap) {
 }
 
 Partition load_partition(const PartitionOptions& opt, const std::string& working_wkt) {
-    GDALAllRegister();
+    register_gdal();
+    const QuietGdal quiet;
     const std::string what = "--partition '" + opt.path + "'";
     if (!std::filesystem::exists(opt.path)) throw Error(Code::InputMissing, what + ": no such file");
-    CPLPushErrorHandler(CPLQuietErrorHandler);
     DsPtr ds(GDALDataset::FromHandle(GDALOpenEx(opt.path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr,
                                                 nullptr, nullptr)));
-    CPLPopErrorHandler();
     if (!ds) throw Error(Code::InputMissing, what + ": not a vector dataset OGR can read");
 
     auto find_layer = [&](const std::string& name, bool (*pred)(OGRLayer*), const char* role) -> OGRLayer* {

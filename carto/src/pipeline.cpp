@@ -13,6 +13,7 @@
 #include "carto/extract.hpp"
 #include "carto/fields.hpp"
 #include "libtex/parallel.hpp"
+#include "libtex/random.hpp"
 
 namespace carto {
 namespace {
@@ -79,16 +80,26 @@ void validate(const Options& o) {
     if (!(o.partition.snap > 0)) throw Error(Code::Usage, "--snap must be positive");
     if (!(o.relief_radius > 0) || !std::isfinite(o.relief_radius))
         throw Error(Code::Usage, "--relief-radius: " + std::to_string(o.relief_radius) + " is not a positive number");
+    // First: an output onto an input is refused as such, whatever its format.
+    check_files(o);
     for (const auto& out : o.outputs) {
         const std::string e = extension(out);
         if (e != ".gpkg" && e != ".svg" && e != ".png")
             throw Error(Code::Usage, "-o '" + out + "': unknown format (use .gpkg, .svg or .png)");
-        check_output(out, o.overwrite);
     }
     if (o.png_pixels < 16 || o.png_pixels > 20000) throw Error(Code::Usage, "--png-size must be in 16..20000");
     if (o.threads > kMaxThreads)
         throw Error(Code::Usage, "--threads: " + std::to_string(o.threads) + " is more than " +
                                      std::to_string(kMaxThreads));
+}
+
+void check_files(const Options& o) {
+    std::vector<FileArg> outputs;
+    for (const auto& out : o.outputs) outputs.push_back({"-o", out});
+    const std::string partition = o.partition.path == "auto" ? "" : o.partition.path;
+    check_outputs({{"--dem", o.dem}, {"--partition", partition}, {"--slope", o.slope}, {"--roughness", o.roughness},
+                   {"--script", o.style_file}},
+                  outputs, o.overwrite);
 }
 
 Prepared prepare(const Options& o, const Progress& progress) {
@@ -169,8 +180,15 @@ Drawing hatch(const Prepared& p, const Options& o, const Progress& progress) {
     const ControlFields fields{face_field(part, std::move(orient)), face_field(part, std::move(dens)),
                                raster_field(p.relief), raster_field(p.terrain.roughness),
                                raster_field(p.terrain.slope)};
-    const tex::Arrangement program = style.program(fields, params);
-    tex::SetThreads(o.threads);
+    // The run's thread count, on this thread only: the process's (tex::SetThreads) is left
+    // as it was, and the next call does not inherit this one's.
+    const tex::ThreadsScope threads(o.threads);
+    const tex::Arrangement program = [&] {
+        // A style script may call SetSeed (the faces draw from o.seed, see hatch_face): the
+        // process's seed and stream numbering come back after it.
+        const tex::SavedSeed saved;
+        return style.program(fields, params);
+    }();
     std::atomic<std::size_t> done{0};
     std::atomic<bool> cancelled{false};
     std::mutex progress_mutex;

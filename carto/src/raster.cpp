@@ -12,6 +12,7 @@
 #include <memory>
 
 #include "carto/error.hpp"
+#include "gdal_scope.hpp"
 #include "libtex/fields.hpp"
 
 namespace carto {
@@ -21,21 +22,6 @@ struct DatasetCloser {
     void operator()(GDALDataset* d) const { GDALClose(GDALDataset::ToHandle(d)); }
 };
 using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
-
-void register_gdal() {
-    static const bool once = [] {
-        GDALAllRegister();
-        CPLSetConfigOption("CPL_LOG", "/dev/null");
-        return true;
-    }();
-    (void)once;
-}
-
-// GDAL prints its own errors to stderr; keep them quiet and turn them into messages.
-struct QuietGdal {
-    QuietGdal() { CPLPushErrorHandler(CPLQuietErrorHandler); }
-    ~QuietGdal() { CPLPopErrorHandler(); }
-};
 
 const float kNaN = std::numeric_limits<float>::quiet_NaN();
 

@@ -15,13 +15,26 @@ namespace {
 
 std::atomic<unsigned> g_threads{0};
 thread_local bool t_in_worker = false;
+// A ThreadsScope is open on this thread: its count, not the global one.
+thread_local bool t_threads_set = false;
+thread_local unsigned t_threads = 0;
 
 }  // namespace
 
 void SetThreads(unsigned n) { g_threads.store(n); }
 
+ThreadsScope::ThreadsScope(unsigned n) : saved_set_(t_threads_set), saved_(t_threads) {
+    t_threads_set = true;
+    t_threads = n;
+}
+
+ThreadsScope::~ThreadsScope() {
+    t_threads_set = saved_set_;
+    t_threads = saved_;
+}
+
 unsigned GetThreads() {
-    unsigned n = g_threads.load();
+    unsigned n = t_threads_set ? t_threads : g_threads.load();
     if (n == 0) n = std::max(1u, std::thread::hardware_concurrency());
     return n;
 }

@@ -57,6 +57,15 @@ SeedScope::SeedScope(std::uint64_t seed) : saved_(detail::capture_stream_state()
 
 SeedScope::~SeedScope() { detail::restore_stream_state(saved_); }
 
+SavedSeed::SavedSeed()
+    : seed_(g_seed.load()), free_counter_(t_stream.free_counter), stream_(detail::capture_stream_state()) {}
+
+SavedSeed::~SavedSeed() {
+    g_seed.store(seed_);
+    t_stream.free_counter = free_counter_;
+    detail::restore_stream_state(stream_);
+}
+
 std::uint64_t hash_double(std::uint64_t h, double v) {
     if (v == 0.0) v = 0.0;  // -0 and +0 hash alike
     std::uint64_t bits;

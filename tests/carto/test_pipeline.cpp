@@ -344,6 +344,44 @@ TEST(Pipeline, SameHatchesWithOneOrTwoThreads) {
     }
 }
 
+// A run uses its own thread count and a style program's SetSeed stays inside it: the process's
+// GetThreads() and GetSeed() are what they were (issue 17), and the drawing is the same.
+TEST(Pipeline, HatchLeavesThreadsAndSeedAsTheyWere) {
+    const unsigned threads = tex::GetThreads();
+    const std::uint64_t seed = tex::GetSeed();
+    tex::SetThreads(3);
+    tex::SetSeed(9);
+    Options o = sample_options("bidirectional");
+    o.threads = 1;
+    const Drawing plain = hatch(sample(), o);
+    auto seeding = std::make_shared<Style>(builtin_style("bidirectional"));
+    const StyleProgram program = seeding->program;
+    seeding->program = [program](const ControlFields& f, const ParamValues& p) {
+        tex::SetSeed(123);  // as a style script may
+        return program(f, p);
+    };
+    o.custom_style = seeding;
+    const Drawing seeded = hatch(sample(), o);
+    EXPECT_EQ(tex::GetThreads(), 3u);
+    EXPECT_EQ(tex::GetSeed(), 9u);
+    ASSERT_EQ(plain.faces.size(), seeded.faces.size());
+    for (std::size_t i = 0; i < plain.faces.size(); ++i) {
+        ASSERT_EQ(plain.faces[i].hatches.size(), seeded.faces[i].hatches.size());
+        for (std::size_t k = 0; k < plain.faces[i].hatches.size(); ++k)
+            EXPECT_EQ(plain.faces[i].hatches[k].points, seeded.faces[i].hatches[k].points);
+    }
+    // An error in the style: the same.
+    seeding->program = [](const ControlFields&, const ParamValues&) -> tex::Arrangement {
+        tex::SetSeed(124);
+        throw Error(Code::Failure, "broken style");
+    };
+    EXPECT_THROW(hatch(sample(), o), Error);
+    EXPECT_EQ(tex::GetThreads(), 3u);
+    EXPECT_EQ(tex::GetSeed(), 9u);
+    tex::SetThreads(threads);
+    tex::SetSeed(seed);
+}
+
 TEST(Pipeline, RidgeShapesFallIntoTheDarkerFace) {
     const Drawing d = hatch(sample(), sample_options("ridge-triangles"));
     const Partition& p = sample().partition;

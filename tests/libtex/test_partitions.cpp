@@ -7,6 +7,7 @@
 #include <cmath>
 #include <mutex>
 #include <set>
+#include <thread>
 
 #include "helpers.hpp"
 
@@ -408,4 +409,57 @@ TEST(SeedScope, ScopedSeedEqualsTheGlobalSeedAndRestoresIt) {
     EXPECT_EQ(GetSeed(), before);
     EXPECT_EQ(scoped, global);
     EXPECT_NE(draw(), global);
+}
+
+// A ThreadsScope gives a call its own thread count: parallel_for started on this thread uses
+// it, other threads and the next call see the process's setting (issue 17).
+TEST(ThreadsScope, ScopedCountOnThisThreadOnlyAndRestored) {
+    const unsigned saved = GetThreads();
+    SetThreads(3);
+    {
+        ThreadsScope one(1);
+        EXPECT_EQ(GetThreads(), 1u);
+        unsigned elsewhere = 0;
+        std::thread([&] { elsewhere = GetThreads(); }).join();
+        EXPECT_EQ(elsewhere, 3u);
+        std::set<std::thread::id> ids;
+        std::mutex m;
+        parallel_for(64, [&](std::size_t) {
+            std::lock_guard lock(m);
+            ids.insert(std::this_thread::get_id());
+        });
+        EXPECT_EQ(ids, std::set<std::thread::id>{std::this_thread::get_id()});
+        {
+            ThreadsScope nested(2);
+            EXPECT_EQ(GetThreads(), 2u);
+        }
+        EXPECT_EQ(GetThreads(), 1u);
+    }
+    EXPECT_EQ(GetThreads(), 3u);
+    SetThreads(saved);
+}
+
+// SetSeed inside a SavedSeed (a style script run by the pipeline) does not outlive it: the
+// global seed and the numbering of the streams come back.
+TEST(SavedSeed, SetSeedInsideDoesNotLeak) {
+    const std::uint64_t before = GetSeed();
+    SetSeed(5);
+    std::uint64_t expected;
+    {
+        StreamScope probe(11);
+        NextStream();
+        {
+            const SavedSeed saved;
+            SetSeed(123);
+            EXPECT_EQ(GetSeed(), 123u);
+            NextStream();
+            NextStream();
+        }
+        EXPECT_EQ(GetSeed(), 5u);
+        expected = NextStream();
+    }
+    StreamScope again(11);
+    NextStream();
+    EXPECT_EQ(NextStream(), expected);  // the second stream, as if the scope had not been
+    SetSeed(before);
 }

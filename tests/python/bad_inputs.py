@@ -67,6 +67,11 @@ def text_file(w, name, text):
     return p
 
 
+def hard_link(src, link):
+    link.hardlink_to(src)
+    return link
+
+
 def truncated(w, src, name):
     p = w / name
     data = src.read_bytes()
@@ -333,6 +338,10 @@ CASES: List[Case] = [
          ("the folder does not exist",)),
     Case(RH, "-o", "exists (no --overwrite)", lambda w: main(w, o=text_file(w, "keep.svg", "precious")), 9,
          ("keep.svg", "--overwrite")),
+    Case(RH, "-o", "the partition, with --overwrite", lambda w: main(w, "--overwrite", o=part(w)), 9,
+         ("partition.gpkg", "--partition", "onto an input")),
+    Case(RH, "-o", "a hard link to the DEM", lambda w: main(w, "--overwrite", o=hard_link(dem(w), w / "h.tif")), 9,
+         ("h.tif", "--dem", "onto an input")),
     Case(RH, "(any)", "unknown option", lambda w: main(w, "--bogus"), 2, ("unknown option '--bogus'",)),
     Case(RH, "(any)", "option without its value", lambda w: ["-q", "--dem", dem(w), "--partition"], 2,
          ("--partition",)),
@@ -365,5 +374,7 @@ CASES: List[Case] = [
     Case(PART, "-o", "exists (no --overwrite)", lambda w: sub(w, o=text_file(w, "keep.gpkg", "keep")), 9,
          ("keep.gpkg", "--overwrite")),
     Case(PART, "-o", "not given", lambda w: ["-q", "--dem", dem(w)], 2, ("-o",)),
+    Case(PART, "--png", "the DEM, with --overwrite", lambda w: sub(w, "--overwrite", "--png", dem(w)), 9,
+         ("dem.tif", "--dem", "onto an input")),
     Case(PART, "(any)", "unknown option", lambda w: sub(w, "--bogus"), 2, ("--bogus",)),
 ]

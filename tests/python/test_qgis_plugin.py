@@ -391,6 +391,46 @@ def test_missing_module_gives_a_clear_error(qgis, sample_dir, tmp_path, monkeypa
         run(alg, {"DEM": str(sample_dir / "dem.tif"), "SLOPE": str(tmp_path / "s.tif")})
 
 
+# ---- never onto an input (issue 17)
+
+
+def test_algorithms_refuse_to_write_onto_an_input(qgis, sample_dir, tmp_path):
+    """Each algorithm fails cleanly, before any work, when an output is one of its inputs
+    (the file itself, another spelling, a symbolic link), and the input keeps its bytes."""
+    data = tmp_path / "data"
+    (data / "sub").mkdir(parents=True)
+    for name in ("dem.tif", "partition.gpkg"):
+        shutil.copy(sample_dir / name, data / name)
+    gdal.VectorTranslate(str(data / "mask.shp"), str(sample_dir / "partition.gpkg"), layers=["faces"])
+    (data / "style.py").write_text((ROOT / "styles" / "noisy.py").read_text())
+    (data / "link.gpkg").symlink_to("partition.gpkg")
+    before = {p.name: p.read_bytes() for p in data.iterdir() if p.is_file()}
+    faces = f"{data / 'partition.gpkg'}|layername=faces"
+    cases = [
+        ("rockhatch:rockhatching", {"DEM": str(data / "dem.tif"), "FACES": faces,
+                                    "OUTPUT": str(data / "partition.gpkg")}, "--partition"),
+        ("rockhatch:rockhatching", {"DEM": str(data / "dem.tif"), "FACES": faces,
+                                    "OUTPUT": str(data / "link.gpkg")}, "--partition"),
+        ("rockhatch:rockhatching", {"DEM": str(data / "dem.tif"), "FACES": faces, "OUTPUT": str(tmp_path / "h.gpkg"),
+                                    "SVG": str(data / "sub" / ".." / "dem.tif")}, "--dem"),
+        ("rockhatch:rockhatching", {"DEM": str(data / "dem.tif"), "FACES": faces, "OUTPUT": str(tmp_path / "h.gpkg"),
+                                    "STYLE_SCRIPT": str(data / "style.py"), "SVG": str(data / "style.py")},
+         "--script"),
+        ("rockhatch:rockpartition", {"DEM": str(data / "dem.tif"), "MASK": str(data / "mask.shp"),
+                                     "OUTPUT": str(data / "." / "mask.shp")}, "--mask"),
+        ("rockhatch:rockpartition", {"DEM": str(data / "dem.tif"), "OUTPUT": str(tmp_path / "p.gpkg"),
+                                     "PREVIEW": str(data / "dem.tif")}, "--dem"),
+        ("rockhatch:terrainfields", {"DEM": str(data / "dem.tif"), "SLOPE": str(tmp_path / "s.tif"),
+                                     "HILLSHADE": str(data / "sub" / ".." / "dem.tif")}, "is the input DEM"),
+    ]
+    for alg, params, fragment in cases:
+        with pytest.raises(QgsProcessingException, match="onto an input") as raised:
+            run(alg, params)
+        assert fragment in str(raised.value), (alg, str(raised.value))
+        assert {p.name: p.read_bytes() for p in data.iterdir() if p.is_file()} == before, alg
+    assert not list(tmp_path.glob("*.gpkg")) and not list(tmp_path.glob("*.tif"))
+
+
 # ---- cancellation
 
 

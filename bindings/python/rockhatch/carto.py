@@ -19,9 +19,11 @@ import traceback
 from ._rockhatch import RockhatchError
 from ._rockhatch.carto import *  # noqa: F401,F403
 from ._rockhatch import carto as _carto
+from ._rockhatch import tex as _tex
 
 __all__ = [n for n in dir(_carto) if not n.startswith("_")] + [
-    "run", "run_options", "prepare", "hatch", "make_options", "load_style", "as_style", "error", "partition_from_dem"]
+    "run", "run_options", "prepare", "hatch", "make_options", "load_style", "as_style", "error", "partition_from_dem",
+    "style_file"]
 
 
 def error(code, message):
@@ -49,7 +51,8 @@ def load_style(path):
         module = importlib.util.module_from_spec(spec)
         sys.modules[name] = module
         try:
-            spec.loader.exec_module(module)
+            with _tex.SavedSeed():  # a script may call SetSeed as it loads: the process keeps its seed
+                spec.loader.exec_module(module)
         except SyntaxError as e:  # a bad input: one line naming the script and the line
             sys.modules.pop(name, None)
             raise error(7, f"--script '{path}': line {e.lineno}: {e.msg}") from None
@@ -95,6 +98,15 @@ def as_style(style):
     raise TypeError(f"style: expected a name, a script path, a module or a Style, got {type(style).__name__}")
 
 
+def style_file(style):
+    """The file a style is read from ('' for a built-in or a Style): an input of the run."""
+    if isinstance(style, (str, os.PathLike)) and os.fspath(style).endswith(".py"):
+        return os.fspath(style)
+    if style is not None and not isinstance(style, (str, Style)) and hasattr(style, "style"):  # noqa: F405
+        return getattr(style, "__file__", None) or ""
+    return ""
+
+
 _PARTITION_KEYS = ("faces_layer", "lines_layer", "label_field", "id_field", "orientation_field",
                    "orientation_layer", "density_field", "density_layer", "repair", "snap")
 
@@ -112,6 +124,12 @@ def make_options(dem="", partition="", outputs=(), style=None, params=None, scal
             raise TypeError(f"unknown option '{key}'")
         setattr(o.partition, key, value)
     o.outputs = [os.fspath(p) for p in ([outputs] if isinstance(outputs, (str, os.PathLike)) else outputs)]
+    o.overwrite = bool(overwrite)
+    o.slope = os.fspath(slope) if slope else ""
+    o.roughness = os.fspath(roughness) if roughness else ""
+    o.style_file = style_file(style)
+    # Before a style script runs: no output may replace an input (the script included).
+    check_files(o)  # noqa: F405
     custom = as_style(style)
     if custom is not None:
         o.custom_style = custom
@@ -122,9 +140,6 @@ def make_options(dem="", partition="", outputs=(), style=None, params=None, scal
     o.relief_radius = float(relief_radius)
     o.seed = int(seed)
     o.threads = int(threads)
-    o.overwrite = bool(overwrite)
-    o.slope = os.fspath(slope) if slope else ""
-    o.roughness = os.fspath(roughness) if roughness else ""
     if window is not None:
         o.window = BBox(*window)  # noqa: F405
     o.png_pixels = int(png_pixels)
@@ -171,9 +186,7 @@ def partition_from_dem(dem, output=None, progress=None, overwrite=False, png=Non
         if key.startswith("_") or not hasattr(o, key) or key in ("dem", "raster", "what"):
             raise TypeError(f"unknown option '{key}'")
         setattr(o, key, os.fspath(value) if key == "mask" else value)
-    for path in (output, png):
-        if path is not None:
-            check_output(os.fspath(path), overwrite)  # noqa: F405
+    check_extract_files(o, os.fspath(output or ""), os.fspath(png or ""), overwrite)  # noqa: F405
     result = _carto.extract_partition(o, progress)
     if output is not None:
         write_partition_gpkg(result.partition, os.fspath(output), overwrite, result.network)  # noqa: F405

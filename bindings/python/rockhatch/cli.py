@@ -48,6 +48,8 @@ def main(argv=None, style=None):
         if chosen is not None:
             if options.style:
                 raise carto.error(2, "--style and --script (or a style script) exclude each other")
+            options.style_file = carto.style_file(chosen)
+            carto.check_files(options)  # before the script runs: never write onto an input
             options.custom_style = carto.as_style(chosen) if not isinstance(chosen, str) else carto.load_style(chosen)
         bar = _Bar(not cl.quiet)
         stats = carto.run_options(options, bar)

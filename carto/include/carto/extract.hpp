@@ -77,6 +77,10 @@ struct ExtractResult {
 // Usage (bad option value), Cancelled (progress returned false).
 ExtractResult extract_partition(const ExtractOptions& o, const Progress& progress = {});
 
+// The outputs of `rockhatch partition` (-o, and --png when not empty) against its inputs
+// (the DEM path, the mask): check_outputs, before any work.
+void check_extract_files(const ExtractOptions& o, const std::string& out, const std::string& png, bool overwrite);
+
 // Writes layers `faces` (polygons: id, orientation = azimuth of the fall line in degrees,
 // density, area in m2), `lines` (kind = ridge / valley / other) and `mask` (the union of the
 // faces) to a GeoPackage, atomically (temporary file renamed at the end) and with a

@@ -34,7 +34,19 @@ void write_svg(const Drawing& d, const std::string& path);
 void write_png(const Drawing& d, const std::string& path, int pixels, const Raster* hillshade);
 
 // Throws Error(OutputExists) when the file exists and overwrite is false, or when its
-// folder does not exist.
-void check_output(const std::string& path, bool overwrite);
+// folder does not exist; `what` names the output in the message (its option).
+void check_output(const std::string& path, bool overwrite, const std::string& what = "-o");
+
+// A file a command reads or writes, and the option (or parameter) that names it.
+struct FileArg {
+    std::string what;  // "--dem", "-o", "OUTPUT"...
+    std::string path;  // "" when not given
+};
+
+// The outputs of one command, checked before any work: each as check_output, and none
+// may be one of the inputs or another output, however it is spelt (./x, a/../x, a symbolic
+// or hard link to it). Throws Error(OutputExists) naming both files; inputs that do not
+// exist are left to their reader (InputMissing).
+void check_outputs(const std::vector<FileArg>& inputs, const std::vector<FileArg>& outputs, bool overwrite);
 
 }  // namespace carto

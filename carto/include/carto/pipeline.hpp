@@ -26,6 +26,8 @@ struct Options {
     std::string style;                   // "" = default style
     // A style defined outside the built-ins (a Python style script); replaces `style`.
     std::shared_ptr<const Style> custom_style;
+    // The style script custom_style was read from (--script): an input no output may replace.
+    std::string style_file;
     std::map<std::string, double> params;  // --param name=value
     double scale = 10000;                // --scale (1:scale)
     // Half-side (ground units) of the square over which elevation is normalised into the
@@ -68,6 +70,10 @@ Raster load_dem(const std::string& path, std::vector<std::string>* notes = nullp
 Style selected_style(const Options& o);
 // Validates the options that need no file (style, parameters, scale, outputs).
 void validate(const Options& o);
+// The outputs as check_outputs sees them against every file the run reads (DEM, partition,
+// slope, roughness, style script); validate calls it, front ends that read a style script
+// call it before.
+void check_files(const Options& o);
 // Reads the DEM (reprojected to a projected working CRS when geographic), the optional
 // rasters and the partition.
 Prepared prepare(const Options& o, const Progress& progress = {});

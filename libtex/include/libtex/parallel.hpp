@@ -14,6 +14,21 @@ namespace tex {
 void SetThreads(unsigned n);
 unsigned GetThreads();
 
+// Scope in which GetThreads() on this thread, and so the parallel_for it starts, is `n`
+// (0 = all hardware threads) instead of the global setting: a library call (a pipeline run)
+// uses its own thread count without changing the process's (SetThreads is global).
+class ThreadsScope {
+public:
+    explicit ThreadsScope(unsigned n);
+    ~ThreadsScope();
+    ThreadsScope(const ThreadsScope&) = delete;
+    ThreadsScope& operator=(const ThreadsScope&) = delete;
+
+private:
+    bool saved_set_;
+    unsigned saved_;
+};
+
 // Runs body(i) for i in [0, n), possibly in parallel; rethrows the first exception (the
 // one of the smallest index) after all workers stop.
 void parallel_for(std::size_t n, const std::function<void(std::size_t)>& body);

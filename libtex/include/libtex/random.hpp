@@ -101,6 +101,22 @@ private:
     detail::StreamState saved_;
 };
 
+// Scope at whose end the global seed, and this thread's stream numbering and unkeyed
+// Random(min, max), are what they were at its start: a library call that runs a user's
+// script (which may call SetSeed) leaves the process's seed as it found it.
+class SavedSeed {
+public:
+    SavedSeed();
+    ~SavedSeed();
+    SavedSeed(const SavedSeed&) = delete;
+    SavedSeed& operator=(const SavedSeed&) = delete;
+
+private:
+    std::uint64_t seed_;
+    std::uint64_t free_counter_;
+    detail::StreamState stream_;
+};
+
 // Random value in [min, max): inside a mapper it is keyed by the visited cell and the
 // call count in that mapper; outside mappers it is a seeded stream of the calling thread.
 double Random(double min, double max);

@@ -48,6 +48,9 @@ class TerrainFields(RockhatchAlgorithm):
     def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
         carto = self.carto()
         dem_path = self.raster_path(parameters, self.DEM, context, feedback)
+        outputs = [(key, self.parameterAsOutputLayer(parameters, key, context) or "") for key, _, _, _ in FIELDS]
+        # Existing outputs are replaced, but never the DEM, nor one output by another.
+        self.call(carto.check_outputs, [(self.DEM, dem_path)], outputs, True)
         feedback.setProgressText("reading the DEM")
         dem, notes = self.call(carto.load_dem, dem_path)
         for note in notes:
@@ -62,7 +65,7 @@ class TerrainFields(RockhatchAlgorithm):
         for i, (key, attr, _, _) in enumerate(FIELDS):
             if feedback.isCanceled():
                 return results
-            path = self.parameterAsOutputLayer(parameters, key, context)
+            path = outputs[i][1]
             if not path:
                 continue
             feedback.setProgressText(f"writing {attr} to {path}")
