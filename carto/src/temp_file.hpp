@@ -2,21 +2,29 @@
 // the end, removed on any failure (internal to carto).
 #pragma once
 
+#include <atomic>
 #include <filesystem>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 #include "carto/error.hpp"
 
 namespace carto {
 
-// Temporary name next to the target, removed on any failure.
+// Temporary name next to the target, removed on any failure. The name is one that does not
+// exist yet (target.part-<pid>-<n><ext>): a file of the user's that happens to carry a
+// temporary-looking name is never removed or written over.
 struct TempFile {
     std::string path;
     bool keep = false;
-    explicit TempFile(const std::string& target, const std::string& ext) : path(target + ".part" + ext) {
+    explicit TempFile(const std::string& target, const std::string& ext) {
+        static std::atomic<unsigned long> counter{0};
         std::error_code ec;
-        std::filesystem::remove(path, ec);
+        do {
+            path = target + ".part-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + ext;
+        } while (std::filesystem::exists(std::filesystem::symlink_status(path, ec)));
     }
     void commit(const std::string& target) {
         std::error_code ec;

@@ -186,6 +186,20 @@ def test_existing_output_is_kept(rockhatch_exe, sample_dir, tmp_path):
     assert target.read_text().startswith("<?xml")
 
 
+def test_a_file_with_a_temporary_looking_name_is_never_touched(rockhatch_exe, sample_dir, tmp_path):
+    # Outputs are written under a fresh temporary name, then renamed: a user's file that looks
+    # like one (the name older versions used and removed first) survives, and nothing is left.
+    decoys = {tmp_path / "o.svg.part.svg": "mine", tmp_path / "o.gpkg.part.gpkg": "mine too"}
+    for path, text in decoys.items():
+        path.write_text(text)
+    r = run(rockhatch_exe, "-q", *sample_args(sample_dir), "--style", "noisy", "-o", tmp_path / "o.svg",
+            "-o", tmp_path / "o.gpkg")
+    assert r.returncode == 0, r.stderr
+    for path, text in decoys.items():
+        assert path.read_text() == text
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(["o.svg", "o.gpkg", *(p.name for p in decoys)])
+
+
 # ---- the real DEM (geographic CRS, NoData)
 
 @pytest.fixture(scope="module")
