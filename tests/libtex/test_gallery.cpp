@@ -329,8 +329,16 @@ TEST(GalleryTeasers, A_BeadsOnEveryLatticeVertexHideTheStrokes) {
     }
     EXPECT_EQ(under_a_bead, 0u);
     // Every stroke runs from bead to bead, so each visible piece has both ends on rims; and
-    // every lattice edge shows at least one piece between its two beads.
+    // there are at least as many pieces as lattice edges.
     EXPECT_GE(ends_on_rims, 2 * lattice->edges().size());
+    std::size_t pieces = 0;
+    for (std::size_t k = beads.size(); k < drawing.curves.size(); ++k) {
+        const Curve& c = drawing.curves[k];
+        if (c.closed || c.points.size() < 2) continue;
+        ++pieces;
+        EXPECT_TRUE(on_a_rim(c.points.front()) && on_a_rim(c.points.back())) << "piece " << k << " ends off a bead";
+    }
+    EXPECT_GE(pieces, lattice->edges().size());
     const double uncut = th::length(strokes);
     EXPECT_LT(kept, 0.8 * uncut);
     EXPECT_GT(kept, 0.3 * uncut);
