@@ -61,6 +61,16 @@ def layer_counts(gpkg):
     return {ds.GetLayer(i).GetName(): ds.GetLayer(i).GetFeatureCount() for i in range(ds.GetLayerCount())}
 
 
+def layer_geometries(gpkg):
+    """Every layer's geometries with their face, in order: equal when the hatches are."""
+    ds = ogr.Open(str(gpkg))
+    out = {}
+    for i in range(ds.GetLayerCount()):
+        layer = ds.GetLayer(i)
+        out[layer.GetName()] = [(f.GetField("face_id"), f.GetGeometryRef().ExportToWkb()) for f in layer]
+    return out
+
+
 @pytest.fixture(scope="session")
 def reference(rockhatch_exe, sample_dir, tmp_path_factory):
     """The rockhatch command's outputs on the sample (default style, seed 0)."""
@@ -272,6 +282,7 @@ def test_a_graphical_model_from_dem_to_hatching(qgis, rockhatch_exe, sample_dir,
     subprocess.run([str(rockhatch_exe), "-q", "--dem", str(sample_dir / "dem.tif"), "--partition", str(part_gpkg),
                     "-o", str(cli)], check=True)
     assert layer_counts(tmp_path / "m.gpkg") == layer_counts(cli)
+    assert layer_geometries(tmp_path / "m.gpkg") == layer_geometries(cli)
 
 
 def test_rock_partition_without_rock_raises(qgis, tmp_path):
