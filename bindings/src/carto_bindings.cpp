@@ -278,6 +278,7 @@ void bind_carto(py::module_& m) {
         .value("RIDGE", Family::Ridge)
         .value("VALLEY", Family::Valley)
         .value("CROSS", Family::Cross);
+    m.def("family_width_mm", &family_width_mm, py::arg("family"), "stroke width of a hatch family, mm on paper");
     py::class_<Hatch>(m, "Hatch", "One stroke (or closed shape) of a hatch family")
         .def(py::init([](std::vector<Point> pts, bool closed, Family f) { return Hatch{std::move(pts), closed, f}; }),
              py::arg("points"), py::arg("closed") = false, py::arg("family") = Family::Fill)
