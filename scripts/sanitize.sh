@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# The whole test suite under AddressSanitizer + UndefinedBehaviorSanitizer (GCC's), in a
+# second build folder: every C++ test (ctest), then the Python tests with the instrumented
+# module loaded into Debian's interpreter. scripts/test.sh runs it after the normal tests.
+#
+#   scripts/sanitize.sh                   configure + build build-asan, run every test
+#   RH_ASAN_BUILD_DIR=dir scripts/sanitize.sh
+#   RH_SANITIZE_PYTEST=0 scripts/sanitize.sh   C++ tests only
+#
+# A finding fails the test that meets it: UBSan does not recover (-fno-sanitize-recover),
+# ASan aborts at the first error, LeakSanitizer fails a C++ test that leaks. Findings in
+# third-party code only are suppressed in scripts/sanitizers/*.supp (one comment each).
+set -uo pipefail
+cd "$(dirname "$0")/.."
+ROOT="$PWD"
+BUILD_DIR="${RH_ASAN_BUILD_DIR:-build-asan}"
+JOBS="${RH_JOBS:-$(nproc)}"
+[ "$JOBS" -gt 2 ] && JOBS=2
+start=$(date +%s)
+
+# Debug with -O1 -g (CMakeLists.txt adds them with the sanitizers); no benchmarks.
+cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DRH_SANITIZE=address,undefined \
+      -DRH_BUILD_BENCH=OFF >/dev/null || exit 1
+cmake --build "$BUILD_DIR" --parallel "$JOBS" || exit 1
+built=$(date +%s)
+
+SUPP="$ROOT/scripts/sanitizers"
+export ASAN_OPTIONS="detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1:strict_init_order=1:suppressions=$SUPP/asan.supp"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:suppressions=$SUPP/ubsan.supp"
+export LSAN_OPTIONS="suppressions=$SUPP/lsan.supp:print_suppressions=0"
+
+ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$JOBS"
+ctest_rc=$?
+ctested=$(date +%s)
+
+pytest_rc=0
+if [ "${RH_SANITIZE_PYTEST:-1}" != 0 ]; then
+  # Debian's interpreter is not instrumented: the ASan runtime must be loaded first
+  # (LD_PRELOAD), and leaks are not checked (CPython keeps its objects at exit by design).
+  # Child processes (the rockhatch command, python3 -m rockhatch) inherit the settings.
+  LIBASAN="$(g++ -print-file-name=libasan.so)"
+  LIBUBSAN="$(g++ -print-file-name=libubsan.so)"
+  RH_BUILD_DIR="$ROOT/$BUILD_DIR" \
+  LD_PRELOAD="$LIBASAN $LIBUBSAN" \
+  ASAN_OPTIONS="detect_leaks=0:suppressions=$SUPP/asan.supp" \
+  QT_QPA_PLATFORM=offscreen \
+    /usr/bin/python3 -m pytest -q -p no:cacheprovider tests/python ${RH_SANITIZE_PYTEST_ARGS:-}
+  pytest_rc=$?
+fi
+end=$(date +%s)
+echo "sanitize: build $((built - start)) s, ctest $((ctested - built)) s, pytest $((end - ctested)) s;" \
+     "ctest exit $ctest_rc, pytest exit $pytest_rc"
+[ "$ctest_rc" -eq 0 ] && [ "$pytest_rc" -eq 0 ]
