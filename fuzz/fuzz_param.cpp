@@ -25,7 +25,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     std::vector<std::string> args;
     if (!lines[0].empty()) args.insert(args.end(), {"--style", lines[0]});
     if (!lines[1].empty()) args.push_back("--scale=" + lines[1]);
-    for (std::size_t i = 2; i < lines.size(); ++i) args.insert(args.end(), {"--param", lines[i]});
+    for (std::size_t i = 2; i < lines.size(); ++i)
+        if (!lines[i].empty()) args.insert(args.end(), {"--param", lines[i]});
     carto::CommandLine cl;
     try {
         cl = carto::parse_command_line(args);

@@ -5,11 +5,13 @@
 // reader's geometry code (repair, snapping, labelling) far more often than raw bytes do.
 // The only expected failure is carto::Error.
 #include <fuzzer/FuzzedDataProvider.h>
+#include <cpl_vsi.h>
 #include <ogrsf_frmts.h>
 
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <memory>
@@ -108,7 +110,7 @@ bool build(FuzzedDataProvider& in, const std::string& path, carto::PartitionOpti
         }
         real_field(feat, "density", in);
         real_field(feat, "orientation", in);
-        feat.SetField("fid2", in.ConsumeIntegral<std::int64_t>());
+        feat.SetField("fid2", GIntBig(in.ConsumeIntegral<std::int64_t>()));
         fl->CreateFeature(&feat);
     }
     // Lines: one labelled layer, or layers named after their kind.
@@ -185,11 +187,22 @@ bool build(FuzzedDataProvider& in, const std::string& path, carto::PartitionOpti
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     fuzz::quiet_gdal();
     FuzzedDataProvider in(data, size);
-    const std::string& path = fuzz::temp_gpkg();
-    std::filesystem::remove(path);
+    // Built in memory (much faster than on disk), then written out: the reader wants a file.
+    const std::string mem = "/vsimem/fuzz_partition.gpkg";
     carto::PartitionOptions o;
-    o.path = path;
-    if (!build(in, path, o)) return 0;
+    o.path = fuzz::temp_gpkg();
+    const bool built = build(in, mem, o);
+    vsi_l_offset n = 0;
+    GByte* bytes = built ? VSIGetMemFileBuffer(mem.c_str(), &n, FALSE) : nullptr;
+    if (bytes) {
+        std::FILE* f = std::fopen(o.path.c_str(), "wb");
+        if (f) {
+            std::fwrite(bytes, 1, std::size_t(n), f);
+            std::fclose(f);
+        }
+    }
+    VSIUnlink(mem.c_str());
+    if (!bytes) return 0;
     try {
         (void)carto::load_partition(o, fuzz::working_wkt());
     } catch (const carto::Error&) {

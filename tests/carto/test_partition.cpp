@@ -311,3 +311,39 @@ TEST(Partition, SnappingDoesNotDependOnTheOrderOfTheFaces) {
     for (std::size_t i = 0; i < p.faces.size(); ++i)
         EXPECT_EQ(p.faces[i].region.outer(), q.faces[p.faces.size() - 1 - i].region.outer());
 }
+
+// fuzz/fuzz_partition_struct: a face reaching 1e300 made the snapping grid convert
+// floor(1e300 / snap) to a 64-bit integer, which overflows (undefined behaviour: UBSan's
+// float-cast-overflow in scripts/sanitize.sh). Cell indices are clamped first; such a face
+// is read like any other.
+TEST(Partition, FacesFarBeyondAnyCrsDoNotOverflowTheSnappingGrid) {
+    const std::string path = write_partition(
+        "huge", {{{{0, 0}, {1e300, 0}, {1e300, 100}, {0, 100}}}, {{{0, 100}, {100, 100}, {100, 200}, {0, 200}}}},
+        {{{{0, 100}, {100, 100}}, "ridge"}});
+    try {
+        const Partition p = load(path);
+        EXPECT_EQ(p.faces.size(), 2u);
+    } catch (const Error& e) {
+        ADD_FAILURE() << e.what();
+    }
+}
+
+// fuzz/fuzz_partition_struct: NaN coordinates reached the exact regions, the snapping grid
+// and the labelling. A face or line with a coordinate that is not finite is refused
+// (BadGeometry, exit code 8), naming the feature.
+TEST(Partition, CoordinatesThatAreNotFiniteAreRefused) {
+    const double nan = std::nan("");
+    const std::string faces = write_partition("nan_face", {{{{0, 0}, {100, 0}, {100, nan}, {0, 100}}}},
+                                              {{{{0, 0}, {100, 0}}, "ridge"}});
+    const std::string lines = write_partition("nan_line", {{{{0, 0}, {100, 0}, {100, 100}, {0, 100}}}},
+                                              {{{{0, 0}, {nan, 0}}, "ridge"}});
+    for (const std::string& path : {faces, lines}) {
+        try {
+            load(path);
+            ADD_FAILURE() << path << ": accepted";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.code(), Code::BadGeometry) << e.what();
+            EXPECT_NE(std::string(e.what()).find("not finite"), std::string::npos) << e.what();
+        }
+    }
+}
