@@ -33,9 +33,11 @@ fi
 
 # Only what the targets need: libtex and carto, instrumented for coverage and the
 # sanitizers; no tests, Python module, gallery or benchmarks.
+mkdir -p "$BUILD_DIR"
 cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=clang++ \
       -DRH_SANITIZE=address,undefined -DRH_FUZZ=ON -DRH_BUILD_TESTS=OFF -DRH_BUILD_PYTHON=OFF \
-      -DRH_BUILD_EXAMPLES=OFF -DRH_BUILD_BENCH=OFF >/dev/null || exit 1
+      -DRH_BUILD_EXAMPLES=OFF -DRH_BUILD_BENCH=OFF >"$BUILD_DIR/configure.log" 2>&1 \
+  || { cat "$BUILD_DIR/configure.log"; exit 1; }
 cmake --build "$BUILD_DIR" --parallel "$JOBS" --target "${TARGETS[@]}" || exit 1
 
 export ASAN_OPTIONS="detect_leaks=1:suppressions=$ROOT/scripts/sanitizers/asan.supp"

@@ -15,8 +15,10 @@ JOBS="${RH_JOBS:-$(nproc)}"
 [ "$JOBS" -gt 2 ] && JOBS=2
 start=$(date +%s)
 
+mkdir -p "$BUILD_DIR"
 cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DRH_SANITIZE=thread \
-      -DRH_BUILD_BENCH=OFF -DRH_BUILD_EXAMPLES=OFF >/dev/null || exit 1
+      -DRH_BUILD_BENCH=OFF -DRH_BUILD_EXAMPLES=OFF >"$BUILD_DIR/configure.log" 2>&1 \
+  || { cat "$BUILD_DIR/configure.log"; exit 1; }
 cmake --build "$BUILD_DIR" --parallel "$JOBS" --target test_mapping test_mappers test_partitions \
       test_fields test_planar_map test_pipeline rockhatch rockhatch_python || exit 1
 built=$(date +%s)

@@ -90,7 +90,7 @@ ParamValues resolve_params(const StyleInfo& s, const std::map<std::string, doubl
         if (p.unit == "mm") ground = v * scale / 1000.0;
         if (p.unit == "deg") ground = v * M_PI / 180.0;
         // A valid value can still overflow (1e308 mm at 1:10000) or vanish (1e-300 mm at
-        // 1:1e-10) in ground units: the styles would get an infinite or zero spacing.
+        // 1:1e-30) in ground units: the styles would get an infinite or zero spacing.
         if (!std::isfinite(ground) || (p.unit == "mm" && !(ground > 0))) {
             std::ostringstream m;
             m << "--param " << p.name << ": " << v << " " << p.unit << " at 1:" << scale

@@ -36,11 +36,11 @@ TEST(CommandLine, IntegersTooLargeForTheirOptionAreRefusedNotWrapped) {
 }
 
 // fuzz/fuzz_param: a --param value valid on paper became +inf (1e308 mm at 1:10000) or 0
-// (1e-300 mm at 1:1e-10) in ground units, and reached the styles as an infinite or zero
+// (1e-300 mm at 1:1e-30) in ground units, and reached the styles as an infinite or zero
 // spacing. Both are refused with a usage error naming the parameter.
 TEST(Params, ValuesThatOverflowOrVanishInGroundUnitsAreRefused) {
     const StyleInfo& noisy = find_style("noisy");
-    for (const auto& [value, scale] : std::vector<std::pair<double, double>>{{1e308, 10000}, {1e-300, 1e-10}}) {
+    for (const auto& [value, scale] : std::vector<std::pair<double, double>>{{1e308, 10000}, {1e-300, 1e-30}}) {
         try {
             const ParamValues v = resolve_params(noisy, {{"spacing_min", value}}, scale);
             ADD_FAILURE() << "accepted: spacing_min = " << v.at("spacing_min") << " ground units";
