@@ -130,6 +130,7 @@ struct SegmentGrid {
     // far beyond any CRS (1e300, fuzz_partition_struct) made the conversion overflow.
     long long index(double v) const {
         const double c = std::floor(v / cell);
+        if (!(c == c)) return 0;  // NaN: never from finite coordinates (see insert)
         return c < -1e15 ? -1000000000000000LL : c > 1e15 ? 1000000000000000LL : (long long)c;
     }
     void insert(const Point& a, const Point& b, int id) {
@@ -148,6 +149,9 @@ struct SegmentGrid {
                 const double xa = std::max(lo.x, double(i) * cell), xb = std::min(hi.x, double(i + 1) * cell);
                 ya = lo.y + (hi.y - lo.y) * ((xa - lo.x) / dx);
                 yb = lo.y + (hi.y - lo.y) * ((xb - lo.x) / dx);
+                // dx overflows to +inf between -1e308 and 1e308: then every row of the
+                // column (NaN rows made the conversion to an integer undefined).
+                if (!std::isfinite(ya) || !std::isfinite(yb)) ya = lo.y, yb = hi.y;
             }
             // A little slack against rounding at the column edges.
             const double slack = 1e-9 * cell;

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "carto/error.hpp"
 #include "carto/extract.hpp"
 #include "carto/partition.hpp"
 #include "carto/pipeline.hpp"
@@ -313,16 +314,18 @@ TEST(Partition, SnappingDoesNotDependOnTheOrderOfTheFaces) {
 }
 
 // fuzz/fuzz_partition_struct: a face reaching 1e300 made the snapping grid convert
-// floor(1e300 / snap) to a 64-bit integer, which overflows (undefined behaviour: UBSan's
-// float-cast-overflow in scripts/sanitize.sh). Cell indices are clamped first; such a face
-// is read like any other.
+// floor(1e300 / snap) to a 64-bit integer, which overflows, and one from -1e308 to 1e308
+// gave NaN rows (undefined behaviour: UBSan's float-cast-overflow in scripts/sanitize.sh).
+// Cell indices are clamped first; such faces are read like any other.
 TEST(Partition, FacesFarBeyondAnyCrsDoNotOverflowTheSnappingGrid) {
     const std::string path = write_partition(
-        "huge", {{{{0, 0}, {1e300, 0}, {1e300, 100}, {0, 100}}}, {{{0, 100}, {100, 100}, {100, 200}, {0, 200}}}},
+        "huge", {{{{0, 0}, {1e300, 0}, {1e300, 100}, {0, 100}}}, {{{0, 100}, {100, 100}, {100, 200}, {0, 200}}},
+                 // From -1e308 to 1e308 the width overflows to +inf: NaN rows in the grid.
+                 {{{-1e308, 300}, {1e308, 300}, {1e308, 400}, {-1e308, 400}}}},
         {{{{0, 100}, {100, 100}}, "ridge"}});
     try {
         const Partition p = load(path);
-        EXPECT_EQ(p.faces.size(), 2u);
+        EXPECT_EQ(p.faces.size(), 3u);
     } catch (const Error& e) {
         ADD_FAILURE() << e.what();
     }
