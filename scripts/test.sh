@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Set up, build, then run every test: ctest (C++) and pytest (Python). Fails if either
-# fails, and if pytest collects nothing (exit code 5).
+# Set up, build, then run every test: ctest (C++) and pytest (Python), then both again
+# under ASan + UBSan (scripts/sanitize.sh). Fails if any fails, and if pytest collects
+# nothing (exit code 5).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh || exit 1
@@ -17,5 +18,13 @@ if [ "$pytest_rc" -eq 5 ]; then
   echo "test: pytest collected no test: the test setup is broken" >&2
 fi
 
-echo "test: ctest exit $ctest_rc, pytest exit $pytest_rc"
-[ "$ctest_rc" -eq 0 ] && [ "$pytest_rc" -eq 0 ]
+# The same tests under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan), unless
+# RH_TEST_SANITIZERS=0 (a quick local run).
+sanitize_rc=0
+if [ "${RH_TEST_SANITIZERS:-1}" != 0 ]; then
+  scripts/sanitize.sh
+  sanitize_rc=$?
+fi
+
+echo "test: ctest exit $ctest_rc, pytest exit $pytest_rc, sanitizers exit $sanitize_rc"
+[ "$ctest_rc" -eq 0 ] && [ "$pytest_rc" -eq 0 ] && [ "$sanitize_rc" -eq 0 ]

@@ -1,10 +1,12 @@
 // The rockhatch option table, its parser and its help text.
 #include "carto/cli.hpp"
 
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <sstream>
 
 #include "carto/error.hpp"
@@ -27,10 +29,17 @@ double parse_double(const std::string& opt, const std::string& v) {
     return d;
 }
 
-unsigned long long parse_uint(const std::string& opt, const std::string& v) {
+// A decimal integer in [0, max]: larger values are refused, not wrapped around (the
+// narrowing of --threads 4294967296 to 0 meant "all cores").
+unsigned long long parse_uint(const std::string& opt, const std::string& v,
+                              unsigned long long max = std::numeric_limits<unsigned long long>::max()) {
     if (v.empty() || v.find_first_not_of("0123456789") != std::string::npos)
         throw Error(Code::Usage, opt + ": '" + v + "' is not a non-negative integer");
-    return std::strtoull(v.c_str(), nullptr, 10);
+    errno = 0;
+    const unsigned long long n = std::strtoull(v.c_str(), nullptr, 10);
+    if (errno == ERANGE || n > max)
+        throw Error(Code::Usage, opt + ": '" + v + "' is too large (at most " + std::to_string(max) + ")");
+    return n;
 }
 
 std::vector<Option> options(CommandLine& cl) {
@@ -65,7 +74,7 @@ std::vector<Option> options(CommandLine& cl) {
         {"--seed", "N", "random seed (default 0); same inputs and seed give the same bytes",
          [&](const std::string& v) { o.seed = parse_uint("--seed", v); }},
         {"--threads", "N", "worker threads (default 0: all cores); does not change the output",
-         [&](const std::string& v) { o.threads = unsigned(parse_uint("--threads", v)); }},
+         [&](const std::string& v) { o.threads = unsigned(parse_uint("--threads", v, std::numeric_limits<unsigned>::max())); }},
         {"--faces-layer", "NAME", "polygon layer of the faces (default: the first polygon layer)",
          [&](const std::string& v) { o.partition.faces_layer = v; }},
         {"--lines-layer", "NAME", "line layer with the ridge / valley labels (default: the first with the label field, "
@@ -97,7 +106,7 @@ std::vector<Option> options(CommandLine& cl) {
              o.window = tex::BBox{n[0], n[1], n[2], n[3]};
          }},
         {"--png-size", "PIXELS", "width of PNG previews (default 1600)",
-         [&](const std::string& v) { o.png_pixels = int(parse_uint("--png-size", v)); }},
+         [&](const std::string& v) { o.png_pixels = int(parse_uint("--png-size", v, std::numeric_limits<int>::max())); }},
         {"--no-spatial-index", nullptr, "write the GeoPackage without its R-tree (much faster for millions of hatches)",
          [&](const std::string&) { o.spatial_index = false; }},
         {"--overwrite", nullptr, "replace existing outputs", [&](const std::string&) { o.overwrite = true; }},

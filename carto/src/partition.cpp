@@ -68,6 +68,35 @@ Reprojector reprojector(OGRLayer* layer, const std::string& working_wkt, const s
     return r;
 }
 
+// Whether every coordinate of g is a finite number: NaN or infinite ones come from broken
+// files, or from a reprojection outside the working CRS's domain.
+bool finite_coordinates(const OGRGeometry* g) {
+    const auto t = wkbFlatten(g->getGeometryType());
+    if (t == wkbPoint) return std::isfinite(g->toPoint()->getX()) && std::isfinite(g->toPoint()->getY());
+    if (t == wkbLineString || t == wkbLinearRing) {
+        const OGRSimpleCurve* c = g->toSimpleCurve();
+        for (int i = 0; i < c->getNumPoints(); ++i)
+            if (!std::isfinite(c->getX(i)) || !std::isfinite(c->getY(i))) return false;
+        return true;
+    }
+    if (t == wkbPolygon) {
+        for (const auto* ring : *g->toPolygon())
+            if (!finite_coordinates(ring)) return false;
+        return true;
+    }
+    if (OGR_GT_IsSubClassOf(t, wkbGeometryCollection)) {
+        for (const auto* part : *g->toGeometryCollection())
+            if (!finite_coordinates(part)) return false;
+        return true;
+    }
+    return true;  // other types are not read
+}
+
+void require_finite(const OGRGeometry* g, const std::string& what, const std::string& feature) {
+    if (!finite_coordinates(g))
+        throw Error(Code::BadGeometry, what + ": " + feature + " has coordinates that are not finite numbers");
+}
+
 std::vector<Point> ring_points(const OGRLinearRing* ring) {
     std::vector<Point> pts;
     pts.reserve(ring->getNumPoints());
@@ -98,9 +127,16 @@ struct SegmentGrid {
     static std::uint64_t key(long long i, long long j) {
         return (std::uint64_t(i) * 0x9E3779B97F4A7C15ULL) ^ std::uint64_t(j);
     }
+    // The cell of a coordinate, clamped in double before it becomes an integer: coordinates
+    // far beyond any CRS (1e300, fuzz_partition_struct) made the conversion overflow.
+    long long index(double v) const {
+        const double c = std::floor(v / cell);
+        if (!(c == c)) return 0;  // NaN: never from finite coordinates (see insert)
+        return c < -1e15 ? -1000000000000000LL : c > 1e15 ? 1000000000000000LL : (long long)c;
+    }
     void insert(const Point& a, const Point& b, int id) {
-        const long long i0 = (long long)std::floor(std::min(a.x, b.x) / cell), i1 = (long long)std::floor(std::max(a.x, b.x) / cell);
-        const long long j0 = (long long)std::floor(std::min(a.y, b.y) / cell), j1 = (long long)std::floor(std::max(a.y, b.y) / cell);
+        const long long i0 = index(std::min(a.x, b.x)), i1 = index(std::max(a.x, b.x));
+        const long long j0 = index(std::min(a.y, b.y)), j1 = index(std::max(a.y, b.y));
         if ((i1 - i0 + 1) + (j1 - j0 + 1) > 8192) {
             long_ones.push_back(id);
             return;
@@ -114,11 +150,14 @@ struct SegmentGrid {
                 const double xa = std::max(lo.x, double(i) * cell), xb = std::min(hi.x, double(i + 1) * cell);
                 ya = lo.y + (hi.y - lo.y) * ((xa - lo.x) / dx);
                 yb = lo.y + (hi.y - lo.y) * ((xb - lo.x) / dx);
+                // dx overflows to +inf between -1e308 and 1e308: then every row of the
+                // column (NaN rows made the conversion to an integer undefined).
+                if (!std::isfinite(ya) || !std::isfinite(yb)) ya = lo.y, yb = hi.y;
             }
             // A little slack against rounding at the column edges.
             const double slack = 1e-9 * cell;
-            const long long ja = std::max(j0, (long long)std::floor((std::min(ya, yb) - slack) / cell));
-            const long long jb = std::min(j1, (long long)std::floor((std::max(ya, yb) + slack) / cell));
+            const long long ja = std::max(j0, index(std::min(ya, yb) - slack));
+            const long long jb = std::min(j1, index(std::max(ya, yb) + slack));
             for (long long j = ja; j <= jb; ++j) add(key(i, j), id);
         }
     }
@@ -133,7 +172,7 @@ struct SegmentGrid {
     }
     template <class F>
     void query(const Point& p, F&& f) const {
-        const long long i = (long long)std::floor(p.x / cell), j = (long long)std::floor(p.y / cell);
+        const long long i = index(p.x), j = index(p.y);
         for (long long di = -1; di <= 1; ++di)
             for (long long dj = -1; dj <= 1; ++dj) {
                 auto it = cells.find(key(i + di, j + dj));
@@ -599,6 +638,7 @@ Partition load_partition(const PartitionOptions& opt, const std::string& working
         if (!g0 || g0->IsEmpty()) continue;
         std::unique_ptr<OGRGeometry> g(g0->clone());
         face_proj.apply(g.get());
+        require_finite(g.get(), what, "face " + std::to_string(feat->GetFID()));
         if (!g->IsValid()) {
             if (!opt.repair)
                 throw Error(Code::BadGeometry, what + ": face " + std::to_string(feat->GetFID()) +
@@ -683,6 +723,7 @@ Partition load_partition(const PartitionOptions& opt, const std::string& working
             if (kind == LineKind::Other) continue;
             std::unique_ptr<OGRGeometry> c(g->clone());
             proj.apply(c.get());
+            require_finite(c.get(), what, "line " + std::to_string(feat->GetFID()));
             add_lines(c.get(), kind, p.lines);
         }
     } else if (!per_kind.empty()) {
@@ -693,6 +734,7 @@ Partition load_partition(const PartitionOptions& opt, const std::string& working
                 if (!feat->GetGeometryRef()) continue;
                 std::unique_ptr<OGRGeometry> c(feat->GetGeometryRef()->clone());
                 proj.apply(c.get());
+                require_finite(c.get(), what, "line " + std::to_string(feat->GetFID()) + " of layer '" + l->GetName() + "'");
                 add_lines(c.get(), kind, p.lines);
             }
         }
@@ -717,6 +759,7 @@ Partition load_partition(const PartitionOptions& opt, const std::string& working
             if (!feat->GetGeometryRef()) continue;
             std::unique_ptr<OGRGeometry> c(feat->GetGeometryRef()->clone());
             proj.apply(c.get());
+            require_finite(c.get(), what, "orientation line " + std::to_string(feat->GetFID()));
             std::vector<LabelledLine> ls;
             add_lines(c.get(), LineKind::Other, ls);
             for (const auto& l : ls) {
@@ -745,6 +788,7 @@ Partition load_partition(const PartitionOptions& opt, const std::string& working
                 throw Error(Code::BadLayer, what + ": layer '" + opt.density_layer + "': density " + std::to_string(d) + " is not in [0, 1]");
             std::unique_ptr<OGRGeometry> c(feat->GetGeometryRef()->clone());
             proj.apply(c.get());
+            require_finite(c.get(), what, "feature " + std::to_string(feat->GetFID()) + " of layer '" + opt.density_layer + "'");
             OGRPoint centre;
             c->Centroid(&centre);
             for (auto& f : p.faces)

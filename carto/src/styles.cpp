@@ -72,7 +72,8 @@ Style builtin_style(const std::string& name) {
 
 ParamValues resolve_params(const StyleInfo& s, const std::map<std::string, double>& overrides, double scale) {
     ParamValues out;
-    for (const auto& [k, v] : overrides) {
+    for (const auto& kv : overrides) {
+        const std::string& k = kv.first;  // not a structured binding: clang 14 cannot capture one
         const bool known = std::any_of(s.params.begin(), s.params.end(), [&](const StyleParam& p) { return p.name == k; });
         if (!known) throw Error(Code::UnknownStyle, "--param: style '" + s.name + "' has no parameter '" + k + "'");
     }
@@ -85,9 +86,18 @@ ParamValues resolve_params(const StyleInfo& s, const std::map<std::string, doubl
               << "'";
             throw Error(Code::Usage, m.str());
         }
-        if (p.unit == "mm") v = v * scale / 1000.0;
-        if (p.unit == "deg") v = v * M_PI / 180.0;
-        out[p.name] = v;
+        double ground = v;
+        if (p.unit == "mm") ground = v * scale / 1000.0;
+        if (p.unit == "deg") ground = v * M_PI / 180.0;
+        // A valid value can still overflow (1e308 mm at 1:10000) or vanish (1e-300 mm at
+        // 1:1e-30) in ground units: the styles would get an infinite or zero spacing.
+        if (!std::isfinite(ground) || (p.unit == "mm" && !(ground > 0))) {
+            std::ostringstream m;
+            m << "--param " << p.name << ": " << v << " " << p.unit << " at 1:" << scale
+              << " is out of range in ground units for style '" << s.name << "'";
+            throw Error(Code::Usage, m.str());
+        }
+        out[p.name] = ground;
     }
     return out;
 }

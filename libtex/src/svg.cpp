@@ -49,6 +49,7 @@ public:
         char* end = nullptr;
         const double v = std::strtod(p_, &end);
         if (end == p_) fail(origin_, std::string("expected a number at '") + std::string(p_).substr(0, 20) + "'");
+        if (!std::isfinite(v)) fail(origin_, std::string("not a finite number at '") + std::string(p_).substr(0, 20) + "'");
         p_ = end;
         return v;
     }
@@ -113,12 +114,22 @@ Affine parse_transform(const char* s, const std::string& origin) {
     return m;
 }
 
-double attr(const tinyxml2::XMLElement* e, const char* name, double def = 0.0) {
+double attr(const tinyxml2::XMLElement* e, const char* name, const std::string& origin, double def = 0.0) {
     const char* s = e->Attribute(name);
     if (!s) return def;
     char* end = nullptr;
     const double v = std::strtod(s, &end);
-    return end == s ? def : v;
+    if (end == s) return def;
+    if (!std::isfinite(v)) fail(origin, std::string("attribute ") + name + " '" + s + "' is not a finite number");
+    return v;
+}
+
+// The number of pieces of a flattened curve: x rounded up and clamped to [lo, hi] before
+// it becomes an int (x is +inf when a radius dwarfs the tolerance, NaN when both are 0).
+int pieces(double x, int lo, int hi) {
+    if (!(x > lo)) return lo;
+    if (x >= hi) return hi;
+    return int(std::ceil(x));
 }
 
 const char* label_of(const tinyxml2::XMLElement* e) {
@@ -133,7 +144,7 @@ struct Flattener {
     void cubic(std::vector<Point>& out, Point p0, Point p1, Point p2, Point p3) const {
         const double len = distance(p0, p1) + distance(p1, p2) + distance(p2, p3);
         const double tol = std::min(this->tol, 2e-3 * len + 1e-300);
-        const int n = std::clamp(int(std::ceil(std::sqrt(len / tol))), 2, 256);
+        const int n = pieces(std::sqrt(len / tol), 2, 256);
         for (int i = 1; i <= n; ++i) {
             const double t = double(i) / n, u = 1 - t;
             out.push_back(p0 * (u * u * u) + p1 * (3 * u * u * t) + p2 * (3 * u * t * t) + p3 * (t * t * t));
@@ -177,7 +188,7 @@ struct Flattener {
         if (!sweep && dt > 0) dt -= 2 * pi;
         if (sweep && dt < 0) dt += 2 * pi;
         const double r = std::max(rx, ry);
-        const int n = std::clamp(int(std::ceil(std::abs(dt) / (2 * std::acos(std::max(-1.0, 1 - tol / r))))), 2, 256);
+        const int n = pieces(std::abs(dt) / (2 * std::acos(std::max(-1.0, 1 - tol / r))), 2, 256);
         for (int i = 1; i <= n; ++i) {
             const double t = t0 + dt * i / n;
             const double x = rx * std::cos(t), y = ry * std::sin(t);
@@ -187,7 +198,7 @@ struct Flattener {
     std::vector<Point> ellipse(Point c, double rx, double ry) const {
         const double r = std::max(rx, ry);
         const double tol = std::min(this->tol, 2e-3 * r);  // small circles stay round
-        const int n = std::clamp(int(std::ceil(2 * pi / (2 * std::acos(std::max(-1.0, 1 - tol / r))))), 12, 512);
+        const int n = pieces(2 * pi / (2 * std::acos(std::max(-1.0, 1 - tol / r))), 12, 512);
         std::vector<Point> pts;
         for (int i = 0; i < n; ++i) {
             const double t = 2 * pi * i / n;
@@ -316,7 +327,7 @@ void walk(const tinyxml2::XMLElement* e, const Affine& parent, const Flattener& 
         } else if (name == "path") {
             parse_path(e->Attribute("d"), ctx.origin, fl, subpaths);
         } else if (name == "line") {
-            subpaths.push_back({{{attr(e, "x1"), attr(e, "y1")}, {attr(e, "x2"), attr(e, "y2")}}, false});
+            subpaths.push_back({{{attr(e, "x1", ctx.origin), attr(e, "y1", ctx.origin)}, {attr(e, "x2", ctx.origin), attr(e, "y2", ctx.origin)}}, false});
         } else if (name == "polyline" || name == "polygon") {
             Tokens t(e->Attribute("points"), ctx.origin);
             std::vector<Point> pts;
@@ -331,16 +342,19 @@ void walk(const tinyxml2::XMLElement* e, const Affine& parent, const Flattener& 
             const char* ws = e->Attribute("width");
             const char* hs = e->Attribute("height");
             if ((ws && std::strchr(ws, '%')) || (hs && std::strchr(hs, '%'))) continue;
-            const double x = attr(e, "x"), y = attr(e, "y"), w = attr(e, "width"), h = attr(e, "height");
+            const double x = attr(e, "x", ctx.origin), y = attr(e, "y", ctx.origin), w = attr(e, "width", ctx.origin), h = attr(e, "height", ctx.origin);
             subpaths.push_back({{{x, y}, {x + w, y}, {x + w, y + h}, {x, y + h}}, true});
         } else if (name == "circle" || name == "ellipse") {
-            const Point c{attr(e, "cx"), attr(e, "cy")};
+            const Point c{attr(e, "cx", ctx.origin), attr(e, "cy", ctx.origin)};
             if (label) {
-                ctx.out->points.push_back({m(c), Labels{label}});
+                const Point at = m(c);
+                if (!std::isfinite(at.x) || !std::isfinite(at.y))
+                    fail(ctx.origin, "<" + name + "> has coordinates out of range once transformed");
+                ctx.out->points.push_back({at, Labels{label}});
                 continue;
             }
-            const double rx = name == "circle" ? attr(e, "r") : attr(e, "rx");
-            const double ry = name == "circle" ? attr(e, "r") : attr(e, "ry");
+            const double rx = name == "circle" ? attr(e, "r", ctx.origin) : attr(e, "rx", ctx.origin);
+            const double ry = name == "circle" ? attr(e, "r", ctx.origin) : attr(e, "ry", ctx.origin);
             if (rx <= 0 || ry <= 0) continue;
             subpaths.push_back({fl.ellipse(c, rx, ry), true});
         } else {
@@ -351,7 +365,12 @@ void walk(const tinyxml2::XMLElement* e, const Affine& parent, const Flattener& 
             if (pts.size() < 2) continue;
             Curve c;
             c.points.reserve(pts.size());
-            for (const auto& p : pts) c.points.push_back(m(p));
+            for (const auto& p : pts) {
+                c.points.push_back(m(p));
+                // Finite numbers can overflow in a transform (scale(1e300)).
+                if (!std::isfinite(c.points.back().x) || !std::isfinite(c.points.back().y))
+                    fail(ctx.origin, "<" + name + "> has coordinates out of range once transformed");
+            }
             c.closed = closed;
             if (label) c.labels.add(label);
             // The face a closed curve encloses gets the label: the inside is on the left of

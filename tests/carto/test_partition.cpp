@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "carto/error.hpp"
 #include "carto/extract.hpp"
 #include "carto/partition.hpp"
 #include "carto/pipeline.hpp"
@@ -314,4 +315,42 @@ TEST(Partition, SnappingDoesNotDependOnTheOrderOfTheFaces) {
     ASSERT_EQ(p.faces.size(), q.faces.size());
     for (std::size_t i = 0; i < p.faces.size(); ++i)
         EXPECT_EQ(p.faces[i].region.outer(), q.faces[p.faces.size() - 1 - i].region.outer());
+}
+
+// fuzz/fuzz_partition_struct: a face reaching 1e300 made the snapping grid convert
+// floor(1e300 / snap) to a 64-bit integer, which overflows, and one from -1e308 to 1e308
+// gave NaN rows (undefined behaviour: UBSan's float-cast-overflow in scripts/sanitize.sh).
+// Cell indices are clamped first; such faces are read like any other.
+TEST(Partition, FacesFarBeyondAnyCrsDoNotOverflowTheSnappingGrid) {
+    const std::string path = write_partition(
+        "huge", {{{{0, 0}, {1e300, 0}, {1e300, 100}, {0, 100}}}, {{{0, 100}, {100, 100}, {100, 200}, {0, 200}}},
+                 // From -1e308 to 1e308 the width overflows to +inf: NaN rows in the grid.
+                 {{{-1e308, 300}, {1e308, 300}, {1e308, 400}, {-1e308, 400}}}},
+        {{{{0, 100}, {100, 100}}, "ridge"}});
+    try {
+        const Partition p = load(path);
+        EXPECT_EQ(p.faces.size(), 3u);
+    } catch (const Error& e) {
+        ADD_FAILURE() << e.what();
+    }
+}
+
+// fuzz/fuzz_partition_struct: NaN coordinates reached the exact regions, the snapping grid
+// and the labelling. A face or line with a coordinate that is not finite is refused
+// (BadGeometry, exit code 8), naming the feature.
+TEST(Partition, CoordinatesThatAreNotFiniteAreRefused) {
+    const double nan = std::nan("");
+    const std::string faces = write_partition("nan_face", {{{{0, 0}, {100, 0}, {100, nan}, {0, 100}}}},
+                                              {{{{0, 0}, {100, 0}}, "ridge"}});
+    const std::string lines = write_partition("nan_line", {{{{0, 0}, {100, 0}, {100, 100}, {0, 100}}}},
+                                              {{{{0, 0}, {nan, 0}}, "ridge"}});
+    for (const std::string& path : {faces, lines}) {
+        try {
+            load(path);
+            ADD_FAILURE() << path << ": accepted";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.code(), Code::BadGeometry) << e.what();
+            EXPECT_NE(std::string(e.what()).find("not finite"), std::string::npos) << e.what();
+        }
+    }
 }

@@ -229,3 +229,30 @@ TEST(ImportSVG, FaceLabelsGoOnTheInsideOfClosedCurves) {
     EXPECT_EQ(ships, 2);
     EXPECT_EQ(chips, 1);
 }
+
+// fuzz/fuzz_svg: an arc whose radius dwarfs the flattening tolerance made the number of
+// pieces +inf before it became an int (undefined behaviour: UBSan's float-cast-overflow
+// in scripts/sanitize.sh and scripts/fuzz.sh). The arc is flattened in at most 256 pieces.
+TEST(ImportSVG, AHugeArcRadiusGivesABoundedNumberOfPieces) {
+    const Curves c = ParseSVG("<svg><path d='M0,0 L40,0 A10 1e199 30 1 0 50 50'/></svg>", "arc.svg");
+    ASSERT_EQ(c.curves.size(), 1u);
+    EXPECT_LE(c.curves[0].points.size(), 2u + 256u);
+    EXPECT_EQ(c.curves[0].points.back(), (Point{50, 50}));
+    const Curves e = ParseSVG("<svg><circle cx='0' cy='0' r='1e300'/><line x1='0' y1='0' x2='1' y2='1'/></svg>", "c.svg");
+    EXPECT_EQ(e.curves.size(), 2u);
+}
+
+// fuzz/fuzz_svg: NaN and infinite coordinates ("nan", "inf", 1e999, or finite numbers that
+// overflow in a transform) reached the curves, and from them the exact planar maps. They
+// are refused with an error naming the file.
+TEST(ImportSVG, CoordinatesThatAreNotFiniteAreRefused) {
+    EXPECT_TEX_ERROR(ParseSVG("<svg><path d='M0,0 L nan,1 L1,1'/></svg>", "n.svg"), "n.svg", "not a finite number");
+    EXPECT_TEX_ERROR(ParseSVG("<svg><polyline points='0,0 1e999,1'/></svg>", "i.svg"), "i.svg", "not a finite number");
+    EXPECT_TEX_ERROR(ParseSVG("<svg><line x1='inf' y1='0' x2='1' y2='0'/></svg>", "l.svg"), "l.svg", "x1 'inf'");
+    EXPECT_TEX_ERROR(ParseSVG("<svg><g transform='scale(1e300)'><rect x='1e10' y='0' width='1' height='1'/></g></svg>",
+                              "t.svg"),
+                     "t.svg", "out of range once transformed");
+    EXPECT_TEX_ERROR(ParseSVG("<svg><circle cx='1e308' cy='0' r='1' data-label='start' transform='scale(10)'/></svg>",
+                              "p.svg"),
+                     "p.svg", "out of range once transformed");
+}

@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# The test suite under AddressSanitizer + UndefinedBehaviorSanitizer (GCC's), in a second
+# build folder: the C++ tests (ctest; the gallery's only on request), then the Python tests
+# of the bindings with the instrumented module loaded into Debian's interpreter.
+# scripts/test.sh runs it after the normal tests.
+#
+#   scripts/sanitize.sh                   configure + build build-asan, run the tests
+#   RH_ASAN_BUILD_DIR=dir scripts/sanitize.sh
+#   RH_SANITIZE_PYTEST=0 scripts/sanitize.sh   C++ tests only (=all: every Python test)
+#   RH_SANITIZE_GALLERY=1 scripts/sanitize.sh  the gallery's C++ tests too
+#
+# A finding fails the test that meets it: UBSan does not recover (-fno-sanitize-recover),
+# ASan aborts at the first error, LeakSanitizer fails a C++ test that leaks. Findings in
+# third-party code only are suppressed in scripts/sanitizers/*.supp (one comment each).
+set -uo pipefail
+cd "$(dirname "$0")/.."
+ROOT="$PWD"
+BUILD_DIR="${RH_ASAN_BUILD_DIR:-build-asan}"
+JOBS="${RH_JOBS:-$(nproc)}"
+[ "$JOBS" -gt 2 ] && JOBS=2
+start=$(date +%s)
+
+# Debug with -O1 -g (CMakeLists.txt adds them with the sanitizers); no benchmarks, and no
+# gallery unless its tests are asked for: its tests take over half an hour under ASan on
+# two cores, and they run libtex code that libtex's own tests cover.
+EXAMPLES=OFF
+{ [ "${RH_SANITIZE_GALLERY:-0}" != 0 ] || [ "${RH_SANITIZE_PYTEST:-1}" = all ]; } && EXAMPLES=ON
+mkdir -p "$BUILD_DIR"
+cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DRH_SANITIZE=address,undefined \
+      -DRH_BUILD_BENCH=OFF -DRH_BUILD_EXAMPLES=$EXAMPLES >"$BUILD_DIR/configure.log" 2>&1 \
+  || { cat "$BUILD_DIR/configure.log"; exit 1; }
+cmake --build "$BUILD_DIR" --parallel "$JOBS" || exit 1
+built=$(date +%s)
+
+SUPP="$ROOT/scripts/sanitizers"
+export ASAN_OPTIONS="detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1:strict_init_order=1:suppressions=$SUPP/asan.supp"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:suppressions=$SUPP/ubsan.supp"
+export LSAN_OPTIONS="suppressions=$SUPP/lsan.supp:print_suppressions=0"
+
+# The gallery's tests carry the label gallery (with RH_SANITIZE_PYTEST=all the gallery is
+# built for the Python tests, its C++ tests still left out).
+EXCLUDE=(-LE gallery)
+[ "${RH_SANITIZE_GALLERY:-0}" != 0 ] && EXCLUDE=()
+ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$JOBS" "${EXCLUDE[@]}"
+ctest_rc=$?
+ctested=$(date +%s)
+
+# The Python tests that run the instrumented module in the interpreter's own process: the
+# bindings, Python mappers called from the engine's threads, fields, carto from Python.
+# The others mostly start the rockhatch command, which ctest's pipeline tests cover; the
+# whole Python suite under ASan takes over half an hour on two cores (RH_SANITIZE_PYTEST=all).
+PYTESTS=(tests/python/test_module.py tests/python/test_stock_mappers.py tests/python/test_fields.py
+         tests/python/test_python_carto.py)
+[ "${RH_SANITIZE_PYTEST:-1}" = all ] && PYTESTS=(tests/python)
+pytest_rc=0
+if [ "${RH_SANITIZE_PYTEST:-1}" != 0 ]; then
+  # Debian's interpreter is not instrumented: the ASan runtime must be loaded first
+  # (LD_PRELOAD), and leaks are not checked (CPython keeps its objects at exit by design).
+  # Child processes (the rockhatch command, python3 -m rockhatch) inherit the settings.
+  LIBASAN="$(g++ -print-file-name=libasan.so)"
+  LIBUBSAN="$(g++ -print-file-name=libubsan.so)"
+  RH_BUILD_DIR="$ROOT/$BUILD_DIR" \
+  LD_PRELOAD="$LIBASAN $LIBUBSAN" \
+  ASAN_OPTIONS="detect_leaks=0:suppressions=$SUPP/asan.supp" \
+  QT_QPA_PLATFORM=offscreen \
+    /usr/bin/python3 -m pytest -q -p no:cacheprovider "${PYTESTS[@]}"
+  pytest_rc=$?
+fi
+end=$(date +%s)
+echo "sanitize: build $((built - start)) s, ctest $((ctested - built)) s, pytest $((end - ctested)) s;" \
+     "ctest exit $ctest_rc, pytest exit $pytest_rc"
+[ "$ctest_rc" -eq 0 ] && [ "$pytest_rc" -eq 0 ]
