@@ -3,7 +3,6 @@
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
-#include <array>
 #include <charconv>
 #include <cstdlib>
 #include <cmath>
@@ -13,7 +12,6 @@
 
 #include "carto/error.hpp"
 #include "gdal_scope.hpp"
-#include "libtex/parallel.hpp"
 #include "gpkg_rtree.hpp"
 #include "temp_file.hpp"
 
@@ -199,27 +197,6 @@ void write_svg(const Drawing& d, const std::string& path) {
     num(s, b.ymax);
     s += "\" units=\"ground units of the CRS; y = ymax - svg_y, x = xmin + svg_x\" style=\"" + xml_escape(d.style) + "\"/>\n";
     s += "  <rh:crs-wkt>" + xml_escape(d.crs_wkt) + "</rh:crs-wkt>\n</metadata>\n";
-    // The strokes of each face, per family, are formatted in parallel (number formatting
-    // is most of the time) and joined in face order: the same bytes on any thread count.
-    std::vector<std::array<std::string, kFamilies>> parts(d.faces.size());
-    tex::parallel_for(d.faces.size(), [&](std::size_t k) {
-        for (const auto& h : d.faces[k].hatches) {
-            if (h.points.size() < 2) continue;
-            std::string& t = parts[k][std::size_t(h.family)];
-            t += h.closed ? "<polygon points=\"" : "<polyline points=\"";
-            for (std::size_t i = 0; i < h.points.size(); ++i) {
-                if (i) t += ' ';
-                num(t, h.points[i].x - b.xmin);
-                t += ',';
-                num(t, b.ymax - h.points[i].y);
-            }
-            t += "\"/>\n";
-        }
-    });
-    std::size_t total = s.size() + 4096;
-    for (const auto& part : parts)
-        for (const auto& t : part) total += t.size();
-    s.reserve(total);
     for (int fam = 0; fam < kFamilies; ++fam) {
         const Family f = Family(fam);
         s += "<g id=\"";
@@ -227,10 +204,18 @@ void write_svg(const Drawing& d, const std::string& path) {
         s += "\" fill=\"none\" stroke=\"black\" stroke-linecap=\"round\" stroke-linejoin=\"round\" stroke-width=\"";
         num(s, family_width_mm(f) / mm_per_unit);
         s += "\">\n";
-        for (auto& part : parts) {
-            s += part[std::size_t(fam)];
-            std::string().swap(part[std::size_t(fam)]);
-        }
+        for (const auto& face : d.faces)
+            for (const auto& h : face.hatches) {
+                if (h.family != f || h.points.size() < 2) continue;
+                s += h.closed ? "<polygon points=\"" : "<polyline points=\"";
+                for (std::size_t i = 0; i < h.points.size(); ++i) {
+                    if (i) s += ' ';
+                    num(s, h.points[i].x - b.xmin);
+                    s += ',';
+                    num(s, b.ymax - h.points[i].y);
+                }
+                s += "\"/>\n";
+            }
         s += "</g>\n";
     }
     s += "</svg>\n";
