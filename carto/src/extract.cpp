@@ -499,12 +499,14 @@ constexpr int kCy[4] = {0, 1, 0, -1};
 
 struct Chain {
     std::vector<Point> raw;     // corner coordinates (col, row)
-    std::vector<Point> simple;  // simplified
+    std::vector<Point> simple;  // generalised (level 0)
+    std::vector<Point> plain;   // the cell edges simplified within half a cell (level 1)
     int right = -1, left = -1;  // faces on either side (-1: outside)
     int first_dir = 0, last_dir = 0;
     long long start = -1, end = -1;  // corner ids (closed chains: start == end)
     bool closed = false;
-    bool use_raw = false;
+    int level = 0;  // which shape the faces use: 0 generalised, 1 plain, 2 the cell edges
+    const std::vector<Point>& shape() const { return level == 0 ? simple : level == 1 ? plain : raw; }
     LineKind kind = LineKind::Other;
     std::vector<unsigned char> edges;  // per cell edge: bit 0 along a ridge cell, bit 1 along a thalweg cell
 };
@@ -552,6 +554,39 @@ std::vector<Point> simplify(const std::vector<Point>& pts, bool closed, double t
         if (keep[i]) out.push_back(pts[i]);
     // A closed ring needs at least three distinct corners.
     if (closed && out.size() < 4) return pts;
+    return out;
+}
+
+// A border chain generalised: the stair steps of cell edges are cut at the point `across`
+// gives for every edge (its middle, or the centre of the ridge or thalweg cell beside it for a
+// labelled border: the line itself, half a cell off the edge), so a one-cell staircase becomes
+// its diagonal,
+// simplified within `tol` cells, then rounded by `rounds` passes of corner cutting at 1/4 and
+// 3/4 of each segment (each pass stays inside the previous polyline's hull). The chain's end
+// nodes stay where they are, so the chains of neighbouring faces still meet and the faces
+// still tile the rock exactly: both faces of a border use the same generalised chain.
+template <class Across>
+std::vector<Point> generalise(const std::vector<Point>& raw, bool closed, double tol, int rounds, Across across) {
+    if (raw.size() < 3) return raw;
+    std::vector<Point> mid;
+    mid.reserve(raw.size() + 1);
+    if (!closed) mid.push_back(raw.front());
+    for (std::size_t i = 0; i + 1 < raw.size(); ++i) mid.push_back(across(raw[i], raw[i + 1]));
+    if (closed) mid.push_back(mid.front());
+    else mid.push_back(raw.back());
+    std::vector<Point> out = simplify(mid, closed, tol);
+    for (int r = 0; r < rounds && out.size() >= 3; ++r) {
+        std::vector<Point> next;
+        next.reserve(2 * out.size());
+        next.push_back(out.front());
+        for (std::size_t i = 0; i + 1 < out.size(); ++i) {
+            const Point &a = out[i], &b = out[i + 1];
+            if (i > 0) next.push_back(a * 0.75 + b * 0.25);
+            if (i + 2 < out.size()) next.push_back(a * 0.25 + b * 0.75);
+        }
+        next.push_back(out.back());
+        out = std::move(next);
+    }
     return out;
 }
 
@@ -782,7 +817,7 @@ std::vector<std::vector<Point>> face_rings(const std::vector<Chain>& chains, con
     }
     auto pts = [&](const OrientedChain& o) {
         const Chain& c = chains[o.chain];
-        std::vector<Point> p = c.use_raw ? c.raw : c.simple;
+        std::vector<Point> p = c.shape();
         if (o.reversed) std::reverse(p.begin(), p.end());
         return p;
     };
@@ -1159,13 +1194,33 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
     std::vector<Chain> chains = label_chains(trace_chains(g, face, label_cells), g.w + 1, min_run, o.label_outline);
     std::vector<std::vector<int>> of_face(static_cast<std::size_t>(nfaces));
     for (std::size_t k = 0; k < chains.size(); ++k) {
-        chains[k].simple = simplify(chains[k].raw, chains[k].closed, o.simplify);
+        chains[k].simple = generalise(chains[k].raw, chains[k].closed, o.simplify, o.smooth_rounds,
+                                      [&, kind = int(chains[k].kind)](const Point& a, const Point& b) {
+                                          const Point m = (a + b) / 2;
+                                          if (kind == 0) return m;
+                                          // The two cells across the unit edge a-b.
+                                          const bool horizontal = a.y == b.y;
+                                          const int c0 = int(std::floor(horizontal ? m.x : m.x - 0.5));
+                                          const int r0 = int(std::floor(horizontal ? m.y - 0.5 : m.y));
+                                          const int c1 = horizontal ? c0 : c0 + 1, r1 = horizontal ? r0 + 1 : r0;
+                                          // Only onto line cells of a face: the rock outline
+                                          // does not move out of the rock.
+                                          auto on = [&](int c, int r) {
+                                              return g.inside(c, r) && label_cells[g.at(c, r)] == kind &&
+                                                     face[g.at(c, r)] >= 0;
+                                          };
+                                          const bool on0 = on(c0, r0), on1 = on(c1, r1);
+                                          if (on0 == on1) return m;
+                                          return on0 ? Point{c0 + 0.5, r0 + 0.5} : Point{c1 + 0.5, r1 + 0.5};
+                                      });
+        chains[k].plain = simplify(chains[k].raw, chains[k].closed, 0.5);
         if (chains[k].right >= 0) of_face[chains[k].right].push_back(int(k));
         if (chains[k].left >= 0) of_face[chains[k].left].push_back(int(k));
     }
     std::vector<std::vector<FacePolygon>> polys(static_cast<std::size_t>(nfaces));
     std::vector<char> redo(static_cast<std::size_t>(nfaces), 1);
-    for (int round = 0; round < 4; ++round) {
+    std::vector<char> degraded(static_cast<std::size_t>(nfaces), 0);
+    for (int round = 0; round < 6; ++round) {
         std::vector<char> bad(std::size_t(nfaces), 0);
         bool any = false;
         for (int f = 0; f < nfaces; ++f) {
@@ -1173,24 +1228,29 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
             polys[f] = face_polygons(chains, of_face[f], f, dem);
             bool ok = polys[f].size() == 1;
             for (const auto& fp : polys[f]) ok = ok && to_ogr(fp)->IsValid();
-            if (!ok && round < 3) {
+            if (!ok && round < 5) {
                 bad[f] = 1;
                 any = true;
             }
         }
         if (!any) break;
-        // Invalid after simplification: keep the cell edges of the face's chains (and rebuild
-        // the faces across them, which share those chains).
+        // Invalid once generalised (two borders of a narrow face crossing): the face's chains
+        // step back to the cell edges simplified within half a cell, then to the cell edges
+        // themselves, and the faces across them (which share those chains) are rebuilt.
         std::fill(redo.begin(), redo.end(), 0);
         for (int f = 0; f < nfaces; ++f)
-            if (bad[f])
+            if (bad[f]) {
+                degraded[f] = 1;
                 for (int k : of_face[f]) {
-                    chains[k].use_raw = true;
+                    chains[k].level = std::min(chains[k].level + 1, 2);
                     if (chains[k].right >= 0) redo[chains[k].right] = 1;
                     if (chains[k].left >= 0) redo[chains[k].left] = 1;
                 }
-        res.notes.push_back("kept the cell edges of the borders of some faces (simplifying made them invalid)");
+            }
     }
+    if (const auto n = std::count(degraded.begin(), degraded.end(), 1))
+        res.notes.push_back("kept the borders of " + std::to_string(n) +
+                            " narrow faces closer to the cell edges (generalised, they would cross)");
 
     // ---- 5. The partition, with orientation and density per face
     step(progress, 0.85, "orientation and density");
@@ -1206,7 +1266,7 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
     for (const Chain& c : chains) {
         LabelledLine l;
         l.kind = c.kind;
-        for (const Point& q : c.use_raw ? c.raw : c.simple) l.points.push_back(dem.to_world(q.x, q.y));
+        for (const Point& q : c.shape()) l.points.push_back(dem.to_world(q.x, q.y));
         p.lines.push_back(std::move(l));
     }
     derive_face_controls(p, res.terrain);

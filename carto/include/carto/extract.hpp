@@ -56,7 +56,9 @@ struct ExtractOptions {
     bool extend_ridges = true;     // prolong ridge feet down their crest to a thalweg
     bool label_outline = true;     // label rock-outline borders along a ridge / thalweg too
     double max_fill = 30;          // m: deeper depressions (and prominences) stop the flow
-    double simplify = 0.5;         // Douglas-Peucker tolerance in cells
+    double simplify = 0.8;         // Douglas-Peucker tolerance of the borders, in cells (above
+                                   // 0.71, half a cell's diagonal, one-cell stair steps go)
+    int smooth_rounds = 3;         // corner-cutting passes that round the generalised borders
     std::string what = "--dem";    // how error messages name the DEM
 };
 
