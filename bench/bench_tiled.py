@@ -1,8 +1,9 @@
 """Runs bench_tiled over the sizes of the thesis's Table 4.1 and beyond, one process per size
 and engine (so that each peak memory is its own), and writes the table between the
-`<!-- bench:tiled -->` markers of docs/tiled.md.
+`<!-- bench:tiled -->` markers of docs/tiled.md (or those --marker names). The environment is
+passed on: run it with GLIBC_TUNABLES=glibc.malloc.hugetlb=1 for large pages under malloc.
 
-usage: bench_tiled.py BENCH_TILED [--runs N] [--planar-timeout S] [--markdown docs/tiled.md]
+usage: bench_tiled.py BENCH_TILED [--runs N] [--planar-timeout S] [--markdown docs/tiled.md] [--marker M]
 """
 import argparse
 import re
@@ -28,6 +29,7 @@ def main():
     ap.add_argument("--runs", type=int, default=5)
     ap.add_argument("--planar-timeout", type=float, default=120)
     ap.add_argument("--markdown")
+    ap.add_argument("--marker", default="bench:tiled", help="the table goes between <!-- MARKER --> and <!-- /MARKER -->")
     a = ap.parse_args()
     rows = []
     for cells in SIZES:
@@ -51,7 +53,8 @@ def main():
     if a.markdown:
         with open(a.markdown) as f:
             text = f.read()
-        new = re.sub(r"(<!-- bench:tiled -->\n).*?(\n<!-- /bench:tiled -->)", lambda m: m.group(1) + table + m.group(2),
+        mk = re.escape(a.marker)
+        new = re.sub(r"(<!-- %s -->\n).*?(<!-- /%s -->)" % (mk, mk), lambda m: m.group(1) + table + "\n" + m.group(2),
                      text, flags=re.S)
         with open(a.markdown, "w") as f:
             f.write(new)

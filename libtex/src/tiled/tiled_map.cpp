@@ -209,8 +209,13 @@ Curves TiledMap::Convert(const Region& r, Border b) const {
         for (long long i = i0; i <= i1; ++i) items.push_back({e, i, j0, j1});
     }
 
+    // Two passes, so that the output is allocated once and filled in place (memory bounded
+    // by the output): the first counts each item's kept curves and collects the few that
+    // cross the border; the second writes the kept curves at their final offsets. With a
+    // ghost mapper (which is not run twice) the first pass keeps its curves instead.
     struct Result {
-        std::vector<Curve> kept, partial;
+        std::size_t count = 0;
+        std::vector<Curve> kept, partial;  // kept: only with a ghost
         std::vector<LabeledPoint> points;
     };
     std::vector<Result> results(items.size());
@@ -226,10 +231,23 @@ Curves TiledMap::Convert(const Region& r, Border b) const {
         const Overlap o = classify_polygon(ring, cb, r);
         return b == Border::KEEP_INSIDE ? o == Overlap::Inside : o != Overlap::Disjoint;
     };
-    auto run = [&](std::size_t k) {
+    auto translated = [](const Curve& c, const Point& s) {
+        Curve copy = c;
+        for (auto& p : copy.points) p += s;
+        return copy;
+    };
+    // dest == nullptr: first pass; else the item's slice of the output.
+    auto run = [&](std::size_t k, Curve* dest) {
         const Item& it = items[k];
         const Element& el = d_->elements[it.e];
         Result& res = results[k];
+        const bool first = dest == nullptr;
+        std::size_t n = 0;
+        auto keep = [&](Curve&& c) {
+            if (dest) dest[n] = std::move(c);
+            else if (ghost) res.kept.push_back(std::move(c));
+            ++n;
+        };
         for (long long j = it.j0; j <= it.j1; ++j) {
             const Point s = shift(it.i, j);
             if (keep_cells) {
@@ -238,14 +256,18 @@ Curves TiledMap::Convert(const Region& r, Border b) const {
                 const bool l = cell_kept(el.left, it.i, j), rr = cell_kept(el.right, it.i, j);
                 if (!l && !rr) continue;
                 for (const auto& c : el.curves.curves) {
-                    Curve copy = c;
-                    for (auto& p : copy.points) p += s;
+                    if (first) {
+                        ++n;
+                        continue;
+                    }
+                    Curve copy = translated(c, s);
                     if (!l) copy.left = Labels{};
                     if (!rr) copy.right = Labels{};
-                    res.kept.push_back(std::move(copy));
+                    keep(std::move(copy));
                 }
-                for (const auto& p : el.curves.points)
-                    if (r.contains(p.point + s)) res.points.push_back({p.point + s, p.labels});
+                if (first)
+                    for (const auto& p : el.curves.points)
+                        if (r.contains(p.point + s)) res.points.push_back({p.point + s, p.labels});
                 continue;
             }
             Curves copy;
@@ -267,22 +289,27 @@ Curves TiledMap::Convert(const Region& r, Border b) const {
                 cb.xmin += s.x; cb.xmax += s.x; cb.ymin += s.y; cb.ymax += s.y;
                 const Overlap o = classify_box(cb, r, rect);
                 if (o == Overlap::Disjoint) continue;
+                if (o == Overlap::Inside) {
+                    // The common case: the whole copy is kept as it is.
+                    if (first) {
+                        n += el.curves.curves.size();
+                        for (const auto& p : el.curves.points) res.points.push_back({p.point + s, p.labels});
+                    } else {
+                        for (const auto& c : el.curves.curves) keep(translated(c, s));
+                    }
+                    continue;
+                }
                 copy = el.curves;
                 for (auto& c : copy.curves)
                     for (auto& p : c.points) p += s;
                 for (auto& p : copy.points) p.point += s;
-                if (o == Overlap::Inside) {
-                    for (auto& c : copy.curves) res.kept.push_back(std::move(c));
-                    for (auto& p : copy.points) res.points.push_back(std::move(p));
-                    continue;
-                }
             }
             if (crop) {
                 // Curves inside stay whole; the others are cut below, all at once.
                 for (auto& c : copy.curves) {
                     const Overlap o = classify_box(curve_box(c), r, rect);
-                    if (o == Overlap::Inside) res.kept.push_back(std::move(c));
-                    else if (o == Overlap::Partial) res.partial.push_back(std::move(c));
+                    if (o == Overlap::Inside) keep(std::move(c));
+                    else if (o == Overlap::Partial && first) res.partial.push_back(std::move(c));
                 }
             } else {
                 // KEEP_* keep or drop a copy whole, as the engine keeps or drops whole cells:
@@ -297,50 +324,58 @@ Curves TiledMap::Convert(const Region& r, Border b) const {
                     all = all && inside;
                 }
                 if (b == Border::KEEP_OUTSIDE ? any : all)
-                    for (auto& c : copy.curves) res.kept.push_back(std::move(c));
+                    for (auto& c : copy.curves) keep(std::move(c));
             }
-            for (auto& p : copy.points)
-                if (r.contains(p.point)) res.points.push_back(std::move(p));
+            if (first)
+                for (auto& p : copy.points)
+                    if (r.contains(p.point)) res.points.push_back(std::move(p));
         }
+        if (first) res.count = n;
     };
-    parallel_for(items.size(), run);
-
-    std::size_t total = 0;
-    for (const auto& res : results) total += res.kept.size();
-    out.curves.reserve(total);
+    parallel_for(items.size(), [&](std::size_t k) { run(k, nullptr); });
+    // The pieces across the border (cut, and the outline, before the output is allocated so
+    // that it is allocated once).
     Curves subject;
     for (auto& res : results) {
-        for (auto& c : res.kept) out.curves.push_back(std::move(c));
         for (auto& c : res.partial) subject.curves.push_back(std::move(c));
         for (auto& p : res.points) out.points.push_back(std::move(p));
     }
-    if (!crop) return out;
+    Curves border_pieces;
     if (b == Border::CROP_ADD_BOUNDARY && subject.curves.empty()) {
         // Nothing crosses the outline: it is added whole, inside a single face.
-        Curves outline = r.boundary();
-        for (auto& c : outline.curves) {
+        border_pieces = r.boundary();
+        for (auto& c : border_pieces.curves)
             if (c.points.size() >= 2) c.left = FaceLabelsAt((c.points[0] + c.points[1]) / 2);
-            out.curves.push_back(std::move(c));
-        }
-        return out;
-    }
-    static const LabelId outline = intern_label("\x01libtex-tiled-outline");
-    Curves cut = detail::crop_to_region(subject, r, b, outline);
-    for (auto& c : cut.curves) {
-        if (c.labels.has(outline)) {
+    } else if (crop) {
+        static const LabelId outline = intern_label("\x01libtex-tiled-outline");
+        border_pieces = detail::crop_to_region(subject, r, b, outline);
+        for (auto& c : border_pieces.curves) {
+            if (!c.labels.has(outline)) continue;
             // A piece of the outline: the labels of the face it bounds on its inner side.
             c.labels.remove(outline);
             c.left = Labels{};
             c.right = Labels{};
-            if (c.points.size() >= 2) {
-                const Point mid = (c.points[0] + c.points[1]) / 2;
-                const Point d = c.points[1] - c.points[0];
-                const double len = norm(d);
-                if (len > 0) c.left = FaceLabelsAt(mid + Point{-d.y, d.x} * (1e-7 / len * std::max(1.0, len)));
-            }
+            if (c.points.size() < 2) continue;
+            const Point mid = (c.points[0] + c.points[1]) / 2;
+            const Point d = c.points[1] - c.points[0];
+            const double len = norm(d);
+            if (len > 0) c.left = FaceLabelsAt(mid + Point{-d.y, d.x} * (1e-7 / len * std::max(1.0, len)));
         }
-        out.curves.push_back(std::move(c));
     }
+
+    std::vector<std::size_t> offset(items.size() + 1, 0);
+    for (std::size_t k = 0; k < items.size(); ++k) offset[k + 1] = offset[k] + results[k].count;
+    out.curves.reserve(offset.back() + border_pieces.curves.size());
+    out.curves.resize(offset.back());
+    parallel_for(items.size(), [&](std::size_t k) {
+        if (ghost) {
+            std::move(results[k].kept.begin(), results[k].kept.end(), out.curves.begin() + std::ptrdiff_t(offset[k]));
+            std::vector<Curve>().swap(results[k].kept);
+        } else if (results[k].count > 0) {
+            run(k, out.curves.data() + offset[k]);
+        }
+    });
+    for (auto& c : border_pieces.curves) out.curves.push_back(std::move(c));
     return out;
 }
 
