@@ -2,6 +2,7 @@
 // locality, threads, NIZ mapping, shifted-cell adjacency, ghost mapping, union, queries.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
 #include <sstream>
 
@@ -271,4 +272,71 @@ TEST(Tiled, PointQueries) {
     EXPECT_TRUE(t.FaceLabelsAt({10, 5}).has("c2") || t.FaceLabelsAt({10, 5}).has("c1"));
     EXPECT_NE(t.FaceLabelsAt({10, 5}), t.FaceLabelsAt({35, 5}));
     EXPECT_EQ(t.FaceLabelsAt({10, 5}), t.FaceLabelsAt({10 + 50 * 1000, 5 - 90 * 77}));
+}
+
+TEST(Tiled, RasterizeAWindow) {
+    const TiledMap t = GridPartition(StripesProperties(0, 20), StripesProperties(pi / 2, 30), Tiled());
+    const Raster r = Rasterize(t, Region::rectangle(0, 0, 60, 40).bbox(), 1.0, 2.0);
+    ASSERT_EQ(r.width, 60);
+    ASSERT_EQ(r.height, 40);
+    auto at = [&](double x, double y) { return int(r.pixels[std::size_t(40 - 1 - int(y)) * 60 + std::size_t(x)]); };
+    EXPECT_EQ(at(10.5, 20.5), 0);    // on the line y = 20
+    EXPECT_EQ(at(30.5, 7.5), 0);     // on the line x = 30
+    EXPECT_EQ(at(15.5, 10.5), 255);  // in the middle of a cell
+    EXPECT_EQ(at(45.5, 30.5), 255);
+    // A finer pixel draws the same lines; a ghost map rasterises the same at 1 and 2 threads.
+    const TiledMap ghost = GhostMap([](const TiledElement& e) { return Random(e, 0, 1, 0) < 0.5 ? Nothing() : e.curves; },
+                                    MapToEdges([](const Edge& e) { return ToCurve(e); }, t));
+    std::vector<std::uint8_t> one, two;
+    {
+        ThreadsScope s(1);
+        one = Rasterize(ghost, Region::rectangle(-3, -7, 500, 300).bbox(), 0.5, 1.5).pixels;
+    }
+    {
+        ThreadsScope s(2);
+        two = Rasterize(ghost, Region::rectangle(-3, -7, 500, 300).bbox(), 0.5, 1.5).pixels;
+    }
+    EXPECT_EQ(one, two);
+    EXPECT_NE(std::count(one.begin(), one.end(), 0), 0);
+    EXPECT_TEX_ERROR(Rasterize(t, Region::rectangle(0, 0, 6, 4).bbox(), 0.0, 1.0), "Rasterize", "pixel size 0");
+    EXPECT_TEX_ERROR(Rasterize(t, BBox{}, 1.0, 1.0), "Rasterize", "empty");
+}
+
+TEST(Tiled, InsideAndOutsideMatchTheEngine) {
+    // Horizontal lines 6 apart inside / outside squares (grid of 40, each cell shrunk to 55 %):
+    // no line runs along a square's side.
+    const Stripes lines = StripesProperties(0, 6);
+    const Stripes s1 = StripesProperties(0, 40), s2 = StripesProperties(pi / 2, 40);
+    auto square = [](const Face& f) { return Scale(Contour(f), 0.55); };
+    const TiledMap squares = MapToFaces(square, GridPartition(s1, s2, Tiled()));
+    const Arrangement engine_squares = MapToFaces(square, GridPartition(s1, s2, KEEP_OUTSIDE));
+    const Region window = Region::rectangle(0, 0, 400, 300);
+    // Both cut to an inner window (the engine's pieces and the tiled ones end at different
+    // points of a line: the tiled map stores lines a period at a time).
+    const Region inner = Region::rectangle(60, 60, 340, 240);
+    auto cut = [&inner](const Curves& c) { return th::runs(apply_mask(c, inner, CROP)); };
+    const TiledMap in = Inside(StripesPartition(lines, Tiled()), squares, CROP);
+    EXPECT_NEAR(std::abs(in.period1().y), 120, 1e-9);  // LCM(6, 40)
+    const Curves engine_in = Inside(StripesPartition(lines, CROP), engine_squares, CROP)(window);
+    EXPECT_SAME_RUNS(cut(in.Convert(window, KEEP_OUTSIDE)), cut(engine_in));
+    EXPECT_FALSE(cut(engine_in).empty());
+    // KEEP_* keep or drop whole edges: small circles on a grid of 10, some across the squares'
+    // sides (a stripe's edges are one period long in a tiled map, whole lines in the engine).
+    const Stripes c1 = StripesProperties(0, 10), c2 = StripesProperties(pi / 2, 10);
+    auto circle = [](const Face& f) {
+        std::vector<Point> pts;
+        for (int k = 0; k < 24; ++k) pts.push_back(Centroid(f) + Point{std::cos(k * pi / 12), std::sin(k * pi / 12)} * 4.5);
+        return Polyline(pts, true);
+    };
+    for (Border b : {KEEP_INSIDE, KEEP_OUTSIDE}) {
+        const Curves tiled = Inside(MapToFaces(circle, GridPartition(c1, c2, Tiled())), squares, b).Convert(window, KEEP_OUTSIDE);
+        const Curves engine = Inside(MapToFaces(circle, GridPartition(c1, c2, KEEP_OUTSIDE)), engine_squares, b)(window);
+        EXPECT_SAME_RUNS(cut(tiled), cut(engine));
+        EXPECT_FALSE(cut(engine).empty()) << border_name(b);
+    }
+    const Curves engine_out = Outside(StripesPartition(lines, CROP), engine_squares, CROP)(window);
+    const Curves tiled_out = Outside(StripesPartition(lines, Tiled()), squares, CROP).Convert(window, KEEP_OUTSIDE);
+    EXPECT_SAME_RUNS(cut(tiled_out), cut(engine_out));
+    const TiledMap skew = StripesPartition(StripesProperties(0.3, 6), Tiled());
+    EXPECT_TEX_ERROR(Inside(skew, squares, CROP), "Inside", "no common multiple");
 }

@@ -137,6 +137,18 @@ private:
     std::shared_ptr<const Data> d_;
 };
 
+// ---- Rasterising a window ----
+// A grey image of the window (8 bits, rows from the top, white paper, black ink): every
+// curve the window receives (KEEP_OUTSIDE over the window grown by the line width, ghost
+// included) drawn `line_width` wide with an anti-aliased edge, at `pixel` units per pixel.
+// No planar map is built; rows are filled in bands on the worker threads (same bytes at any
+// thread count). Writing it to a file is libtex_image's (tiled_image.hpp, OpenImageIO).
+struct Raster {
+    int width = 0, height = 0;
+    std::vector<std::uint8_t> pixels;  // width * height, row-major from the top
+};
+Raster Rasterize(const TiledMap& t, const BBox& window, double pixel, double line_width);
+
 // ---- Tiled partitions ----
 // The grid as a tiled map: the period along each family is LCM(n, edge labels, face labels) / n
 // times the sum of its n widths, so that widths and label cycles all repeat.
@@ -156,11 +168,17 @@ TiledMap MapToFaces(FaceMapper m, const TiledMap& a, MapperThreads t = MapperThr
 // before conversion. A tiled map with a ghost cannot be mapped again.
 TiledMap GhostMap(GhostMapper g, const TiledMap& a);
 
-// ---- Combiner ----
+// ---- Combiners ----
 // All elements of both maps. Their lattices must be commensurable: each period of one an
 // integer combination of the other's up to a common multiple; the result's periods are the
 // least common multiples. Otherwise a tex::Error names both pairs of periods.
 TiledMap Union(const TiledMap& a1, const TiledMap& a2);
+// The curves of a1 inside / outside the bounded faces of a2, on their common lattice: the
+// engine's mask (merge.hpp) applied once to the elements of one tile of a1 against a planar
+// map of a2 over a block of tiles around it; each curve kept becomes an element.
+// CROP_ADD_BOUNDARY adds a2's curves once.
+TiledMap Inside(const TiledMap& a1, const TiledMap& a2, Border b);
+TiledMap Outside(const TiledMap& a1, const TiledMap& a2, Border b);
 
 
 }  // namespace tex

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "libtex/error.hpp"
+#include "libtex/merge.hpp"
 #include "libtex/parallel.hpp"
 #include "libtex/tiled.hpp"
 
@@ -294,25 +295,86 @@ std::vector<TiledMap::Element> repeat(const TiledMap& a, int m1, int m2) {
 
 }  // namespace
 
-TiledMap Union(const TiledMap& a1, const TiledMap& a2) {
+namespace {
+
+// Both maps on their common lattice: each period of the result is the least common multiple
+// of the two maps' periods of that rank, which must be parallel with a rational ratio
+// (denominator at most 64).
+struct Common {
+    Point p1, p2;
+    std::vector<TiledMap::Element> first, second;
+};
+
+Common common_lattice(const TiledMap& a1, const TiledMap& a2, const char* op) {
     if (a1.has_ghost() || a2.has_ghost())
-        throw Error("Union", "a tiled map with a ghost mapper cannot be combined; combine before GhostMap");
-    // Period i of the result: the least common multiple of period i of both maps, which must
-    // be parallel with a rational ratio (denominator at most 64).
+        throw Error(op, "a tiled map with a ghost mapper cannot be combined; combine before GhostMap");
     int k1 = 0, k2 = 0;
     const int n1 = commensurate(a1.period1(), a2.period1(), k1);
     const int n2 = commensurate(a1.period2(), a2.period2(), k2);
     if (n1 == 0 || n2 == 0)
-        throw Error("Union", "the periods " + periods_text(a1) + " and " + periods_text(a2) +
-                                 " have no common multiple (the lattices must share their directions, "
-                                 "with rational length ratios)");
+        throw Error(op, "the periods " + periods_text(a1) + " and " + periods_text(a2) +
+                            " have no common multiple (the lattices must share their directions, "
+                            "with rational length ratios)");
     // n * q = k * p: the common period is k * p1 for map 1, n * q1 for map 2.
-    const Point p1 = a1.period1() * double(k1), p2 = a1.period2() * double(k2);
-    std::vector<TiledMap::Element> elements = repeat(a1, k1, k2);
-    std::vector<TiledMap::Element> second = repeat(a2, n1, n2);
-    for (auto& e : second) elements.push_back(std::move(e));
+    return {a1.period1() * double(k1), a1.period2() * double(k2), repeat(a1, k1, k2), repeat(a2, n1, n2)};
+}
+
+// Inside / Outside: a1's elements cut by (or kept against) the bounded faces of a2. The mask
+// is the planar map of a2 over a block of tiles wide enough to hold every element of a1 with
+// the faces around it, induced once.
+TiledMap mask(const TiledMap& a1, const TiledMap& a2, Border b, MaskSide side, const char* op) {
+    Common c = common_lattice(a1, a2, op);
+    const TiledMap subject(c.p1, c.p2, std::move(c.first), a1.border(), {}, a1.bounded_faces());
+    const TiledMap masks(c.p1, c.p2, std::move(c.second), a1.border(), {}, a2.bounded_faces());
+    const Border cut = b == Border::CROP_ADD_BOUNDARY ? Border::CROP : b;
+    const int k = subject.block_reach() + 2 * masks.block_reach() + 2;
+    Curves block;
+    for (long long i = -k; i <= k; ++i)
+        for (long long j = -k; j <= k; ++j)
+            for (const auto& e : masks.elements()) {
+                Curves copy = e.curves;
+                copy.transform(Affine::translation(masks.shift(i, j)));
+                block.append(std::move(copy));
+            }
+    const MapPtr mask_map = PlanarMap::induce(block);
+    // One mask over all of a1's elements at once (KEEP_* then see a1's own edges, as in the
+    // engine); every curve it keeps becomes an element of its own.
+    Curves all;
+    for (const auto& e : subject.elements()) all.append(e.curves);
+    const Curves kept = apply_mask(all, *mask_map, side, cut);
+    std::vector<TiledMap::Element> elements;
+    for (const auto& curve : kept.curves) {
+        TiledMap::Element e;
+        e.curves.curves.push_back(curve);
+        e.anchor = curve.points.empty() ? Point{} : curve.points.front();
+        e.key = anchor_key(e.anchor);
+        elements.push_back(std::move(e));
+    }
+    for (const auto& point : kept.points) {
+        TiledMap::Element e;
+        e.curves.points.push_back(point);
+        e.anchor = point.point;
+        e.key = anchor_key(e.anchor);
+        elements.push_back(std::move(e));
+    }
+    TiledMap out(c.p1, c.p2, std::move(elements), a1.border(), {}, a1.bounded_faces());
+    // CROP_ADD_BOUNDARY: the mask's own curves added once (not once per element).
+    return b == Border::CROP_ADD_BOUNDARY ? Union(out, masks) : out;
+}
+
+}  // namespace
+
+TiledMap Union(const TiledMap& a1, const TiledMap& a2) {
+    Common c = common_lattice(a1, a2, "Union");
+    for (auto& e : c.second) c.first.push_back(std::move(e));
     const bool bounded = a1.bounded_faces() && a2.bounded_faces();
-    return TiledMap(p1, p2, std::move(elements), a1.border(), {}, bounded);
+    return TiledMap(c.p1, c.p2, std::move(c.first), a1.border(), {}, bounded);
+}
+
+TiledMap Inside(const TiledMap& a1, const TiledMap& a2, Border b) { return mask(a1, a2, b, MaskSide::Inside, "Inside"); }
+
+TiledMap Outside(const TiledMap& a1, const TiledMap& a2, Border b) {
+    return mask(a1, a2, b, MaskSide::Outside, "Outside");
 }
 
 }  // namespace tex
