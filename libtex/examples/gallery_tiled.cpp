@@ -2,6 +2,7 @@
 // the wall; every random decision is a ghost mapper's, taken copy by copy at conversion.
 #include "gallery_tiled.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "gallery_teasers.hpp"
@@ -11,19 +12,10 @@ using namespace tex;
 
 namespace {
 
-// Smooth value noise in [0, 1): random values on a square lattice of side `cell`, keyed by
-// the lattice node and the seed, blended with a smoothstep. A pure function of the point.
-double value_noise(const Point& p, double cell) {
-    const double gx = p.x / cell, gy = p.y / cell;
-    const double fx = std::floor(gx), fy = std::floor(gy);
-    auto node = [](double i, double j) {
-        return unit_from_hash(hash_double(hash_double(mix64(GetSeed() ^ 0x4e4f495345ULL), i), j));
-    };
-    auto smooth = [](double t) { return t * t * (3 - 2 * t); };
-    const double tx = smooth(gx - fx), ty = smooth(gy - fy);
-    const double a = node(fx, fy) + (node(fx + 1, fy) - node(fx, fy)) * tx;
-    const double b = node(fx, fy + 1) + (node(fx + 1, fy + 1) - node(fx, fy + 1)) * tx;
-    return a + (b - a) * ty;
+// A smooth field of the position with broad highs and lows (closed form, so that the Python
+// twin computes the same doubles).
+double cluster_field(const Point& p) {
+    return 0.5 + 0.35 * std::sin(p.x / 210.0 + 0.7) * std::sin(p.y / 160.0 + 1.9) + 0.1 * std::sin((p.x + 2 * p.y) / 390.0);
 }
 
 }  // namespace
@@ -55,9 +47,9 @@ Arrangement thinned_wall(const std::string& dir) {
 
 Arrangement clustered_wall(const std::string& dir) {
     auto cluster = [](const TiledElement& e) {
-        const double v = value_noise(e.anchor, 450);
-        if (v < 0.5) return Nothing();
-        return Scale(e.curves, std::min(1.0, 0.5 + (v - 0.5) * 2.5));
+        const double v = cluster_field(e.anchor) + Random(e, -0.08, 0.08, 0);
+        if (v < 0.45) return Nothing();
+        return Scale(e.curves, std::min(1.0, 0.5 + (v - 0.45) * 2.5));
     };
     return GhostMap(cluster, wall(dir));
 }

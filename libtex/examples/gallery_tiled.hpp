@@ -18,8 +18,8 @@ tex::Arrangement regular_wall(const std::string& dir);
 tex::Arrangement jittered_wall(const std::string& dir);
 // (c) About a third of the bricks deleted at random by a ghost mapper.
 tex::Arrangement thinned_wall(const std::string& dir);
-// (d) Clusters: bricks kept where a smooth random field of their position is high, smaller
-// towards the clusters' edges.
+// (d) Clusters: bricks kept where a smooth field of their position, blurred by a random
+// amount per brick, is high; smaller towards the clusters' edges.
 tex::Arrangement clustered_wall(const std::string& dir);
 
 }  // namespace gallery::tiled
