@@ -177,7 +177,8 @@ TEST(Tiled, RandomInARegularMapperIsAnError) {
     EXPECT_TEX_ERROR(MapToEdges(unkeyed, t), "MapToEdges", "random");
     auto sub = [](const Face& f) { return UniformPartition(IrregularProperties(0.01), CROP)(f); };
     EXPECT_TEX_ERROR(MapToFaces(sub, t), "MapToFaces", "random");
-    // A regular sub-partition is fine.
+    // A sub-partition without Random runs (it is periodic only if its own period fits the
+    // lattice: it is anchored to the plane, see docs/tiled.md).
     auto hatch = [](const Face& f) { return StripesPartition(StripesProperties(pi / 4, 3), CROP)(f); };
     EXPECT_FALSE(MapToFaces(hatch, t)(kWindow).curves.empty());
 }

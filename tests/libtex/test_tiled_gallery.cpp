@@ -122,3 +122,36 @@ TEST(TiledGallery, TrianglesAndBeeHive) {
     };
     expect_same_inside(MapToEdges(dual, triangles).Convert(kInnerRegion, KEEP_OUTSIDE), engine_example("bee_hive"));
 }
+
+TEST(TiledGallery, WallpaperP4m) {
+    // Bumps laid both ways along every edge of the square grid turned 45 degrees (the gallery's
+    // stroke_along / stroke_against, written out).
+    const Curves bump = ImportSVG(gallery::default_elements_dir() + "/bump.svg");
+    auto along = [bump](const Edge& e) {
+        return MatchPoints(bump, PointLabeled(bump, "start"), PointLabeled(bump, "end"), Location(SourceVertex(e)),
+                           Location(TargetVertex(e)));
+    };
+    auto against = [bump](const Edge& e) {
+        return MatchPoints(bump, PointLabeled(bump, "end"), PointLabeled(bump, "start"), Location(SourceVertex(e)),
+                           Location(TargetVertex(e)));
+    };
+    const TiledMap grid = GridPartition(StripesProperties(pi / 4, 200), StripesProperties(-pi / 4, 200), Tiled());
+    const TiledMap p4m = Union(MapToEdges(along, grid), MapToEdges(against, grid));
+    expect_same_inside(p4m.Convert(kInnerRegion, KEEP_OUTSIDE), engine_example("wallpaper_p4m"));
+}
+
+TEST(TiledGallery, RegularResultA) {
+    // Horizontal hatching outside tiles turned 45 degrees and shrunk: a mask on a common
+    // period of 15 and 200 (600), and faces of a map of overlapping turned squares.
+    auto turn = [](const Face& f) { return Rotate(Contour(f), pi / 4); };
+    auto reduce = [](const Face& f) { return Scale(Contour(f), 0.8); };
+    const TiledMap tiles = MapToFaces(
+        reduce, MapToFaces(turn, GridPartition(StripesProperties(0, 200), StripesProperties(pi / 2, 200), Tiled())));
+    const TiledMap hatching = Outside(StripesPartition(StripesProperties(0, 15), Tiled()), tiles, CROP);
+    EXPECT_NEAR(std::abs(hatching.period1().y), 600, 1e-9);
+    // Both cut to the inner window: the tiled map stores the lines a period at a time.
+    auto cut = [](const Curves& c) { return th::runs(apply_mask(c, kInnerRegion, CROP)); };
+    const auto tiled = cut(hatching.Convert(kInnerRegion, KEEP_OUTSIDE)), engine = cut(engine_example("regular_a"));
+    EXPECT_GT(tiled.size(), 100u);
+    EXPECT_SAME_RUNS(tiled, engine);
+}

@@ -210,6 +210,7 @@ TiledMap::Block TiledMap::block() const {
             }
         }
     Block b;
+    const BBox box = all.bbox();
     b.map = PlanarMap::induce(all);
     const PlanarMap& m = *b.map;
     for (std::size_t v = 0; v < m.vertices().size(); ++v)
@@ -219,7 +220,10 @@ TiledMap::Block TiledMap::block() const {
     for (std::size_t f = 0; f < m.faces().size(); ++f) {
         if (m.faces()[f].unbounded) continue;
         if (!in_central_tile(*this, Centroid(Face(b.map, int(f))))) continue;
-        if (IsBoundary(Face(b.map, int(f))))
+        // A face of the central tile reaching the block's own box is not closed within the
+        // block (an infinite band, or a face wider than the block): no complete neighbourhood.
+        const BBox fb = CellBBox(Face(b.map, int(f)));
+        if (fb.xmin <= box.xmin || fb.ymin <= box.ymin || fb.xmax >= box.xmax || fb.ymax >= box.ymax)
             throw Error("TiledMap", "a face of the central tile reaches the edge of its block of tiles (an "
                                     "unbounded or very large face)");
         b.faces.push_back(int(f));
