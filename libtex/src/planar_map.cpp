@@ -55,6 +55,23 @@ using Caching = CgalTypes<CGAL::Arr_segment_traits_2<Kernel>>;
 using NonCaching = CgalTypes<CGAL::Arr_non_caching_segment_traits_2<Kernel>>;
 using IK = CGAL::Exact_predicates_inexact_constructions_kernel;
 
+// The double nearest below a lazy exact coordinate, as a function of its exact value only.
+// CGAL::to_double returns the middle of the current interval approximation when it is
+// narrow enough, and that interval depends on the history of the number (whether a
+// predicate has already forced its exact value), which differs between builds: a Debug
+// build with sanitizers rounded some cut points of the gallery's exact crops to other
+// doubles than the Release build, and drew other faces.
+double exact_double(const Kernel::FT& x) {
+    const auto& a = x.approx();
+    if (a.inf() == a.sup()) return a.inf();  // a double input coordinate: already exact
+    const auto& e = CGAL::exact(x);
+    const std::pair<double, double> b = CGAL::to_interval(e);  // the two doubles around e
+    if (b.first == b.second) return b.first;
+    // The nearer of the two (ties to the lower one); CGAL::to_double of a rational truncates.
+    const int c = CGAL::compare(e - b.first, b.second - e);
+    return c == CGAL::LARGER ? b.second : b.first;
+}
+
 struct PointHash {
     std::size_t operator()(const Point& p) const { return hash_point(0, p); }
 };
@@ -121,7 +138,7 @@ void build_with_cgal(const Curves& input, RawGraph& g) {
     g.visolated.resize(nv);
     for (std::size_t i = 0; i < nv; ++i) {
         vs[i]->set_data(int(i));
-        g.vpt[i] = Point{CGAL::to_double(vs[i]->point().x()), CGAL::to_double(vs[i]->point().y())};
+        g.vpt[i] = Point{exact_double(vs[i]->point().x()), exact_double(vs[i]->point().y())};
         g.visolated[i] = vs[i]->is_isolated();
     }
     {

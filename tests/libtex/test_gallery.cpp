@@ -1629,14 +1629,16 @@ TEST(FastCrop, SameMapsAsTheExactPathOnTheGallery) {
             detail::ExactCropScope only_exact;
             exact = drawn(e);
         }
-        const double tol = 0.08;  // differences of rounding only
+        // Both paths round every cut point to the nearest double of its exact value, so they
+        // differ only where a crossing of two cut curves is rounded (teaser_b: 292 big faces
+        // fast, 293 exact; the other examples agree exactly). Before the exact path rounded
+        // that way it gave 311 (Release) or 318 (the sanitizer build) on teaser_b.
+        const double tol = 0.01;
         EXPECT_NEAR(double(fast.edges), double(exact.edges), tol * double(exact.edges));
         EXPECT_NEAR(double(fast.faces), double(exact.faces), tol * double(exact.faces));
         EXPECT_NEAR(fast.length, exact.length, 1e-6 * exact.length);
-        // Faces of visible size too (not only slivers) may differ: a rounded cut point that
-        // misses a neighbour's line by 1e-12 leaves a loose end where the exact path closes a
-        // face (teaser_b: 292 big faces fast, 311 exact; loose ends are not compared).
-        EXPECT_NEAR(double(fast.big_faces), double(exact.big_faces), tol * double(exact.big_faces));
+        EXPECT_NEAR(double(fast.big_faces), double(exact.big_faces), tol * double(exact.big_faces) + 1);
+        EXPECT_NEAR(double(fast.loose_ends), double(exact.loose_ends), tol * double(exact.loose_ends) + 1);
         std::printf("%-14s fast %zu/%zu/%zu/%zu/%zu exact %zu/%zu/%zu/%zu/%zu\n", name, fast.vertices, fast.edges,
                     fast.faces, fast.big_faces, fast.loose_ends, exact.vertices, exact.edges, exact.faces,
                     exact.big_faces, exact.loose_ends);
