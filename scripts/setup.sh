@@ -18,6 +18,7 @@ PACKAGES=(
   python3 python3-dev pybind11-dev                  # the Python module, for /usr/bin/python3
   python3-pytest python3-gdal python3-numpy         # Python tests (Debian's interpreter)
   librsvg2-bin time                                 # PNG previews of SVG outputs; GNU time (benchmarks)
+  libopenimageio-dev                                # libtex_image: tiled maps rasterised to image files
   qgis python3-qgis qgis-providers                  # the QGIS plugin and its tests (headless QGIS, qgis_process)
 )
 

@@ -290,26 +290,29 @@ def labelled_bricks_grid():
     return GridPartition(rows, columns, KEEP_OUTSIDE)
 
 
-def brick_courses():
-    def keep_joints(e):
-        # Horizontal edges stay; below an "h1" line only "v1" joints stay, elsewhere "v2" and "v4".
-        if HasLabel(e, "h1") or HasLabel(e, "h2"):
-            return ToCurve(e)
-        if HasLabel(IncidentEdges(TargetVertex(e)), "h1"):
-            kept = HasLabel(e, "v1")
-        else:
-            kept = HasLabel(e, "v2") or HasLabel(e, "v4")
-        return ToCurve(e) if kept else Nothing()
+def keep_brick_joints(e):
+    # Horizontal edges stay; below an "h1" line only "v1" joints stay, elsewhere "v2" and "v4".
+    if HasLabel(e, "h1") or HasLabel(e, "h2"):
+        return ToCurve(e)
+    if HasLabel(IncidentEdges(TargetVertex(e)), "h1"):
+        kept = HasLabel(e, "v1")
+    else:
+        kept = HasLabel(e, "v2") or HasLabel(e, "v4")
+    return ToCurve(e) if kept else Nothing()
 
-    return MapToEdges(keep_joints, labelled_bricks_grid())
+
+def shrink_brick(f):
+    # Long bricks shrink to 90 %, short ones to 80 %.
+    return Scale(Contour(f), 0.9 if HasLabel(IncidentEdges(f), "v1") else 0.8)
+
+
+def brick_courses():
+    return MapToEdges(keep_brick_joints, labelled_bricks_grid())
 
 
 def teaser_c(elements):
-    # A wall of long and short bricks; long bricks shrink to 90 %, short ones to 80 %.
-    def shrink(f):
-        return Scale(Contour(f), 0.9 if HasLabel(IncidentEdges(f), "v1") else 0.8)
-
-    return MapToFaces(shrink, brick_courses())
+    # A wall of long and short bricks.
+    return MapToFaces(shrink_brick, brick_courses())
 
 
 def hatch_cells():
@@ -958,6 +961,55 @@ def oriented_darts(elements):
     return turned_elements(load(elements, "dart.svg"), 1e-4)(to_centre)
 
 
+# ---- Tiled planar maps (Fig. 4.5): one period of a wall, made semi-regular by ghost mappers ----
+
+def tiled_wall(elements):
+    pebble = load(elements, "pebble.svg")
+    rows = StripesProperties(0, 200)
+    columns = StripesProperties(pi / 2, 120)
+    SetEdgeLabels(rows, "h1", "h2")
+    SetEdgeLabels(columns, "v1", "v2", "v3", "v4")
+
+    def brick(f):
+        # Teaser c's brick, a pebble in each long one.
+        c = shrink_brick(f)
+        if HasLabel(IncidentEdges(f), "v1"):
+            c = Append(c, Scale(MatchFace(pebble, f), 0.35))
+        return c
+
+    return MapToFaces(brick, MapToEdges(keep_brick_joints, GridPartition(rows, columns, Tiled(CROP))))
+
+
+def tiled_a(elements):
+    return tiled_wall(elements)
+
+
+def tiled_b(elements):
+    def jitter(e):
+        turned = Rotate(Scale(e.curves, Random(e, 0.75, 1.0, 0)), Random(e, -0.12, 0.12, 1))
+        return Translate(turned, Point(Random(e, -18, 18, 2), Random(e, -12, 12, 3)))
+
+    return GhostMap(jitter, tiled_wall(elements))
+
+
+def tiled_c(elements):
+    return GhostMap(lambda e: Nothing() if Random(e, 0, 1, 0) < 0.35 else e.curves, tiled_wall(elements))
+
+
+def cluster_field(p):
+    return 0.5 + 0.35 * math.sin(p.x / 210.0 + 0.7) * math.sin(p.y / 160.0 + 1.9) + 0.1 * math.sin((p.x + 2 * p.y) / 390.0)
+
+
+def tiled_d(elements):
+    def cluster(e):
+        v = cluster_field(e.anchor) + Random(e, -0.08, 0.08, 0)
+        if v < 0.45:
+            return Nothing()
+        return Scale(e.curves, min(1.0, 0.5 + (v - 0.45) * 2.5))
+
+    return GhostMap(cluster, tiled_wall(elements))
+
+
 EXAMPLES = {
     "stripes": stripes, "grid": grid, "uniform": uniform, "random": random_, "puzzle": puzzle,
     "rosettes": rosettes, "cracks": cracks, "bimodal": bimodal, "crosses": crosses, "curves": curves,
@@ -975,6 +1027,10 @@ EXAMPLES = {
     "wallpaper_p31m": wallpaper_p31m, "escher_p6": escher_p6, "escher_p4m": escher_p4m, "escher_p31m": escher_p31m,
     "parquetry": parquetry, "table": table, "bottle": bottle, "teapot": teapot,
     "microprocessor": microprocessor,
+    "tiled_a": tiled_a,
+    "tiled_b": tiled_b,
+    "tiled_c": tiled_c,
+    "tiled_d": tiled_d,
     "oriented_darts": oriented_darts,
 }
 

@@ -58,7 +58,22 @@ using FieldConverter = std::function<std::optional<tex::Field>(const py::object&
 void add_field_converter(FieldConverter c);
 tex::Field to_field(const py::object& o);
 
+// A Python callable as a mapper. The result must be Curves: anything else is a TypeError
+// naming the operator and what came back.
+template <class CellT>
+std::function<tex::Curves(const CellT&)> mapper(py::function fn, const char* op) {
+    PyRef ref(std::move(fn));
+    return [ref, op](const CellT& cell) -> tex::Curves {
+        py::gil_scoped_acquire gil;
+        py::object r = ref.get()(cell);
+        if (py::isinstance<tex::Curves>(r)) return r.cast<const tex::Curves&>();
+        throw py::type_error(std::string(op) + ": the mapper returned " + type_name(r) +
+                             "; a mapper must return Curves (Nothing() for no curves)");
+    };
+}
+
 void bind_tex(py::module_& m);
+void bind_tiled(py::module_& m);
 void bind_fields(py::module_& m);
 void bind_carto(py::module_& m);
 

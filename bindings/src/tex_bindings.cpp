@@ -20,20 +20,6 @@ std::string repr(const Point& p) {
 
 std::vector<std::string> names(const Labels& l) { return l.names(); }
 
-// A Python callable as a mapper. The result must be Curves: anything else is a TypeError
-// naming the operator and what came back.
-template <class CellT>
-std::function<Curves(const CellT&)> mapper(py::function fn, const char* op) {
-    PyRef ref(std::move(fn));
-    return [ref, op](const CellT& cell) -> Curves {
-        py::gil_scoped_acquire gil;
-        py::object r = ref.get()(cell);
-        if (py::isinstance<Curves>(r)) return r.cast<const Curves&>();
-        throw py::type_error(std::string(op) + ": the mapper returned " + type_name(r) +
-                             "; a mapper must return Curves (Nothing() for no curves)");
-    };
-}
-
 // A mapper the engine runs natively (a stock mapper such as JitterEdges): the mapping
 // operators take it as it is, so no Python call is made per cell and it runs on the
 // engine's worker threads.
@@ -429,8 +415,8 @@ void bind_tex(py::module_& m) {
             return SetWeightedFaceLabels(p, weighted_args(a, "SetWeightedFaceLabels"));
         },
         py::return_value_policy::reference);
-    m.def("StripesPartition", &StripesPartition, py::arg("p"), py::arg("border") = Border::CROP_ADD_BOUNDARY);
-    m.def("GridPartition", &GridPartition, py::arg("s1"), py::arg("s2"), py::arg("border"));
+    m.def("StripesPartition", py::overload_cast<const Stripes&, Border>(&StripesPartition), py::arg("p"), py::arg("border") = Border::CROP_ADD_BOUNDARY);
+    m.def("GridPartition", py::overload_cast<const Stripes&, const Stripes&, Border>(&GridPartition), py::arg("s1"), py::arg("s2"), py::arg("border"));
     m.def("UniformPartition", &UniformPartition, py::arg("p"), py::arg("border"), py::arg("seed") = py::none(),
           "Voronoi cells of Poisson-disk sites; each call draws its own sites unless `seed` repeats them");
     m.def("RandomPartition", &RandomPartition, py::arg("p"), py::arg("border"), py::arg("seed") = py::none(),
@@ -471,13 +457,13 @@ void bind_tex(py::module_& m) {
     m.def(
         "MapToFaces", [](py::function f, Arrangement a) { return MapToFaces(mapper<Face>(f, "MapToFaces"), a, MapperThreads::Serial); },
         py::arg("mapper"), py::arg("arrangement"), "visits the bounded faces");
-    m.def("Union", &Union, py::arg("a1"), py::arg("a2"));
+    m.def("Union", py::overload_cast<Arrangement, Arrangement>(&Union), py::arg("a1"), py::arg("a2"));
     m.def("Crop", &Crop, py::arg("a"), py::arg("border"),
           "a evaluated on the region and cut to it (CROP_ADD_BOUNDARY adds the region's labelled outline)");
     m.def("Outline", &Outline, "the region evaluated on as an arrangement: its labelled edges, else its rings");
     m.def("Merge", &Merge, py::arg("a1"), py::arg("a2"), "Union's name in the thesis's Chapter 4");
-    m.def("Inside", &Inside, py::arg("a1"), py::arg("a2"), py::arg("border"));
-    m.def("Outside", &Outside, py::arg("a1"), py::arg("a2"), py::arg("border"));
+    m.def("Inside", py::overload_cast<Arrangement, Arrangement, Border>(&Inside), py::arg("a1"), py::arg("a2"), py::arg("border"));
+    m.def("Outside", py::overload_cast<Arrangement, Arrangement, Border>(&Outside), py::arg("a1"), py::arg("a2"), py::arg("border"));
 
     // ---- SVG, seed, threads ----
     py::class_<SvgStyle>(m, "SvgStyle")

@@ -9,6 +9,7 @@
 #include "gallery_micro.hpp"
 #include "gallery_more.hpp"
 #include "gallery_teasers.hpp"
+#include "gallery_tiled.hpp"
 
 namespace gallery {
 using namespace tex;
@@ -306,6 +307,10 @@ const std::vector<Example>& examples() {
         {"bottle", "Bottle: bubbles filling a bottle", 11, domain::bottle},
         {"teapot", "Teapot: dots of random sizes filling a teapot", 22, domain::teapot},
         {"microprocessor", "Microprocessor: traces, chips and solder joints", 54, micro::microprocessor},
+        {"tiled_a", "Tiled planar map (Fig. 4.5 a): a regular wall", -1, tiled::regular_wall},
+        {"tiled_b", "Tiled planar map (Fig. 4.5 b): bricks jittered by a ghost mapper", -1, tiled::jittered_wall},
+        {"tiled_c", "Tiled planar map (Fig. 4.5 c): bricks deleted at random", -1, tiled::thinned_wall},
+        {"tiled_d", "Tiled planar map (Fig. 4.5 d): clusters of bricks", -1, tiled::clustered_wall},
         {"oriented_darts", "Control field: darts turned towards the centre (Fig. 5.2)", -1, fields::darts},
     };
     return all;

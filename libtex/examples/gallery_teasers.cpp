@@ -99,32 +99,36 @@ Arrangement stacked_rings(const std::string& dir) {
 
 // ---- Teaser c ----
 
-Arrangement labelled_bricks_grid() {
+Stripes brick_rows() {
     Stripes rows = StripesProperties(0, 200);
-    Stripes columns = StripesProperties(pi / 2, 120);
     SetEdgeLabels(rows, {"h1", "h2"});
+    return rows;
+}
+
+Stripes brick_columns() {
+    Stripes columns = StripesProperties(pi / 2, 120);
     SetEdgeLabels(columns, {"v1", "v2", "v3", "v4"});
-    return GridPartition(rows, columns, KEEP_OUTSIDE);
+    return columns;
 }
 
-Arrangement brick_courses() {
-    // Horizontal edges all stay. A vertical edge whose upper (target) end meets an "h1"
-    // line stays only on "v1" columns (one in four: long bricks); the others stay only on
-    // "v2" and "v4" columns (one in two: short bricks).
-    auto keep_joints = [](const Edge& e) {
-        if (HasLabel(e, "h1") || HasLabel(e, "h2")) return ToCurve(e);
-        const bool long_course = HasLabel(IncidentEdges(TargetVertex(e)), "h1");
-        const bool kept = long_course ? HasLabel(e, "v1") : HasLabel(e, "v2") || HasLabel(e, "v4");
-        return kept ? ToCurve(e) : Nothing();
-    };
-    return MapToEdges(keep_joints, labelled_bricks_grid());
+Arrangement labelled_bricks_grid() { return GridPartition(brick_rows(), brick_columns(), KEEP_OUTSIDE); }
+
+// Horizontal edges all stay. A vertical edge whose upper (target) end meets an "h1" line
+// stays only on "v1" columns (one in four: long bricks); the others stay only on "v2" and
+// "v4" columns (one in two: short bricks).
+Curves keep_brick_joints(const Edge& e) {
+    if (HasLabel(e, "h1") || HasLabel(e, "h2")) return ToCurve(e);
+    const bool long_course = HasLabel(IncidentEdges(TargetVertex(e)), "h1");
+    const bool kept = long_course ? HasLabel(e, "v1") : HasLabel(e, "v2") || HasLabel(e, "v4");
+    return kept ? ToCurve(e) : Nothing();
 }
 
-Arrangement shrunk_bricks() {
-    // Long bricks (bounded by "v1" joints) shrink to 90 %, short ones to 80 %.
-    auto shrink = [](const Face& f) { return Scale(Contour(f), HasLabel(IncidentEdges(f), "v1") ? 0.9 : 0.8); };
-    return MapToFaces(shrink, brick_courses());
-}
+// Long bricks (bounded by "v1" joints) shrink to 90 %, short ones to 80 %.
+Curves shrink_brick(const Face& f) { return Scale(Contour(f), HasLabel(IncidentEdges(f), "v1") ? 0.9 : 0.8); }
+
+Arrangement brick_courses() { return MapToEdges(keep_brick_joints, labelled_bricks_grid()); }
+
+Arrangement shrunk_bricks() { return MapToFaces(shrink_brick, brick_courses()); }
 
 // ---- Teaser d ----
 

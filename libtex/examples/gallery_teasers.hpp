@@ -31,6 +31,12 @@ tex::Arrangement stacked_rings(const std::string& dir);
 // vertical edges, leaving courses of long bricks and courses of short ones; each brick is
 // then shrunk (the long ones less).
 tex::Arrangement labelled_bricks_grid();
+// Its two stripe families (rows 200 apart labelled h1, h2; columns 120 apart, v1..v4), and
+// the two mappers of the wall, shared with the tiled form of the wall (tiled.hpp).
+tex::Stripes brick_rows();
+tex::Stripes brick_columns();
+tex::Curves keep_brick_joints(const tex::Edge& e);
+tex::Curves shrink_brick(const tex::Face& f);
 tex::Arrangement brick_courses();
 tex::Arrangement shrunk_bricks();
 

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "libtex/error.hpp"
+
 namespace tex {
 namespace {
 
@@ -47,7 +49,19 @@ StreamScope::~StreamScope() {
     t_stream.stream_count = saved_count_;
 }
 
-std::uint64_t GetSeed() { return t_stream.has_seed ? t_stream.seed : g_seed.load(); }
+static thread_local const char* t_no_random = nullptr;
+
+std::uint64_t GetSeed() {
+    if (t_no_random)
+        throw Error(t_no_random, "a regular mapper of a tiled map drew a random value (it would break the "
+                                 "period); draw it in a GhostMap mapper instead");
+    return t_stream.has_seed ? t_stream.seed : g_seed.load();
+}
+
+namespace detail {
+NoRandomScope::NoRandomScope(const char* op) : saved_(t_no_random) { t_no_random = op; }
+NoRandomScope::~NoRandomScope() { t_no_random = saved_; }
+}  // namespace detail
 
 SeedScope::SeedScope(std::uint64_t seed) : saved_(detail::capture_stream_state()) {
     t_stream.has_seed = true;

@@ -25,6 +25,8 @@ FAMILIES = {
     "domain": ["parquetry", "table", "bottle", "teapot"],
     # Traces, chips and solder joints (two merges with CROP_ADD_BOUNDARY, face labels).
     "micro": ["microprocessor"],
+    # Tiled planar maps (thesis Fig. 4.5): a regular wall and three ghost mappers.
+    "tiled": ["tiled_a", "tiled_b", "tiled_c", "tiled_d"],
     # A control field turning every element (thesis 5.3).
     "fields": ["oriented_darts"],
 }

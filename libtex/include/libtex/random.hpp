@@ -71,6 +71,19 @@ public:
 private:
     StreamState saved_;
 };
+// While alive on this thread, every seeded random draw (Random on cells, Random(min, max),
+// the random partitions: all go through GetSeed) throws tex::Error naming `op`. A regular
+// mapper of a tiled map (tiled.hpp) runs in one: a random value would break the period.
+class NoRandomScope {
+public:
+    explicit NoRandomScope(const char* op);
+    ~NoRandomScope();
+    NoRandomScope(const NoRandomScope&) = delete;
+    NoRandomScope& operator=(const NoRandomScope&) = delete;
+
+private:
+    const char* saved_;
+};
 }  // namespace detail
 
 // Scope that binds the unkeyed Random(min, max) of the current thread to a cell key, so

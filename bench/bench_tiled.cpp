@@ -1,0 +1,87 @@
+// Tiled planar maps against the planar-map engine on the brick wall of teaser (c), the job
+// of the thesis's Table 4.1. One size per process, so that the peak memory it prints is
+// this size's: bench_tiled.py runs it over the sizes and writes docs/tiled.md.
+//
+//   bench_tiled --cells N --engine tiled|planar [--runs R]
+//
+// prints one line: cells N, bricks drawn, operator seconds, conversion seconds at 1 and 2
+// threads (medians of R runs; planar: the whole evaluation, at 2 threads), peak RSS in KiB.
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "gallery_teasers.hpp"
+#include "libtex/tex.hpp"
+
+using namespace tex;
+namespace tz = gallery::teasers;
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+template <class F>
+double median_time(int runs, F&& f) {
+    std::vector<double> t;
+    for (int k = 0; k < runs; ++k) {
+        const auto t0 = std::chrono::steady_clock::now();
+        f();
+        t.push_back(seconds_since(t0));
+    }
+    std::sort(t.begin(), t.end());
+    return t[t.size() / 2];
+}
+
+long peak_rss_kib() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return u.ru_maxrss;
+}
+
+// A square window holding about `cells` bricks: the wall has 3 bricks per 400 x 480 period.
+Region window_for(double cells) {
+    const double side = std::sqrt(cells * 400.0 * 480.0 / 3.0);
+    return Region::rectangle(0, 0, side, side);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    double cells = 9000;
+    int runs = 5;
+    std::string engine = "tiled";
+    for (int i = 1; i + 1 < argc; i += 2) {
+        if (!std::strcmp(argv[i], "--cells")) cells = std::atof(argv[i + 1]);
+        else if (!std::strcmp(argv[i], "--runs")) runs = std::atoi(argv[i + 1]);
+        else if (!std::strcmp(argv[i], "--engine")) engine = argv[i + 1];
+    }
+    const Region w = window_for(cells);
+    if (engine == "planar") {
+        ThreadsScope threads(2);
+        std::size_t n = 0;
+        const double t = median_time(runs, [&] { n = tz::shrunk_bricks()(w).curves.size(); });
+        std::printf("%.0f %zu - - %.6f %ld\n", cells, n, t, peak_rss_kib());
+        return 0;
+    }
+    TiledMap wall = GridPartition(tz::brick_rows(), tz::brick_columns(), Tiled(CROP));
+    const double op = median_time(runs, [&] {
+        wall = MapToFaces(tz::shrink_brick,
+                          MapToEdges(tz::keep_brick_joints, GridPartition(tz::brick_rows(), tz::brick_columns(), Tiled(CROP))));
+    });
+    std::size_t n = 0;
+    double conv[2];
+    for (unsigned th : {1u, 2u}) {
+        ThreadsScope threads(th);
+        conv[th - 1] = median_time(runs, [&] { n = wall.Convert(w, CROP).curves.size(); });
+    }
+    std::printf("%.0f %zu %.6f %.6f %.6f %ld\n", cells, n, op, conv[0], conv[1], peak_rss_kib());
+    return 0;
+}

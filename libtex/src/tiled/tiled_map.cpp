@@ -1,0 +1,428 @@
+// TiledMap: the structure, its conversion to curves over a region, and point queries
+// (thesis 4.1 and 4.2.5).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "../segment_index.hpp"
+#include "libtex/error.hpp"
+#include "libtex/parallel.hpp"
+#include "libtex/tiled.hpp"
+
+namespace tex {
+namespace {
+
+// Copies further apart than this many tiles are never enumerated by a conversion.
+constexpr double kMaxCopies = 2.0e9;
+
+bool is_axis_rectangle(const Region& r) {
+    if (!r.holes().empty() || r.outer().size() != 4) return false;
+    const BBox& b = r.bbox();
+    for (const auto& p : r.outer())
+        if ((p.x != b.xmin && p.x != b.xmax) || (p.y != b.ymin && p.y != b.ymax)) return false;
+    return true;
+}
+
+std::vector<Point> box_ring(const BBox& b) {
+    return {{b.xmin, b.ymin}, {b.xmax, b.ymin}, {b.xmax, b.ymax}, {b.xmin, b.ymax}};
+}
+
+// Where a box (or a cell ring) lies against the region; exact on rectangles, else through
+// classify_polygon.
+Overlap classify_box(const BBox& b, const Region& r, bool rect) {
+    const BBox& rb = r.bbox();
+    if (!b.intersects(rb)) return Overlap::Disjoint;
+    if (rect) {
+        if (b.xmin >= rb.xmin && b.xmax <= rb.xmax && b.ymin >= rb.ymin && b.ymax <= rb.ymax)
+            return Overlap::Inside;
+        return Overlap::Partial;
+    }
+    return classify_polygon(box_ring(b), b, r);
+}
+
+bool proper_cross(const Point& a, const Point& b, const Point& c, const Point& d) {
+    using detail::orientation;
+    return orientation(a, b, c) * orientation(a, b, d) < 0 && orientation(c, d, a) * orientation(c, d, b) < 0;
+}
+
+template <class F>
+void for_each_ring_segment(const Region& r, F&& f) {
+    auto ring = [&](const std::vector<Point>& pts) {
+        for (std::size_t i = 0, j = pts.size() - 1; i < pts.size(); j = i++) f(pts[j], pts[i]);
+    };
+    ring(r.outer());
+    for (const auto& h : r.holes()) ring(h);
+}
+
+std::vector<std::pair<Point, Point>> curve_segments_of(const Curve& c) {
+    std::vector<std::pair<Point, Point>> s;
+    for (std::size_t k = 1; k < c.points.size(); ++k) s.emplace_back(c.points[k - 1], c.points[k]);
+    if (c.closed && c.points.size() > 2) s.emplace_back(c.points.back(), c.points.front());
+    return s;
+}
+
+// KEEP_OUTSIDE for a curve: it meets the (closed) region.
+bool curve_meets(const Curve& c, const Region& r) {
+    for (const auto& p : c.points)
+        if (r.contains(p)) return true;
+    bool touch = false;
+    const auto segs = curve_segments_of(c);
+    for_each_ring_segment(r, [&](const Point& a, const Point& b) {
+        for (const auto& [p, q] : segs)
+            if (!touch && detail::segments_touch(a, b, p, q)) touch = true;
+    });
+    return touch;
+}
+
+// KEEP_INSIDE for a curve: every point inside and no crossing of the boundary.
+bool curve_inside(const Curve& c, const Region& r) {
+    for (const auto& p : c.points)
+        if (!r.contains(p)) return false;
+    bool cross = false;
+    const auto segs = curve_segments_of(c);
+    for_each_ring_segment(r, [&](const Point& a, const Point& b) {
+        for (const auto& [p, q] : segs)
+            if (!cross && proper_cross(a, b, p, q)) cross = true;
+    });
+    return !cross;
+}
+
+BBox curve_box(const Curve& c) {
+    BBox b;
+    for (const auto& p : c.points) b.add(p);
+    return b;
+}
+
+double point_segment_distance(const Point& p, const Point& a, const Point& b) {
+    const Point d = b - a;
+    const double l2 = dot(d, d);
+    double t = l2 > 0 ? dot(p - a, d) / l2 : 0.0;
+    t = std::clamp(t, 0.0, 1.0);
+    return distance(p, a + d * t);
+}
+
+std::string period_text(const Point& p) {
+    std::ostringstream s;
+    s << "(" << p.x << ", " << p.y << ")";
+    return s.str();
+}
+
+}  // namespace
+
+double Random(const TiledElement& e, double min, double max, double n) {
+    const std::uint64_t h = hash_double(hash_combine(mix64(GetSeed() ^ 0x54494c45ULL), e.key), n);
+    return min + (max - min) * unit_from_hash(h);
+}
+
+TiledMap::TiledMap(Point p1, Point p2, std::vector<Element> elements, Border border, std::vector<CellRing> cells,
+                   bool bounded_faces) {
+    const double det = cross(p1, p2);
+    if (!std::isfinite(det) || std::abs(det) <= 1e-12 * std::max(1.0, dot(p1, p1) + dot(p2, p2)))
+        throw Error("TiledMap", "the periods " + period_text(p1) + " and " + period_text(p2) +
+                                    " are colinear (or not finite)");
+    auto d = std::make_shared<Data>();
+    d->p1 = p1;
+    d->p2 = p2;
+    d->inv[0] = p2.y / det;
+    d->inv[1] = -p2.x / det;
+    d->inv[2] = -p1.y / det;
+    d->inv[3] = p1.x / det;
+    for (auto& e : elements) {
+        e.box = BBox{};
+        for (const auto& c : e.curves.curves) e.box.add(curve_box(c));
+        for (const auto& p : e.curves.points) e.box.add(p.point);
+    }
+    d->elements = std::move(elements);
+    d->cells = std::move(cells);
+    d->border = border;
+    d->bounded_faces = bounded_faces;
+    d_ = std::move(d);
+}
+
+Point TiledMap::lattice(const Point& p) const {
+    return {d_->inv[0] * p.x + d_->inv[1] * p.y, d_->inv[2] * p.x + d_->inv[3] * p.y};
+}
+
+TiledMap TiledMap::with_ghost(GhostMapper g) const {
+    auto d = std::make_shared<Data>(*d_);
+    d->ghost = std::move(g);
+    return TiledMap(std::shared_ptr<const Data>(std::move(d)));
+}
+
+TiledMap::operator Arrangement() const {
+    TiledMap self = *this;
+    return Arrangement([self](const Region& r) { return self.Convert(r, self.border()); });
+}
+
+int TiledMap::block_reach() const {
+    double reach = 0;
+    for (const auto& e : d_->elements) {
+        if (e.box.empty()) continue;
+        for (const auto& c : box_ring(e.box)) {
+            const Point l = lattice(c);
+            reach = std::max({reach, -std::floor(l.x), -std::floor(l.y), std::ceil(l.x) - 1, std::ceil(l.y) - 1});
+        }
+    }
+    if (reach > 64) throw Error("TiledMap", "an element reaches more than 64 periods away from its tile");
+    return int(reach);
+}
+
+Curves TiledMap::Convert(const Region& r, Border b) const {
+    Curves out;
+    if (r.empty()) return out;
+    const BBox& rb = r.bbox();
+    const bool rect = is_axis_rectangle(r);
+    const bool ghost = static_cast<bool>(d_->ghost);
+    const bool keep_cells = !ghost && !d_->cells.empty() && (b == Border::KEEP_INSIDE || b == Border::KEEP_OUTSIDE);
+    const bool crop = b == Border::CROP || b == Border::CROP_ADD_BOUNDARY;
+
+    // The copies (i, j) of element e whose box can meet the region's box: the translations t
+    // with (box + t) meeting rb form the box [rb.xmin - box.xmax, rb.xmax - box.xmin] x ...;
+    // its corners in lattice coordinates bound i and j. A ghost mapper may move an element
+    // by up to its own size, so its copies are looked for that much further.
+    struct Item {
+        std::size_t e;
+        long long i, j0, j1;
+    };
+    std::vector<Item> items;
+    double copies = 0;
+    for (std::size_t e = 0; e < d_->elements.size(); ++e) {
+        const BBox& eb = d_->elements[e].box;
+        if (eb.empty()) continue;
+        const double margin = ghost ? std::max(eb.width(), eb.height()) : 0.0;
+        BBox t;
+        t.add(Point{rb.xmin - eb.xmax - margin, rb.ymin - eb.ymax - margin});
+        t.add(Point{rb.xmax - eb.xmin + margin, rb.ymax - eb.ymin + margin});
+        double ilo = 1e300, ihi = -1e300, jlo = 1e300, jhi = -1e300;
+        for (const auto& c : box_ring(t)) {
+            const Point l = lattice(c);
+            ilo = std::min(ilo, l.x);
+            ihi = std::max(ihi, l.x);
+            jlo = std::min(jlo, l.y);
+            jhi = std::max(jhi, l.y);
+        }
+        const long long i0 = (long long)std::floor(ilo), i1 = (long long)std::ceil(ihi);
+        const long long j0 = (long long)std::floor(jlo), j1 = (long long)std::ceil(jhi);
+        copies += double(i1 - i0 + 1) * double(j1 - j0 + 1);
+        if (copies > kMaxCopies) throw Error("TiledMap", "the region holds too many periods to convert");
+        for (long long i = i0; i <= i1; ++i) items.push_back({e, i, j0, j1});
+    }
+
+    // Two passes, so that the output is allocated once and filled in place (memory bounded
+    // by the output): the first counts each item's kept curves and collects the few that
+    // cross the border; the second writes the kept curves at their final offsets. With a
+    // ghost mapper (which is not run twice) the first pass keeps its curves instead.
+    struct Result {
+        std::size_t count = 0;
+        std::vector<Curve> kept, partial;  // kept: only with a ghost
+        std::vector<LabeledPoint> points;
+    };
+    std::vector<Result> results(items.size());
+    auto cell_kept = [&](const CellRef& c, long long i, long long j) {
+        if (c.cell < 0) return false;
+        const CellRing& cell = d_->cells[std::size_t(c.cell)];
+        const Point s = shift(i + c.di, j + c.dj);
+        BBox cb = cell.box;
+        cb.xmin += s.x; cb.xmax += s.x; cb.ymin += s.y; cb.ymax += s.y;
+        // The cell's own ring, not its box (a tilted cell's box is larger than the cell).
+        std::vector<Point> ring = cell.ring;
+        for (auto& p : ring) p += s;
+        const Overlap o = classify_polygon(ring, cb, r);
+        return b == Border::KEEP_INSIDE ? o == Overlap::Inside : o != Overlap::Disjoint;
+    };
+    auto translated = [](const Curve& c, const Point& s) {
+        Curve copy = c;
+        for (auto& p : copy.points) p += s;
+        return copy;
+    };
+    // dest == nullptr: first pass; else the item's slice of the output.
+    auto run = [&](std::size_t k, Curve* dest) {
+        const Item& it = items[k];
+        const Element& el = d_->elements[it.e];
+        Result& res = results[k];
+        const bool first = dest == nullptr;
+        std::size_t n = 0;
+        auto keep = [&](Curve&& c) {
+            if (dest) dest[n] = std::move(c);
+            else if (ghost) res.kept.push_back(std::move(c));
+            ++n;
+        };
+        for (long long j = it.j0; j <= it.j1; ++j) {
+            const Point s = shift(it.i, j);
+            if (keep_cells) {
+                // A partition edge stays when a cell on one of its sides is kept; the side
+                // of a dropped cell loses its labels (as the planar-map engine does).
+                const bool l = cell_kept(el.left, it.i, j), rr = cell_kept(el.right, it.i, j);
+                if (!l && !rr) continue;
+                for (const auto& c : el.curves.curves) {
+                    if (first) {
+                        ++n;
+                        continue;
+                    }
+                    Curve copy = translated(c, s);
+                    if (!l) copy.left = Labels{};
+                    if (!rr) copy.right = Labels{};
+                    keep(std::move(copy));
+                }
+                if (first)
+                    for (const auto& p : el.curves.points)
+                        if (r.contains(p.point + s)) res.points.push_back({p.point + s, p.labels});
+                continue;
+            }
+            Curves copy;
+            if (ghost) {
+                BBox moved = el.box.expanded(std::max(el.box.width(), el.box.height()));
+                moved.xmin += s.x; moved.xmax += s.x; moved.ymin += s.y; moved.ymax += s.y;
+                if (!moved.intersects(rb)) continue;
+                TiledElement te;
+                te.curves = el.curves;
+                te.curves.transform(Affine::translation(s));
+                te.anchor = el.anchor + s;
+                te.i = it.i;
+                te.j = j;
+                te.key = hash_combine(hash_combine(el.key, std::uint64_t(it.i)), std::uint64_t(j));
+                RandomScope scope(te.key);
+                copy = d_->ghost(te);
+            } else {
+                BBox cb = el.box;
+                cb.xmin += s.x; cb.xmax += s.x; cb.ymin += s.y; cb.ymax += s.y;
+                const Overlap o = classify_box(cb, r, rect);
+                if (o == Overlap::Disjoint) continue;
+                if (o == Overlap::Inside) {
+                    // The common case: the whole copy is kept as it is.
+                    if (first) {
+                        n += el.curves.curves.size();
+                        for (const auto& p : el.curves.points) res.points.push_back({p.point + s, p.labels});
+                    } else {
+                        for (const auto& c : el.curves.curves) keep(translated(c, s));
+                    }
+                    continue;
+                }
+                copy = el.curves;
+                for (auto& c : copy.curves)
+                    for (auto& p : c.points) p += s;
+                for (auto& p : copy.points) p.point += s;
+            }
+            if (crop) {
+                // Curves inside stay whole; the others are cut below, all at once.
+                for (auto& c : copy.curves) {
+                    const Overlap o = classify_box(curve_box(c), r, rect);
+                    if (o == Overlap::Inside) keep(std::move(c));
+                    else if (o == Overlap::Partial && first) res.partial.push_back(std::move(c));
+                }
+            } else {
+                // KEEP_* keep or drop a copy whole, as the engine keeps or drops whole cells:
+                // KEEP_OUTSIDE when one of its curves meets the region, KEEP_INSIDE when all
+                // lie inside.
+                bool any = false, all = true;
+                for (const auto& c : copy.curves) {
+                    const Overlap o = classify_box(curve_box(c), r, rect);
+                    const bool meets = o == Overlap::Inside || (o == Overlap::Partial && curve_meets(c, r));
+                    const bool inside = o == Overlap::Inside || (o == Overlap::Partial && curve_inside(c, r));
+                    any = any || meets;
+                    all = all && inside;
+                }
+                if (b == Border::KEEP_OUTSIDE ? any : all)
+                    for (auto& c : copy.curves) keep(std::move(c));
+            }
+            if (first)
+                for (auto& p : copy.points)
+                    if (r.contains(p.point)) res.points.push_back(std::move(p));
+        }
+        if (first) res.count = n;
+    };
+    parallel_for(items.size(), [&](std::size_t k) { run(k, nullptr); });
+    // The pieces across the border (cut, and the outline, before the output is allocated so
+    // that it is allocated once).
+    Curves subject;
+    for (auto& res : results) {
+        for (auto& c : res.partial) subject.curves.push_back(std::move(c));
+        for (auto& p : res.points) out.points.push_back(std::move(p));
+    }
+    Curves border_pieces;
+    if (b == Border::CROP_ADD_BOUNDARY && subject.curves.empty()) {
+        // Nothing crosses the outline: it is added whole, inside a single face.
+        border_pieces = r.boundary();
+        for (auto& c : border_pieces.curves)
+            if (c.points.size() >= 2) c.left = FaceLabelsAt((c.points[0] + c.points[1]) / 2);
+    } else if (crop) {
+        static const LabelId outline = intern_label("\x01libtex-tiled-outline");
+        border_pieces = detail::crop_to_region(subject, r, b, outline);
+        for (auto& c : border_pieces.curves) {
+            if (!c.labels.has(outline)) continue;
+            // A piece of the outline: the labels of the face it bounds on its inner side.
+            c.labels.remove(outline);
+            c.left = Labels{};
+            c.right = Labels{};
+            if (c.points.size() < 2) continue;
+            const Point mid = (c.points[0] + c.points[1]) / 2;
+            const Point d = c.points[1] - c.points[0];
+            const double len = norm(d);
+            if (len > 0) c.left = FaceLabelsAt(mid + Point{-d.y, d.x} * (1e-7 / len * std::max(1.0, len)));
+        }
+    }
+
+    std::vector<std::size_t> offset(items.size() + 1, 0);
+    for (std::size_t k = 0; k < items.size(); ++k) offset[k + 1] = offset[k] + results[k].count;
+    out.curves.reserve(offset.back() + border_pieces.curves.size());
+    out.curves.resize(offset.back());
+    parallel_for(items.size(), [&](std::size_t k) {
+        if (ghost) {
+            std::move(results[k].kept.begin(), results[k].kept.end(), out.curves.begin() + std::ptrdiff_t(offset[k]));
+            std::vector<Curve>().swap(results[k].kept);
+        } else if (results[k].count > 0) {
+            run(k, out.curves.data() + offset[k]);
+        }
+    });
+    for (auto& c : border_pieces.curves) out.curves.push_back(std::move(c));
+    return out;
+}
+
+double TiledMap::DistanceToCurves(const Point& p) const {
+    const Point l = lattice(p);
+    const long long ti = (long long)std::floor(l.x), tj = (long long)std::floor(l.y);
+    const int reach = block_reach() + 1;
+    double best = std::numeric_limits<double>::infinity();
+    for (long long i = ti - reach; i <= ti + reach; ++i)
+        for (long long j = tj - reach; j <= tj + reach; ++j) {
+            const Point s = shift(i, j);
+            const Point q = p - s;  // p in the frame of the element's central copy
+            for (const auto& e : d_->elements)
+                for (const auto& c : e.curves.curves)
+                    for (const auto& [a, b] : curve_segments_of(c)) best = std::min(best, point_segment_distance(q, a, b));
+        }
+    return best;
+}
+
+Labels TiledMap::FaceLabelsAt(const Point& p) const {
+    const Point l = lattice(p);
+    const long long ti = (long long)std::floor(l.x), tj = (long long)std::floor(l.y);
+    const int reach = block_reach() + 1;
+    // A tiled partition knows its cells: the one containing p.
+    for (long long i = ti - reach; !d_->cells.empty() && i <= ti + reach; ++i)
+        for (long long j = tj - reach; j <= tj + reach; ++j) {
+            const Point q = p - shift(i, j);
+            for (const auto& c : d_->cells)
+                if (c.box.contains(q) && point_in_ring(q, c.ring)) return c.labels;
+        }
+    // Otherwise the side labels of the nearest curve, on p's side of it.
+    double best = std::numeric_limits<double>::infinity();
+    Labels labels;
+    for (long long i = ti - reach; i <= ti + reach; ++i)
+        for (long long j = tj - reach; j <= tj + reach; ++j) {
+            const Point q = p - shift(i, j);
+            for (const auto& e : d_->elements)
+                for (const auto& c : e.curves.curves)
+                    for (const auto& [a, b] : curve_segments_of(c)) {
+                        const double dd = point_segment_distance(q, a, b);
+                        if (dd < best) {
+                            best = dd;
+                            labels = cross(b - a, q - a) >= 0 ? c.left : c.right;
+                        }
+                    }
+        }
+    return labels;
+}
+
+}  // namespace tex

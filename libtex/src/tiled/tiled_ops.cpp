@@ -1,0 +1,384 @@
+// Operators on tiled maps: the tiled partitions, the mappers by the Neighbourhood-Influence-
+// Zone rule (thesis 4.2.2), ghost mapping (4.2.4) and the union on commensurable periods.
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+#include "libtex/error.hpp"
+#include "libtex/merge.hpp"
+#include "libtex/parallel.hpp"
+#include "libtex/tiled.hpp"
+
+namespace tex {
+namespace {
+
+// Fraction of a period by which the fundamental tile is moved off the lattice, so that the
+// reference points of regular partitions (which sit on simple fractions of the period) never
+// fall on a tile's side and each cell class has exactly one representative.
+constexpr double kTileOffset = 0.2718281828459045;
+
+long long pos_mod(long long a, long long m) { return ((a % m) + m) % m; }
+
+long long lcm_ll(long long a, long long b) { return a / std::gcd(a, b) * b; }
+
+// One family of parallel lines of a tiled partition, over one full period of its widths
+// and label cycles.
+struct Family {
+    Point d, n;
+    std::vector<double> offsets;  // offsets of the lines 0..count, offsets[count] = period
+    long long count = 0;
+    const Stripes* s = nullptr;
+
+    Family(const Stripes& st, const char* op) : s(&st) {
+        if (!std::isfinite(st.angle)) throw Error(op, "the angle is not a finite number");
+        if (st.widths.empty()) throw Error(op, "no width given");
+        const auto bad = std::find_if(st.widths.begin(), st.widths.end(),
+                                      [](double w) { return !(w > 0 && std::isfinite(w)); });
+        if (bad != st.widths.end()) {
+            std::ostringstream m;
+            m << "width " << *bad << " is not a positive number";
+            throw Error(op, m.str());
+        }
+        d = {std::cos(st.angle), std::sin(st.angle)};
+        // Axis-aligned directions exactly so (cos(pi/2) is not 0), as the planar-map engine.
+        if (std::abs(d.x) < 1e-12) d = {0.0, d.y > 0 ? 1.0 : -1.0};
+        if (std::abs(d.y) < 1e-12) d = {d.x > 0 ? 1.0 : -1.0, 0.0};
+        n = {-d.y, d.x};
+        count = (long long)st.widths.size();
+        if (!st.edge_labels.empty()) count = lcm_ll(count, (long long)st.edge_labels.size());
+        if (!st.face_labels.empty()) count = lcm_ll(count, (long long)st.face_labels.size());
+        if (count > 100000) throw Error(op, "the width and label cycles repeat only after more than 100000 lines");
+        // Offsets as the engine computes them: whole width periods plus a prefix sum.
+        std::vector<double> prefix{0};
+        for (double w : st.widths) prefix.push_back(prefix.back() + w);
+        const long long m = (long long)st.widths.size();
+        for (long long i = 0; i <= count; ++i) offsets.push_back(double(i / m) * prefix.back() + prefix[std::size_t(i % m)]);
+    }
+    double period() const { return offsets.back(); }
+    Labels edge_label(long long i) const {
+        Labels l;
+        if (!s->edge_labels.empty()) l.add(s->edge_labels[std::size_t(pos_mod(i, (long long)s->edge_labels.size()))]);
+        return l;
+    }
+    Labels face_label(long long i) const {
+        Labels l;
+        if (!s->face_labels.empty()) l.add(s->face_labels[std::size_t(pos_mod(i, (long long)s->face_labels.size()))]);
+        return l;
+    }
+};
+
+std::uint64_t anchor_key(const Point& p) { return hash_point(0x54504d4b4559ULL, p); }
+
+Curve segment(const Point& a, const Point& b, Labels labels, Labels left, Labels right) {
+    Curve c;
+    c.points = {a, b};
+    c.labels = std::move(labels);
+    c.left = std::move(left);
+    c.right = std::move(right);
+    return c;
+}
+
+void check_regular(const TiledMap& a, const char* op) {
+    if (a.has_ghost())
+        throw Error(op, "the tiled map has a ghost mapper, which must be the last stage; map it before GhostMap");
+    if (!a.bounded_faces())
+        throw Error(op, "the tiled map has unbounded faces (stripes); map a tiled GridPartition instead");
+}
+
+// Which tile (in lattice units, moved by kTileOffset) a reference point falls in.
+bool in_central_tile(const TiledMap& a, const Point& p) {
+    const Point l = a.lattice(p);
+    return std::floor(l.x + kTileOffset) == 0 && std::floor(l.y + kTileOffset) == 0;
+}
+
+template <class CellT, class Mapper, class RefOf>
+TiledMap map_block(const TiledMap& a, const Mapper& m, const std::vector<int>& ids, const MapPtr& map, RefOf ref_of,
+                   MapperThreads t, const char* op) {
+    std::vector<TiledMap::Element> out(ids.size());
+    auto visit = [&](std::size_t k) {
+        CellT cell(map, ids[k]);
+        detail::NoRandomScope regular(op);
+        out[k].curves = m(cell);
+        out[k].anchor = ref_of(ids[k]);
+        out[k].key = anchor_key(out[k].anchor);
+    };
+    if (t == MapperThreads::Serial) {
+        for (std::size_t k = 0; k < ids.size(); ++k) visit(k);
+    } else {
+        parallel_for(ids.size(), visit);
+    }
+    std::vector<TiledMap::Element> kept;
+    for (auto& e : out) {
+        e.curves.origin.clear();
+        if (!e.curves.empty()) kept.push_back(std::move(e));
+    }
+    return TiledMap(a.period1(), a.period2(), std::move(kept), a.border());
+}
+
+}  // namespace
+
+TiledMap GridPartition(const Stripes& s1, const Stripes& s2, Tiled t) {
+    const Family f1(s1, "GridPartition"), f2(s2, "GridPartition");
+    const double det = cross(f1.n, f2.n);
+    if (std::abs(det) < 1e-9) throw Error("GridPartition", "the two stripe families are parallel");
+    // p with n1.p = a and n2.p = b.
+    auto solve = [&](double a, double b) { return Point{(a * f2.n.y - b * f1.n.y) / det, (f1.n.x * b - f2.n.x * a) / det}; };
+    const Point p1 = solve(f1.period(), 0), p2 = solve(0, f2.period());
+    const long long n1 = f1.count, n2 = f2.count;
+    if (n1 * n2 > 4'000'000) throw Error("GridPartition", "more than 4,000,000 cells in one period");
+    auto vert = [&](long long i, long long j) { return solve(f1.offsets[std::size_t(i)], f2.offsets[std::size_t(j)]); };
+    auto cell_index = [&](long long i, long long j) { return int(pos_mod(i, n1) * n2 + pos_mod(j, n2)); };
+    auto cell_ref = [&](long long i, long long j) {
+        TiledMap::CellRef c;
+        c.cell = cell_index(i, j);
+        c.di = (i - pos_mod(i, n1)) / n1;
+        c.dj = (j - pos_mod(j, n2)) / n2;
+        return c;
+    };
+    std::vector<TiledMap::CellRing> cells(std::size_t(n1 * n2));
+    for (long long i = 0; i < n1; ++i)
+        for (long long j = 0; j < n2; ++j) {
+            TiledMap::CellRing& c = cells[std::size_t(cell_index(i, j))];
+            c.ring = {vert(i, j), vert(i + 1, j), vert(i + 1, j + 1), vert(i, j + 1)};
+            if (signed_area(c.ring) < 0) std::reverse(c.ring.begin(), c.ring.end());
+            for (const auto& p : c.ring) c.box.add(p);
+            c.labels = f1.face_label(i);
+            c.labels.merge(f2.face_label(j));
+        }
+    auto face_labels = [&](long long i, long long j) { return cells[std::size_t(cell_index(i, j))].labels; };
+    std::vector<TiledMap::Element> elements;
+    // Edges on the lines of family 1, oriented like the engine's (+d1): the cell above the
+    // line (+n1) on the left; then those of family 2.
+    const bool j_along_d1 = dot(f1.d, f2.n) > 0, i_along_d2 = dot(f2.d, f1.n) > 0;
+    for (long long i = 0; i < n1; ++i)
+        for (long long j = 0; j < n2; ++j) {
+            Point a = vert(i, j), b = vert(i, j + 1);
+            if (!j_along_d1) std::swap(a, b);
+            TiledMap::Element e;
+            e.curves.curves.push_back(segment(a, b, f1.edge_label(i), face_labels(i, j), face_labels(i - 1, j)));
+            e.left = cell_ref(i, j);
+            e.right = cell_ref(i - 1, j);
+            e.anchor = (a + b) / 2;
+            e.key = anchor_key(e.anchor);
+            elements.push_back(std::move(e));
+        }
+    for (long long j = 0; j < n2; ++j)
+        for (long long i = 0; i < n1; ++i) {
+            Point a = vert(i, j), b = vert(i + 1, j);
+            if (!i_along_d2) std::swap(a, b);
+            TiledMap::Element e;
+            e.curves.curves.push_back(segment(a, b, f2.edge_label(j), face_labels(i, j), face_labels(i, j - 1)));
+            e.left = cell_ref(i, j);
+            e.right = cell_ref(i, j - 1);
+            e.anchor = (a + b) / 2;
+            e.key = anchor_key(e.anchor);
+            elements.push_back(std::move(e));
+        }
+    return TiledMap(p1, p2, std::move(elements), t.border, std::move(cells));
+}
+
+TiledMap StripesPartition(const Stripes& s, Tiled t) {
+    const Family f(s, "StripesPartition");
+    // Across: one full period of lines; along: pieces one period long.
+    const Point across = f.n * f.period(), along = f.d * f.period();
+    std::vector<TiledMap::Element> elements;
+    for (long long i = 0; i < f.count; ++i) {
+        const Point a = f.n * f.offsets[std::size_t(i)];
+        TiledMap::Element e;
+        e.curves.curves.push_back(segment(a, a + along, f.edge_label(i), f.face_label(i), f.face_label(i - 1)));
+        e.anchor = a + along / 2;
+        e.key = anchor_key(e.anchor);
+        elements.push_back(std::move(e));
+    }
+    return TiledMap(across, along, std::move(elements), t.border, {}, false);
+}
+
+TiledMap::Block TiledMap::block() const {
+    const int k = 2 * block_reach() + 2;
+    Curves all;
+    for (long long i = -k; i <= k; ++i)
+        for (long long j = -k; j <= k; ++j) {
+            const Point s = shift(i, j);
+            for (const auto& e : d_->elements) {
+                for (const auto& c : e.curves.curves) {
+                    Curve copy = c;
+                    for (auto& p : copy.points) p += s;
+                    all.curves.push_back(std::move(copy));
+                }
+                for (const auto& p : e.curves.points) all.points.push_back({p.point + s, p.labels});
+            }
+        }
+    Block b;
+    const BBox box = all.bbox();
+    b.map = PlanarMap::induce(all);
+    const PlanarMap& m = *b.map;
+    for (std::size_t v = 0; v < m.vertices().size(); ++v)
+        if (in_central_tile(*this, m.vertices()[v].point)) b.vertices.push_back(int(v));
+    for (std::size_t e = 0; e < m.edges().size(); ++e)
+        if (in_central_tile(*this, LocationAt(Edge(b.map, int(e)), 0.5))) b.edges.push_back(int(e));
+    for (std::size_t f = 0; f < m.faces().size(); ++f) {
+        if (m.faces()[f].unbounded) continue;
+        if (!in_central_tile(*this, Centroid(Face(b.map, int(f))))) continue;
+        // A face of the central tile reaching the block's own box is not closed within the
+        // block (an infinite band, or a face wider than the block): no complete neighbourhood.
+        const BBox fb = CellBBox(Face(b.map, int(f)));
+        if (fb.xmin <= box.xmin || fb.ymin <= box.ymin || fb.xmax >= box.xmax || fb.ymax >= box.ymax)
+            throw Error("TiledMap", "a face of the central tile reaches the edge of its block of tiles (an "
+                                    "unbounded or very large face)");
+        b.faces.push_back(int(f));
+    }
+    return b;
+}
+
+TiledMap MapToVertices(VertexMapper m, const TiledMap& a, MapperThreads t) {
+    check_regular(a, "MapToVertices");
+    const TiledMap::Block b = a.block();
+    return map_block<Vertex>(a, m, b.vertices, b.map, [&](int v) { return b.map->vertices()[v].point; }, t,
+                             "MapToVertices");
+}
+
+TiledMap MapToEdges(EdgeMapper m, const TiledMap& a, MapperThreads t) {
+    check_regular(a, "MapToEdges");
+    const TiledMap::Block b = a.block();
+    return map_block<Edge>(a, m, b.edges, b.map, [&](int e) { return LocationAt(Edge(b.map, e), 0.5); }, t,
+                           "MapToEdges");
+}
+
+TiledMap MapToFaces(FaceMapper m, const TiledMap& a, MapperThreads t) {
+    check_regular(a, "MapToFaces");
+    const TiledMap::Block b = a.block();
+    return map_block<Face>(a, m, b.faces, b.map, [&](int f) { return Centroid(Face(b.map, f)); }, t, "MapToFaces");
+}
+
+TiledMap GhostMap(GhostMapper g, const TiledMap& a) {
+    if (!g) throw Error("GhostMap", "no mapper given");
+    if (a.has_ghost()) throw Error("GhostMap", "the tiled map already has a ghost mapper");
+    return a.with_ghost(std::move(g));
+}
+
+namespace {
+
+// The integer n (1..64) with n * q equal to a whole multiple of p (p and q parallel), or 0.
+int commensurate(const Point& p, const Point& q, int& multiple_of_p) {
+    if (std::abs(cross(p, q)) > 1e-9 * norm(p) * norm(q)) return 0;
+    const double ratio = dot(q, p) / dot(p, p);  // q = ratio * p
+    for (int n = 1; n <= 64; ++n) {
+        const double k = n * ratio;
+        if (std::abs(k - std::round(k)) < 1e-9 * std::max(1.0, std::abs(k)) && std::round(k) != 0) {
+            multiple_of_p = int(std::llround(std::abs(k)));
+            return n;
+        }
+    }
+    return 0;
+}
+
+std::string periods_text(const TiledMap& a) {
+    std::ostringstream s;
+    s << "(" << a.period1().x << ", " << a.period1().y << ") and (" << a.period2().x << ", " << a.period2().y << ")";
+    return s.str();
+}
+
+// The elements of a repeated m1 x m2 times, as the elements of a coarser lattice.
+std::vector<TiledMap::Element> repeat(const TiledMap& a, int m1, int m2) {
+    std::vector<TiledMap::Element> out;
+    for (int i = 0; i < m1; ++i)
+        for (int j = 0; j < m2; ++j) {
+            const Point s = a.shift(i, j);
+            for (const auto& e : a.elements()) {
+                TiledMap::Element c;
+                c.curves = e.curves;
+                c.curves.transform(Affine::translation(s));
+                c.anchor = e.anchor + s;
+                c.key = anchor_key(c.anchor);
+                out.push_back(std::move(c));
+            }
+        }
+    return out;
+}
+
+}  // namespace
+
+namespace {
+
+// Both maps on their common lattice: each period of the result is the least common multiple
+// of the two maps' periods of that rank, which must be parallel with a rational ratio
+// (denominator at most 64).
+struct Common {
+    Point p1, p2;
+    std::vector<TiledMap::Element> first, second;
+};
+
+Common common_lattice(const TiledMap& a1, const TiledMap& a2, const char* op) {
+    if (a1.has_ghost() || a2.has_ghost())
+        throw Error(op, "a tiled map with a ghost mapper cannot be combined; combine before GhostMap");
+    int k1 = 0, k2 = 0;
+    const int n1 = commensurate(a1.period1(), a2.period1(), k1);
+    const int n2 = commensurate(a1.period2(), a2.period2(), k2);
+    if (n1 == 0 || n2 == 0)
+        throw Error(op, "the periods " + periods_text(a1) + " and " + periods_text(a2) +
+                            " have no common multiple (the lattices must share their directions, "
+                            "with rational length ratios)");
+    // n * q = k * p: the common period is k * p1 for map 1, n * q1 for map 2.
+    return {a1.period1() * double(k1), a1.period2() * double(k2), repeat(a1, k1, k2), repeat(a2, n1, n2)};
+}
+
+// Inside / Outside: a1's elements cut by (or kept against) the bounded faces of a2. The mask
+// is the planar map of a2 over a block of tiles wide enough to hold every element of a1 with
+// the faces around it, induced once.
+TiledMap mask(const TiledMap& a1, const TiledMap& a2, Border b, MaskSide side, const char* op) {
+    Common c = common_lattice(a1, a2, op);
+    const TiledMap subject(c.p1, c.p2, std::move(c.first), a1.border(), {}, a1.bounded_faces());
+    const TiledMap masks(c.p1, c.p2, std::move(c.second), a1.border(), {}, a2.bounded_faces());
+    const Border cut = b == Border::CROP_ADD_BOUNDARY ? Border::CROP : b;
+    const int k = subject.block_reach() + 2 * masks.block_reach() + 2;
+    Curves block;
+    for (long long i = -k; i <= k; ++i)
+        for (long long j = -k; j <= k; ++j)
+            for (const auto& e : masks.elements()) {
+                Curves copy = e.curves;
+                copy.transform(Affine::translation(masks.shift(i, j)));
+                block.append(std::move(copy));
+            }
+    const MapPtr mask_map = PlanarMap::induce(block);
+    // One mask over all of a1's elements at once (KEEP_* then see a1's own edges, as in the
+    // engine); every curve it keeps becomes an element of its own.
+    Curves all;
+    for (const auto& e : subject.elements()) all.append(e.curves);
+    const Curves kept = apply_mask(all, *mask_map, side, cut);
+    std::vector<TiledMap::Element> elements;
+    for (const auto& curve : kept.curves) {
+        TiledMap::Element e;
+        e.curves.curves.push_back(curve);
+        e.anchor = curve.points.empty() ? Point{} : curve.points.front();
+        e.key = anchor_key(e.anchor);
+        elements.push_back(std::move(e));
+    }
+    for (const auto& point : kept.points) {
+        TiledMap::Element e;
+        e.curves.points.push_back(point);
+        e.anchor = point.point;
+        e.key = anchor_key(e.anchor);
+        elements.push_back(std::move(e));
+    }
+    TiledMap out(c.p1, c.p2, std::move(elements), a1.border(), {}, a1.bounded_faces());
+    // CROP_ADD_BOUNDARY: the mask's own curves added once (not once per element).
+    return b == Border::CROP_ADD_BOUNDARY ? Union(out, masks) : out;
+}
+
+}  // namespace
+
+TiledMap Union(const TiledMap& a1, const TiledMap& a2) {
+    Common c = common_lattice(a1, a2, "Union");
+    for (auto& e : c.second) c.first.push_back(std::move(e));
+    const bool bounded = a1.bounded_faces() && a2.bounded_faces();
+    return TiledMap(c.p1, c.p2, std::move(c.first), a1.border(), {}, bounded);
+}
+
+TiledMap Inside(const TiledMap& a1, const TiledMap& a2, Border b) { return mask(a1, a2, b, MaskSide::Inside, "Inside"); }
+
+TiledMap Outside(const TiledMap& a1, const TiledMap& a2, Border b) {
+    return mask(a1, a2, b, MaskSide::Outside, "Outside");
+}
+
+}  // namespace tex

@@ -1,0 +1,343 @@
+// Tiled planar maps (thesis Chapter 4): structure, conversion with the four border modes,
+// locality, threads, NIZ mapping, shifted-cell adjacency, ghost mapping, union, queries.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+#include <sstream>
+
+#include "helpers.hpp"
+#include "libtex/tex.hpp"
+#include "tiled_helpers.hpp"
+
+using namespace tex;
+
+namespace {
+
+// Rows of widths 10 and 20 with three edge labels (6 lines per period: 90), columns of 25
+// with two face labels (2 lines per period: 50).
+Stripes rows() {
+    Stripes s = StripesProperties(0, 10, 20);
+    SetEdgeLabels(s, {"r1", "r2", "r3"});
+    return s;
+}
+Stripes columns() {
+    Stripes s = StripesProperties(pi / 2, 25);
+    SetFaceLabels(s, {"c1", "c2"});
+    return s;
+}
+
+// Every byte of a set of curves, for same-bytes comparisons.
+std::string dump(const Curves& c) {
+    std::ostringstream s;
+    s.precision(17);
+    for (const auto& cv : c.curves) {
+        s << cv.closed << th::label_text(cv.labels) << "|" << th::label_text(cv.left) << "|"
+          << th::label_text(cv.right);
+        for (const auto& p : cv.points) s << " " << p.x << "," << p.y;
+        s << "\n";
+    }
+    for (const auto& p : c.points) s << "p " << p.point.x << "," << p.point.y << th::label_text(p.labels) << "\n";
+    return s.str();
+}
+
+const Region kWindow = Region::rectangle(-37, -12, 413, 287);
+// Its corners on no line of the grids below (a crop through a corner is a degenerate case).
+const Region kTriangle({{-47, -41}, {400, 11}, {61, 333}});
+
+}  // namespace
+
+TEST(Tiled, GridPeriodsFollowTheCycles) {
+    const TiledMap t = GridPartition(rows(), columns(), Tiled());
+    // Rows: LCM(2 widths, 3 labels) = 6 lines, 6 / 2 * (10 + 20) = 90 across (along y).
+    EXPECT_NEAR(t.period1().x, 0, 1e-12);
+    EXPECT_NEAR(t.period1().y, 90, 1e-12);
+    // Columns: LCM(1, 2) = 2 lines of 25: 50 along x.
+    EXPECT_NEAR(std::abs(t.period2().x), 50, 1e-12);
+    EXPECT_NEAR(t.period2().y, 0, 1e-12);
+    // One element per edge class: 6 x 2 cells, two edges each.
+    EXPECT_EQ(t.elements().size(), 24u);
+    EXPECT_EQ(t.cells().size(), 12u);
+}
+
+TEST(Tiled, BadInputIsAClearError) {
+    EXPECT_TEX_ERROR(GridPartition(StripesProperties(0, 10), StripesProperties(pi, 10), Tiled()), "GridPartition",
+                     "parallel");
+    Stripes bad;
+    bad.widths = {-1};
+    EXPECT_TEX_ERROR(GridPartition(bad, StripesProperties(1, 10), Tiled()), "GridPartition", "width -1");
+    bad.widths = {};
+    EXPECT_TEX_ERROR(StripesPartition(bad, Tiled()), "StripesPartition", "no width");
+    EXPECT_TEX_ERROR(TiledMap({1, 0}, {2, 0}, {}, CROP), "TiledMap", "colinear");
+}
+
+// The conversion of a tiled grid equals the planar-map engine's grid with every border mode,
+// on a rectangle and on a triangle.
+class TiledModes : public ::testing::TestWithParam<Border> {};
+
+TEST_P(TiledModes, GridConversionMatchesTheEngine) {
+    const Border b = GetParam();
+    const TiledMap t = GridPartition(rows(), columns(), Tiled(b));
+    for (const Region& r : {kWindow, kTriangle}) {
+        const Curves engine = GridPartition(rows(), columns(), b)(r);
+        const Curves tiled = t(r);
+        ASSERT_FALSE(tiled.curves.empty());
+        EXPECT_SAME_RUNS(th::runs(tiled), th::runs(engine));
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(AllModes, TiledModes,
+                         ::testing::Values(Border::CROP, Border::CROP_ADD_BOUNDARY, Border::KEEP_INSIDE,
+                                           Border::KEEP_OUTSIDE));
+
+TEST(Tiled, StripesConversionMatchesTheEngine) {
+    Stripes s = StripesProperties(pi / 5, 12, 30);
+    SetFaceLabels(s, {"a", "b", "c"});
+    const TiledMap t = StripesPartition(s, Tiled(CROP_ADD_BOUNDARY));
+    for (const Region& r : {kWindow, kTriangle})
+        EXPECT_SAME_RUNS(th::runs(t(r)), th::runs(StripesPartition(s, CROP_ADD_BOUNDARY)(r)));
+}
+
+TEST(Tiled, ConversionIsLocal) {
+    // The edges as curves (a mapped map: KEEP_* keep or drop each curve on its own).
+    const TiledMap t = MapToEdges([](const Edge& e) { return ToCurve(e); }, GridPartition(rows(), columns(), Tiled()));
+    const Region w1 = Region::rectangle(0, 0, 170, 300), w2 = Region::rectangle(170, 0, 400, 300);
+    const Region both = Region::rectangle(0, 0, 400, 300);
+    // KEEP_OUTSIDE: the curves each window receives are the union's, whole.
+    std::set<std::string> apart, together;
+    for (const Region* w : {&w1, &w2})
+        for (const auto& c : t.Convert(*w, KEEP_OUTSIDE).curves) {
+            Curves one;
+            one.curves.push_back(c);
+            apart.insert(dump(one));
+        }
+    for (const auto& c : t.Convert(both, KEEP_OUTSIDE).curves) {
+        Curves one;
+        one.curves.push_back(c);
+        together.insert(dump(one));
+    }
+    EXPECT_EQ(apart, together);
+    // CROP: the pieces of the two windows put together draw the union's drawing.
+    Curves cropped = t.Convert(w1, CROP);
+    cropped.append(t.Convert(w2, CROP));
+    EXPECT_SAME_RUNS(th::runs(cropped), th::runs(t.Convert(both, CROP)));
+    // And a window's own result is the larger region's, cut to the window.
+    EXPECT_SAME_RUNS(th::runs(t.Convert(w1, CROP)), th::runs(apply_mask(t.Convert(both, CROP), w1, CROP)));
+}
+
+TEST(Tiled, SameBytesAtOneAndTwoThreads) {
+    const TiledMap t = GridPartition(rows(), columns(), Tiled());
+    for (Border b : {CROP, CROP_ADD_BOUNDARY, KEEP_INSIDE, KEEP_OUTSIDE}) {
+        std::string one, two;
+        {
+            ThreadsScope s(1);
+            one = dump(t.Convert(kTriangle, b));
+        }
+        {
+            ThreadsScope s(2);
+            two = dump(t.Convert(kTriangle, b));
+        }
+        EXPECT_EQ(one, two) << border_name(b);
+        EXPECT_FALSE(one.empty());
+    }
+}
+
+TEST(Tiled, ConversionIsLinearInTheWindow) {
+    // Four times the area, four times the curves (up to the border).
+    const TiledMap t = GridPartition(StripesProperties(0, 10), StripesProperties(pi / 2, 10), Tiled(KEEP_INSIDE));
+    const double n1 = double(t(Region::rectangle(0, 0, 1000, 1000)).curves.size());
+    const double n4 = double(t(Region::rectangle(0, 0, 2000, 2000)).curves.size());
+    EXPECT_NEAR(n4 / n1, 4.0, 0.05);
+}
+
+TEST(Tiled, BorderVerticesReportAllTheirNeighbours) {
+    // Every vertex class, wherever it sits in the tile, has degree 4 in a grid: those on the
+    // tile's sides see their neighbours through shifted copies.
+    const TiledMap t = GridPartition(rows(), columns(), Tiled());
+    const TiledMap::Block b = t.block();
+    EXPECT_EQ(b.vertices.size(), 12u);
+    EXPECT_EQ(b.edges.size(), 24u);
+    EXPECT_EQ(b.faces.size(), 12u);
+    auto degree = [](const Vertex& v) {
+        Curves c;
+        c.points.push_back({Location(v), Labels{std::string_view("degree" + std::to_string(IncidentEdges(v).size()))}});
+        return c;
+    };
+    const Curves out = MapToVertices(degree, t).Convert(kWindow, KEEP_INSIDE);
+    ASSERT_GT(out.points.size(), 100u);
+    for (const auto& p : out.points) EXPECT_TRUE(p.labels.has("degree4")) << p.point.x << "," << p.point.y;
+    // An engine map of a window gives degree 2 or 3 on its border: the tiled map has none.
+}
+
+TEST(Tiled, RandomInARegularMapperIsAnError) {
+    const TiledMap t = GridPartition(rows(), columns(), Tiled());
+    auto jitter = [](const Face& f) { return Translate(Contour(f), {Random(f, 0, 1, 0), 0}); };
+    EXPECT_TEX_ERROR(MapToFaces(jitter, t), "MapToFaces", "GhostMap");
+    auto unkeyed = [](const Edge& e) { return Scale(ToCurve(e), Random(0.5, 1.0)); };
+    EXPECT_TEX_ERROR(MapToEdges(unkeyed, t), "MapToEdges", "random");
+    auto sub = [](const Face& f) { return UniformPartition(IrregularProperties(0.01), CROP)(f); };
+    EXPECT_TEX_ERROR(MapToFaces(sub, t), "MapToFaces", "random");
+    // A sub-partition without Random runs (it is periodic only if its own period fits the
+    // lattice: it is anchored to the plane, see docs/tiled.md).
+    auto hatch = [](const Face& f) { return StripesPartition(StripesProperties(pi / 4, 3), CROP)(f); };
+    EXPECT_FALSE(MapToFaces(hatch, t)(kWindow).curves.empty());
+}
+
+TEST(Tiled, StripesCannotBeMapped) {
+    const TiledMap t = StripesPartition(StripesProperties(0.3, 10), Tiled());
+    EXPECT_TEX_ERROR(MapToFaces([](const Face& f) { return Contour(f); }, t), "MapToFaces", "unbounded");
+}
+
+TEST(Tiled, NeighbourhoodInfluenceZoneOverflow) {
+    // A circle three cells wide around each cell's centre overflows into the neighbouring
+    // tiles; converted, every circle inside the window is there, as the engine draws them.
+    const Stripes s1 = StripesProperties(0, 20), s2 = StripesProperties(pi / 2, 30);
+    auto circle = [](const Face& f) {
+        std::vector<Point> pts;
+        const Point c = Centroid(f);
+        for (int k = 0; k < 24; ++k) pts.push_back(c + Point{std::cos(k * pi / 12), std::sin(k * pi / 12)} * 45.0);
+        return Polyline(pts, true);
+    };
+    const TiledMap t = MapToFaces(circle, GridPartition(s1, s2, Tiled()));
+    ASSERT_EQ(t.elements().size(), 1u);
+    EXPECT_GE(t.block_reach(), 1);
+    const Region inner = Region::rectangle(0, 0, 300, 200);
+    const Curves engine = MapToFaces(circle, GridPartition(s1, s2, KEEP_OUTSIDE))(Region::rectangle(-200, -200, 500, 400));
+    const Curves tiled = t.Convert(inner, KEEP_INSIDE);
+    EXPECT_SAME_RUNS(th::runs(tiled), th::runs(th::inside_box(engine, inner.bbox())));
+    // Circles of centres outside the window reach into it.
+    const Curves meeting = t.Convert(inner, KEEP_OUTSIDE);
+    std::size_t outside_centres = 0;
+    for (const auto& c : meeting.curves) outside_centres += !inner.contains(BBoxCenter(Polyline(c.points)));
+    EXPECT_GT(outside_centres, 0u);
+}
+
+TEST(Tiled, GhostMappingIsSemiRegularAndDeterministic) {
+    const TiledMap bricks = MapToFaces([](const Face& f) { return Scale(Contour(f), 0.8); },
+                                       GridPartition(StripesProperties(0, 20), StripesProperties(pi / 2, 40), Tiled()));
+    auto jitter = [](const TiledElement& e) {
+        return Translate(Scale(e.curves, Random(e, 0.7, 1.0, 0)), {Random(e, -2, 2, 1), Random(0.0, 1.0)});
+    };
+    const TiledMap ghost = GhostMap(jitter, bricks);
+    std::string one, two, again;
+    {
+        ThreadsScope s(1);
+        one = dump(ghost.Convert(kWindow, KEEP_OUTSIDE));
+    }
+    {
+        ThreadsScope s(2);
+        two = dump(ghost.Convert(kWindow, KEEP_OUTSIDE));
+        again = dump(ghost.Convert(kWindow, KEEP_OUTSIDE));
+    }
+    EXPECT_EQ(one, two);
+    EXPECT_EQ(one, again);
+    {
+        SavedSeed keep;
+        SetSeed(7);
+        EXPECT_NE(dump(ghost.Convert(kWindow, KEEP_OUTSIDE)), one);
+    }
+    // Semi-regular: copies of one element differ in size.
+    const Curves c = ghost.Convert(kWindow, KEEP_INSIDE);
+    std::set<long long> widths;
+    for (const auto& cv : c.curves) widths.insert(std::llround(BBoxWidth(Polyline(cv.points)) * 1000));
+    EXPECT_GT(widths.size(), c.curves.size() / 8);  // four curves per brick, two of them flat
+    // A window's copies are the same whatever the region around them.
+    const BBox box = Region::rectangle(0, 0, 100, 100).bbox();
+    const Curves small = ghost.Convert(Region::rectangle(0, 0, 100, 100), KEEP_OUTSIDE);
+    const Curves large = ghost.Convert(Region::rectangle(-100, -100, 300, 300), KEEP_OUTSIDE);
+    EXPECT_SAME_RUNS(th::runs(th::inside_box(small, box)), th::runs(th::inside_box(large, box)));
+    EXPECT_FALSE(th::inside_box(small, box).empty());
+    EXPECT_TEX_ERROR(MapToEdges([](const Edge& e) { return ToCurve(e); }, ghost), "MapToEdges", "ghost");
+}
+
+TEST(Tiled, UnionTakesTheLeastCommonMultipleOfThePeriods) {
+    const TiledMap a = GridPartition(StripesProperties(0, 30), StripesProperties(pi / 2, 20), Tiled(CROP));
+    const TiledMap b = GridPartition(StripesProperties(0, 45), StripesProperties(pi / 2, 50), Tiled(CROP));
+    const TiledMap u = Union(a, b);
+    EXPECT_NEAR(u.period1().y, 90, 1e-9);
+    EXPECT_NEAR(std::abs(u.period2().x), 100, 1e-9);
+    Curves both = a.Convert(kWindow, CROP);
+    both.append(b.Convert(kWindow, CROP));
+    EXPECT_SAME_RUNS(th::runs(u.Convert(kWindow, CROP)), th::runs(both));
+    const TiledMap c = GridPartition(StripesProperties(0, 30 * std::sqrt(2.0)), StripesProperties(pi / 2, 20), Tiled());
+    EXPECT_TEX_ERROR(Union(a, c), "(0, 30)", "no common multiple");
+}
+
+TEST(Tiled, PointQueries) {
+    const TiledMap t = GridPartition(rows(), columns(), Tiled());
+    // (1012.5, 904): rows at 900, 910 (the fourth line of a period 90 x 10 + 0): distance 4
+    // to y = 900; columns every 25: x = 1012.5 is 12.5 from both.
+    EXPECT_NEAR(t.DistanceToCurves({1012.5, 904}), 4.0, 1e-9);
+    EXPECT_NEAR(t.DistanceToCurves({-3, -100000}), 3.0, 1e-6);
+    // Columns of face labels c1, c2 alternate every 25 (face i between lines i and i+1).
+    EXPECT_TRUE(t.FaceLabelsAt({10, 5}).has("c2") || t.FaceLabelsAt({10, 5}).has("c1"));
+    EXPECT_NE(t.FaceLabelsAt({10, 5}), t.FaceLabelsAt({35, 5}));
+    EXPECT_EQ(t.FaceLabelsAt({10, 5}), t.FaceLabelsAt({10 + 50 * 1000, 5 - 90 * 77}));
+}
+
+TEST(Tiled, RasterizeAWindow) {
+    const TiledMap t = GridPartition(StripesProperties(0, 20), StripesProperties(pi / 2, 30), Tiled());
+    const Raster r = Rasterize(t, Region::rectangle(0, 0, 60, 40).bbox(), 1.0, 2.0);
+    ASSERT_EQ(r.width, 60);
+    ASSERT_EQ(r.height, 40);
+    auto at = [&](double x, double y) { return int(r.pixels[std::size_t(40 - 1 - int(y)) * 60 + std::size_t(x)]); };
+    EXPECT_EQ(at(10.5, 20.5), 0);    // on the line y = 20
+    EXPECT_EQ(at(30.5, 7.5), 0);     // on the line x = 30
+    EXPECT_EQ(at(15.5, 10.5), 255);  // in the middle of a cell
+    EXPECT_EQ(at(45.5, 30.5), 255);
+    // A finer pixel draws the same lines; a ghost map rasterises the same at 1 and 2 threads.
+    const TiledMap ghost = GhostMap([](const TiledElement& e) { return Random(e, 0, 1, 0) < 0.5 ? Nothing() : e.curves; },
+                                    MapToEdges([](const Edge& e) { return ToCurve(e); }, t));
+    std::vector<std::uint8_t> one, two;
+    {
+        ThreadsScope s(1);
+        one = Rasterize(ghost, Region::rectangle(-3, -7, 500, 300).bbox(), 0.5, 1.5).pixels;
+    }
+    {
+        ThreadsScope s(2);
+        two = Rasterize(ghost, Region::rectangle(-3, -7, 500, 300).bbox(), 0.5, 1.5).pixels;
+    }
+    EXPECT_EQ(one, two);
+    EXPECT_NE(std::count(one.begin(), one.end(), 0), 0);
+    EXPECT_TEX_ERROR(Rasterize(t, Region::rectangle(0, 0, 6, 4).bbox(), 0.0, 1.0), "Rasterize", "pixel size 0");
+    EXPECT_TEX_ERROR(Rasterize(t, BBox{}, 1.0, 1.0), "Rasterize", "empty");
+}
+
+TEST(Tiled, InsideAndOutsideMatchTheEngine) {
+    // Horizontal lines 6 apart inside / outside squares (grid of 40, each cell shrunk to 55 %):
+    // no line runs along a square's side.
+    const Stripes lines = StripesProperties(0, 6);
+    const Stripes s1 = StripesProperties(0, 40), s2 = StripesProperties(pi / 2, 40);
+    auto square = [](const Face& f) { return Scale(Contour(f), 0.55); };
+    const TiledMap squares = MapToFaces(square, GridPartition(s1, s2, Tiled()));
+    const Arrangement engine_squares = MapToFaces(square, GridPartition(s1, s2, KEEP_OUTSIDE));
+    const Region window = Region::rectangle(0, 0, 400, 300);
+    // Both cut to an inner window (the engine's pieces and the tiled ones end at different
+    // points of a line: the tiled map stores lines a period at a time).
+    const Region inner = Region::rectangle(60, 60, 340, 240);
+    auto cut = [&inner](const Curves& c) { return th::runs(apply_mask(c, inner, CROP)); };
+    const TiledMap in = Inside(StripesPartition(lines, Tiled()), squares, CROP);
+    EXPECT_NEAR(std::abs(in.period1().y), 120, 1e-9);  // LCM(6, 40)
+    const Curves engine_in = Inside(StripesPartition(lines, CROP), engine_squares, CROP)(window);
+    EXPECT_SAME_RUNS(cut(in.Convert(window, KEEP_OUTSIDE)), cut(engine_in));
+    EXPECT_FALSE(cut(engine_in).empty());
+    // KEEP_* keep or drop whole edges: small circles on a grid of 10, some across the squares'
+    // sides (a stripe's edges are one period long in a tiled map, whole lines in the engine).
+    const Stripes c1 = StripesProperties(0, 10), c2 = StripesProperties(pi / 2, 10);
+    auto circle = [](const Face& f) {
+        std::vector<Point> pts;
+        for (int k = 0; k < 24; ++k) pts.push_back(Centroid(f) + Point{std::cos(k * pi / 12), std::sin(k * pi / 12)} * 4.5);
+        return Polyline(pts, true);
+    };
+    for (Border b : {KEEP_INSIDE, KEEP_OUTSIDE}) {
+        const Curves tiled = Inside(MapToFaces(circle, GridPartition(c1, c2, Tiled())), squares, b).Convert(window, KEEP_OUTSIDE);
+        const Curves engine = Inside(MapToFaces(circle, GridPartition(c1, c2, KEEP_OUTSIDE)), engine_squares, b)(window);
+        EXPECT_SAME_RUNS(cut(tiled), cut(engine));
+        EXPECT_FALSE(cut(engine).empty()) << border_name(b);
+    }
+    const Curves engine_out = Outside(StripesPartition(lines, CROP), engine_squares, CROP)(window);
+    const Curves tiled_out = Outside(StripesPartition(lines, Tiled()), squares, CROP).Convert(window, KEEP_OUTSIDE);
+    EXPECT_SAME_RUNS(cut(tiled_out), cut(engine_out));
+    const TiledMap skew = StripesPartition(StripesProperties(0.3, 6), Tiled());
+    EXPECT_TEX_ERROR(Inside(skew, squares, CROP), "Inside", "no common multiple");
+}

@@ -1,0 +1,105 @@
+"""rockhatch.tex: tiled planar maps (thesis Ch. 4) under the C++ names: Tiled, TiledMap,
+GhostMap, Random on a copy, and the same drawing as the planar-map engine."""
+import pytest
+
+from rockhatch.tex import (CROP, CROP_ADD_BOUNDARY, KEEP_INSIDE, Inside, Outside, Rasterize, KEEP_OUTSIDE, Contour, ExportSVG, GhostMap, GridPartition, HasLabel,
+                           IncidentEdges, MapToFaces, MapToVertices, Nothing, Random, Region, Scale, SetFaceLabels,
+                           GetThreads, SetThreads, StripesPartition, StripesProperties, TexError, Tiled, TiledMap, pi)
+
+WINDOW = Region.rectangle(0, 0, 300, 200)
+
+
+def labelled_grid(border):
+    rows, columns = StripesProperties(0, 20), StripesProperties(pi / 2, 30)
+    SetFaceLabels(columns, "a", "b")
+    return GridPartition(rows, columns, border)
+
+
+def segments(curves):
+    """The drawing as a set of rounded, undirected segments with their edge labels."""
+    out = set()
+    for c in curves.curves:
+        pts = list(c.points)
+        for p, q in zip(pts, pts[1:] + (pts[:1] if c.closed else [])):
+            a, b = sorted([(round(p.x, 6), round(p.y, 6)), (round(q.x, 6), round(q.y, 6))])
+            out.add((a, b, tuple(c.labels)))
+    return out
+
+
+def test_tiled_grid_is_the_engine_grid():
+    tiled = labelled_grid(Tiled(KEEP_OUTSIDE))
+    assert isinstance(tiled, TiledMap)
+    assert abs(tiled.period1.y) == pytest.approx(20)
+    assert abs(tiled.period2.x) == pytest.approx(60)  # two face labels: two columns per period
+    assert segments(tiled(WINDOW)) == segments(labelled_grid(KEEP_OUTSIDE)(WINDOW))
+
+
+def test_mapped_faces_inside_match_the_engine():
+    def shrink(f):
+        return Scale(Contour(f), 0.5 if HasLabel(f, "a") else 0.8)
+
+    tiled = MapToFaces(shrink, labelled_grid(Tiled()))
+    inner = Region.rectangle(60, 40, 240, 160)
+    engine = MapToFaces(shrink, labelled_grid(KEEP_OUTSIDE))(WINDOW)
+    inside = [c for c in engine.curves if all(60 <= p.x <= 240 and 40 <= p.y <= 160 for p in c.points)]
+    got = tiled.Convert(inner, KEEP_INSIDE)
+    assert len(got.curves) == len(inside) > 0
+
+
+def test_border_vertices_have_degree_four():
+    degrees = []
+
+    def record(v):
+        degrees.append(len(IncidentEdges(v)))
+        return Nothing()
+
+    MapToVertices(record, labelled_grid(Tiled()))
+    assert degrees and set(degrees) == {4}
+
+
+def test_random_in_a_regular_mapper_is_an_error():
+    with pytest.raises(TexError, match="GhostMap"):
+        MapToFaces(lambda f: Scale(Contour(f), Random(f, 0.5, 1.0, 0)), labelled_grid(Tiled()))
+
+
+def test_ghost_mapping_is_deterministic_at_any_thread_count():
+    wall = MapToFaces(lambda f: Scale(Contour(f), 0.8), labelled_grid(Tiled(CROP)))
+    ghost = GhostMap(lambda e: Nothing() if Random(e, 0, 1, 0) < 0.4 else e.curves, wall)
+    saved = GetThreads()
+    try:
+        SetThreads(1)
+        one = segments(ghost(WINDOW))
+        SetThreads(2)
+        two = segments(ghost(WINDOW))
+    finally:
+        SetThreads(saved)
+    assert one == two
+    assert 0 < len(one) < len(segments(wall(WINDOW)))
+
+
+def test_a_tiled_map_is_an_arrangement(tmp_path):
+    out = tmp_path / "stripes.svg"
+    ExportSVG(StripesPartition(StripesProperties(0.3, 10), Tiled(CROP_ADD_BOUNDARY)), 300, str(out))
+    assert out.read_text().count("<path") + out.read_text().count("<polyline") > 5
+
+
+def test_stripes_cannot_be_mapped():
+    with pytest.raises(TexError, match="unbounded"):
+        MapToFaces(lambda f: Contour(f), StripesPartition(StripesProperties(0.3, 10), Tiled()))
+
+
+
+def test_inside_outside_and_rasterize():
+    lines = StripesPartition(StripesProperties(0, 6), Tiled())
+    squares = MapToFaces(lambda f: Scale(Contour(f), 0.55),
+                         GridPartition(StripesProperties(0, 40), StripesProperties(pi / 2, 40), Tiled()))
+    inside, outside = Inside(lines, squares, CROP), Outside(lines, squares, CROP)
+    assert abs(inside.period1.y) == pytest.approx(120)
+    length = lambda c: sum(abs(q.x - p.x) for cv in c.curves for p, q in zip(list(cv.points), list(cv.points)[1:]))
+    whole = length(lines.Convert(WINDOW, CROP))
+    assert length(inside.Convert(WINDOW, CROP)) + length(outside.Convert(WINDOW, CROP)) == pytest.approx(whole)
+    image = Rasterize(squares, WINDOW, 0.5, 1.0)
+    assert image.shape == (400, 600) and image.dtype.name == "uint8"
+    assert image.min() == 0 and image.max() == 255
+    with pytest.raises(TexError, match="no common multiple"):
+        Inside(StripesPartition(StripesProperties(0.3, 6), Tiled()), squares, CROP)
