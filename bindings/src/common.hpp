@@ -61,5 +61,6 @@ tex::Field to_field(const py::object& o);
 void bind_tex(py::module_& m);
 void bind_fields(py::module_& m);
 void bind_carto(py::module_& m);
+void bind_discrete(py::module_& m);
 
 }  // namespace rhpy
