@@ -222,6 +222,14 @@ void bind_discrete(py::module_& m) {
             return py::make_tuple(tex::GridField(std::move(g)), frame);
         },
         py::arg("filename"), "A grey PGM image as (field of grey levels in [0, 1], frame)");
+    m.def(
+        "ParsePGM",
+        [](const py::bytes& b) {
+            GridSamples g = ParsePGM(std::string(b), "<pgm bytes>");
+            const Region frame = Image(g);
+            return py::make_tuple(tex::GridField(std::move(g)), frame);
+        },
+        py::arg("data"), "The same as ReadPGM, from the bytes of a PGM file");
     m.def("BuiltinHatch", &BuiltinHatch, py::arg("length") = 24.0, py::arg("width") = 3.0);
     m.def("BuiltinRectangle", &BuiltinRectangle, py::arg("width") = 240.0,
           py::arg("height") = 160.0);

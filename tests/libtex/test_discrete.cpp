@@ -225,6 +225,10 @@ TEST(DiscreteOperators, ReadPGMAndImage) {
     EXPECT_NEAR(tex::nearest_grid(g.values->data(), g.width, g.height, g.transform, {0.5, 1.5}), 0,
                 1e-7);
     std::remove(path.c_str());
+    const tex::GridSamples b = ParsePGM(std::string("P5\n2 1\n65535\n\x00\x00\xff\xff", 17));
+    ASSERT_EQ(b.width, 2);
+    EXPECT_FLOAT_EQ((*b.values)[0], 0.0f);
+    EXPECT_FLOAT_EQ((*b.values)[1], 1.0f);
 }
 
 // ---- Programs ----
@@ -331,6 +335,32 @@ TEST(DiscretePrograms, StreamLinesFollowTheField) {
     EXPECT_LT(half.points.size(), 300u);
 }
 
+TEST(DiscretePrograms, AStreamLineNeverCrossesItself) {
+    // A field whose stream lines are closed circles (the radial term pulls back to r = 80):
+    // after one turn the line would run over its start, so it stops there.
+    const FlowField orbit = [](const Point& p) {
+        const double r = tex::norm(p);
+        return Point{-p.y / r, p.x / r} + p * ((80 - r) / r);
+    };
+    const Polyline line = trace_stream(
+        Point{80, 0}, orbit, [](const Point&) { return true; }, 5000);
+    double length = 0;
+    for (std::size_t i = 1; i < line.points.size(); ++i)
+        length += tex::distance(line.points[i - 1], line.points[i]);
+    EXPECT_GT(length, 2 * tex::pi * 80 - 10) << "it goes nearly all the way round";
+    EXPECT_LT(length, 2 * tex::pi * 80 + 10) << "and no further";
+    namespace bg = boost::geometry;
+    using Seg = bg::model::segment<BPoint>;
+    for (std::size_t i = 0; i + 1 < line.points.size(); ++i)
+        for (std::size_t j = i + 2; j + 1 < line.points.size(); ++j) {
+            const Seg a{{line.points[i].x, line.points[i].y},
+                        {line.points[i + 1].x, line.points[i + 1].y}};
+            const Seg b{{line.points[j].x, line.points[j].y},
+                        {line.points[j + 1].x, line.points[j + 1].y}};
+            ASSERT_FALSE(bg::intersects(a, b)) << i << " " << j;
+        }
+}
+
 TEST(DiscretePrograms, StreamLinesDoNotCrossEachOther) {
     tex::StreamScope fresh(0);
     RegionSet circles;
@@ -371,6 +401,12 @@ TEST(DiscreteErrors, BadInputNamesTheOperator) {
     EXPECT_TEX_ERROR(RandomR(2, 1), "RandomR", "a <= b");
     EXPECT_TEX_ERROR(Sequence({Point{0, 0}})(); Sequence({})(), "Sequence", "were used");
     EXPECT_TEX_ERROR(ReadPGM("/nonexistent/x.pgm"), "ReadPGM", "cannot open");
+    EXPECT_TEX_ERROR(ParsePGM("P6\n1 1\n255\n\x01\x02\x03", "a.ppm"), "a.ppm", "not a PGM");
+    EXPECT_TEX_ERROR(ParsePGM("P5\n10000 10000\n255\n\x01", "big.pgm"), "big.pgm", "truncated");
+    EXPECT_TEX_ERROR(ParsePGM("P2\n2 1\n9\n3 12\n", "over.pgm"), "over.pgm", "exceeds the maximum");
+    EXPECT_TEX_ERROR(ParsePGM("P5\n0 3\n255\n", "zero.pgm"), "zero.pgm", "bad size");
+    EXPECT_TEX_ERROR(ParsePGM("P2\n# only a comment", "short.pgm"), "short.pgm",
+                     "malformed header");
     EXPECT_TEX_ERROR(TangentFlowField(RegionSet(), 1), "TangentFlowField", "at least one");
     EXPECT_TEX_ERROR(TangentFlowField(RegionSet({square(0, 0, 1)}), 0), "TangentFlowField", "step");
     EXPECT_TEX_ERROR(stream_line(

@@ -81,6 +81,13 @@ def test_density_from_a_python_function():
     assert all(p().y > 50 for _ in range(500))
 
 
+def test_a_pgm_image_as_a_density():
+    field, frame = d.ParsePGM(b"P2\n2 2\n255\n255 0\n255 0\n")
+    assert frame.bbox().xmax == 2 and frame.bbox().ymax == 2
+    pins = RandomPinning(frame, field)
+    assert all(pins().x < 1.5 for _ in range(300))  # the right column is black: never pinned there
+
+
 def test_regular_pinnings():
     assert len(RegularPinning(Image(100, 100), 4, 5)) == 20
     assert len(RegularPinning1D(Contour(Region.rectangle(0, 0, 10, 10)), 1.0)) == 40
@@ -112,6 +119,14 @@ def test_stream_lines_follow_a_python_field_and_do_not_cross():
     line = trace_stream(Point(50, 0), swirl, lambda p: True, 100)
     assert len(line) > 90
     assert all(abs(math.hypot(q.x, q.y) - 50) < 1.0 for q in line.points)
+    # Closed orbits (a radial pull back to r = 50) and far longer than a turn: the line
+    # stops where it would run over its own start.
+    def orbit(p):
+        r = math.hypot(p.x, p.y)
+        return Point(-p.y / r + p.x / r * (50 - r), p.x / r + p.y / r * (50 - r))
+
+    loop = trace_stream(Point(50, 0), orbit, lambda p: True, 1000)
+    assert 2 * math.pi * 50 - 5 < len(loop) - 1 < 2 * math.pi * 50 + 5
     with StreamScope(0):
         circles = RegionSet([Translation(BuiltinCircle(25), Point(100, 100)),
                              Translation(BuiltinCircle(25), Point(220, 160))])

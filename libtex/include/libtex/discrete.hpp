@@ -235,6 +235,8 @@ Region Image(double width, double height);
 // first row at the top; values scaled to [0, 1] (0 black). Throws tex::Error naming the
 // file on a missing or malformed file.
 GridSamples ReadPGM(const std::string& filename);
+// The same from the bytes of a PGM file (origin names the source in messages).
+GridSamples ParsePGM(const std::string& bytes, const std::string& origin = "<pgm bytes>");
 // The frame of a grid.
 Region Image(const GridSamples& grid);
 // A thin rectangle (length x width) centred on the origin, along x.
@@ -270,7 +272,8 @@ void relaxation(const RegionSet& in, RegionSet& out, const Condition& loop,
                 const Reshaping& reshaping, const Repinning& repinning);
 
 // A stream line: from start, steps of flow (its sign kept from step to step) are taken
-// while the next point passes `check` and the length stays within `length`; the points are
+// while the next point passes `check`, the length stays within `length` and the step does
+// not touch the line's own earlier steps (the curve never crosses itself); the points are
 // interpolated and thickened with `thickness`. When the first step fails the check the
 // line goes the other way. Returns an empty region when the line is shorter than
 // `min_length` (two steps at least).

@@ -31,7 +31,12 @@ long read_header_number(const std::string& s, std::size_t& at, const std::string
 GridSamples ReadPGM(const std::string& filename) {
     std::ifstream in(filename, std::ios::binary);
     if (!in) throw Error("ReadPGM", filename + ": cannot open the file");
-    const std::string s((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return ParsePGM(
+        std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()),
+        filename);
+}
+
+GridSamples ParsePGM(const std::string& s, const std::string& filename) {
     if (s.size() < 2 || s[0] != 'P' || (s[1] != '5' && s[1] != '2'))
         throw Error("ReadPGM", filename + ": not a PGM file (P2 or P5)");
     const bool binary = s[1] == '5';
@@ -42,12 +47,15 @@ GridSamples ReadPGM(const std::string& filename) {
         throw Error("ReadPGM",
                     filename + ": bad size " + std::to_string(w) + " x " + std::to_string(h));
     if (maxval < 1 || maxval > 65535) throw Error("ReadPGM", filename + ": bad maximum value");
-    auto values = std::make_shared<std::vector<float>>(std::size_t(w * h));
+    const std::size_t n = std::size_t(w * h);
+    const std::size_t bytes = maxval > 255 ? 2 : 1;
+    if (binary) ++at;  // the single blank after maxval
+    // Enough bytes for every pixel (a text value takes a digit and a blank at least),
+    // checked before the pixels are allocated: a short file cannot claim a huge image.
+    if (s.size() < at || s.size() - at < (binary ? n * bytes : 2 * n - 1))
+        throw Error("ReadPGM", filename + ": truncated pixel data");
+    auto values = std::make_shared<std::vector<float>>(n);
     if (binary) {
-        ++at;  // the single blank after maxval
-        const std::size_t bytes = maxval > 255 ? 2 : 1;
-        if (s.size() < at + std::size_t(w * h) * bytes)
-            throw Error("ReadPGM", filename + ": truncated pixel data");
         for (std::size_t i = 0; i < values->size(); ++i) {
             const auto* p = reinterpret_cast<const unsigned char*>(s.data() + at + i * bytes);
             const unsigned v = bytes == 2 ? (unsigned(p[0]) << 8 | p[1]) : p[0];

@@ -4,7 +4,9 @@
 #include <boost/geometry.hpp>
 #include <boost/geometry/index/rtree.hpp>
 #include <cmath>
+#include <unordered_map>
 
+#include "../segment_index.hpp"
 #include "libtex/discrete.hpp"
 #include "libtex/error.hpp"
 
@@ -131,6 +133,52 @@ FlowField TangentFlowField(const RegionSet& regions, double step) {
 namespace {
 // Upper bound on the steps of one line (a field of tiny steps must not run forever).
 constexpr int kMaxSteps = 100000;
+
+// The segments of a line being traced, in a hash grid, so that a new step can be refused
+// when it would cross or touch an earlier, non-adjacent segment (a curve of the seed is
+// never self-intersecting). Decided with the exact segment test.
+class TracedSegments {
+public:
+    explicit TracedSegments(double cell) : cell_(cell) {}
+
+    // Whether segment ab meets a segment stored before the last one (the one ending at a).
+    bool meets(const Point& a, const Point& b) const {
+        bool hit = false;
+        visit(a, b, [&](std::size_t i) {
+            if (!hit && i + 1 < segs_.size() &&
+                tex::detail::segments_touch(a, b, segs_[i].first, segs_[i].second))
+                hit = true;
+        });
+        return hit;
+    }
+    void add(const Point& a, const Point& b) {
+        const std::size_t i = segs_.size();
+        segs_.push_back({a, b});
+        for_cells(a, b, [&](long long key) { grid_[key].push_back(i); });
+    }
+
+private:
+    template <class F>
+    void for_cells(const Point& a, const Point& b, F&& f) const {
+        const long long x0 = cell_of(std::min(a.x, b.x)), x1 = cell_of(std::max(a.x, b.x));
+        const long long y0 = cell_of(std::min(a.y, b.y)), y1 = cell_of(std::max(a.y, b.y));
+        for (long long x = x0; x <= x1; ++x)
+            for (long long y = y0; y <= y1; ++y) f(x * 0x100000000LL + y);
+    }
+    template <class F>
+    void visit(const Point& a, const Point& b, F&& f) const {
+        for_cells(a, b, [&](long long key) {
+            const auto it = grid_.find(key);
+            if (it != grid_.end())
+                for (std::size_t i : it->second) f(i);
+        });
+    }
+    long long cell_of(double v) const { return (long long)std::floor(v / cell_); }
+
+    double cell_;
+    std::vector<std::pair<Point, Point>> segs_;
+    std::unordered_map<long long, std::vector<std::size_t>> grid_;
+};
 }  // namespace
 
 Polyline trace_stream(const Point& start, const FlowField& flow, const PointCheck& check,
@@ -146,13 +194,15 @@ Polyline trace_stream(const Point& start, const FlowField& flow, const PointChec
     if (!check(start + prev)) prev = -prev;  // the first step decides the way
     double done = 0;
     Point cur = start;
+    TracedSegments traced(norm(prev));
     for (int i = 0; i < kMaxSteps; ++i) {
         Point v = flow(cur);
         const double l = norm(v);
         if (!(l > 0) || !std::isfinite(l) || done + l > length) break;
         if (dot(v, prev) < 0) v = -v;  // a tangent has no sign: keep going the same way
         const Point next = cur + v;
-        if (!check(next)) break;
+        if (!check(next) || traced.meets(cur, next)) break;
+        traced.add(cur, next);
         line.points.push_back(next);
         done += l;
         cur = next;
