@@ -21,6 +21,19 @@ using tex::GridSamples;
 using tex::Point;
 using tex::Region;
 
+// A partially applied operator of any element (Rotation(a), Scale(s), Overlap(set), ...):
+// called on a region, a polyline or a point.
+template <class Op>
+void bind_element_operator(py::module_& m, const char* name, const char* doc) {
+    py::class_<Op>(m, name, doc)
+        .def(
+            "__call__", [](const Op& op, const Region& e) { return op(e); }, py::arg("element"))
+        .def(
+            "__call__", [](const Op& op, const Polyline& e) { return op(e); }, py::arg("element"))
+        .def(
+            "__call__", [](const Op& op, const Point& e) { return op(e); }, py::arg("element"));
+}
+
 std::optional<Field> optional_field(const py::object& o) {
     if (o.is_none()) return std::nullopt;
     return to_field(o);
@@ -59,48 +72,18 @@ void bind_discrete(py::module_& m) {
             return "RegionSet(" + std::to_string(s.size()) + " regions)";
         });
 
-    py::class_<Rotator>(
+    bind_element_operator<Rotator>(
         m, "Rotator",
-        "Rotation(angle): turns any element (about its centroid; a point about the origin)")
-        .def("__call__", py::overload_cast<const Region&>(&Rotator::operator(), py::const_),
-             py::arg("element"))
-        .def("__call__", py::overload_cast<const Polyline&>(&Rotator::operator(), py::const_),
-             py::arg("element"))
-        .def("__call__", py::overload_cast<const Point&>(&Rotator::operator(), py::const_),
-             py::arg("element"));
-    py::class_<Scaler>(
+        "Rotation(angle): turns any element (about its centroid; a point about the origin)");
+    bind_element_operator<Scaler>(
         m, "Scaler",
-        "Scale(factor): scales any element (about its centroid; a point about the origin)")
-        .def("__call__", py::overload_cast<const Region&>(&Scaler::operator(), py::const_),
-             py::arg("element"))
-        .def("__call__", py::overload_cast<const Polyline&>(&Scaler::operator(), py::const_),
-             py::arg("element"))
-        .def("__call__", py::overload_cast<const Point&>(&Scaler::operator(), py::const_),
-             py::arg("element"));
-    py::class_<OverlapTest>(
+        "Scale(factor): scales any element (about its centroid; a point about the origin)");
+    bind_element_operator<OverlapTest>(
         m, "OverlapTest",
-        "Overlap(set): whether an element shares a point with a region of the set")
-        .def(
-            "__call__", [](const OverlapTest& t, const Region& e) { return t(e); },
-            py::arg("element"))
-        .def(
-            "__call__", [](const OverlapTest& t, const Polyline& e) { return t(e); },
-            py::arg("element"))
-        .def(
-            "__call__", [](const OverlapTest& t, const Point& e) { return t(e); },
-            py::arg("element"));
-    py::class_<DistanceTest>(
+        "Overlap(set): whether an element shares a point with a region of the set");
+    bind_element_operator<DistanceTest>(
         m, "DistanceTest",
-        "MinimalDistance(set, d): whether an element comes nearer than d to a region of the set")
-        .def(
-            "__call__", [](const DistanceTest& t, const Region& e) { return t(e); },
-            py::arg("element"))
-        .def(
-            "__call__", [](const DistanceTest& t, const Polyline& e) { return t(e); },
-            py::arg("element"))
-        .def(
-            "__call__", [](const DistanceTest& t, const Point& e) { return t(e); },
-            py::arg("element"));
+        "MinimalDistance(set, d): whether an element comes nearer than d to a region of the set");
 
     // ---- Construction ----
     m.def("Sequence", &Sequence, py::arg("points"),
