@@ -15,7 +15,7 @@ ROOT="$PWD"
 SECS="${1:-60}"
 shift || true
 TARGETS=("$@")
-[ ${#TARGETS[@]} -eq 0 ] && TARGETS=(fuzz_svg fuzz_partition_raw fuzz_partition_struct fuzz_cli fuzz_param)
+[ ${#TARGETS[@]} -eq 0 ] && TARGETS=(fuzz_svg fuzz_pgm fuzz_partition_raw fuzz_partition_struct fuzz_cli fuzz_param)
 BUILD_DIR="${RH_FUZZ_BUILD_DIR:-build-fuzz}"
 JOBS="${RH_JOBS:-$(nproc)}"
 [ "$JOBS" -gt 2 ] && JOBS=2

@@ -1033,6 +1033,12 @@ EXAMPLES = {
     "tiled_d": tiled_d,
     "oriented_darts": oriented_darts,
 }
+# Seed 004's figures, written with rockhatch.discrete (discrete_gallery.py).
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import discrete_gallery  # noqa: E402
+
+EXAMPLES.update(discrete_gallery.EXAMPLES)
+sys.path.pop(0)
 
 
 def main(argv=None):

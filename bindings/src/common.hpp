@@ -76,5 +76,6 @@ void bind_tex(py::module_& m);
 void bind_tiled(py::module_& m);
 void bind_fields(py::module_& m);
 void bind_carto(py::module_& m);
+void bind_discrete(py::module_& m);
 
 }  // namespace rhpy

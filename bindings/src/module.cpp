@@ -1,5 +1,6 @@
 // rockhatch._rockhatch: the compiled part of the Python package. The pure-Python package
-// (bindings/python/rockhatch) re-exports it as rockhatch.tex and rockhatch.carto.
+// (bindings/python/rockhatch) re-exports it as rockhatch.tex, rockhatch.discrete and
+// rockhatch.carto.
 #include "common.hpp"
 
 #include "carto/error.hpp"
@@ -53,6 +54,9 @@ PYBIND11_MODULE(_rockhatch, m) {
     rhpy::bind_tex(tex);
     rhpy::bind_fields(tex);
     rhpy::bind_tiled(tex);
+    py::module_ discrete =
+        m.def_submodule("discrete", "libtex's discrete operator set (seed 004): pinning, dart throwing, stream lines");
+    rhpy::bind_discrete(discrete);
     py::module_ carto = m.def_submodule("carto", "carto: rasters, control fields, styles and the rock-hatching pipeline");
     rhpy::bind_carto(carto);
 }

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "gallery_discrete.hpp"
 #include "gallery_domain.hpp"
 #include "gallery_fields.hpp"
 #include "gallery_micro.hpp"
@@ -312,6 +313,13 @@ const std::vector<Example>& examples() {
         {"tiled_c", "Tiled planar map (Fig. 4.5 c): bricks deleted at random", -1, tiled::thinned_wall},
         {"tiled_d", "Tiled planar map (Fig. 4.5 d): clusters of bricks", -1, tiled::clustered_wall},
         {"oriented_darts", "Control field: darts turned towards the centre (Fig. 5.2)", -1, fields::darts},
+        {"discrete_1a", "Seed 004 Fig. 1a: anisotropic dart throwing", -1, discrete::arrangement_1a},
+        {"discrete_1b", "Seed 004 Fig. 1b: constrained dart throwing", -1, discrete::arrangement_1b},
+        {"discrete_1c", "Seed 004 Fig. 1c: 1b with orthogonal hatches", -1, discrete::arrangement_1c},
+        {"discrete_1d", "Seed 004 Fig. 1d: user shapes, variable scaling", -1, discrete::arrangement_1d},
+        {"discrete_1e", "Seed 004 Fig. 1e: scaled Voronoi cells of relaxed circles", -1, discrete::arrangement_1e},
+        {"discrete_1f", "Seed 004 Fig. 1f: relaxed circles and stream lines", -1, discrete::arrangement_1f},
+        {"discrete_1g", "Seed 004 Fig. 1g: interlocked stream lines", -1, discrete::arrangement_1g},
     };
     return all;
 }

@@ -29,6 +29,9 @@ FAMILIES = {
     "tiled": ["tiled_a", "tiled_b", "tiled_c", "tiled_d"],
     # A control field turning every element (thesis 5.3).
     "fields": ["oriented_darts"],
+    # Seed 004's figures 1a-1g: dart throwing, relaxation, stream lines (rockhatch.discrete).
+    "discrete": ["discrete_1a", "discrete_1b", "discrete_1c", "discrete_1d", "discrete_1e", "discrete_1f",
+                 "discrete_1g"],
 }
 
 

@@ -4,6 +4,7 @@
 #include "libtex/arrangement.hpp"
 #include "libtex/cells.hpp"
 #include "libtex/curves.hpp"
+#include "libtex/discrete.hpp"
 #include "libtex/error.hpp"
 #include "libtex/fields.hpp"
 #include "libtex/geometry.hpp"
