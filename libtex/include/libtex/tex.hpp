@@ -17,3 +17,4 @@
 #include "libtex/random.hpp"
 #include "libtex/region.hpp"
 #include "libtex/svg.hpp"
+#include "libtex/synthesis.hpp"
