@@ -60,6 +60,7 @@ tex::Field to_field(const py::object& o);
 
 void bind_tex(py::module_& m);
 void bind_fields(py::module_& m);
+void bind_synthesis(py::module_& m);
 void bind_carto(py::module_& m);
 
 }  // namespace rhpy

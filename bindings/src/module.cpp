@@ -52,6 +52,7 @@ PYBIND11_MODULE(_rockhatch, m) {
     py::module_ tex = m.def_submodule("tex", "libtex: planar maps, partitions, mappers and merges (thesis Ch. 3)");
     rhpy::bind_tex(tex);
     rhpy::bind_fields(tex);
+    rhpy::bind_synthesis(tex);
     py::module_ carto = m.def_submodule("carto", "carto: rasters, control fields, styles and the rock-hatching pipeline");
     rhpy::bind_carto(carto);
 }

@@ -7,6 +7,7 @@
 #include "gallery_domain.hpp"
 #include "gallery_fields.hpp"
 #include "gallery_micro.hpp"
+#include "gallery_synthesis.hpp"
 #include "gallery_more.hpp"
 #include "gallery_teasers.hpp"
 
@@ -307,6 +308,9 @@ const std::vector<Example>& examples() {
         {"teapot", "Teapot: dots of random sizes filling a teapot", 22, domain::teapot},
         {"microprocessor", "Microprocessor: traces, chips and solder joints", 54, micro::microprocessor},
         {"oriented_darts", "Control field: darts turned towards the centre (Fig. 5.2)", -1, fields::darts},
+        {"synth_circle", "Synthesis (seed 002): vine round a circle, one component", -1, synthesis::circle},
+        {"synth_curve", "Synthesis (seed 002): vine along waves, one component, no holes", -1, synthesis::curve},
+        {"synth_rectangle", "Synthesis (seed 002): a ladder filling a square, one component", -1, synthesis::rectangle},
     };
     return all;
 }

@@ -27,6 +27,8 @@ FAMILIES = {
     "micro": ["microprocessor"],
     # A control field turning every element (thesis 5.3).
     "fields": ["oriented_darts"],
+    # Topology-constrained synthesis along curves and in a rectangle (seed 002).
+    "synthesis": ["synth_circle", "synth_curve", "synth_rectangle"],
 }
 
 

@@ -101,7 +101,14 @@ struct Candidate {
     Closure closure;
 };
 
-std::string key_of(const Entry& e, bool cyclic) {
+// What backtracking needs of an entry once its layer has been expanded.
+struct Back {
+    int piece, parent;
+};
+
+// The key of an entry in its layer: last piece, first piece (cycles), and the descriptor;
+// a counter the request leaves free is left out, so entries differing only there compete.
+std::string key_of(const Entry& e, bool cyclic, bool components_free, bool holes_free) {
     std::string k;
     k.reserve(8 + e.desc.left.size() + e.desc.right.size());
     auto put = [&](int v) {
@@ -110,8 +117,8 @@ std::string key_of(const Entry& e, bool cyclic) {
     };
     put(e.piece);
     if (cyclic) put(e.first);
-    put(e.desc.closed);
-    put(e.desc.holes);
+    if (!components_free) put(e.desc.closed);
+    if (!holes_free) put(e.desc.holes);
     put(int(e.desc.left.size()));
     k.append(e.desc.left.begin(), e.desc.left.end());
     k.append(e.desc.right.begin(), e.desc.right.end());
@@ -134,6 +141,8 @@ public:
                     ++n;
                 }
         mean_join_ = n > 0 && sum > 0 ? sum / n : 1.0;
+        // exp(-|i - j| / sigma), sigma = 0.5 (3.7), by index distance.
+        for (std::size_t d = 0; d < P_.size(); ++d) similarity_.push_back(float(std::exp(-double(d) / 0.5)));
         for (std::size_t i = 0; i < P_.size(); ++i) {
             succ_.emplace_back();
             for (std::size_t j = 0; j < P_.size(); ++j)
@@ -143,7 +152,7 @@ public:
 
     // Runs the programme with lengths up to `cap`; fills candidates_.
     void run(double cap) {
-        layers_.clear();
+        back_.clear();
         candidates_.clear();
         const auto& o = in_.options;
         std::vector<Entry> first;
@@ -158,14 +167,18 @@ public:
             if (e.length > cap || pruned(e.desc)) continue;
             insert(first, index, std::move(e));
         }
-        layers_.push_back(std::move(first));
+        std::vector<Entry> cur = std::move(first);
         std::size_t bytes = 0;
-        for (std::size_t k = 0; !layers_[k].empty(); ++k) {
-            collect(k);
+        for (std::size_t k = 0; !cur.empty(); ++k) {
+            // Only the frontier keeps descriptors; earlier layers keep their back pointers.
+            back_.emplace_back();
+            for (const Entry& e : cur) back_.back().push_back({e.piece, e.parent});
+            bytes += back_.back().size() * sizeof(Back);
+            collect(k, cur);
             std::vector<Entry> next;
             index.clear();
-            for (std::size_t ei = 0; ei < layers_[k].size(); ++ei) {
-                const Entry& e = layers_[k][ei];
+            for (std::size_t ei = 0; ei < cur.size(); ++ei) {
+                const Entry& e = cur[ei];
                 for (int j : succ_[e.piece]) {
                     const Join& jn = J_[e.piece][j];
                     Entry n;
@@ -181,19 +194,19 @@ public:
                     n.joins = e.joins + jn.cost + variation(k, e.piece, j);
                     n.cost = n.joins;
                     if (o.autocorrelation > 0) {
-                        n.lags = lags_after(k, ei, j);
+                        n.lags = lags_after(k, e, int(ei), j);
                         n.cost += o.autocorrelation * double(*std::max_element(n.lags.begin(), n.lags.end()));
                     }
                     insert(next, index, std::move(n));
                 }
             }
-            std::size_t layer_bytes = 0;
-            for (const Entry& e : next) layer_bytes += bytes_of(e) + 32 + e.desc.left.size() + e.desc.right.size();
-            bytes += layer_bytes;
-            report_.dp_bytes = std::max(report_.dp_bytes, bytes);
+            std::size_t frontier = 0;
+            for (const Entry& e : cur) frontier += bytes_of(e);
+            for (const Entry& e : next) frontier += bytes_of(e) + 48 + e.desc.left.size() + e.desc.right.size();
+            report_.dp_bytes = std::max(report_.dp_bytes, bytes + frontier);
             report_.dp_entries += next.size();
-            layers_.push_back(std::move(next));
-            if (layers_.size() > 200000)
+            cur = std::move(next);
+            if (back_.size() > 200000)
                 throw Error(op_, "the pieces are too narrow for the curve's length (more than 200000 in a row)");
         }
     }
@@ -201,8 +214,8 @@ public:
     std::vector<int> backtrack(const Candidate& c) const {
         std::vector<int> seq;
         for (int k = c.layer, i = c.index; k >= 0 && i >= 0; --k) {
-            seq.push_back(layers_[k][i].piece);
-            i = layers_[k][i].parent;
+            seq.push_back(back_[k][i].piece);
+            i = back_[k][i].parent;
         }
         std::reverse(seq.begin(), seq.end());
         return seq;
@@ -230,30 +243,30 @@ private:
 
     // Autocorrelation sums after appending piece j to entry (k, ei): for each lag, the pairs
     // of pieces that far apart, weighted by how close their indices are (sigma = 0.5).
-    std::vector<float> lags_after(std::size_t k, std::size_t ei, int j) const {
-        const Entry& e = layers_[k][ei];
+    std::vector<float> lags_after(std::size_t k, const Entry& e, int ei, int j) const {
         std::vector<float> lags = e.lags;
         lags.push_back(0.f);
         int lag = 1;
-        for (int kk = int(k), i = int(ei); kk >= 0 && i >= 0; --kk, ++lag) {
-            const Entry& a = layers_[kk][i];
-            lags[lag - 1] += float(std::exp(-std::abs(a.piece - j) / 0.5));
+        for (int kk = int(k), i = ei; kk >= 0 && i >= 0; --kk, ++lag) {
+            const Back& a = back_[kk][i];
+            lags[lag - 1] += similarity_[std::size_t(std::abs(a.piece - j))];
             i = a.parent;
         }
         return lags;
     }
 
     void insert(std::vector<Entry>& layer, std::unordered_map<std::string, int>& index, Entry&& e) {
-        auto [it, fresh] = index.emplace(key_of(e, in_.cyclic), int(layer.size()));
+        const auto& o = in_.options;
+        auto [it, fresh] = index.emplace(key_of(e, in_.cyclic, !o.components, !o.holes), int(layer.size()));
         if (fresh) layer.push_back(std::move(e));
         else if (e.cost < layer[it->second].cost) layer[it->second] = std::move(e);
     }
 
     // Complete patterns of layer k meeting the constraints.
-    void collect(std::size_t k) {
+    void collect(std::size_t k, const std::vector<Entry>& layer) {
         const auto& o = in_.options;
-        for (std::size_t i = 0; i < layers_[k].size(); ++i) {
-            const Entry& e = layers_[k][i];
+        for (std::size_t i = 0; i < layer.size(); ++i) {
+            const Entry& e = layer[i];
             Closure cl;
             double cost = e.cost;
             double length = e.length;
@@ -284,8 +297,9 @@ private:
     const std::vector<Piece>& P_;
     const std::vector<std::vector<Join>>& J_;
     std::vector<std::vector<int>> succ_;
+    std::vector<float> similarity_;
     double mean_join_ = 1;
-    std::vector<std::vector<Entry>> layers_;
+    std::vector<std::vector<Back>> back_;
     std::vector<Candidate> candidates_;
 };
 
