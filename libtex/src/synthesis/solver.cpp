@@ -21,32 +21,48 @@ int count_ids(const Descriptor& d) {
 
 }  // namespace
 
-Descriptor join(const Descriptor& d, const Descriptor& p) {
-    const int nd = count_ids(d), np = count_ids(p);
-    Dsu dsu(nd + np);
-    Descriptor out;
+void join_into(const Descriptor& d, const Descriptor& p, Descriptor& out) {
+    // Ids are bytes, so at most 256 per side: the union-find lives on the stack (this runs
+    // for every extension the programme tries).
+    const int nd = count_ids(d), np = count_ids(p), n = nd + np;
+    int parent[512], canon[512];
+    char open[512];
+    for (int v = 0; v < n; ++v) {
+        parent[v] = v;
+        canon[v] = -1;
+        open[v] = 0;
+    }
+    auto find = [&](int x) {
+        while (parent[x] != x) x = parent[x] = parent[parent[x]];
+        return x;
+    };
     out.closed = d.closed + p.closed;
     out.holes = d.holes + p.holes;
     // Each shared portal either merges two components or closes a loop around a hole.
     for (std::size_t k = 0; k < d.right.size(); ++k) {
-        const int a = dsu.find(d.right[k]), b = dsu.find(nd + p.left[k]);
+        const int a = find(d.right[k]), b = find(nd + p.left[k]);
         if (a == b) ++out.holes;
-        else dsu.parent[std::max(a, b)] = std::min(a, b);
+        else parent[std::max(a, b)] = std::min(a, b);
     }
-    std::vector<int> canon(nd + np, -1);
-    std::vector<char> open(nd + np, 0);
     int next = 0;
     auto relabel = [&](int node) {
-        const int r = dsu.find(node);
+        const int r = find(node);
         open[r] = 1;
         if (canon[r] < 0) canon[r] = next++;
         return std::uint8_t(canon[r]);
     };
+    out.left.clear();
+    out.right.clear();
     for (auto v : d.left) out.left.push_back(relabel(v));
     for (auto v : p.right) out.right.push_back(relabel(nd + v));
     // Components left without any open portal are finished.
-    for (int v = 0; v < nd + np; ++v)
-        if (dsu.find(v) == v && !open[v]) ++out.closed;
+    for (int v = 0; v < n; ++v)
+        if (find(v) == v && !open[v]) ++out.closed;
+}
+
+Descriptor join(const Descriptor& d, const Descriptor& p) {
+    Descriptor out;
+    join_into(d, p, out);
     return out;
 }
 
@@ -92,7 +108,8 @@ struct Entry {
     double offset = 0;
     int piece = 0, first = 0, parent = -1;
     Descriptor desc;
-    std::vector<float> lags;  // autocorrelation sums per lag (3.7), when beta > 0
+    std::vector<float> lags;          // autocorrelation sums per lag (3.7), when beta > 0
+    std::vector<std::uint16_t> seq;   // the pieces so far, when beta > 0
 };
 
 struct Candidate {
@@ -108,25 +125,25 @@ struct Back {
 
 // The key of an entry in its layer: last piece, first piece (cycles), and the descriptor;
 // a counter the request leaves free is left out, so entries differing only there compete.
-std::string key_of(const Entry& e, bool cyclic, bool components_free, bool holes_free) {
-    std::string k;
-    k.reserve(8 + e.desc.left.size() + e.desc.right.size());
+void key_of(std::string& k, int piece, int first, const Descriptor& d, bool cyclic, bool components_free,
+            bool holes_free) {
+    k.clear();
     auto put = [&](int v) {
         k.push_back(char(v & 0xff));
         k.push_back(char((v >> 8) & 0xff));
     };
-    put(e.piece);
-    if (cyclic) put(e.first);
-    if (!components_free) put(e.desc.closed);
-    if (!holes_free) put(e.desc.holes);
-    put(int(e.desc.left.size()));
-    k.append(e.desc.left.begin(), e.desc.left.end());
-    k.append(e.desc.right.begin(), e.desc.right.end());
-    return k;
+    put(piece);
+    if (cyclic) put(first);
+    if (!components_free) put(d.closed);
+    if (!holes_free) put(d.holes);
+    put(int(d.left.size()));
+    k.append(d.left.begin(), d.left.end());
+    k.append(d.right.begin(), d.right.end());
 }
 
 std::size_t bytes_of(const Entry& e) {
-    return sizeof(Entry) + e.desc.left.capacity() + e.desc.right.capacity() + e.lags.capacity() * sizeof(float);
+    return sizeof(Entry) + e.desc.left.capacity() + e.desc.right.capacity() + e.lags.capacity() * sizeof(float) +
+           e.seq.capacity() * sizeof(std::uint16_t);
 }
 
 class Solver {
@@ -164,6 +181,7 @@ public:
             e.length = P_[p].width();
             e.desc = P_[p].desc;
             if (!in_.cyclic) e.desc.left.clear();
+            if (o.autocorrelation > 0) e.seq = {std::uint16_t(p)};
             if (e.length > cap || pruned(e.desc)) continue;
             insert(first, index, std::move(e));
         }
@@ -177,27 +195,51 @@ public:
             collect(k, cur);
             std::vector<Entry> next;
             index.clear();
+            // Scratch of one extension: nothing is allocated unless it beats what its key holds.
+            Descriptor desc;
+            std::vector<float> lags;
+            std::string key;
             for (std::size_t ei = 0; ei < cur.size(); ++ei) {
                 const Entry& e = cur[ei];
                 for (int j : succ_[e.piece]) {
                     const Join& jn = J_[e.piece][j];
+                    const double length = e.length + P_[j].width();
+                    if (length > cap) continue;
+                    const double offset = e.offset + jn.tau;
+                    if (std::abs(offset) > 0.5 * in_.band_height) continue;  // band bound (3.6.2)
+                    join_into(e.desc, P_[j].desc, desc);
+                    if (pruned(desc)) continue;
+                    const double joins = e.joins + jn.cost + variation(k, e.piece, j);
+                    key_into(key, j, e.first, desc);
+                    const auto it = index.find(key);
+                    // The penalty is never negative: the joins alone may already lose.
+                    if (it != index.end() && !(joins < next[std::size_t(it->second)].cost)) continue;
+                    double cost = joins;
+                    if (o.autocorrelation > 0) {
+                        lags_after(e, j, lags);
+                        cost += o.autocorrelation * double(*std::max_element(lags.begin(), lags.end()));
+                    }
+                    if (it != index.end() && !(cost < next[std::size_t(it->second)].cost)) continue;
                     Entry n;
-                    n.length = e.length + P_[j].width();
-                    if (n.length > cap) continue;
-                    n.offset = e.offset + jn.tau;
-                    if (std::abs(n.offset) > 0.5 * in_.band_height) continue;  // band bound (3.6.2)
-                    n.desc = join(e.desc, P_[j].desc);
-                    if (pruned(n.desc)) continue;
+                    n.length = length;
+                    n.offset = offset;
+                    n.desc = desc;
                     n.piece = j;
                     n.first = e.first;
                     n.parent = int(ei);
-                    n.joins = e.joins + jn.cost + variation(k, e.piece, j);
-                    n.cost = n.joins;
+                    n.joins = joins;
+                    n.cost = cost;
                     if (o.autocorrelation > 0) {
-                        n.lags = lags_after(k, e, int(ei), j);
-                        n.cost += o.autocorrelation * double(*std::max_element(n.lags.begin(), n.lags.end()));
+                        n.lags = lags;
+                        n.seq.reserve(e.seq.size() + 1);
+                        n.seq = e.seq;
+                        n.seq.push_back(std::uint16_t(j));
                     }
-                    insert(next, index, std::move(n));
+                    if (it != index.end()) next[std::size_t(it->second)] = std::move(n);
+                    else {
+                        index.emplace(key, int(next.size()));
+                        next.push_back(std::move(n));
+                    }
                 }
             }
             std::size_t frontier = 0;
@@ -243,21 +285,23 @@ private:
 
     // Autocorrelation sums after appending piece j to entry (k, ei): for each lag, the pairs
     // of pieces that far apart, weighted by how close their indices are (sigma = 0.5).
-    std::vector<float> lags_after(std::size_t k, const Entry& e, int ei, int j) const {
-        std::vector<float> lags = e.lags;
+    void lags_after(const Entry& e, int j, std::vector<float>& lags) const {
+        lags.assign(e.lags.begin(), e.lags.end());
         lags.push_back(0.f);
-        int lag = 1;
-        for (int kk = int(k), i = ei; kk >= 0 && i >= 0; --kk, ++lag) {
-            const Back& a = back_[kk][i];
-            lags[lag - 1] += similarity_[std::size_t(std::abs(a.piece - j))];
-            i = a.parent;
-        }
-        return lags;
+        const std::size_t K = e.seq.size();
+        for (std::size_t lag = 1; lag <= K; ++lag)
+            lags[lag - 1] += similarity_[std::size_t(std::abs(int(e.seq[K - lag]) - j))];
+    }
+
+    void key_into(std::string& key, int piece, int first, const Descriptor& d) const {
+        const auto& o = in_.options;
+        key_of(key, piece, first, d, in_.cyclic, !o.components, !o.holes);
     }
 
     void insert(std::vector<Entry>& layer, std::unordered_map<std::string, int>& index, Entry&& e) {
-        const auto& o = in_.options;
-        auto [it, fresh] = index.emplace(key_of(e, in_.cyclic, !o.components, !o.holes), int(layer.size()));
+        std::string key;
+        key_into(key, e.piece, e.first, e.desc);
+        auto [it, fresh] = index.emplace(key, int(layer.size()));
         if (fresh) layer.push_back(std::move(e));
         else if (e.cost < layer[it->second].cost) layer[it->second] = std::move(e);
     }
