@@ -322,7 +322,8 @@ TEST(Synthesis, BadInputIsAnError) {
     fails([&] { SynthesizeAlongCurve(ex, line, std::nan("")); }, "band_height");
     fails([&] { SynthesizeAlongCurve(Polyline({{0, 0}, {1, 1}}), line, 10); }, "no closed curve");
     fails([&] { SynthesizeAlongCurve(ex, Curves{}, 10); }, "exactly one polyline");
-    fails([&] { SynthesizeAlongCurve(ex, Polyline({{0, 0}, {0, 0}}), 10); }, "fewer than two");
+    fails([&] { SynthesizeAlongCurve(ex, Polyline({{0, 0}, {0, 0}}), 10); }, "too few distinct points");
+    fails([&] { SynthesizeAlongCurve(ex, Polyline({{0, 0}, {5, 0}}, true), 10); }, "too few distinct points");
     SynthesisOptions o;
     o.components = 0;
     fails([&] { SynthesizeAlongCurve(ex, line, 10, o); }, "components");

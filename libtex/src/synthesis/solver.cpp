@@ -58,6 +58,8 @@ void join_into(const Descriptor& d, const Descriptor& p, Descriptor& out) {
     // Components left without any open portal are finished.
     for (int v = 0; v < n; ++v)
         if (find(v) == v && !open[v]) ++out.closed;
+    if (next > 256)
+        throw Error("SynthesizeAlongCurve", "a partial pattern has more than 256 open components; slice the exemplar more coarsely");
 }
 
 Descriptor join(const Descriptor& d, const Descriptor& p) {

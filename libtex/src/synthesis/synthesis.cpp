@@ -313,7 +313,7 @@ Curves SynthesizeAlongCurve(const Curves& exemplar, const Curves& curve, double 
     }
     if (cv.closed)
         while (pts.size() > 1 && pts.front() == pts.back()) pts.pop_back();
-    if (pts.size() < 2 || (cv.closed && pts.size() < 3)) throw Error(op, "the curve has fewer than two distinct points");
+    if (pts.size() < 2 || (cv.closed && pts.size() < 3)) throw Error(op, "the curve has too few distinct points (two for an open curve, three for a closed one)");
     if (o.closed_pattern && !cv.closed) throw Error(op, "closed_pattern asks for a closed curve; this one is open");
     const Band band(pts, cv.closed, band_height);
     if (!(band.length() > 0)) throw Error(op, "the curve has no length");
