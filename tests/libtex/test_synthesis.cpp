@@ -259,6 +259,26 @@ TEST(Synthesis, AutocorrelationPenaltyKeepsTheGuarantees) {
     EXPECT_EQ(t.holes, 0);
 }
 
+TEST(Synthesis, SlicingCutsBetweenGroupsOfEvents) {
+    // The ladder's events: its two ends and where each of its four holes starts and ends;
+    // the end of one hole and the start of the next lie a rung apart (8 of 600).
+    const Curves line = Polyline({{0, 0}, {1500, 0}});
+    auto pieces = [&](SynthesisOptions o) {
+        o.components = std::nullopt;
+        SynthesisReport rep;
+        SynthesizeAlongCurve(exemplar("synth_ladder"), line, 40, o, &rep);
+        return rep.pieces_in_exemplar;
+    };
+    SynthesisOptions o;
+    o.event_grouping = 0.03;  // groups: the left end, 64, 200, 260, 420, 536, the right end
+    EXPECT_EQ(pieces(o), 7);
+    o.event_grouping = 0.2;  // groups: {0, 64}, {200, 260}, {420, 536, 600}
+    EXPECT_EQ(pieces(o), 3);
+    o.slicing = Slicing::Uniform;
+    o.slicing_lines = 5;
+    EXPECT_EQ(pieces(o), 6);
+}
+
 TEST(Synthesis, ThinPortalFilterDropsCutsThroughTheString) {
     // The beads' string is 3 of the exemplar's 34 units: 3.5 at a band of 40. Cutting only
     // where portals are wider leaves fewer pieces.
