@@ -327,6 +327,20 @@ TEST(Synthesis, ImpossibleRequestIsAnError) {
     EXPECT_THROW(SynthesizeAlongCurve(exemplar("synth_ladder"), Polyline(circle({0, 0}, 300), true), 40, o), Error);
 }
 
+TEST(Synthesis, ACurveTooTightForTheBandIsAnError) {
+    // A circle of radius 15 under a band of 40: the pattern would fold over the centre.
+    SynthesisOptions o = fine(std::nullopt, std::nullopt);
+    try {
+        SynthesizeAlongCurve(exemplar("synth_ladder"), Polyline(circle({0, 0}, 15), true), 40, o);
+        FAIL() << "expected an error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("turns too tightly"), std::string::npos) << e.what();
+    }
+    // A sharp corner of a polyline, on the side the pattern faces.
+    const Curves corner = Polyline({{0, 0}, {300, 0}, {300, 12}, {0, 12}});
+    EXPECT_THROW(SynthesizeAlongCurve(exemplar("synth_ladder"), corner, 40, o), Error);
+}
+
 TEST(Synthesis, BadInputIsAnError) {
     const Curves ex = exemplar("synth_vine");
     const Curves line = Polyline({{0, 0}, {100, 0}});

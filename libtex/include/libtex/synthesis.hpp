@@ -77,8 +77,8 @@ struct SynthesisReport {
 // even-odd; open curves are ignored) in a band of height `band_height` centred on `curve`
 // (one open or closed polyline). The exemplar is scaled so that its height is the band
 // height; its x axis runs along the curve, its y axis to the curve's left. Throws tex::Error
-// naming SynthesizeAlongCurve on bad input and when no sequence of pieces meets the
-// constraints.
+// naming SynthesizeAlongCurve on bad input, when no sequence of pieces meets the
+// constraints, and when the curve turns too tightly for the band (the pattern would fold).
 Curves SynthesizeAlongCurve(const Curves& exemplar, const Curves& curve, double band_height,
                             const SynthesisOptions& options = {}, SynthesisReport* report = nullptr);
 

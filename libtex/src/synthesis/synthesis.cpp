@@ -2,6 +2,7 @@
 // along the curve, and the rectangle (6.2).
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "libtex/error.hpp"
@@ -246,6 +247,26 @@ public:
         }
         for (const Point& d : sm) n_.push_back({-d.y, d.x});
         if (closed) n_.back() = n_.front();
+        // Where (u, v) -> p(u) + v n(u) stops being one-to-one: its Jacobian is
+        // dot(t_raw, t_smooth) - v * (turn rate of n), per sample.
+        for (std::size_t i = 0; i < n; ++i) {
+            align_.push_back(dot(t[i], sm[i]));
+            turn_.push_back(norm(n_[i + 1] - n_[i]) / ds_);
+        }
+    }
+    // The sample where a pattern reaching `reach` from the curve comes closest to folding,
+    // and its margin (<= 0: the band folds there).
+    std::pair<double, Point> fold_margin(double reach) const {
+        double worst = std::numeric_limits<double>::infinity();
+        Point where = p_.front();
+        for (std::size_t i = 0; i < align_.size(); ++i) {
+            const double m = align_[i] - reach * turn_[i];
+            if (m < worst) {
+                worst = m;
+                where = p_[i];
+            }
+        }
+        return {worst, where};
     }
     double length() const { return length_; }
     Point at(double u, double v) const {
@@ -269,6 +290,7 @@ private:
     bool closed_;
     double length_ = 0, ds_ = 1;
     std::vector<Point> p_, n_;
+    std::vector<double> align_, turn_;
 };
 
 void check_options(const SynthesisOptions& o, const std::string& op) {
@@ -347,8 +369,20 @@ Curves SynthesizeAlongCurve(const Curves& exemplar, const Curves& curve, double 
     rep.natural_length = sol.length;
     if (report) *report = rep;
 
+    const auto rings = lay_out(pieces, joins, sol.sequence, cv.closed, band.length(), band_height);
+    // Bent into the band, the pattern must not fold over itself: refuse a curve that turns
+    // too tightly for how far the pattern reaches from it (a margin keeps the polygonal
+    // approximation clear of the limit).
+    double reach = 0;
+    for (const auto& ring : rings)
+        for (const Point& q : ring) reach = std::max(reach, std::abs(q.y));
+    const auto [margin, where] = band.fold_margin(reach);
+    if (margin < 0.1)
+        throw Error(op, "the curve turns too tightly for the band near (" + std::to_string(where.x) + ", " +
+                            std::to_string(where.y) + "): the pattern reaches " + std::to_string(reach) +
+                            " from the curve and would fold over itself; use a smaller band_height or a smoother curve");
     Curves out;
-    for (auto& ring : lay_out(pieces, joins, sol.sequence, cv.closed, band.length(), band_height)) {
+    for (auto& ring : rings) {
         std::vector<Point> fine = resampled(ring, true, band_height / 16, cv.closed ? band.length() : 0.0);
         Curve c;
         c.closed = true;
