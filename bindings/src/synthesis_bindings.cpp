@@ -72,7 +72,8 @@ seed : int or None, default None
 Raises
 ------
 TexError
-    On bad input, and when no sequence of pieces meets the constraints.
+    On bad input, when no sequence of pieces meets the constraints, and when the curve
+    turns too tightly for the band (the pattern would fold over itself).
 )doc";
 
 }  // namespace
