@@ -1008,6 +1008,45 @@ def tiled_d(elements):
         return Scale(e.curves, min(1.0, 0.5 + (v - 0.45) * 2.5))
 
     return GhostMap(cluster, tiled_wall(elements))
+# ---- Topology-constrained synthesis (seed 002), twins of libtex/examples/gallery_synthesis.cpp ----
+
+SYNTH_RANDOMNESS = 0.3
+SYNTH_GROUPING = 0.03
+
+
+def synth_ring(r, n):
+    return Polyline([Point(1000 + r * math.cos(2 * pi * i / n), 1000 + r * math.sin(2 * pi * i / n))
+                     for i in range(n)], True)
+
+
+def synth_wave(y, amplitude, n):
+    xs = [150 + 1700.0 * i / n for i in range(n + 1)]
+    return Polyline([Point(x, y + amplitude * math.sin(2 * pi * (x - 150) / 850)) for x in xs], False)
+
+
+def synth_circle(elements):
+    vine = load(elements, "synth_vine.svg")
+    c = SynthesizeAlongCurve(vine, synth_ring(750, 360), 150, components=1, closed_pattern=True,
+                             event_grouping=SYNTH_GROUPING, randomness=SYNTH_RANDOMNESS)
+    c.append(SynthesizeAlongCurve(vine, synth_ring(430, 360), 120, components=1, holes=0,
+                                  event_grouping=SYNTH_GROUPING, randomness=SYNTH_RANDOMNESS))
+    return Constant(c)
+
+
+def synth_curve(elements):
+    vine = load(elements, "synth_vine.svg")
+    c = SynthesizeAlongCurve(vine, synth_wave(650, 180, 400), 130, components=1,
+                             event_grouping=SYNTH_GROUPING, randomness=SYNTH_RANDOMNESS)
+    c.append(SynthesizeAlongCurve(vine, synth_wave(1350, 180, 400), 130, components=1, holes=0,
+                                  event_grouping=SYNTH_GROUPING, randomness=SYNTH_RANDOMNESS))
+    return Constant(c)
+
+
+def synth_rectangle(elements):
+    ladder = load(elements, "synth_ladder.svg")
+    c = SynthesizeInRectangle(ladder, 1600, 1600, 160, components=1, event_grouping=SYNTH_GROUPING,
+                              randomness=SYNTH_RANDOMNESS)
+    return Constant(Translate(c, Point(200, 200)))
 
 
 EXAMPLES = {
@@ -1032,6 +1071,7 @@ EXAMPLES = {
     "tiled_c": tiled_c,
     "tiled_d": tiled_d,
     "oriented_darts": oriented_darts,
+    "synth_circle": synth_circle, "synth_curve": synth_curve, "synth_rectangle": synth_rectangle,
 }
 # Seed 004's figures, written with rockhatch.discrete (discrete_gallery.py).
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))

@@ -75,6 +75,7 @@ std::function<tex::Curves(const CellT&)> mapper(py::function fn, const char* op)
 void bind_tex(py::module_& m);
 void bind_tiled(py::module_& m);
 void bind_fields(py::module_& m);
+void bind_synthesis(py::module_& m);
 void bind_carto(py::module_& m);
 void bind_discrete(py::module_& m);
 

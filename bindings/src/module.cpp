@@ -57,6 +57,7 @@ PYBIND11_MODULE(_rockhatch, m) {
     py::module_ discrete =
         m.def_submodule("discrete", "libtex's discrete operator set (seed 004): pinning, dart throwing, stream lines");
     rhpy::bind_discrete(discrete);
+    rhpy::bind_synthesis(tex);
     py::module_ carto = m.def_submodule("carto", "carto: rasters, control fields, styles and the rock-hatching pipeline");
     rhpy::bind_carto(carto);
 }

@@ -8,6 +8,7 @@
 #include "gallery_domain.hpp"
 #include "gallery_fields.hpp"
 #include "gallery_micro.hpp"
+#include "gallery_synthesis.hpp"
 #include "gallery_more.hpp"
 #include "gallery_teasers.hpp"
 #include "gallery_tiled.hpp"
@@ -320,6 +321,9 @@ const std::vector<Example>& examples() {
         {"discrete_1e", "Seed 004 Fig. 1e: scaled Voronoi cells of relaxed circles", -1, discrete::arrangement_1e},
         {"discrete_1f", "Seed 004 Fig. 1f: relaxed circles and stream lines", -1, discrete::arrangement_1f},
         {"discrete_1g", "Seed 004 Fig. 1g: interlocked stream lines", -1, discrete::arrangement_1g},
+        {"synth_circle", "Synthesis (seed 002): vine round a circle, one component", -1, synthesis::circle},
+        {"synth_curve", "Synthesis (seed 002): vine along waves, one component, no holes", -1, synthesis::curve},
+        {"synth_rectangle", "Synthesis (seed 002): a ladder filling a square, one component", -1, synthesis::rectangle},
     };
     return all;
 }

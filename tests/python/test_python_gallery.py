@@ -32,6 +32,8 @@ FAMILIES = {
     # Seed 004's figures 1a-1g: dart throwing, relaxation, stream lines (rockhatch.discrete).
     "discrete": ["discrete_1a", "discrete_1b", "discrete_1c", "discrete_1d", "discrete_1e", "discrete_1f",
                  "discrete_1g"],
+    # Topology-constrained synthesis along curves and in a rectangle (seed 002).
+    "synthesis": ["synth_circle", "synth_curve", "synth_rectangle"],
 }
 
 

@@ -19,3 +19,4 @@
 #include "libtex/region.hpp"
 #include "libtex/svg.hpp"
 #include "libtex/tiled.hpp"
+#include "libtex/synthesis.hpp"
