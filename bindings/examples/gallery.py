@@ -1071,7 +1071,6 @@ EXAMPLES = {
     "tiled_c": tiled_c,
     "tiled_d": tiled_d,
     "oriented_darts": oriented_darts,
-    "synth_circle": synth_circle, "synth_curve": synth_curve, "synth_rectangle": synth_rectangle,
 }
 # Seed 004's figures, written with rockhatch.discrete (discrete_gallery.py).
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -1079,6 +1078,8 @@ import discrete_gallery  # noqa: E402
 
 EXAMPLES.update(discrete_gallery.EXAMPLES)
 sys.path.pop(0)
+# Seed 002: synthesis along curves and in a rectangle, in the C++ gallery's order.
+EXAMPLES.update({"synth_circle": synth_circle, "synth_curve": synth_curve, "synth_rectangle": synth_rectangle})
 
 
 def main(argv=None):

@@ -25,7 +25,9 @@ def test_list_names_every_example(gallery_exe):
                      "script_edit_a", "script_edit_b", "script_edit_c", "script_edit_d",
                      "triangles", "bee_hive", "wallpaper_p6", "wallpaper_p4m", "wallpaper_p31m",
                      "escher_p6", "escher_p4m", "escher_p31m", "parquetry", "table", "bottle", "teapot",
-                     "microprocessor", "oriented_darts"]
+                     "microprocessor", "tiled_a", "tiled_b", "tiled_c", "tiled_d", "oriented_darts",
+                     "discrete_1a", "discrete_1b", "discrete_1c", "discrete_1d", "discrete_1e", "discrete_1f",
+                     "discrete_1g", "synth_circle", "synth_curve", "synth_rectangle"]
 
 
 @pytest.mark.parametrize("name,minimum", [("puzzle", 400), ("rosettes", 300), ("cracks", 1000),
