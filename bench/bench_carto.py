@@ -61,7 +61,7 @@ def styles_section(build_dir, runs, tmp, baseline=None, baseline_label=None):
              "|---|---|---:|" + ("---:|" if baseline else "") + "---:|"]
     cases = [("sample (20 faces)", ["--dem", SAMPLE / "dem.tif", "--partition", SAMPLE / "partition.gpkg"])]
     if SHARED_DEM.exists():
-        cases.append(("Chamonix.tif, --partition auto (616 faces)", ["--dem", SHARED_DEM, "--partition", "auto"]))
+        cases.append(("Chamonix.tif, --partition auto", ["--dem", SHARED_DEM, "--partition", "auto"]))
     else:
         print(f"bench_carto: {SHARED_DEM} absent, real-DEM style rows skipped")
     for label, inputs in cases:

@@ -954,6 +954,12 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
     const Grid g{dem.width, dem.height};
     const double dx = dem.cell_x(), dy = dem.cell_y(), cell_area = dx * dy;
     const double min_area = o.min_area_mm2 * (o.scale / 1000.0) * (o.scale / 1000.0);  // m2 on the ground
+    // Rock specks are dropped and gaps filled unless their cells cover 1.5 times the minimum
+    // area: generalising their outlines (step 4) takes area from small pieces, and one that
+    // fell under `min_area` would be a speck on paper. (Faces under the minimum area merge
+    // into a neighbour as before: a margin there would remove ridge and thalweg borders; a
+    // face that generalising makes too small keeps borders closer to its cell edges.)
+    const double keep_area = 1.5 * min_area;
 
     // ---- 1. Rock mask
     step(progress, 0.2, "rock mask");
@@ -1005,12 +1011,12 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
         for (int l : lab)
             if (l >= 0) ++size[l];
         for (std::size_t i = 0; i < g.size(); ++i)
-            if (lab[i] >= 0 && double(size[lab[i]]) * cell_area < min_area) rock[i] = 0;
+            if (lab[i] >= 0 && double(size[lab[i]]) * cell_area < keep_area) rock[i] = 0;
         // Gaps: 8-connected non-rock pieces enclosed by rock, without NoData, below the area.
         const NonRock gaps = non_rock_pieces(g, rock, dem.data, inside_mask);
         for (std::size_t i = 0; i < g.size(); ++i) {
             const int l = gaps.lab[i];
-            if (l >= 0 && !gaps.open[l] && double(gaps.size[l]) * cell_area < min_area) rock[i] = 1;
+            if (l >= 0 && !gaps.open[l] && double(gaps.size[l]) * cell_area < keep_area) rock[i] = 1;
         }
     }
     std::size_t rock_cells = 0;
@@ -1227,14 +1233,22 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
             if (!redo[f]) continue;
             polys[f] = face_polygons(chains, of_face[f], f, dem);
             bool ok = polys[f].size() == 1;
-            for (const auto& fp : polys[f]) ok = ok && to_ogr(fp)->IsValid();
+            for (const auto& fp : polys[f]) {
+                ok = ok && to_ogr(fp)->IsValid();
+                // Rounding takes area from small faces and holes: one that falls under the
+                // minimum area (which its cells reach) keeps its cell edges instead of
+                // becoming a speck.
+                ok = ok && std::abs(tex::signed_area(fp.outer)) >= min_area;
+                for (const auto& h : fp.holes) ok = ok && std::abs(tex::signed_area(h)) >= min_area;
+            }
             if (!ok && round < 5) {
                 bad[f] = 1;
                 any = true;
             }
         }
         if (!any) break;
-        // Invalid once generalised (two borders of a narrow face crossing): the face's chains
+        // Invalid once generalised (two borders of a narrow face crossing), or under the
+        // minimum area: the face's chains
         // step back to the cell edges simplified within half a cell, then to the cell edges
         // themselves, and the faces across them (which share those chains) are rebuilt.
         std::fill(redo.begin(), redo.end(), 0);
@@ -1250,7 +1264,8 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
     }
     if (const auto n = std::count(degraded.begin(), degraded.end(), 1))
         res.notes.push_back("kept the borders of " + std::to_string(n) +
-                            " narrow faces closer to the cell edges (generalised, they would cross)");
+                            " narrow or small faces closer to the cell edges (generalised, they would cross or "
+                            "fall under the minimum area)");
 
     // ---- 5. The partition, with orientation and density per face
     step(progress, 0.85, "orientation and density");

@@ -474,9 +474,9 @@ TEST(PlanarMapWays, CrossingsAreRoundedToTheNearestDouble) {
     // exact crops drew other faces in a sanitizer build than in Release).
     std::size_t crossings = 0, not_doubles = 0;
     for (int p : {3, 7, 10, 11, 13, 29, 31, 97})
-        for (int a = 1; a < p; a += 2) {
+        for (int a = 1; a < p; a += 1 + p / 8) {
             Curves c = Polyline({{double(a), -1.0}, {double(a), 200.0}});
-            for (int q = 1; q <= 2 * p; ++q) c.append(Polyline({{0, 0}, {double(p), double(q)}}));
+            for (int q = 1; q <= 2 * p; q += 1 + p / 16) c.append(Polyline({{0, 0}, {double(p), double(q)}}));
             const MapPtr m = detail::induce_with_cgal(c);
             for (const auto& v : m->vertices()) {
                 if (v.point.x != a || v.point.y < 0.5 || v.point.y == 200.0) continue;  // not the ends
@@ -488,8 +488,8 @@ TEST(PlanarMapWays, CrossingsAreRoundedToTheNearestDouble) {
                 if ((a * q) % p != 0) ++not_doubles;
             }
         }
-    EXPECT_GT(crossings, 600u);
-    EXPECT_GT(not_doubles, 400u);  // most crossings are not doubles: the rounding is tested
+    EXPECT_GT(crossings, 300u) << crossings;
+    EXPECT_GT(not_doubles, 200u) << not_doubles;  // most crossings are not doubles: the rounding is tested
 }
 
 TEST(PlanarMapWays, BothCgalTraitsGiveTheSameCells) {
