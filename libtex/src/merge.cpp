@@ -646,6 +646,22 @@ Curves detail::crop_to_region(const Curves& subject, const Region& region, Borde
     return mask_core(subject, mask, MaskSide::Inside, b);
 }
 
+void detail::label_outline_pieces(Curves& cropped, LabelId outline,
+                                  const std::function<std::optional<Labels>(const Point&, const Point&)>& inner) {
+    for (auto& c : cropped.curves) {
+        if (!c.labels.has(outline)) continue;
+        c.labels.remove(outline);
+        c.left = Labels{};
+        c.right = Labels{};
+        if (c.points.size() < 2) continue;
+        const Point mid = (c.points[0] + c.points[1]) / 2;
+        const Point d = c.points[1] - c.points[0];
+        const double len = norm(d);
+        if (len == 0) continue;
+        if (auto l = inner(mid + Point{-d.y, d.x} * (1e-7 / len * std::max(1.0, len)), mid)) c.left = std::move(*l);
+    }
+}
+
 Arrangement Union(Arrangement a1, Arrangement a2) {
     return Arrangement([a1 = std::move(a1), a2 = std::move(a2)](const Region& r) {
         Curves parts[2];

@@ -113,23 +113,12 @@ Curves realize(const Complex& cx, const Region& r, Border b) {
         // Pieces of the region's outline keep the labels of the region's edges (none for a
         // plain region) and get on their inner side the labels of the cell they bound, so
         // that a face bounded only by the outline keeps its labels.
-        for (auto& c : out.curves) {
-            if (!c.labels.has(outline)) continue;
-            c.labels.remove(outline);
-            c.left = Labels{};
-            c.right = Labels{};
-            if (c.points.size() < 2) continue;
-            // Probe beside the middle of the piece's first segment (the piece may turn a
-            // corner of the outline); the inside is on its left.
-            const Point mid = (c.points[0] + c.points[1]) / 2;
-            const Point d = c.points[1] - c.points[0];
-            const double len = norm(d);
-            if (len == 0) continue;
-            const Point probe = mid + Point{-d.y, d.x} * (1e-7 / len * std::max(1.0, len));
+        detail::label_outline_pieces(out, outline, [&](const Point& probe, const Point& mid) -> std::optional<Labels> {
             int cell = cx.locate(probe);
             if (cell < 0) cell = cx.locate(mid);
-            if (cell >= 0) c.left = cx.cells[cell].labels;
-        }
+            if (cell < 0) return std::nullopt;
+            return cx.cells[cell].labels;
+        });
     }
     return out;
 }

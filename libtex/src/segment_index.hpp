@@ -107,4 +107,10 @@ namespace tex::detail {
 // apply_mask with a region, the pieces of the region's boundary that CROP_ADD_BOUNDARY adds
 // carrying the label `outline` besides their own (the cropping partitions find them so).
 Curves crop_to_region(const Curves& subject, const Region& region, Border b, std::optional<LabelId> outline);
+// The pieces of `cropped` carrying `outline` (pieces of the region's outline) lose that label
+// and their side labels, and get on their left, the inner side, what `inner(probe, mid)` says
+// of the face there: `mid` is the middle of the piece's first segment (a piece may turn a
+// corner of the outline) and `probe` a point just beside it, inside.
+void label_outline_pieces(Curves& cropped, LabelId outline,
+                          const std::function<std::optional<Labels>(const Point& probe, const Point& mid)>& inner);
 }  // namespace tex::detail

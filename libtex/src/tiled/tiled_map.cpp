@@ -349,18 +349,10 @@ Curves TiledMap::Convert(const Region& r, Border b) const {
     } else if (crop) {
         static const LabelId outline = intern_label("\x01libtex-tiled-outline");
         border_pieces = detail::crop_to_region(subject, r, b, outline);
-        for (auto& c : border_pieces.curves) {
-            if (!c.labels.has(outline)) continue;
-            // A piece of the outline: the labels of the face it bounds on its inner side.
-            c.labels.remove(outline);
-            c.left = Labels{};
-            c.right = Labels{};
-            if (c.points.size() < 2) continue;
-            const Point mid = (c.points[0] + c.points[1]) / 2;
-            const Point d = c.points[1] - c.points[0];
-            const double len = norm(d);
-            if (len > 0) c.left = FaceLabelsAt(mid + Point{-d.y, d.x} * (1e-7 / len * std::max(1.0, len)));
-        }
+        // A piece of the outline: the labels of the face it bounds on its inner side.
+        detail::label_outline_pieces(border_pieces, outline, [&](const Point& probe, const Point&) -> std::optional<Labels> {
+            return FaceLabelsAt(probe);
+        });
     }
 
     std::vector<std::size_t> offset(items.size() + 1, 0);
