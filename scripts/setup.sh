@@ -17,6 +17,7 @@ PACKAGES=(
   libgtest-dev                                      # C++ tests
   python3 python3-dev pybind11-dev                  # the Python module, for /usr/bin/python3
   python3-pytest python3-gdal python3-numpy         # Python tests (Debian's interpreter)
+  python3-distributed python3-dask python3-psutil  # rockhatch tiles: tiled runs on Dask distributed
   librsvg2-bin time                                 # PNG previews of SVG outputs; GNU time (benchmarks)
   libopenimageio-dev                                # libtex_image: tiled maps rasterised to image files
   qgis python3-qgis qgis-providers                  # the QGIS plugin and its tests (headless QGIS, qgis_process)

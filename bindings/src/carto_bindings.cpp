@@ -12,6 +12,7 @@
 #include "carto/pipeline.hpp"
 #include "carto/raster.hpp"
 #include "carto/terrain.hpp"
+#include "carto/tiles.hpp"
 #include "common.hpp"
 
 namespace rhpy {
@@ -251,7 +252,8 @@ void bind_carto(py::module_& m) {
         .def_readwrite("density_field", &PartitionOptions::density_field)
         .def_readwrite("density_layer", &PartitionOptions::density_layer)
         .def_readwrite("repair", &PartitionOptions::repair)
-        .def_readwrite("snap", &PartitionOptions::snap);
+        .def_readwrite("snap", &PartitionOptions::snap)
+        .def_readwrite("filter", &PartitionOptions::filter, "read only the features meeting this box (working CRS)");
     m.def(
         "load_partition",
         [](const PartitionOptions& o, const std::string& crs) { return load_partition(o, wkt_of(crs)); },
@@ -421,6 +423,36 @@ void bind_carto(py::module_& m) {
         py::arg("drawing"), py::arg("path"), py::arg("spatial_index") = true, py::arg("progress") = py::none(),
         py::call_guard<py::gil_scoped_release>());
     m.def("write_svg", &write_svg, py::arg("drawing"), py::arg("path"), py::call_guard<py::gil_scoped_release>());
+    m.def(
+        "merge_gpkg",
+        [](const std::vector<std::string>& parts, const std::string& path, bool spatial_index, const py::object& cb) {
+            const Progress p = to_progress(cb);
+            return merge_gpkg(parts, path, spatial_index, [&p](double f) { return !p || p(f, "merging"); });
+        },
+        py::arg("parts"), py::arg("path"), py::arg("spatial_index") = true, py::arg("progress") = py::none(),
+        py::call_guard<py::gil_scoped_release>(),
+        "merges hatch GeoPackages (tiles) into one, in order, features copied bit for bit; returns the hatch count");
+    m.def("read_gpkg", &read_gpkg, py::arg("path"), py::arg("scale"), py::call_guard<py::gil_scoped_release>(),
+          "a hatch GeoPackage read back as a Drawing");
+    py::class_<RasterInfo>(m, "RasterInfo", "A raster's grid and CRS, without its cells")
+        .def_readonly("width", &RasterInfo::width)
+        .def_readonly("height", &RasterInfo::height)
+        .def_readonly("geotransform", &RasterInfo::gt)
+        .def_readonly("crs", &RasterInfo::crs_wkt)
+        .def("bounds", &RasterInfo::bounds);
+    m.def("raster_info", &raster_info, py::arg("path"), py::arg("what") = "raster");
+    py::class_<TileReport>(m, "TileReport", "What one tile of a tiled run read and drew")
+        .def_readonly("faces", &TileReport::faces)
+        .def_readonly("context_faces", &TileReport::context_faces)
+        .def_readonly("hatches", &TileReport::hatches)
+        .def_readonly("dem_cells", &TileReport::dem_cells)
+        .def_readonly("seconds", &TileReport::seconds);
+    m.def("tile_grid", &tile_grid, py::arg("dem"), py::arg("size"),
+          "square tiles of side `size` covering the DEM from its north-west corner, row by row (outer tiles reach "
+          "beyond it)");
+    m.def("run_tile", &run_tile, py::arg("options"), py::arg("tile"), py::arg("out"),
+          py::call_guard<py::gil_scoped_release>(),
+          "hatches the faces whose anchor lies in the half-open box `tile` into the GeoPackage `out`");
     m.def(
         "write_png",
         [](const Drawing& d, const std::string& path, int pixels, const Raster* hillshade) {

@@ -58,7 +58,8 @@ private:
 
 
 // Runs `python3 -m rockhatch` with the same arguments (the Python module parses them with
-// the same option table). The build's package folder comes first on PYTHONPATH.
+// the same option table; `tiles` is its tiled run). The build's package folder comes first
+// on PYTHONPATH.
 int run_script(char** argv) {
     const char* env = std::getenv("RH_PYTHON");
     const std::string python = env && *env ? env : "/usr/bin/python3";
@@ -74,7 +75,7 @@ int run_script(char** argv) {
     for (char** a = argv + 1; *a; ++a) args.push_back(*a);
     args.push_back(nullptr);
     execv(python.c_str(), args.data());
-    std::fprintf(stderr, "rockhatch: --script needs Python and the rockhatch module: cannot run %s (%s)\n",
+    std::fprintf(stderr, "rockhatch: --script and tiles need Python and the rockhatch module: cannot run %s (%s)\n",
                  python.c_str(), std::strerror(errno));
     return 1;
 }
@@ -85,6 +86,8 @@ int partition_main(int argc, char** argv);  // apps/partition_cmd.cpp
 
 int main(int argc, char** argv) {
     if (argc > 1 && std::string(argv[1]) == "partition") return partition_main(argc - 1, argv + 1);
+    // A tiled run is Python's (rockhatch.tiles, on Dask distributed): `python3 -m rockhatch tiles ...`.
+    if (argc > 1 && std::string(argv[1]) == "tiles") return run_script(argv);
     ProgressBar bar(false);
     try {
         const carto::CommandLine cl = carto::parse_command_line(std::vector<std::string>(argv + 1, argv + argc));

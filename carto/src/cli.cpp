@@ -95,7 +95,7 @@ std::vector<Option> options(CommandLine& cl) {
          [&](const std::string& v) { o.partition.snap = parse_double("--snap", v); }},
         {"--no-repair", nullptr, "refuse invalid face polygons instead of repairing them",
          [&](const std::string&) { o.partition.repair = false; }},
-        {"--window", "XMIN,YMIN,XMAX,YMAX", "hatch only the faces centred in this box (working CRS), for tiling",
+        {"--window", "XMIN,YMIN,XMAX,YMAX", "hatch only the faces whose anchor (a point inside the face) lies in this box (working CRS)",
          [&](const std::string& v) {
              std::stringstream ss(v);
              std::string part;

@@ -9,6 +9,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <map>
 
 #include "carto/error.hpp"
 #include "gdal_scope.hpp"
@@ -90,16 +92,29 @@ void check_outputs(const std::vector<FileArg>& inputs, const std::vector<FileArg
     }
 }
 
-void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index,
-                const std::function<bool(double)>& keep_going) {
-    std::size_t total = 0, written = 0;
-    for (const auto& face : d.faces) total += face.hatches.size();
+namespace {
+
+// Receives the hatches of one family, each as the points written (a closed hatch with its
+// first point repeated at the end), with its face and style.
+using HatchSink = std::function<void(std::int64_t face_id, const char* style, const std::vector<Point>& points)>;
+
+// The hatch GeoPackage: one LineString layer per family (fid, geom, face_id, family,
+// style, width_mm), written family by family from `source`, which hands every hatch of the
+// family it is asked for to the sink, in order. `total` (hatches, for the progress) may be an
+// estimate. The R-trees are bulk-loaded once the file is closed; the file is renamed in
+// place at the end.
+void write_hatch_gpkg(const std::string& path, const std::string& crs_wkt, bool spatial_index, std::size_t total,
+                      const std::function<bool(double)>& keep_going,
+                      const std::function<void(Family, const HatchSink&)>& source) {
+    std::size_t written = 0;
     auto check = [&] {
-        if (keep_going && ++written % 4096 == 0 && !keep_going(double(written) / double(2 * total)))
+        if (keep_going && ++written % 4096 == 0 &&
+            !keep_going(std::min(1.0, double(written) / double(std::max<std::size_t>(1, total)))))
             throw Error(Code::Cancelled, "cancelled while writing '" + path + "'");
     };
     register_gdal();
     TempFile tmp(path, ".gpkg");
+    std::vector<std::vector<BoxD>> boxes(kFamilies);
     {
         // Set on this thread, which writes the file, for this call only (gdal_scope.hpp).
         const ReproducibleGpkg reproducible;
@@ -111,7 +126,7 @@ void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index,
         std::unique_ptr<GDALDataset> ds(drv->Create(tmp.path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
         if (!ds) throw Error(Code::OutputExists, "-o '" + path + "': cannot create (" + CPLGetLastErrorMsg() + ")");
         OGRSpatialReference srs;
-        srs.importFromWkt(d.crs_wkt.c_str());
+        srs.importFromWkt(crs_wkt.c_str());
         srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
         for (int fam = 0; fam < kFamilies; ++fam) {
             const Family f = Family(fam);
@@ -130,46 +145,159 @@ void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index,
             ds->StartTransaction();
             OGRFeature feat(layer->GetLayerDefn());
             feat.SetField(1, family_name(f));
-            feat.SetField(2, d.style.c_str());
             feat.SetField(3, family_width_mm(f));
-            for (const auto& face : d.faces)
-                for (const auto& h : face.hatches) {
-                    if (h.family != f || h.points.size() < 2) continue;
-                    check();
-                    feat.SetFID(OGRNullFID);
-                    feat.SetField(0, GIntBig(face.face_id));
-                    auto* ls = new OGRLineString();
-                    ls->setNumPoints(int(h.points.size() + (h.closed ? 1 : 0)), FALSE);
-                    for (std::size_t i = 0; i < h.points.size(); ++i) ls->setPoint(int(i), h.points[i].x, h.points[i].y);
-                    if (h.closed) ls->setPoint(int(h.points.size()), h.points[0].x, h.points[0].y);
-                    feat.SetGeometryDirectly(ls);
-                    if (layer->CreateFeature(&feat) != OGRERR_NONE)
-                        throw Error(Code::OutputExists, "-o '" + path + "': write failed (" + CPLGetLastErrorMsg() + ")");
+            source(f, [&](std::int64_t face_id, const char* style, const std::vector<Point>& pts) {
+                if (pts.size() < 2) return;
+                check();
+                feat.SetFID(OGRNullFID);
+                feat.SetField(0, GIntBig(face_id));
+                feat.SetField(2, style);
+                auto* ls = new OGRLineString();
+                ls->setNumPoints(int(pts.size()), FALSE);
+                BoxD b{INFINITY, -INFINITY, INFINITY, -INFINITY};
+                for (std::size_t i = 0; i < pts.size(); ++i) {
+                    ls->setPoint(int(i), pts[i].x, pts[i].y);
+                    b.minx = std::min(b.minx, pts[i].x);
+                    b.maxx = std::max(b.maxx, pts[i].x);
+                    b.miny = std::min(b.miny, pts[i].y);
+                    b.maxy = std::max(b.maxy, pts[i].y);
                 }
+                feat.SetGeometryDirectly(ls);
+                if (layer->CreateFeature(&feat) != OGRERR_NONE)
+                    throw Error(Code::OutputExists, "-o '" + path + "': write failed (" + CPLGetLastErrorMsg() + ")");
+                if (spatial_index) boxes[std::size_t(fam)].push_back(b);
+            });
             ds->CommitTransaction();
         }
         // Closing the dataset flushes it; the index is added after, then the file is renamed.
     }
-    if (spatial_index) {
+    if (spatial_index)
         for (int fam = 0; fam < kFamilies; ++fam) {
-            std::vector<BoxD> boxes;
-            for (const auto& face : d.faces)
-                for (const auto& h : face.hatches) {
-                    if (h.family != Family(fam) || h.points.size() < 2) continue;
-                    check();
-                    BoxD b{INFINITY, -INFINITY, INFINITY, -INFINITY};
-                    for (const auto& p : h.points) {
-                        b.minx = std::min(b.minx, p.x);
-                        b.maxx = std::max(b.maxx, p.x);
-                        b.miny = std::min(b.miny, p.y);
-                        b.maxy = std::max(b.maxy, p.y);
-                    }
-                    boxes.push_back(b);
-                }
-            bulk_load_rtree(tmp.path, std::string("hatch_") + family_name(Family(fam)), "geom", "fid", boxes);
+            bulk_load_rtree(tmp.path, std::string("hatch_") + family_name(Family(fam)), "geom", "fid",
+                            boxes[std::size_t(fam)]);
+            std::vector<BoxD>().swap(boxes[std::size_t(fam)]);
+        }
+    tmp.commit(path);
+}
+
+struct DatasetCloser {
+    void operator()(GDALDataset* d) const { GDALClose(GDALDataset::ToHandle(d)); }
+};
+
+// A hatch GeoPackage written by write_gpkg, open for reading; `what` names it in errors.
+std::unique_ptr<GDALDataset, DatasetCloser> open_hatches(const std::string& path, const std::string& what) {
+    register_gdal();
+    if (!fs::exists(path)) throw Error(Code::InputMissing, what + " '" + path + "': no such file");
+    std::unique_ptr<GDALDataset, DatasetCloser> ds(GDALDataset::FromHandle(
+        GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
+    if (!ds) throw Error(Code::InputMissing, what + " '" + path + "': not a GeoPackage OGR can read");
+    for (int fam = 0; fam < kFamilies; ++fam)
+        if (!ds->GetLayerByName((std::string("hatch_") + family_name(Family(fam))).c_str()))
+            throw Error(Code::BadLayer, what + " '" + path + "': no layer hatch_" + family_name(Family(fam)) +
+                                            " (not a rockhatch output)");
+    return ds;
+}
+
+// Every feature of layer hatch_<family> in fid order, as (face id, style, points).
+void read_family(GDALDataset& ds, Family f, const std::string& what, const HatchSink& sink) {
+    OGRLayer* layer = ds.GetLayerByName((std::string("hatch_") + family_name(f)).c_str());
+    const int face_idx = layer->GetLayerDefn()->GetFieldIndex("face_id");
+    const int style_idx = layer->GetLayerDefn()->GetFieldIndex("style");
+    if (face_idx < 0 || style_idx < 0)
+        throw Error(Code::BadLayer, what + ": layer " + layer->GetName() + " has no face_id or style field");
+    std::vector<Point> pts;
+    layer->ResetReading();
+    for (auto& feat : *layer) {
+        const OGRGeometry* g = feat->GetGeometryRef();
+        if (!g || wkbFlatten(g->getGeometryType()) != wkbLineString) continue;
+        const OGRLineString* ls = g->toLineString();
+        pts.resize(std::size_t(ls->getNumPoints()));
+        for (int i = 0; i < ls->getNumPoints(); ++i) pts[std::size_t(i)] = {ls->getX(i), ls->getY(i)};
+        sink(feat->GetFieldAsInteger64(face_idx), feat->GetFieldAsString(style_idx), pts);
+    }
+}
+
+}  // namespace
+
+void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index,
+                const std::function<bool(double)>& keep_going) {
+    std::size_t total = 0;
+    for (const auto& face : d.faces) total += face.hatches.size();
+    std::vector<Point> pts;
+    write_hatch_gpkg(path, d.crs_wkt, spatial_index, total, keep_going, [&](Family f, const HatchSink& sink) {
+        for (const auto& face : d.faces)
+            for (const auto& h : face.hatches) {
+                if (h.family != f) continue;
+                pts.assign(h.points.begin(), h.points.end());
+                if (h.closed && !pts.empty()) pts.push_back(pts.front());
+                sink(face.face_id, d.style.c_str(), pts);
+            }
+    });
+}
+
+std::size_t merge_gpkg(const std::vector<std::string>& parts, const std::string& path, bool spatial_index,
+                       const std::function<bool(double)>& keep_going) {
+    if (parts.empty()) throw Error(Code::Usage, "merge: no GeoPackage to merge into '" + path + "'");
+    std::string crs_wkt;
+    std::size_t total = 0;
+    for (const auto& part : parts) {
+        auto ds = open_hatches(part, "tile");
+        for (int fam = 0; fam < kFamilies; ++fam)
+            total += std::size_t(std::max<GIntBig>(
+                0, ds->GetLayerByName((std::string("hatch_") + family_name(Family(fam))).c_str())->GetFeatureCount()));
+        if (crs_wkt.empty()) {
+            if (const OGRSpatialReference* srs = ds->GetLayer(0)->GetSpatialRef()) {
+                char* wkt = nullptr;
+                const char* opts[] = {"FORMAT=WKT2_2019", nullptr};
+                srs->exportToWkt(&wkt, opts);
+                if (wkt) crs_wkt = wkt;
+                CPLFree(wkt);
+            }
         }
     }
-    tmp.commit(path);
+    std::size_t n = 0;
+    write_hatch_gpkg(path, crs_wkt, spatial_index, total, keep_going, [&](Family f, const HatchSink& sink) {
+        // One part open at a time: memory does not grow with the number of tiles.
+        for (const auto& part : parts) {
+            auto ds = open_hatches(part, "tile");
+            read_family(*ds, f, "tile '" + part + "'", [&](std::int64_t id, const char* style, const std::vector<Point>& p) {
+                ++n;
+                sink(id, style, p);
+            });
+        }
+    });
+    return n;
+}
+
+Drawing read_gpkg(const std::string& path, double scale) {
+    auto ds = open_hatches(path, "hatches");
+    Drawing d;
+    d.scale = scale;
+    if (const OGRSpatialReference* srs = ds->GetLayer(0)->GetSpatialRef()) {
+        char* wkt = nullptr;
+        const char* opts[] = {"FORMAT=WKT2_2019", nullptr};
+        srs->exportToWkt(&wkt, opts);
+        if (wkt) d.crs_wkt = wkt;
+        CPLFree(wkt);
+    }
+    std::map<std::int64_t, std::size_t> face_index;
+    for (int fam = 0; fam < kFamilies; ++fam)
+        read_family(*ds, Family(fam), "hatches '" + path + "'", [&](std::int64_t id, const char* style,
+                                                                   const std::vector<Point>& p) {
+            if (d.style.empty()) d.style = style;
+            auto [it, fresh] = face_index.emplace(id, d.faces.size());
+            if (fresh) d.faces.push_back({id, {}});
+            Hatch h;
+            h.points = p;
+            h.family = Family(fam);
+            if (h.points.size() > 2 && h.points.front() == h.points.back()) {
+                h.points.pop_back();
+                h.closed = true;
+            }
+            for (const auto& q : h.points) d.bounds.add(q);
+            d.faces[it->second].hatches.push_back(std::move(h));
+        });
+    return d;
 }
 
 void write_svg(const Drawing& d, const std::string& path) {

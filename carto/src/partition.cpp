@@ -14,6 +14,7 @@
 #include <unordered_map>
 
 #include "carto/error.hpp"
+#include "carto/fields.hpp"
 #include "gdal_scope.hpp"
 
 namespace carto {
@@ -49,6 +50,17 @@ struct Reprojector {
     }
 };
 
+// Restricts a layer to the features meeting `box` (working CRS): through the layer's own
+// spatial filter (its index) when it is in the working CRS, else by `keep` on each feature
+// once reprojected.
+void filter_layer(OGRLayer* layer, const Reprojector& proj, const std::optional<tex::BBox>& box);
+bool keep(const OGRGeometry* reprojected, const std::optional<tex::BBox>& box) {
+    if (!box) return true;
+    OGREnvelope e;
+    reprojected->getEnvelope(&e);
+    return !(e.MaxX < box->xmin || e.MinX > box->xmax || e.MaxY < box->ymin || e.MinY > box->ymax);
+}
+
 Reprojector reprojector(OGRLayer* layer, const std::string& working_wkt, const std::string& what) {
     const OGRSpatialReference* srs = layer->GetSpatialRef();
     // GeoPackage layers without a CRS report an "Undefined" placeholder.
@@ -66,6 +78,11 @@ Reprojector reprojector(OGRLayer* layer, const std::string& working_wkt, const s
         if (!r.ct) throw Error(Code::NoCrs, what + ": cannot reproject layer '" + std::string(layer->GetName()) + "'");
     }
     return r;
+}
+
+void filter_layer(OGRLayer* layer, const Reprojector& proj, const std::optional<tex::BBox>& box) {
+    if (box && !proj.ct) layer->SetSpatialFilterRect(box->xmin, box->ymin, box->xmax, box->ymax);
+    else layer->SetSpatialFilter(nullptr);
 }
 
 // Whether every coordinate of g is a finite number: NaN or infinite ones come from broken
@@ -450,6 +467,12 @@ tex::BBox Partition::bounds() const {
     return b;
 }
 
+Point face_anchor(const RockFace& f) { return f.anchor ? *f.anchor : interior_point(f.region); }
+
+bool owns(const tex::BBox& tile, const Point& p) {
+    return p.x >= tile.xmin && p.x < tile.xmax && p.y >= tile.ymin && p.y < tile.ymax;
+}
+
 void snap_borders(Partition& p, double snap) {
     if (!(snap > 0) || p.faces.empty()) return;
     std::vector<std::vector<Point>> rings;
@@ -632,6 +655,7 @@ Partition load_partition(const PartitionOptions& opt, const std::string& working
     if (!opt.orientation_field.empty() && orient_idx < 0) throw missing(orient_name, "--orientation-field");
     if (!opt.density_field.empty() && opt.density_layer.empty() && dens_idx < 0) throw missing(dens_name, "--density-field");
     int repaired = 0;
+    filter_layer(faces, face_proj, opt.filter);
     faces->ResetReading();
     for (auto& feat : *faces) {
         OGRGeometry* g0 = feat->GetGeometryRef();
@@ -639,6 +663,7 @@ Partition load_partition(const PartitionOptions& opt, const std::string& working
         std::unique_ptr<OGRGeometry> g(g0->clone());
         face_proj.apply(g.get());
         require_finite(g.get(), what, "face " + std::to_string(feat->GetFID()));
+        if (!keep(g.get(), opt.filter)) continue;
         if (!g->IsValid()) {
             if (!opt.repair)
                 throw Error(Code::BadGeometry, what + ": face " + std::to_string(feat->GetFID()) +
@@ -668,6 +693,7 @@ Partition load_partition(const PartitionOptions& opt, const std::string& working
             } catch (const std::exception&) {
                 continue;  // a zero-area sliver left by a repair
             }
+            rf.anchor = interior_point(rf.region);
             if (orient_idx >= 0 && feat->IsFieldSetAndNotNull(orient_idx)) {
                 const double az = feat->GetFieldAsDouble(orient_idx);
                 if (!std::isfinite(az))
@@ -684,11 +710,13 @@ Partition load_partition(const PartitionOptions& opt, const std::string& working
             p.faces.push_back(std::move(rf));
         }
     }
-    if (p.faces.empty()) throw Error(Code::BadLayer, what + ": layer '" + std::string(faces->GetName()) + "' holds no polygon");
+    if (p.faces.empty() && !opt.filter)
+        throw Error(Code::BadLayer, what + ": layer '" + std::string(faces->GetName()) + "' holds no polygon");
     if (repaired) p.notes.push_back("repaired " + std::to_string(repaired) + " invalid face polygon(s)");
     // Borders digitised twice become one (neighbours are matched on identical segments).
     snap_borders(p, opt.snap);
-    if (p.faces.empty()) throw Error(Code::BadLayer, what + ": no face keeps an area once its borders are snapped");
+    if (p.faces.empty() && !opt.filter)
+        throw Error(Code::BadLayer, what + ": no face keeps an area once its borders are snapped");
 
     // ---- Lines: one layer with a label attribute, or one layer per kind.
     OGRLayer* lines = find_layer(opt.lines_layer, is_line_layer, "line");
@@ -711,6 +739,7 @@ Partition load_partition(const PartitionOptions& opt, const std::string& working
         if (idx < 0)
             throw Error(Code::BadLayer, what + ": line layer '" + std::string(lines->GetName()) + "' has no label field '" +
                                             opt.label_field + "' (ridge / valley / other)");
+        filter_layer(lines, proj, opt.filter);
         lines->ResetReading();
         for (auto& feat : *lines) {
             OGRGeometry* g = feat->GetGeometryRef();
@@ -724,18 +753,19 @@ Partition load_partition(const PartitionOptions& opt, const std::string& working
             std::unique_ptr<OGRGeometry> c(g->clone());
             proj.apply(c.get());
             require_finite(c.get(), what, "line " + std::to_string(feat->GetFID()));
-            add_lines(c.get(), kind, p.lines);
+            if (keep(c.get(), opt.filter)) add_lines(c.get(), kind, p.lines);
         }
     } else if (!per_kind.empty()) {
         for (auto [l, kind] : per_kind) {
             const Reprojector proj = reprojector(l, working_wkt, what);
+            filter_layer(l, proj, opt.filter);
             l->ResetReading();
             for (auto& feat : *l) {
                 if (!feat->GetGeometryRef()) continue;
                 std::unique_ptr<OGRGeometry> c(feat->GetGeometryRef()->clone());
                 proj.apply(c.get());
                 require_finite(c.get(), what, "line " + std::to_string(feat->GetFID()) + " of layer '" + l->GetName() + "'");
-                add_lines(c.get(), kind, p.lines);
+                if (keep(c.get(), opt.filter)) add_lines(c.get(), kind, p.lines);
             }
         }
     } else {
@@ -754,6 +784,7 @@ Partition load_partition(const PartitionOptions& opt, const std::string& working
     if (olayer) {
         const Reprojector proj = reprojector(olayer, working_wkt, what);
         int matched = 0;
+        filter_layer(olayer, proj, opt.filter);
         olayer->ResetReading();
         for (auto& feat : *olayer) {
             if (!feat->GetGeometryRef()) continue;
@@ -780,6 +811,7 @@ Partition load_partition(const PartitionOptions& opt, const std::string& working
         const Reprojector proj = reprojector(dlayer, working_wkt, what);
         const int idx = dlayer->GetLayerDefn()->GetFieldIndex(dens_name.c_str());
         if (idx < 0) throw Error(Code::BadLayer, what + ": layer '" + opt.density_layer + "' has no field '" + dens_name + "'");
+        filter_layer(dlayer, proj, opt.filter);
         dlayer->ResetReading();
         for (auto& feat : *dlayer) {
             if (!feat->GetGeometryRef() || !feat->IsFieldSetAndNotNull(idx)) continue;

@@ -102,6 +102,13 @@ void check_files(const Options& o) {
                   outputs, o.overwrite);
 }
 
+void check_roughness(const Raster& r, const std::string& path) {
+    for (float v : r.data)
+        if (!std::isnan(v) && (v < -1e-6 || v > 1 + 1e-6))
+            throw Error(Code::BadLayer, "--roughness '" + path + "': values must lie in 0..1 (found " +
+                                            std::to_string(v) + ")");
+}
+
 Prepared prepare(const Options& o, const Progress& progress) {
     Prepared p;
     tick(progress, 0.0, "reading the DEM");
@@ -119,10 +126,7 @@ Prepared prepare(const Options& o, const Progress& progress) {
     if (!o.slope.empty()) load_like(o.slope, "--slope", p.terrain.slope);
     if (!o.roughness.empty()) {
         load_like(o.roughness, "--roughness", p.terrain.roughness);
-        for (float v : p.terrain.roughness.data)
-            if (!std::isnan(v) && (v < -1e-6 || v > 1 + 1e-6))
-                throw Error(Code::BadLayer, "--roughness '" + o.roughness + "': values must lie in 0..1 (found " +
-                                                std::to_string(v) + ")");
+        check_roughness(p.terrain.roughness, o.roughness);
     }
     p.relief = local_relief(dem, o.relief_radius);
 
@@ -151,19 +155,18 @@ Prepared prepare(const Options& o, const Progress& progress) {
 }
 
 Drawing hatch(const Prepared& p, const Options& o, const Progress& progress) {
+    std::vector<int> selected;
+    for (std::size_t i = 0; i < p.partition.faces.size(); ++i)
+        // Half-open window: a face whose anchor lies on the shared border of two windows goes
+        // to one of them (the rule a tiled run uses, carto/tiles.hpp).
+        if (!o.window || owns(*o.window, face_anchor(p.partition.faces[i]))) selected.push_back(int(i));
+    return hatch(p, o, selected, progress);
+}
+
+Drawing hatch(const Prepared& p, const Options& o, const std::vector<int>& selected, const Progress& progress) {
     const Style style = selected_style(o);
     const ParamValues params = resolve_params(style.info, o.params, o.scale);
     const Partition& part = p.partition;
-    std::vector<int> selected;
-    for (std::size_t i = 0; i < part.faces.size(); ++i) {
-        if (o.window) {
-            const Point c = part.faces[i].region.bbox().center();
-            const tex::BBox& w = *o.window;
-            // Half-open window: a face on the shared border of two tiles goes to one tile.
-            if (!(c.x >= w.xmin && c.x < w.xmax && c.y >= w.ymin && c.y < w.ymax)) continue;
-        }
-        selected.push_back(int(i));
-    }
     check_workload(style.info, params, part, selected, o.scale);
     Drawing d;
     d.crs_wkt = part.crs_wkt;

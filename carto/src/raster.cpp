@@ -38,15 +38,14 @@ void check_size(double width, double height, const std::string& subject) {
     throw Error(Code::InputMissing, subject + ": the raster is " + buf);
 }
 
-Raster from_dataset(GDALDataset& ds, const std::string& what, const std::string& path) {
-    Raster r;
+RasterInfo info_of(GDALDataset& ds, const std::string& what, const std::string& path) {
+    RasterInfo r;
     r.width = ds.GetRasterXSize();
     r.height = ds.GetRasterYSize();
     if (ds.GetRasterCount() < 1 || r.width <= 0 || r.height <= 0)
         throw Error(Code::InputMissing, what + " '" + path + "': no raster band");
     if (ds.GetGeoTransform(r.gt.data()) != CE_None)
         throw Error(Code::NoCrs, what + " '" + path + "': no georeferencing (geotransform)");
-    check_size(r.width, r.height, what + " '" + path + "'");
     if (const OGRSpatialReference* srs = ds.GetSpatialRef()) {
         char* wkt = nullptr;
         const char* opts[] = {"FORMAT=WKT2_2019", nullptr};
@@ -54,11 +53,31 @@ Raster from_dataset(GDALDataset& ds, const std::string& what, const std::string&
         if (wkt) r.crs_wkt = wkt;
         CPLFree(wkt);
     }
+    return r;
+}
+
+// The cells [col0, col0 + w) x [row0, row0 + h) of band 1 (the whole raster by default).
+Raster from_dataset(GDALDataset& ds, const std::string& what, const std::string& path, int col0 = 0, int row0 = 0,
+                    int w = -1, int h = -1) {
+    const RasterInfo info = info_of(ds, what, path);
+    Raster r;
+    r.crs_wkt = info.crs_wkt;
+    r.gt = info.gt;
+    r.width = w < 0 ? info.width : w;
+    r.height = h < 0 ? info.height : h;
+    if (col0 != 0 || row0 != 0 || r.width != info.width || r.height != info.height) {
+        r.col0 = col0;
+        r.row0 = row0;
+        r.grid_gt = info.gt;
+        r.gt[0] = info.gt[0] + col0 * info.gt[1] + row0 * info.gt[2];
+        r.gt[3] = info.gt[3] + col0 * info.gt[4] + row0 * info.gt[5];
+    }
+    check_size(r.width, r.height, what + " '" + path + "'");
     GDALRasterBand* band = ds.GetRasterBand(1);
     int has_nodata = 0;
     const double nodata = band->GetNoDataValue(&has_nodata);
     r.data.resize(std::size_t(r.width) * r.height);
-    if (band->RasterIO(GF_Read, 0, 0, r.width, r.height, r.data.data(), r.width, r.height, GDT_Float32,
+    if (band->RasterIO(GF_Read, col0, row0, r.width, r.height, r.data.data(), r.width, r.height, GDT_Float32,
                        0, 0) != CE_None)
         throw Error(Code::InputMissing, what + " '" + path + "': cannot read the pixels (" +
                                             CPLGetLastErrorMsg() + ")");
@@ -70,7 +89,11 @@ Raster from_dataset(GDALDataset& ds, const std::string& what, const std::string&
 
 }  // namespace
 
-Point Raster::to_pixel(const Point& w) const { return tex::grid_pixel(gt, w); }
+Point Raster::to_pixel(const Point& w) const {
+    if (!grid_gt) return tex::grid_pixel(gt, w);
+    const Point p = tex::grid_pixel(*grid_gt, w);
+    return {p.x - col0, p.y - row0};
+}
 
 BBox Raster::bounds() const {
     BBox b;
@@ -82,9 +105,9 @@ BBox Raster::bounds() const {
 }
 
 // One bilinear sampler for carto and libtex: tex::sample_grid on the raster's cells.
-double Raster::sample(const Point& w) const { return tex::sample_grid(data.data(), width, height, gt, w); }
+double Raster::sample(const Point& w) const { return tex::sample_grid_pixel(data.data(), width, height, to_pixel(w)); }
 
-double Raster::nearest(const Point& w) const { return tex::nearest_grid(data.data(), width, height, gt, w); }
+double Raster::nearest(const Point& w) const { return tex::nearest_grid_pixel(data.data(), width, height, to_pixel(w)); }
 
 std::pair<double, double> Raster::min_max() const {
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
@@ -97,19 +120,72 @@ std::pair<double, double> Raster::min_max() const {
     return {lo, hi};
 }
 
-Raster read_raster(const std::string& path, const std::string& what) {
+namespace {
+
+// Opens a raster for reading; throws naming `what` when it is missing or unreadable.
+DatasetPtr open_raster(const std::string& path, const std::string& what) {
     register_gdal();
-    if (!std::filesystem::exists(path))
-        throw Error(Code::InputMissing, what + " '" + path + "': no such file");
+    if (!std::filesystem::exists(path)) throw Error(Code::InputMissing, what + " '" + path + "': no such file");
     QuietGdal quiet;
     DatasetPtr ds(GDALDataset::FromHandle(GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY,
                                                      nullptr, nullptr, nullptr)));
     if (!ds) throw Error(Code::InputMissing, what + " '" + path + "': not a raster GDAL can read");
+    return ds;
+}
+
+// The grid of an open raster, which must have a CRS and no rotation.
+RasterInfo checked_info(GDALDataset& ds, const std::string& what, const std::string& path) {
+    RasterInfo r = info_of(ds, what, path);
+    if (r.crs_wkt.empty()) throw Error(Code::NoCrs, what + " '" + path + "': the raster has no CRS");
+    if (r.gt[2] != 0 || r.gt[4] != 0)
+        throw Error(Code::BadLayer, what + " '" + path + "': rotated rasters are not supported");
+    return r;
+}
+
+}  // namespace
+
+Raster read_raster(const std::string& path, const std::string& what) {
+    DatasetPtr ds = open_raster(path, what);
+    QuietGdal quiet;
     Raster r = from_dataset(*ds, what, path);
     if (r.crs_wkt.empty()) throw Error(Code::NoCrs, what + " '" + path + "': the raster has no CRS");
     if (!r.north_up())
         throw Error(Code::BadLayer, what + " '" + path + "': rotated rasters are not supported");
     return r;
+}
+
+BBox RasterInfo::bounds() const {
+    Raster r;
+    r.width = width;
+    r.height = height;
+    r.gt = gt;
+    return r.bounds();
+}
+
+RasterInfo raster_info(const std::string& path, const std::string& what) {
+    DatasetPtr ds = open_raster(path, what);
+    QuietGdal quiet;
+    return checked_info(*ds, what, path);
+}
+
+Raster read_raster_window(const std::string& path, const std::string& what, const BBox& box, int halo) {
+    DatasetPtr ds = open_raster(path, what);
+    QuietGdal quiet;
+    const RasterInfo info = checked_info(*ds, what, path);
+    // The cells the box touches, in the raster's pixel grid.
+    const Point a = tex::grid_pixel(info.gt, {box.xmin, box.ymin}), b = tex::grid_pixel(info.gt, {box.xmax, box.ymax});
+    const double c0 = std::floor(std::min(a.x, b.x)) - halo, c1 = std::ceil(std::max(a.x, b.x)) + halo;
+    const double r0 = std::floor(std::min(a.y, b.y)) - halo, r1 = std::ceil(std::max(a.y, b.y)) + halo;
+    const int col0 = int(std::clamp(c0, 0.0, double(info.width))), col1 = int(std::clamp(c1, 0.0, double(info.width)));
+    const int row0 = int(std::clamp(r0, 0.0, double(info.height))), row1 = int(std::clamp(r1, 0.0, double(info.height)));
+    if (col1 <= col0 || row1 <= row0) {
+        Raster empty;
+        empty.gt = info.gt;
+        empty.crs_wkt = info.crs_wkt;
+        empty.grid_gt = info.gt;
+        return empty;
+    }
+    return from_dataset(*ds, what, path, col0, row0, col1 - col0, row1 - row0);
 }
 
 void write_geotiff(const Raster& r, const std::string& path, double nodata) {

@@ -246,14 +246,20 @@ Point grid_pixel(const std::array<double, 6>& t, const Point& p) {
 }
 
 double nearest_grid(const float* values, int width, int height, const std::array<double, 6>& t, const Point& w) {
-    const Point p = grid_pixel(t, w);
+    return nearest_grid_pixel(values, width, height, grid_pixel(t, w));
+}
+
+double nearest_grid_pixel(const float* values, int width, int height, const Point& p) {
     const int c = int(std::floor(p.x)), r = int(std::floor(p.y));
     if (c < 0 || r < 0 || c >= width || r >= height) return kNaN;
     return values[std::size_t(r) * width + c];
 }
 
 double sample_grid(const float* values, int width, int height, const std::array<double, 6>& t, const Point& w) {
-    const Point p = grid_pixel(t, w);
+    return sample_grid_pixel(values, width, height, grid_pixel(t, w));
+}
+
+double sample_grid_pixel(const float* values, int width, int height, const Point& p) {
     const double fx = p.x - 0.5, fy = p.y - 0.5;
     if (!(p.x >= 0 && p.y >= 0 && p.x <= width && p.y <= height)) return kNaN;
     const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
@@ -268,7 +274,7 @@ double sample_grid(const float* values, int width, int height, const std::array<
             sum += wgt * v;
             wsum += wgt;
         }
-    if (wsum <= 1e-12) return nearest_grid(values, width, height, t, w);
+    if (wsum <= 1e-12) return nearest_grid_pixel(values, width, height, p);
     return sum / wsum;
 }
 

@@ -299,10 +299,10 @@ TEST(Pipeline, TwoHalvesGiveTheSameHatchesAsTheWhole) {
     Options o = sample_options("bidirectional");
     const Drawing whole = hatch(sample(), o);
     const tex::BBox b = sample().partition.bounds();
-    // Split in the middle, and exactly through the centre of one face's box: that face goes
-    // to the tile whose window starts there (half-open windows), and only to it.
+    // Split in the middle, and exactly through the anchor of one face: that face goes to the
+    // tile whose window starts there (half-open windows), and only to it.
     const RockFace& f0 = sample().partition.faces.front();
-    for (const double mid : {b.center().x, f0.region.bbox().center().x}) {
+    for (const double mid : {b.center().x, face_anchor(f0).x}) {
         SCOPED_TRACE(mid);
         o.window = tex::BBox{b.xmin - 1, b.ymin - 1, mid, b.ymax + 1};
         const Drawing left = hatch(sample(), o);
@@ -314,7 +314,7 @@ TEST(Pipeline, TwoHalvesGiveTheSameHatchesAsTheWhole) {
         std::map<std::int64_t, const FaceHatches*> parts;
         for (const auto& f : left.faces) parts[f.face_id] = &f;
         for (const auto& f : right.faces) parts[f.face_id] = &f;
-        if (mid == f0.region.bbox().center().x)
+        if (mid == face_anchor(f0).x)
             EXPECT_TRUE(std::any_of(right.faces.begin(), right.faces.end(),
                                     [&](const FaceHatches& f) { return f.face_id == f0.id; }));
         for (const auto& f : whole.faces) {

@@ -1,5 +1,11 @@
-"""python3 -m rockhatch: the rockhatch command, with --script for Python style scripts."""
+"""python3 -m rockhatch: the rockhatch command, with --script for Python style scripts, and
+`tiles` for a tiled run on Dask distributed (rockhatch.tiles)."""
 import sys
+
+if len(sys.argv) > 1 and sys.argv[1] == "tiles":
+    from .tiles import main as tiles_main
+
+    sys.exit(tiles_main(sys.argv[2:]))
 
 from .cli import main
 

@@ -30,6 +30,13 @@ class _Bar:
             self.open = False
 
 
+def fail(error, bar, prog="rockhatch"):
+    """Ends the progress bar, writes the error on one line, returns its exit code."""
+    bar.finish()
+    sys.stderr.write(f"{prog}: {error}\n")
+    return getattr(error, "code", 1) if isinstance(error, RockhatchError) else 1
+
+
 def main(argv=None, style=None):
     """Runs the command; returns its exit code. style: a script module to use instead of
     --script (a style script run on its own passes itself)."""
@@ -60,14 +67,8 @@ def main(argv=None, style=None):
         sys.stderr.write("rockhatch: %d faces, %d hatches, %.2f s, working CRS %s\n"
                          % (stats.faces, stats.hatches, stats.seconds, stats.crs))
         return 0
-    except RockhatchError as e:
-        bar.finish()
-        sys.stderr.write(f"rockhatch: {e}\n")
-        return getattr(e, "code", 1)
-    except TexError as e:
-        bar.finish()
-        sys.stderr.write(f"rockhatch: {e}\n")
-        return 1
+    except (RockhatchError, TexError) as e:
+        return fail(e, bar)
     except Exception:  # an error in a style script: its traceback helps its author
         bar.finish()
         traceback.print_exc()

@@ -29,6 +29,16 @@ struct Drawing {
 // (Error Cancelled, nothing left behind).
 void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index = true,
                 const std::function<bool(double)>& keep_going = {});
+// Merges hatch GeoPackages written by write_gpkg (the tiles of a tiled run) into one, the
+// parts' features one after the other in the order given, each feature's geometry and
+// attributes copied bit for bit, with one R-tree per layer; reads one part at a time.
+// Returns the number of hatches.
+std::size_t merge_gpkg(const std::vector<std::string>& parts, const std::string& path, bool spatial_index = true,
+                       const std::function<bool(double)>& keep_going = {});
+// Reads a hatch GeoPackage written by write_gpkg back into a drawing (faces in order of
+// first appearance), e.g. to draw a tiled run's merged result as SVG or PNG. Its bounds are
+// those of the hatches.
+Drawing read_gpkg(const std::string& path, double scale);
 void write_svg(const Drawing& d, const std::string& path);
 // A PNG preview `pixels` wide, over a light hillshade when one is given.
 void write_png(const Drawing& d, const std::string& path, int pixels, const Raster* hillshade);

@@ -30,7 +30,17 @@ struct RockFace {
     std::vector<BoundarySegment> boundary;
     std::optional<double> orientation;  // hatch direction, math angle in radians (axial)
     std::optional<double> density;      // 0 (sparse, light) .. 1 (dense, dark)
+    // A point inside the face as it was read, before its borders were snapped to its
+    // neighbours': it depends on this face alone, so the tile that owns the face (the one
+    // whose box holds it) is the same whatever else a run reads (face_anchor).
+    std::optional<Point> anchor;
 };
+
+// The face's anchor, or a point inside it for a face built without one.
+Point face_anchor(const RockFace& f);
+// Whether a point lies in a half-open box [xmin, xmax) x [ymin, ymax): every point of the
+// plane lies in exactly one tile of a grid of such boxes.
+bool owns(const tex::BBox& tile, const Point& p);
 
 struct LabelledLine {
     std::vector<Point> points;
@@ -59,6 +69,9 @@ struct PartitionOptions {
     std::string density_layer;            // point or polygon layer with a density field
     bool repair = true;                   // repair invalid polygons (else refuse them)
     double snap = 0.5;                    // ground units: border snapping and line matching tolerance
+    // Read only the features that meet this box (working CRS): a tile's neighbourhood. A
+    // box holding no face gives an empty partition instead of an error.
+    std::optional<tex::BBox> filter;
 };
 
 // Reads the partition and reprojects it to the working CRS. Lines come either from a line

@@ -39,7 +39,8 @@ struct Options {
     bool overwrite = false;
     int png_pixels = 1600;
     bool spatial_index = true;           // R-tree in the GeoPackage
-    // Hatch only the faces whose centroid lies in this box (for tiling large areas).
+    // Hatch only the faces whose anchor (a point inside the face, face_anchor) lies in this
+    // half-open box; a tiled run (carto/tiles.hpp) reads only the data near its box.
     std::optional<tex::BBox> window;
 };
 
@@ -74,11 +75,16 @@ void validate(const Options& o);
 // slope, roughness, style script); validate calls it, front ends that read a style script
 // call it before.
 void check_files(const Options& o);
+// Refuses a --roughness raster with values outside 0..1 (NoData aside).
+void check_roughness(const Raster& r, const std::string& path);
 // Reads the DEM (reprojected to a projected working CRS when geographic), the optional
 // rasters and the partition.
 Prepared prepare(const Options& o, const Progress& progress = {});
-// Hatches the faces (in parallel, deterministic).
+// Hatches the faces (in parallel, deterministic): all of them, or those whose anchor
+// (face_anchor) lies in Options::window.
 Drawing hatch(const Prepared& p, const Options& o, const Progress& progress = {});
+// Hatches the faces of these indices, in this order.
+Drawing hatch(const Prepared& p, const Options& o, const std::vector<int>& faces, const Progress& progress = {});
 // Everything: validate, prepare, hatch, write.
 Stats run(const Options& o, const Progress& progress = {});
 

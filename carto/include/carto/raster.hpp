@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,12 @@ struct Raster {
     std::array<double, 6> gt{0, 1, 0, 0, 0, -1};  // GDAL geotransform
     std::string crs_wkt;                          // empty: no CRS
     std::vector<float> data;                      // row-major, NaN = NoData
+    // A window of a larger raster (read_raster_window): its first cell is cell (col0, row0)
+    // of the raster whose geotransform is grid_gt. Points are located in that raster's pixel
+    // grid and shifted by the (integer) offset, an exact step, so a window samples the same
+    // bits as the whole raster does (a tiled run hatches exactly as a whole one).
+    int col0 = 0, row0 = 0;
+    std::optional<std::array<double, 6>> grid_gt;
 
     float at(int col, int row) const { return data[std::size_t(row) * width + col]; }
     float& at(int col, int row) { return data[std::size_t(row) * width + col]; }
@@ -42,6 +49,19 @@ struct Raster {
 
 // Reads band 1 of a raster. `what` names the input in error messages ("--dem").
 Raster read_raster(const std::string& path, const std::string& what);
+
+// A raster's grid and CRS, without its cells.
+struct RasterInfo {
+    int width = 0, height = 0;
+    std::array<double, 6> gt{0, 1, 0, 0, 0, -1};
+    std::string crs_wkt;
+    BBox bounds() const;
+};
+RasterInfo raster_info(const std::string& path, const std::string& what);
+// Band 1 of the cells of a raster that a box (in its CRS) touches, grown by `halo` cells on
+// every side and clipped to the raster: only those cells are read (a VRT mosaic reads only
+// the files under the window). An empty window (the box misses the raster) has width 0.
+Raster read_raster_window(const std::string& path, const std::string& what, const BBox& box, int halo);
 // Writes a Float32 GeoTIFF (deflate), NaN written as NoData (-9999 unless given).
 void write_geotiff(const Raster& r, const std::string& path, double nodata = -9999.0);
 // True when the CRS is geographic (degrees).

@@ -101,6 +101,12 @@ double sample_grid(const float* values, int width, int height, const std::array<
 double nearest_grid(const float* values, int width, int height, const std::array<double, 6>& t, const Point& p);
 // Pixel position (col, row) of a world point.
 Point grid_pixel(const std::array<double, 6>& t, const Point& p);
+// sample_grid and nearest_grid at a pixel position (col, row; 0.5 = a cell centre): for a
+// window of a larger grid, whose callers compute the position in the larger grid and
+// subtract the window's integer offset (exact), so a window samples the same bits as the
+// whole grid.
+double sample_grid_pixel(const float* values, int width, int height, const Point& pixel);
+double nearest_grid_pixel(const float* values, int width, int height, const Point& pixel);
 // The grid as a field (sample_grid). Throws tex::Error naming GridField on a bad grid.
 Field GridField(GridSamples g);
 

@@ -1,0 +1,366 @@
+"""Tiled runs on Dask distributed: rock hatching for areas larger than one machine.
+
+The area is cut into square tiles (carto::tile_grid). Each tile is a Dask task that hatches
+the faces it owns (carto::run_tile: the faces whose anchor lies in its box, read with their
+neighbourhood and the DEM window under them, never the whole DEM) and writes its own
+GeoPackage in a work folder. Once every tile is there, they are merged, in tile order, into
+the outputs (one GeoPackage with one R-tree per layer; SVG and PNG drawn from it).
+
+- Same hatches as a whole run: a tile draws its faces from the same cells through the same
+  pixel positions as a whole run, so every feature is the whole run's feature, bit for bit,
+  whatever the tile size or the number of workers (tests/python/test_tiles.py checks it).
+- Faults: a tile file appears only when complete (written to a temporary name, renamed);
+  a task lost with its worker is run again by Dask; an interrupted job run again with the
+  same options skips the tiles already done (resume). Partial files are never merged.
+- Memory: a worker holds one tile (its faces, its DEM window and its hatches) at a time.
+
+Command line: ``rockhatch tiles --dem DEM --partition faces.gpkg --tile-size METRES
+[--workers N | --scheduler tcp://HOST:8786] -o out.gpkg`` plus every option of rockhatch.
+In Python: ``rockhatch.tiles.run(dem=..., partition=..., tile_size=..., outputs=[...])``.
+"""
+import hashlib
+import json
+import os
+import shutil
+import sys
+import time
+
+from . import carto
+from ._rockhatch import RockhatchError, TexError
+
+# Options of `rockhatch tiles` on top of the rockhatch option table: (flag, takes a value, help).
+TILE_OPTIONS = [
+    ("--tile-size", True, "METRES  side of a tile in ground units of the DEM's CRS (required)"),
+    ("--workers", True, "N  worker processes of the local Dask cluster (default 1)"),
+    ("--scheduler", True, "ADDRESS  an existing Dask scheduler (tcp://HOST:8786) instead of a local cluster"),
+    ("--workdir", True, "DIR  folder of the tile files (default: the first output + '.tiles')"),
+    ("--restart", False, "start again: remove the tiles a previous run of this job left"),
+    ("--keep-tiles", False, "keep the tile files after the merge"),
+    ("--dashboard", True, "ADDRESS  serve the Dask dashboard of the local cluster there (e.g. :8787)"),
+]
+
+_MANIFEST = "job.json"
+
+
+def _split_args(argv):
+    """The tiled-run options, and the rest for the rockhatch option table."""
+    mine, rest = {}, []
+    table = {flag: takes for flag, takes, _ in TILE_OPTIONS}
+    i = 0
+    while i < len(argv):
+        a = argv[i]
+        name, eq, value = a.partition("=")
+        if name in table:
+            if table[name]:
+                if not eq:
+                    if i + 1 >= len(argv):
+                        raise carto.error(2, f"{name} needs a value")
+                    i += 1
+                    value = argv[i]
+                mine[name] = value
+            else:
+                mine[name] = True
+        else:
+            rest.append(a)
+        i += 1
+    return mine, rest
+
+
+def _positive(name, value, kind=float):
+    try:
+        v = kind(value)
+    except (TypeError, ValueError):
+        raise carto.error(2, f"{name}: '{value}' is not a number") from None
+    if not v > 0 or v != v or v == float("inf"):
+        raise carto.error(2, f"{name}: {value} is not a positive number")
+    return v
+
+
+def _job_key(argv, tile_size):
+    """What identifies a job's tiles: the options that change a tile's content (not the
+    outputs, --overwrite, --quiet or the thread count), the tile size, and the inputs'
+    sizes and times."""
+    skip_value = {"-o", "--threads", "--png-size"}
+    skip_flag = {"--overwrite", "-q", "--no-spatial-index"}
+    kept, i = [], 0
+    while i < len(argv):
+        a = argv[i]
+        name = a.split("=", 1)[0]
+        if name in skip_value:
+            i += 1 if "=" in a else 2
+            continue
+        if name not in skip_flag:
+            kept.append(a)
+        i += 1
+    stamps = []
+    for a in kept:
+        if os.path.isfile(a):
+            st = os.stat(a)
+            stamps.append([os.path.abspath(a), st.st_size, st.st_mtime_ns])
+    return {"args": kept, "tile_size": tile_size, "inputs": stamps}
+
+
+def _tile_task(argv, box, path):
+    """One tile, in a worker process: parse the options, hatch, write the tile file. A tile
+    file that exists is complete (a retried task finds it and returns)."""
+    import resource
+
+    from . import carto as c
+
+    if os.path.exists(path):
+        return {"skipped": True, "faces": 0, "hatches": 0, "seconds": 0.0,
+                "peak_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0}
+    cl = c.parse_command_line(argv)
+    options = cl.options
+    if cl.script:
+        options.style_file = cl.script
+        options.custom_style = c.load_style(cl.script)
+    options.overwrite = True  # the final outputs are written by the merge, not here
+    from . import tex
+
+    tile = tex.BBox(*box)
+    r = c.run_tile(options, tile, path)
+    return {"skipped": False, "faces": r.faces, "context_faces": r.context_faces, "hatches": r.hatches,
+            "dem_cells": r.dem_cells, "seconds": r.seconds,
+            "peak_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0}
+
+
+class Summary:
+    """What a tiled run did."""
+
+    def __init__(self):
+        self.tiles = 0          # tiles in the grid
+        self.done_before = 0    # tiles found done (resume)
+        self.faces = 0
+        self.hatches = 0
+        self.seconds = 0.0
+        self.tile_seconds = []  # per tile computed in this run
+        self.peak_mb = 0.0      # largest peak resident memory reported by a worker
+        self.workers = 0
+
+    def __repr__(self):
+        return (f"Summary(tiles={self.tiles}, done_before={self.done_before}, faces={self.faces}, "
+                f"hatches={self.hatches}, seconds={self.seconds:.2f}, peak_mb={self.peak_mb:.0f})")
+
+
+def _eta(done, total, started, first_done):
+    rate = (done - first_done) / max(1e-9, time.monotonic() - started)
+    left = (total - done) / rate if rate > 0 else float("inf")
+    return rate, left
+
+
+def run_args(argv, progress=None):
+    """A tiled run from command-line arguments (the rockhatch option table plus
+    TILE_OPTIONS). progress(fraction, stage) is called as tiles finish; returning False
+    cancels (the tiles done are kept for a resume). Returns a Summary."""
+    t0 = time.monotonic()
+    mine, rest = _split_args(list(argv))
+    if "--tile-size" not in mine:
+        raise carto.error(2, "--tile-size is required (side of a tile, ground units of the DEM's CRS)")
+    tile_size = _positive("--tile-size", mine["--tile-size"])
+    if "--workers" in mine and "--scheduler" in mine:
+        raise carto.error(2, "--workers and --scheduler exclude each other (the cluster behind a scheduler has its own)")
+    workers = _positive("--workers", mine.get("--workers", 1), int)
+    cl = carto.parse_command_line(rest)
+    options = cl.options
+    if cl.script:
+        options.style_file = cl.script
+        carto.check_files(options)
+        options.custom_style = carto.load_style(cl.script)
+    carto.validate(options)
+    if options.partition.path == "auto":
+        raise carto.error(2, "--partition auto: a tiled run hatches a partition file; extract it first with "
+                             "'rockhatch partition --dem DEM -o faces.gpkg' and pass --partition faces.gpkg")
+    dem = carto.raster_info(options.dem, "--dem")
+    if carto.is_geographic(dem.crs):
+        raise carto.error(2, f"--dem '{options.dem}': a tiled run needs a DEM in a projected CRS (this one is in "
+                             "degrees); reproject it first, e.g. gdalwarp -t_srs EPSG:326NN")
+    grid = carto.tile_grid(dem, tile_size)
+    workdir = mine.get("--workdir") or (options.outputs[0] + ".tiles")
+    if os.path.abspath(workdir) in {os.path.abspath(p) for p in [options.dem, options.partition.path] if p}:
+        raise carto.error(9, f"--workdir '{workdir}' is an input")
+    os.makedirs(workdir, exist_ok=True)
+    key = _job_key(rest, tile_size)
+    manifest = os.path.join(workdir, _MANIFEST)
+    if mine.get("--restart") and os.path.exists(manifest):
+        for name in os.listdir(workdir):
+            if name.startswith("tile_") and name.endswith(".gpkg"):
+                os.remove(os.path.join(workdir, name))
+        os.remove(manifest)
+    if os.path.exists(manifest):
+        with open(manifest) as f:
+            previous = json.load(f)
+        if previous != key:
+            raise carto.error(9, f"--workdir '{workdir}' holds the tiles of another job (other options or inputs); "
+                                 "pass --restart to discard them, or another --workdir")
+    else:
+        tmp = manifest + ".part"
+        with open(tmp, "w") as f:
+            json.dump(key, f)
+        os.replace(tmp, manifest)
+    # Temporary files of tiles interrupted in a previous run: never merged, removed.
+    for name in os.listdir(workdir):
+        if ".part-" in name:
+            os.remove(os.path.join(workdir, name))
+
+    paths = [os.path.join(workdir, "tile_%07d.gpkg" % i) for i in range(len(grid))]
+    todo = [i for i, p in enumerate(paths) if not os.path.exists(p)]
+    summary = Summary()
+    summary.tiles = len(grid)
+    summary.done_before = len(grid) - len(todo)
+    # One hatching thread per core of the machine, shared by the local workers.
+    task_args = list(rest)
+    if "--threads" not in " ".join(rest) and "--scheduler" not in mine:
+        task_args += ["--threads", str(max(1, (os.cpu_count() or 1) // workers))]
+    job = hashlib.sha1(json.dumps(key).encode()).hexdigest()[:12]
+
+    if progress and not progress(summary.done_before / len(grid), f"tiles {summary.done_before}/{len(grid)}"):
+        raise carto.error(10, "cancelled before the first tile")
+    if todo:
+        _compute(todo, grid, paths, task_args, job, mine, workers, summary, progress)
+    missing = [p for p in paths if not os.path.exists(p)]
+    if missing:
+        raise carto.error(1, f"{len(missing)} tile(s) missing after the run (first: {missing[0]})")
+
+    if progress:
+        progress(0.99, "merging")
+    gpkg = [o for o in options.outputs if o.lower().endswith(".gpkg")]
+    merged = gpkg[0] if gpkg else os.path.join(workdir, "merged.gpkg")
+    summary.hatches = carto.merge_gpkg(paths, merged, options.spatial_index)
+    for extra in gpkg[1:]:
+        carto.merge_gpkg(paths, extra, options.spatial_index)
+    others = [o for o in options.outputs if not o.lower().endswith(".gpkg")]
+    if others:
+        drawing = carto.read_gpkg(merged, options.scale)
+        for out in others:
+            if out.lower().endswith(".svg"):
+                carto.write_svg(drawing, out)
+            else:
+                carto.write_png(drawing, out, options.png_pixels)
+    if not mine.get("--keep-tiles"):
+        if not gpkg:
+            os.remove(merged)
+        shutil.rmtree(workdir, ignore_errors=True)
+    summary.seconds = time.monotonic() - t0
+    if progress:
+        progress(1.0, "done")
+    return summary
+
+
+def _compute(todo, grid, paths, task_args, job, mine, workers, summary, progress):
+    from distributed import Client, LocalCluster, as_completed
+
+    cluster = None
+    if "--scheduler" in mine:
+        client = Client(mine["--scheduler"], timeout="30s")
+    else:
+        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                               dashboard_address=mine.get("--dashboard"), silence_logs=50)
+        client = Client(cluster)
+    try:
+        summary.workers = len(client.scheduler_info().get("workers", {}))
+        futures = []
+        for i in todo:
+            b = grid[i]
+            futures.append(client.submit(_tile_task, task_args, (b.xmin, b.ymin, b.xmax, b.ymax), paths[i],
+                                         key=f"rockhatch-tile-{job}-{i}", retries=2, pure=False))
+        done, total, started = summary.done_before, len(grid), time.monotonic()
+        first = done
+        for fut in as_completed(futures):
+            try:
+                r = fut.result()
+            except (RockhatchError, TexError):
+                for f in futures:
+                    f.cancel()
+                raise
+            done += 1
+            summary.faces += r["faces"]
+            summary.peak_mb = max(summary.peak_mb, r["peak_mb"])
+            if not r["skipped"]:
+                summary.tile_seconds.append(r["seconds"])
+            if progress:
+                rate, left = _eta(done, total, started, first)
+                stage = f"tiles {done}/{total}, {rate:.2f}/s, {_duration(left)} left"
+                if not progress(done / total * 0.99, stage):
+                    for f in futures:
+                        f.cancel()
+                    raise carto.error(10, f"cancelled after {done} of {total} tiles (run again to resume)")
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+
+
+def _duration(s):
+    if s == float("inf"):
+        return "?"
+    s = int(s + 0.5)
+    return f"{s // 3600}h{s % 3600 // 60:02d}m" if s >= 3600 else f"{s // 60}m{s % 60:02d}s"
+
+
+def run(dem, partition, tile_size, outputs, *, style=None, script=None, params=None, scale=None, seed=None,
+        workers=None, scheduler=None, workdir=None, restart=False, keep_tiles=False, overwrite=False,
+        args=(), progress=None):
+    """A tiled run from Python: the same as `rockhatch tiles`. params: {name: value};
+    args: any other option of the rockhatch command, as on its command line."""
+    argv = ["--dem", os.fspath(dem), "--partition", os.fspath(partition), "--tile-size", str(tile_size)]
+    for out in ([outputs] if isinstance(outputs, (str, os.PathLike)) else outputs):
+        argv += ["-o", os.fspath(out)]
+    if style:
+        argv += ["--style", style]
+    if script:
+        argv += ["--script", os.fspath(script)]
+    for k, v in (params or {}).items():
+        argv += ["--param", f"{k}={v}"]
+    if scale is not None:
+        argv += ["--scale", str(scale)]
+    if seed is not None:
+        argv += ["--seed", str(seed)]
+    if workers is not None:
+        argv += ["--workers", str(workers)]
+    if scheduler:
+        argv += ["--scheduler", scheduler]
+    if workdir:
+        argv += ["--workdir", os.fspath(workdir)]
+    if restart:
+        argv.append("--restart")
+    if keep_tiles:
+        argv.append("--keep-tiles")
+    if overwrite:
+        argv.append("--overwrite")
+    return run_args(argv + list(args), progress)
+
+
+def help_text():
+    lines = ["usage: rockhatch tiles --dem DEM --partition FACES --tile-size METRES -o OUT [options]",
+             "",
+             "Hatches the area tile by tile on a Dask cluster (a local one by default) and merges the",
+             "tiles into the outputs; the result is the same as one whole run. Tiled-run options:"]
+    for flag, _, text in TILE_OPTIONS:
+        lines.append(f"  {flag:14s} {text}")
+    lines += ["", "and every option of the rockhatch command (rockhatch --help)."]
+    return "\n".join(lines) + "\n"
+
+
+def main(argv=None):
+    """`rockhatch tiles`: returns the exit code."""
+    from .cli import _Bar, fail
+
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if not argv or "--help" in argv or "-h" in argv:
+        sys.stdout.write(help_text())
+        return 0
+    quiet = "-q" in argv
+    bar = _Bar(not quiet)
+    try:
+        s = run_args(argv, bar)
+        bar.finish()
+        sys.stderr.write(f"rockhatch tiles: {s.tiles} tiles ({s.done_before} done before), {s.faces} faces, "
+                         f"{s.hatches} hatches, {s.seconds:.2f} s, peak {s.peak_mb:.0f} MB per worker\n")
+        return 0
+    except (RockhatchError, TexError, OSError) as e:
+        return fail(e, bar, "rockhatch tiles")
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,52 @@
+// A tiled run (rockhatch tiles): the area is cut into square tiles; each tile hatches the
+// faces it owns, reading only the DEM and the partition near them, and writes its own
+// GeoPackage; the tiles are merged at the end. The Python module rockhatch.tiles runs the
+// tiles on a Dask cluster; this is the work of one tile, and the merge.
+//
+// Ownership: a face belongs to the tile whose half-open box holds its anchor (face_anchor,
+// a point inside the face as read), a rule that does not depend on the tiling, so every
+// face is drawn once, whole, by one tile, however large it is.
+//
+// Exactness: a tile reads the faces within a context margin of the faces it owns (their
+// neighbours, whose labels and controls the style reads across the border) and the DEM cells
+// under them plus a halo as wide as the relief window (Options::relief_radius) and the
+// terrain kernels. Every field a style reads is then computed from the same cells, through
+// the same pixel positions (Raster::grid_gt), as in a whole run: a tile's hatches are the
+// whole run's hatches of its faces, bit for bit.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "carto/pipeline.hpp"
+#include "carto/raster.hpp"
+
+namespace carto {
+
+// What one tile read and drew.
+struct TileReport {
+    std::size_t faces = 0;          // faces owned and hatched
+    std::size_t context_faces = 0;  // faces read (owned ones and their neighbourhood)
+    std::size_t hatches = 0;
+    long long dem_cells = 0;        // DEM cells read (the window with its halo)
+    double seconds = 0;
+};
+
+// The tiles of side `size` (ground units) covering the DEM, from its north-west corner, row
+// by row from the north; their union covers the DEM's extent.
+std::vector<tex::BBox> tile_grid(const RasterInfo& dem, double size);
+
+// The margin (ground units) around the owned faces within which neighbouring faces are
+// read, and the halo (DEM cells) around them: both from the options and the DEM's cell.
+double tile_context_margin(const Options& o, double cell);
+int tile_halo_cells(const Options& o, double cell);
+
+// Hatches the faces owned by `tile` and writes them to the GeoPackage `out` (no spatial
+// index; written to a temporary file and renamed, so a tile file that exists is complete).
+// o.outputs are the final outputs of the run (checked against the inputs); `out` must not
+// exist unless o.overwrite. The DEM must be in a projected CRS; --slope and --roughness
+// rasters must share its grid. Errors as carto::run.
+TileReport run_tile(const Options& o, const tex::BBox& tile, const std::string& out);
+
+}  // namespace carto

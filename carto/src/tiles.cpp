@@ -1,0 +1,142 @@
+#include "carto/tiles.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+
+#include "carto/error.hpp"
+#include "carto/fields.hpp"
+#include "carto/output.hpp"
+#include "carto/partition.hpp"
+#include "carto/styles.hpp"
+
+namespace carto {
+namespace {
+
+// The outer tiles reach this far beyond the DEM (ground units), so that a face of the
+// partition lying outside the DEM still has an owner, as it is drawn in a whole run.
+constexpr double kBeyond = 1e15;
+
+// The DEM cells a tile reads beyond the relief window: the terrain kernels (a 3x3 gradient,
+// then a 3x3 mean of normals), the bilinear sampler's neighbour and one cell to spare.
+constexpr int kKernelCells = 4;
+
+// How far (in the style's longest paper length) a style reads beyond a face's border: its
+// strokes are drawn in the face, but their jittered or bent break points may sample the
+// fields of the neighbour just across.
+constexpr double kReachLengths = 4.0;
+
+// A raster given with the DEM, in the tile's window: it must share the DEM's grid.
+Raster read_like_dem(const std::string& path, const char* what, const RasterInfo& dem, const tex::BBox& area, int halo,
+                     const std::string& dem_path) {
+    const RasterInfo info = raster_info(path, what);
+    if (info.width != dem.width || info.height != dem.height || info.gt != dem.gt || !same_crs(info.crs_wkt, dem.crs_wkt))
+        throw Error(Code::Usage, std::string(what) + " '" + path + "': a tiled run needs it on the grid of --dem '" +
+                                     dem_path + "' (same size, cells and CRS; e.g. gdalwarp -te/-tr to match)");
+    return read_raster_window(path, what, area, halo);
+}
+
+}  // namespace
+
+std::vector<tex::BBox> tile_grid(const RasterInfo& dem, double size) {
+    if (!(size > 0) || !std::isfinite(size))
+        throw Error(Code::Usage, "--tile-size: " + std::to_string(size) + " is not a positive length");
+    const tex::BBox b = dem.bounds();
+    const long nx = std::max(1L, long(std::ceil(b.width() / size))), ny = std::max(1L, long(std::ceil(b.height() / size)));
+    if (double(nx) * double(ny) > 1e7)
+        throw Error(Code::Usage, "--tile-size " + std::to_string(size) + ": " + std::to_string(nx * ny) +
+                                     " tiles, more than 10 million; choose larger tiles");
+    std::vector<tex::BBox> tiles;
+    for (long j = 0; j < ny; ++j)
+        for (long i = 0; i < nx; ++i) {
+            tex::BBox t{b.xmin + double(i) * size, b.ymax - double(j + 1) * size, b.xmin + double(i + 1) * size,
+                        b.ymax - double(j) * size};
+            if (i == 0) t.xmin = -kBeyond;
+            if (i == nx - 1) t.xmax = kBeyond;
+            if (j == 0) t.ymax = kBeyond;
+            if (j == ny - 1) t.ymin = -kBeyond;
+            tiles.push_back(t);
+        }
+    return tiles;
+}
+
+double tile_context_margin(const Options& o, double cell) {
+    const StyleInfo& info = selected_style(o).info;
+    const ParamValues params = resolve_params(info, o.params, o.scale);
+    double longest = 0;
+    for (const auto& sp : info.params)
+        if (sp.unit == "mm") longest = std::max(longest, params.at(sp.name));
+    return kReachLengths * longest + kKernelCells * cell + 4 * o.partition.snap;
+}
+
+int tile_halo_cells(const Options& o, double cell) {
+    return int(std::ceil(o.relief_radius / cell)) + kKernelCells;
+}
+
+TileReport run_tile(const Options& o, const tex::BBox& tile, const std::string& out) {
+    const auto t0 = std::chrono::steady_clock::now();
+    TileReport report;
+    if (o.partition.path == "auto")
+        throw Error(Code::Usage, "--partition auto: a tiled run hatches a partition file; extract it first with "
+                                 "'rockhatch partition --dem DEM -o faces.gpkg' and pass --partition faces.gpkg");
+    // The tile file is one more output: never an input, never an existing file unless asked.
+    Options checked = o;
+    checked.outputs.push_back(out);
+    validate(checked);
+    const RasterInfo dem_info = raster_info(o.dem, "--dem");
+    if (is_geographic(dem_info.crs_wkt))
+        throw Error(Code::Usage, "--dem '" + o.dem + "': a tiled run needs a DEM in a projected CRS (this one is in "
+                                 "degrees); reproject it first, e.g. gdalwarp -t_srs EPSG:326NN");
+    // The smaller side of a cell: halos counted in it are wide enough along both axes.
+    const double cell = std::min(std::abs(dem_info.gt[1]), std::abs(dem_info.gt[5]));
+
+    // 1. The faces the tile owns, and the box they cover.
+    PartitionOptions po = o.partition;
+    po.filter = tile;
+    tex::BBox reach;
+    // A face is the tile's when its anchor lies in the tile (and in --window, when given).
+    auto mine = [&](const RockFace& f) {
+        const Point a = face_anchor(f);
+        return owns(tile, a) && (!o.window || owns(*o.window, a));
+    };
+    for (const RockFace& f : load_partition(po, dem_info.crs_wkt).faces)
+        if (mine(f)) reach.add(f.region.bbox());
+
+    Drawing d;
+    d.crs_wkt = dem_info.crs_wkt;
+    d.style = selected_style(o).info.name;
+    d.scale = o.scale;
+    if (!reach.empty()) {
+        // 2. Their neighbourhood: every face a style may read across an owned face's border.
+        po.filter = reach.expanded(tile_context_margin(o, cell));
+        Prepared p;
+        p.partition = load_partition(po, dem_info.crs_wkt);
+        // 3. The DEM under all of them, with a halo where the relief window and the terrain
+        // kernels see the same cells as in the whole raster.
+        const tex::BBox area = p.partition.bounds();
+        const int halo = tile_halo_cells(o, cell);
+        Raster dem = read_raster_window(o.dem, "--dem", area, halo);
+        report.dem_cells = (long long)dem.width * dem.height;
+        p.terrain = compute_terrain(dem);
+        if (!o.slope.empty()) p.terrain.slope = read_like_dem(o.slope, "--slope", dem_info, area, halo, o.dem);
+        if (!o.roughness.empty()) {
+            p.terrain.roughness = read_like_dem(o.roughness, "--roughness", dem_info, area, halo, o.dem);
+            check_roughness(p.terrain.roughness, o.roughness);
+        }
+        p.relief = local_relief(dem, o.relief_radius);
+        derive_face_controls(p.partition, p.terrain);
+        std::vector<int> owned;
+        for (std::size_t i = 0; i < p.partition.faces.size(); ++i)
+            if (mine(p.partition.faces[i])) owned.push_back(int(i));
+        report.context_faces = p.partition.faces.size();
+        d = hatch(p, o, owned);
+    }
+    report.faces = d.faces.size();
+    for (const auto& f : d.faces) report.hatches += f.hatches.size();
+    write_gpkg(d, out, false);
+    report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return report;
+}
+
+}  // namespace carto

@@ -1,0 +1,154 @@
+// Tiled runs without Dask: a raster window samples the bits of the whole raster, every face
+// has exactly one owner tile whatever the tiling, and the merged tiles are the whole run's
+// hatches, feature for feature and bit for bit.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <map>
+#include <tuple>
+
+#include "carto/error.hpp"
+#include "carto/output.hpp"
+#include "carto/pipeline.hpp"
+#include "carto/raster.hpp"
+#include "carto/tiles.hpp"
+#include "libtex/random.hpp"
+
+using namespace carto;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kDem = std::string(RH_SAMPLE_DIR) + "/dem.tif";
+
+Options sample_options() {
+    Options o;
+    o.dem = kDem;
+    o.partition.path = std::string(RH_SAMPLE_DIR) + "/partition.gpkg";
+    o.threads = 2;
+    o.scale = 10000;
+    return o;
+}
+
+struct TempDir {
+    fs::path path;
+    TempDir() {
+        path = fs::temp_directory_path() / ("rh_tiles_" + std::to_string(::getpid()));
+        fs::remove_all(path);
+        fs::create_directories(path);
+    }
+    ~TempDir() { fs::remove_all(path); }
+    std::string operator/(const std::string& name) const { return (path / name).string(); }
+};
+
+// (face id, family, rank within its face and family) -> the points, as written.
+using Features = std::map<std::tuple<std::int64_t, int, std::size_t>, std::vector<Point>>;
+Features features(const Drawing& d) {
+    Features out;
+    for (const auto& f : d.faces) {
+        std::map<int, std::size_t> rank;
+        for (const auto& h : f.hatches) out[{f.face_id, int(h.family), rank[int(h.family)]++}] = h.points;
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST(RasterWindow, SamplesTheSameBitsAsTheWholeRaster) {
+    const Raster whole = read_raster(kDem, "--dem");
+    const tex::BBox b = whole.bounds();
+    const tex::BBox box{b.xmin + 700.3, b.ymin + 410.7, b.xmin + 1333.1, b.ymin + 1250.9};
+    const Raster win = read_raster_window(kDem, "--dem", box, 3);
+    ASSERT_TRUE(win.grid_gt.has_value());
+    EXPECT_GT(win.col0, 0);
+    EXPECT_GT(win.row0, 0);
+    EXPECT_LT(win.width, whole.width);
+    // The window's cells are the whole raster's cells.
+    for (int r = 0; r < win.height; ++r)
+        for (int c = 0; c < win.width; ++c) {
+            const float a = win.at(c, r), w = whole.at(c + win.col0, r + win.row0);
+            ASSERT_TRUE(a == w || (std::isnan(a) && std::isnan(w)));
+        }
+    // Bilinear and nearest values anywhere in the box: the same bits.
+    tex::KeyedRng rng(7);
+    for (int i = 0; i < 20000; ++i) {
+        const Point q{box.xmin + rng.uniform() * box.width(), box.ymin + rng.uniform() * box.height()};
+        const double s1 = whole.sample(q), s2 = win.sample(q);
+        ASSERT_TRUE(s1 == s2 || (std::isnan(s1) && std::isnan(s2))) << q.x << " " << q.y;
+        ASSERT_EQ(std::isnan(whole.nearest(q)), std::isnan(win.nearest(q)));
+        if (!std::isnan(whole.nearest(q))) ASSERT_EQ(whole.nearest(q), win.nearest(q));
+    }
+    // A box off the raster reads nothing.
+    const Raster none = read_raster_window(kDem, "--dem", tex::BBox{b.xmax + 100, b.ymin, b.xmax + 200, b.ymax}, 2);
+    EXPECT_EQ(none.width, 0);
+}
+
+TEST(Tiles, GridCoversTheDemAndThePlaneBeyond) {
+    const RasterInfo info = raster_info(kDem, "--dem");
+    const auto tiles = tile_grid(info, 1000);  // 2400 m: 3 x 3 tiles
+    ASSERT_EQ(tiles.size(), 9u);
+    // Any point, in the DEM or far outside it, lies in exactly one tile.
+    tex::KeyedRng rng(3);
+    const tex::BBox b = info.bounds();
+    for (int i = 0; i < 5000; ++i) {
+        const Point q{b.xmin - 5000 + rng.uniform() * (b.width() + 10000), b.ymin - 5000 + rng.uniform() * (b.height() + 10000)};
+        int n = 0;
+        for (const auto& t : tiles) n += owns(t, q);
+        ASSERT_EQ(n, 1);
+    }
+    EXPECT_THROW(tile_grid(info, 0), Error);
+    EXPECT_THROW(tile_grid(info, 1e-3), Error);  // billions of tiles
+}
+
+TEST(Tiles, MergedTilesAreTheWholeRunBitForBit) {
+    TempDir dir;
+    Options o = sample_options();
+    const Prepared p = prepare(o);
+    const Drawing whole = hatch(p, o);
+    const Features expected = features(whole);
+    ASSERT_GT(expected.size(), 10000u);
+    const RasterInfo info = raster_info(o.dem, "--dem");
+    for (double size : {700.0, 2000.0}) {
+        std::vector<std::string> parts;
+        std::size_t owned = 0;
+        const auto tiles = tile_grid(info, size);
+        for (std::size_t i = 0; i < tiles.size(); ++i) {
+            parts.push_back(dir / ("tile" + std::to_string(size) + "_" + std::to_string(i) + ".gpkg"));
+            const TileReport r = run_tile(o, tiles[i], parts.back());
+            owned += r.faces;
+            EXPECT_LE(r.faces, r.context_faces);
+        }
+        // Every face drawn once: the faces of the tiles add up to the partition's.
+        EXPECT_EQ(owned, p.partition.faces.size()) << "tile size " << size;
+        const std::string merged = dir / ("merged" + std::to_string(size) + ".gpkg");
+        EXPECT_EQ(merge_gpkg(parts, merged), expected.size());
+        EXPECT_TRUE(features(read_gpkg(merged, o.scale)) == expected) << "tile size " << size;
+    }
+}
+
+TEST(Tiles, ATileReadsOnlyTheDemNearItsFaces) {
+    TempDir dir;
+    Options o = sample_options();
+    o.relief_radius = 100;  // a small relief window: the halo is 24 cells
+    const RasterInfo info = raster_info(o.dem, "--dem");
+    const auto tiles = tile_grid(info, 800);
+    long long most = 0;
+    for (std::size_t i = 0; i < tiles.size(); ++i)
+        most = std::max(most, run_tile(o, tiles[i], dir / ("t" + std::to_string(i) + ".gpkg")).dem_cells);
+    EXPECT_GT(most, 0);
+    EXPECT_LT(most, (long long)info.width * info.height);
+}
+
+TEST(Tiles, RefusesWhatATiledRunCannotDoExactly) {
+    TempDir dir;
+    Options o = sample_options();
+    const auto tiles = tile_grid(raster_info(o.dem, "--dem"), 1000);
+    o.partition.path = "auto";
+    EXPECT_THROW(run_tile(o, tiles[0], dir / "a.gpkg"), Error);
+    o = sample_options();
+    // A tile file that exists is a finished tile: not written over.
+    run_tile(o, tiles[0], dir / "b.gpkg");
+    EXPECT_THROW(run_tile(o, tiles[0], dir / "b.gpkg"), Error);
+}

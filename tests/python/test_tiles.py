@@ -1,0 +1,253 @@
+"""Tiled runs on a real Dask cluster (rockhatch.tiles): the merged tiles are the whole run's
+hatches, feature for feature and bit for bit, whatever the tile size, the number of workers
+or a worker killed in the middle; an interrupted job resumes; bad input is refused."""
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+from conftest import SAMPLE, SHARED_DEM, python_env
+
+from osgeo import gdal, ogr
+
+from rockhatch import carto, tiles
+from rockhatch._rockhatch import RockhatchError
+
+gdal.UseExceptions()
+ogr.UseExceptions()
+
+DEM = str(SAMPLE / "dem.tif")
+FACES = str(SAMPLE / "partition.gpkg")
+
+
+def features(path):
+    """(layer, face id, rank in its face) -> (geometry WKB, style, width) of every hatch."""
+    ds = ogr.Open(str(path))
+    out = {}
+    for i in range(ds.GetLayerCount()):
+        layer = ds.GetLayer(i)
+        seen = {}
+        for f in layer:
+            face = f.GetField("face_id")
+            k = seen.get(face, 0)
+            seen[face] = k + 1
+            out[(layer.GetName(), face, k)] = (bytes(f.GetGeometryRef().ExportToWkb()), f.GetField("style"),
+                                               f.GetField("width_mm"))
+    return out
+
+
+def whole_run(args, out):
+    cl = carto.parse_command_line(list(args) + ["-o", str(out), "-q"])
+    carto.run_options(cl.options)
+    return features(out)
+
+
+@pytest.fixture(scope="module")
+def sample_whole(tmp_path_factory):
+    return whole_run(["--dem", DEM, "--partition", FACES, "--seed", "3"], tmp_path_factory.mktemp("whole") / "w.gpkg")
+
+
+@pytest.mark.parametrize("tile_size,workers", [(600, 2), (1700, 1)])
+def test_tiled_run_equals_the_whole_run(tmp_path, sample_whole, tile_size, workers):
+    out = tmp_path / "tiled.gpkg"
+    calls = []
+    s = tiles.run(DEM, FACES, tile_size, [out], seed=3, workers=workers,
+                  progress=lambda f, stage: calls.append((f, stage)) or True)
+    assert s.tiles == (16 if tile_size == 600 else 4)
+    assert s.hatches == len(sample_whole)
+    assert features(out) == sample_whole
+    # Progress: tiles done / total with a rate and the time left, then the merge.
+    assert any(st.startswith(f"tiles {s.tiles}/{s.tiles}") and "/s" in st and "left" in st for _, st in calls)
+    assert calls[-1] == (1.0, "done")
+    assert not (tmp_path / "tiled.gpkg.tiles").exists()  # the tile files go once merged
+    # One R-tree per layer in the merged GeoPackage.
+    ds = ogr.Open(str(out))
+    for name in ("hatch_fill", "hatch_ridge"):
+        assert ds.ExecuteSQL(f"SELECT HasSpatialIndex('{name}', 'geom')").GetNextFeature().GetField(0) == 1
+
+
+def test_command_line_tiles_and_svg(tmp_path, rockhatch_exe, sample_whole):
+    gpkg, svg = tmp_path / "t.gpkg", tmp_path / "t.svg"
+    r = subprocess.run([str(rockhatch_exe), "tiles", "--dem", DEM, "--partition", FACES, "--seed", "3",
+                        "--tile-size", "1000", "--workers", "1", "-o", str(gpkg), "-o", str(svg)],
+                       capture_output=True, text=True, env=python_env(), timeout=300)
+    assert r.returncode == 0, r.stderr
+    assert "9 tiles" in r.stderr and "hatches" in r.stderr
+    assert features(gpkg) == sample_whole
+    # The SVG drawn from the merged tiles has one path per hatch.
+    text = svg.read_text()
+    assert text.count("<path") + text.count("<polyline") >= len(sample_whole) // 50
+
+
+class ExternalCluster:
+    """A real Dask cluster of its own: `dask scheduler` and one `dask worker` process with
+    two worker processes under nannies, each importing this build's module."""
+
+    def __init__(self, tmp_path):
+        env = python_env()
+        self.sched_file = str(tmp_path / "scheduler.json")
+        self.procs = [subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_scheduler", "--no-dashboard",
+                                        "--port", "0", "--scheduler-file", self.sched_file],
+                                       env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)]
+        deadline = time.monotonic() + 60
+        while not os.path.exists(self.sched_file) and time.monotonic() < deadline:
+            time.sleep(0.2)
+        import json
+
+        self.address = json.load(open(self.sched_file))["address"]
+        self.procs.append(subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_worker", self.address,
+                                            "--nworkers", "2", "--nthreads", "1", "--no-dashboard"],
+                                           env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
+        from distributed import Client
+
+        self.client = Client(self.address, timeout="60s")
+        self.client.wait_for_workers(2, timeout=120)
+
+    def worker_pids(self):
+        return list(self.client.run(os.getpid).values())
+
+    def close(self):
+        self.client.close()
+        for p in reversed(self.procs):
+            p.terminate()
+        for p in self.procs:
+            try:
+                p.wait(timeout=20)
+            except subprocess.TimeoutExpired:
+                p.kill()
+
+
+@pytest.fixture
+def cluster(tmp_path):
+    c = ExternalCluster(tmp_path)
+    yield c
+    c.close()
+
+
+def test_a_killed_worker_loses_nothing(tmp_path, cluster, sample_whole):
+    out = tmp_path / "tiled.gpkg"
+    killed = []
+
+    def progress(fraction, stage):
+        # After the first tile: kill a worker process (its nanny starts a new one; Dask runs
+        # the tile it held again).
+        if stage.startswith("tiles 1/") and not killed:
+            pid = cluster.worker_pids()[0]
+            os.kill(pid, signal.SIGKILL)
+            killed.append(pid)
+        return True
+
+    s = tiles.run(DEM, FACES, 500, [out], seed=3, scheduler=cluster.address, progress=progress)
+    assert killed, "no worker was killed: the test did not test anything"
+    assert killed[0] not in cluster.worker_pids()
+    assert s.tiles == 25
+    assert features(out) == sample_whole
+
+
+def test_an_interrupted_job_resumes(tmp_path, sample_whole):
+    out = tmp_path / "tiled.gpkg"
+    work = tmp_path / "work"
+
+    def stop_after_4(fraction, stage):
+        return not stage.startswith("tiles 4/")
+
+    with pytest.raises(RockhatchError) as e:
+        tiles.run(DEM, FACES, 500, [out], seed=3, workers=2, workdir=work, progress=stop_after_4)
+    assert e.value.code == 10
+    assert not out.exists()
+    done = sorted(p.name for p in work.glob("tile_*.gpkg"))
+    assert len(done) >= 4
+    stamps = {n: os.stat(work / n).st_mtime_ns for n in done}
+    # The same job with other options may not reuse these tiles.
+    with pytest.raises(RockhatchError) as e:
+        tiles.run(DEM, FACES, 500, [out], seed=4, workers=1, workdir=work)
+    assert e.value.code == 9 and "another job" in str(e.value)
+    s = tiles.run(DEM, FACES, 500, [out], seed=3, workers=1, workdir=work, keep_tiles=True)
+    assert s.done_before == len(done)
+    for n in done:  # finished tiles are not computed again
+        assert os.stat(work / n).st_mtime_ns == stamps[n]
+    assert features(out) == sample_whole
+
+
+def test_partial_tile_files_are_never_merged(tmp_path, sample_whole):
+    out = tmp_path / "tiled.gpkg"
+    work = tmp_path / "work"
+    with pytest.raises(RockhatchError):
+        tiles.run(DEM, FACES, 1000, [out], seed=3, workers=1, workdir=work, progress=lambda f, s: not s.startswith("tiles 2/"))
+    # What a worker killed while writing leaves: a temporary file, and garbage under it.
+    (work / "tile_0000008.gpkg.part-999-0.gpkg").write_bytes(b"half a GeoPackage")
+    s = tiles.run(DEM, FACES, 1000, [out], seed=3, workers=1, workdir=work)
+    assert s.done_before >= 2
+    assert features(out) == sample_whole
+
+
+@pytest.mark.skipif(not SHARED_DEM.exists(), reason=f"{SHARED_DEM} is absent (../shared not checked out)")
+def test_tiled_equals_whole_on_chamonix(tmp_path, rockhatch_exe):
+    # A tiled run needs a projected DEM: Chamonix.tif (degrees) warped to UTM 32N first.
+    dem = tmp_path / "chamonix_utm.tif"
+    gdal.Warp(str(dem), str(SHARED_DEM), dstSRS="EPSG:32632", xRes=30, yRes=30, resampleAlg="bilinear")
+    faces = tmp_path / "faces.gpkg"
+    r = subprocess.run([str(rockhatch_exe), "partition", "--dem", str(dem), "-o", str(faces), "-q"],
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    args = ["--dem", str(dem), "--partition", str(faces), "--scale", "25000"]
+    expected = whole_run(args, tmp_path / "whole.gpkg")
+    assert len(expected) > 100000
+    s = tiles.run(dem, faces, 2500, [tmp_path / "tiled.gpkg"], scale=25000, workers=2)
+    assert s.tiles > 20
+    assert features(tmp_path / "tiled.gpkg") == expected
+
+
+@pytest.mark.parametrize("args,code,words", [
+    (["--partition", "auto"], 2, "partition auto"),
+    (["--tile-size", "0"], 2, "--tile-size"),
+    (["--tile-size", "abc"], 2, "--tile-size"),
+    (["--workers", "0"], 2, "--workers"),
+    (["--workers", "2", "--scheduler", "tcp://127.0.0.1:1"], 2, "exclude"),
+    (["-o", FACES, "--overwrite"], 9, "input"),
+    (["--style", "nosuch"], 7, "nosuch"),
+])
+def test_bad_input_is_refused_before_any_work(tmp_path, args, code, words):
+    base = {"--dem": DEM, "--partition": FACES, "--tile-size": "1000", "-o": str(tmp_path / "o.gpkg")}
+    argv = []
+    given = {args[i] for i in range(0, len(args), 2) if args[i].startswith("-")}
+    for k, v in base.items():
+        if k not in given:
+            argv += [k, v]
+    r = subprocess.run([sys.executable, "-m", "rockhatch", "tiles"] + argv + args, capture_output=True, text=True,
+                       env=python_env(), timeout=120)
+    assert r.returncode == code, r.stderr
+    assert words in r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1, r.stderr
+    assert not (tmp_path / "o.gpkg").exists()
+
+
+def test_a_geographic_dem_is_refused_with_the_fix(tmp_path):
+    dem = tmp_path / "geo.tif"
+    gdal.Warp(str(dem), DEM, dstSRS="EPSG:4326")
+    r = subprocess.run([sys.executable, "-m", "rockhatch", "tiles", "--dem", str(dem), "--partition", FACES,
+                        "--tile-size", "0.01", "-o", str(tmp_path / "o.gpkg")],
+                       capture_output=True, text=True, env=python_env(), timeout=120)
+    assert r.returncode == 2
+    assert "projected CRS" in r.stderr and "gdalwarp" in r.stderr
+
+
+def test_a_vrt_mosaic_of_many_files_gives_the_same_hatches(tmp_path, sample_whole):
+    # The sample DEM cut into 3 x 3 files and put together again with gdalbuildvrt: a tiled
+    # run over the mosaic draws what a whole run draws over the single file.
+    src = gdal.Open(DEM)
+    w, h = src.RasterXSize, src.RasterYSize
+    parts = []
+    for j in range(3):
+        for i in range(3):
+            x0, y0 = i * w // 3, j * h // 3
+            p = str(tmp_path / f"part_{i}_{j}.tif")
+            gdal.Translate(p, src, srcWin=[x0, y0, (i + 1) * w // 3 - x0, (j + 1) * h // 3 - y0])
+            parts.append(p)
+    vrt = str(tmp_path / "mosaic.vrt")
+    gdal.BuildVRT(vrt, parts)
+    out = tmp_path / "tiled.gpkg"
+    tiles.run(vrt, FACES, 900, [out], seed=3, workers=2)
+    assert features(out) == sample_whole
