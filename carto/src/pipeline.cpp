@@ -94,9 +94,11 @@ void validate(const Options& o) {
     if (o.png_pixels < 16 || o.png_pixels > 20000) throw Error(Code::Usage, "--png-size must be in 16..20000");
     if (o.crest_height_mm) {
         if (!o.crest_ornament) throw Error(Code::Usage, "--crest-height needs --crest-ornament");
-        if (!(*o.crest_height_mm > 0) || *o.crest_height_mm > kMaxCrestHeightMm)
-            throw Error(Code::Usage, "--crest-height: " + std::to_string(*o.crest_height_mm) +
-                                         " mm is not in (0, " + std::to_string(int(kMaxCrestHeightMm)) + "]");
+        if (!(*o.crest_height_mm > 0) || *o.crest_height_mm > kMaxCrestHeightMm) {
+            std::ostringstream m;
+            m << "--crest-height: " << *o.crest_height_mm << " mm is not in (0, " << kMaxCrestHeightMm << "]";
+            throw Error(Code::Usage, m.str());
+        }
     }
     // The exemplar is read (and tried) now: a bad one is refused before any work.
     if (o.crest_ornament) load_crest_exemplar(*o.crest_ornament);
