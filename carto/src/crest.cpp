@@ -17,17 +17,20 @@
 namespace carto {
 namespace {
 
-// The project's exemplar: a spine 600 long and 14 high with twelve glyphs of 50, each a
-// centred barb (a triangle 24 wide) up, down, both or neither, of different lengths. The
-// uniform slicing below cuts exactly between the glyphs, through the spine only, so every
-// portal is the spine itself: any sequence of glyphs is one connected band and the solver
-// is free to vary them. The extremes are +-50, so the spine lies on the ridge.
+// The project's exemplar: a spine 600 long and 10 high with twelve glyphs of 50, each a
+// centred barb (24 wide at the spine, 6 at its blunt tip, so that the tip still prints at
+// 1:10000) up, down, both or neither, of different lengths. The uniform slicing below cuts
+// exactly between the glyphs, through the spine only, so every portal is the spine itself:
+// any sequence of glyphs is one connected band and the solver is free to vary them. The
+// extremes are +-50, so the spine lies on the ridge.
 constexpr const char* kCrestSvg = R"(<svg xmlns="http://www.w3.org/2000/svg" viewBox="-5 -55 610 110">
 <!-- rockhatch crest exemplar: a spine with barbs on both sides, twelve glyphs of 50 -->
-<path d="M 0 7 L 63 7 L 75 30 L 87 7 L 113 7 L 125 50 L 137 7 L 263 7 L 275 20 L 287 7 L 313 7 L 325 38
-L 337 7 L 413 7 L 425 50 L 437 7 L 513 7 L 525 26 L 537 7 L 563 7 L 575 44 L 587 7 L 600 7 L 600 -7 L 587 -7
-L 575 -28 L 563 -7 L 487 -7 L 475 -46 L 463 -7 L 437 -7 L 425 -20 L 413 -7 L 387 -7 L 375 -34 L 363 -7 L 287 -7
-L 275 -50 L 263 -7 L 187 -7 L 175 -42 L 163 -7 L 87 -7 L 75 -30 L 63 -7 L 37 -7 L 25 -50 L 13 -7 L 0 -7 Z"/>
+<path d="M 0 5 L 63 5 L 72 30 L 78 30 L 87 5 L 113 5 L 122 50 L 128 50 L 137 5 L 263 5 L 272 20 L 278 20 L 287 5
+L 313 5 L 322 38 L 328 38 L 337 5 L 413 5 L 422 50 L 428 50 L 437 5 L 513 5 L 522 26 L 528 26 L 537 5
+L 563 5 L 572 44 L 578 44 L 587 5 L 600 5 L 600 -5 L 587 -5 L 578 -28 L 572 -28 L 563 -5 L 487 -5 L 478 -46
+L 472 -46 L 463 -5 L 437 -5 L 428 -20 L 422 -20 L 413 -5 L 387 -5 L 378 -34 L 372 -34 L 363 -5 L 287 -5
+L 278 -50 L 272 -50 L 263 -5 L 187 -5 L 178 -42 L 172 -42 L 163 -5 L 87 -5 L 78 -30 L 72 -30 L 63 -5 L 37 -5
+L 28 -50 L 22 -50 L 13 -5 L 0 -5 Z"/>
 </svg>
 )";
 constexpr int kCrestGlyphs = 12;
