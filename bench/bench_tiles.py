@@ -111,7 +111,8 @@ def run(vrt, faces, work, tile, workers, scale):
     wall = time.monotonic() - t0
     return {"workers": workers, "tiles": s.tiles, "faces": s.faces, "hatches": s.hatches, "wall": wall,
             "tiles_s": s.tiles / wall, "hatches_s": s.hatches / wall, "peak_mb": s.peak_mb,
-            "tile_median": sorted(s.tile_seconds)[len(s.tile_seconds) // 2] if s.tile_seconds else 0}
+            "tile_median": sorted(s.tile_seconds)[len(s.tile_seconds) // 2] if s.tile_seconds else 0,
+            "merge": s.merge_seconds}
 
 
 def main():
@@ -135,11 +136,11 @@ def main():
                 f"{n * n} sources; made in {made:.0f} s), tiles of {a.tile / 1000:g} km, 1:{a.scale:g}, "
                 f"{os.cpu_count()} cores.")
         table = [head, "",
-                 "| workers | tiles | faces | hatches | wall (s) | tiles/s | hatches/s | median tile (s) | peak per worker (MB) |",
-                 "|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+                 "| workers | tiles | faces | hatches | wall (s) | tiles/s | hatches/s | median tile (s) | merge (s) | peak per worker (MB) |",
+                 "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
         for r in rows:
             table.append(f"| {r['workers']} | {r['tiles']} | {r['faces']} | {r['hatches']} | {r['wall']:.1f} | "
-                         f"{r['tiles_s']:.3f} | {r['hatches_s']:.0f} | {r['tile_median']:.2f} | {r['peak_mb']:.0f} |")
+                         f"{r['tiles_s']:.3f} | {r['hatches_s']:.0f} | {r['tile_median']:.2f} | {r['merge']:.1f} | {r['peak_mb']:.0f} |")
         text = "\n".join(table) + "\n"
         print(text)
         if a.markdown:

@@ -373,13 +373,17 @@ void bind_carto(py::module_& m) {
         .def_readwrite("overwrite", &Options::overwrite)
         .def_readwrite("png_pixels", &Options::png_pixels)
         .def_readwrite("spatial_index", &Options::spatial_index)
-        .def_readwrite("window", &Options::window);
+        .def_readwrite("window", &Options::window)
+        .def_readwrite("crest_ornament", &Options::crest_ornament,
+                       "'default' (the project's exemplar) or an SVG file: draw the ridges as crest ornaments; None: no crests")
+        .def_readwrite("crest_height_mm", &Options::crest_height_mm, "height of the crest band, mm on paper (None: 2)");
     py::class_<Stats>(m, "Stats")
         .def_readonly("faces", &Stats::faces)
         .def_readonly("hatches", &Stats::hatches)
         .def_readonly("seconds", &Stats::seconds)
         .def_readonly("crs", &Stats::crs)
         .def_readonly("notes", &Stats::notes)
+        .def_readonly("crests", &Stats::crests, "ridge lines drawn with a crest ornament")
         .def("__repr__", [](const Stats& s) {
             return "Stats(faces=" + std::to_string(s.faces) + ", hatches=" + std::to_string(s.hatches) + ")";
         });
@@ -391,8 +395,46 @@ void bind_carto(py::module_& m) {
     py::class_<FaceHatches>(m, "FaceHatches")
         .def_readonly("face_id", &FaceHatches::face_id)
         .def_readonly("hatches", &FaceHatches::hatches);
+    py::class_<CrestOrnament>(m, "CrestOrnament", "One ridge's crest ornament: closed rings (outer counter-clockwise, holes clockwise)")
+        .def_readonly("ridge", &CrestOrnament::ridge, "index of the ridge in Partition.lines")
+        .def_readonly("rings", &CrestOrnament::rings);
+    py::class_<CrestResult>(m, "CrestResult")
+        .def_readonly("ornaments", &CrestResult::ornaments)
+        .def_readonly("notes", &CrestResult::notes);
+    m.def("default_crest_svg", &default_crest_svg, "the project's crest exemplar as SVG text");
+    m.def(
+        "draw_crests",
+        [](const Partition& p, const std::string& exemplar, double band_height, std::uint64_t seed,
+           const std::optional<tex::BBox>& window) {
+            const CrestExemplar ex = load_crest_exemplar(exemplar);
+            py::gil_scoped_release release;
+            return draw_crests(p, ex, band_height, seed, window);
+        },
+        py::arg("partition"), py::arg("exemplar") = std::string(kDefaultCrest), py::arg("band_height"),
+        py::arg("seed") = 0, py::arg("window") = py::none(),
+        R"(Crest ornaments of the partition's ridge lines.
+
+Parameters
+----------
+partition : Partition
+    Its lines labelled ridge are drawn.
+exemplar : str
+    'default' (the project's exemplar) or the path of an SVG file of polygons.
+band_height : float
+    Height of the band centred on each ridge, in ground units.
+seed : int
+    Each ridge's pattern is keyed by this seed and the ridge's own points.
+window : BBox, optional
+    Only the ridges whose bounding-box centre lies in it.
+
+Returns
+-------
+CrestResult
+    One ornament per ridge drawn, and a note counting the ridges skipped (shorter than the
+    band, or too tight for it).)");
     py::class_<Drawing>(m, "Drawing", "Hatches of every face, in the working CRS")
         .def_readonly("faces", &Drawing::faces)
+        .def_readonly("crests", &Drawing::crests, "the crest ornaments, or None when not asked")
         .def_readonly("crs", &Drawing::crs_wkt)
         .def_readonly("style", &Drawing::style)
         .def_readonly("scale", &Drawing::scale)

@@ -65,6 +65,12 @@ std::vector<Option> options(CommandLine& cl) {
              if (eq == std::string::npos || eq == 0) throw Error(Code::Usage, "--param: expected NAME=VALUE, got '" + v + "'");
              o.params[v.substr(0, eq)] = parse_double("--param " + v.substr(0, eq), v.substr(eq + 1));
          }},
+        {"--crest-ornament", "default|FILE.svg",
+         "draw every ridge line as a band pattern synthesised from an exemplar: the project's (default) or an SVG of "
+         "polygons; one connected piece per ridge (GPKG polygon layer / SVG group crest)",
+         [&](const std::string& v) { o.crest_ornament = v; }},
+        {"--crest-height", "MM", "height of the crest band, mm on paper at the map scale (default 2)",
+         [&](const std::string& v) { o.crest_height_mm = parse_double("--crest-height", v); }},
         {"--scale", "N", "map scale denominator; style parameters are millimetres on paper at 1:N (default 10000)",
          [&](const std::string& v) { o.scale = parse_double("--scale", v); }},
         {"--relief-radius", "M",

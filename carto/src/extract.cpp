@@ -17,6 +17,7 @@
 #include "carto/error.hpp"
 #include "carto/fields.hpp"
 #include "carto/output.hpp"
+#include "corner_cut.hpp"
 #include "gdal_scope.hpp"
 #include "temp_file.hpp"
 
@@ -574,20 +575,7 @@ std::vector<Point> generalise(const std::vector<Point>& raw, bool closed, double
     for (std::size_t i = 0; i + 1 < raw.size(); ++i) mid.push_back(across(raw[i], raw[i + 1]));
     if (closed) mid.push_back(mid.front());
     else mid.push_back(raw.back());
-    std::vector<Point> out = simplify(mid, closed, tol);
-    for (int r = 0; r < rounds && out.size() >= 3; ++r) {
-        std::vector<Point> next;
-        next.reserve(2 * out.size());
-        next.push_back(out.front());
-        for (std::size_t i = 0; i + 1 < out.size(); ++i) {
-            const Point &a = out[i], &b = out[i + 1];
-            if (i > 0) next.push_back(a * 0.75 + b * 0.25);
-            if (i + 2 < out.size()) next.push_back(a * 0.25 + b * 0.75);
-        }
-        next.push_back(out.back());
-        out = std::move(next);
-    }
-    return out;
+    return cut_corners(simplify(mid, closed, tol), rounds);
 }
 
 // Traces the borders between faces (and between faces and the outside) as chains of cell

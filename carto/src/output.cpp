@@ -3,6 +3,7 @@
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cstdlib>
 #include <cmath>
@@ -13,6 +14,7 @@
 #include <map>
 
 #include "carto/error.hpp"
+#include "libtex/region.hpp"
 #include "gdal_scope.hpp"
 #include "gpkg_rtree.hpp"
 #include "temp_file.hpp"
@@ -42,6 +44,40 @@ std::string xml_escape(const std::string& in) {
         else out += c;
     }
     return out;
+}
+
+// The R-tree box of a feature's points.
+BoxD box_of(const std::vector<Point>& pts) {
+    BoxD b{INFINITY, -INFINITY, INFINITY, -INFINITY};
+    for (const auto& p : pts) {
+        b.minx = std::min(b.minx, p.x);
+        b.maxx = std::max(b.maxx, p.x);
+        b.miny = std::min(b.miny, p.y);
+        b.maxy = std::max(b.maxy, p.y);
+    }
+    return b;
+}
+
+// The polygons of one crest ornament: each outer ring (counter-clockwise) with the holes
+// (clockwise rings) whose first point it holds, a hole going to the smallest such ring.
+std::vector<std::vector<std::size_t>> crest_polygons(const CrestOrnament& c) {
+    std::vector<std::vector<std::size_t>> polys;
+    std::vector<double> area;
+    std::vector<std::size_t> outer_of_poly;
+    for (std::size_t i = 0; i < c.rings.size(); ++i)
+        if (c.rings[i].size() >= 3 && tex::signed_area(c.rings[i]) > 0) {
+            polys.push_back({i});
+            area.push_back(tex::signed_area(c.rings[i]));
+        }
+    for (std::size_t i = 0; i < c.rings.size(); ++i) {
+        if (c.rings[i].size() < 3 || tex::signed_area(c.rings[i]) > 0) continue;
+        std::size_t best = polys.size();
+        for (std::size_t k = 0; k < polys.size(); ++k)
+            if (tex::point_in_ring(c.rings[i][0], c.rings[polys[k][0]]) && (best == polys.size() || area[k] < area[best]))
+                best = k;
+        if (best < polys.size()) polys[best].push_back(i);
+    }
+    return polys;
 }
 
 }  // namespace
@@ -105,7 +141,8 @@ using HatchSink = std::function<void(std::int64_t face_id, const char* style, co
 // place at the end.
 void write_hatch_gpkg(const std::string& path, const std::string& crs_wkt, bool spatial_index, std::size_t total,
                       const std::function<bool(double)>& keep_going,
-                      const std::function<void(Family, const HatchSink&)>& source) {
+                      const std::function<void(Family, const HatchSink&)>& source,
+                      const std::vector<CrestOrnament>* crests = nullptr, const std::string& crest_style = "") {
     std::size_t written = 0;
     auto check = [&] {
         if (keep_going && ++written % 4096 == 0 &&
@@ -154,19 +191,41 @@ void write_hatch_gpkg(const std::string& path, const std::string& crs_wkt, bool 
                 feat.SetField(2, style);
                 auto* ls = new OGRLineString();
                 ls->setNumPoints(int(pts.size()), FALSE);
-                BoxD b{INFINITY, -INFINITY, INFINITY, -INFINITY};
-                for (std::size_t i = 0; i < pts.size(); ++i) {
-                    ls->setPoint(int(i), pts[i].x, pts[i].y);
-                    b.minx = std::min(b.minx, pts[i].x);
-                    b.maxx = std::max(b.maxx, pts[i].x);
-                    b.miny = std::min(b.miny, pts[i].y);
-                    b.maxy = std::max(b.maxy, pts[i].y);
-                }
+                for (std::size_t i = 0; i < pts.size(); ++i) ls->setPoint(int(i), pts[i].x, pts[i].y);
                 feat.SetGeometryDirectly(ls);
                 if (layer->CreateFeature(&feat) != OGRERR_NONE)
                     throw Error(Code::OutputExists, "-o '" + path + "': write failed (" + CPLGetLastErrorMsg() + ")");
-                if (spatial_index) boxes[std::size_t(fam)].push_back(b);
+                if (spatial_index) boxes[std::size_t(fam)].push_back(box_of(pts));
             });
+            ds->CommitTransaction();
+        }
+        if (crests) {
+            const char* lco[] = {"SPATIAL_INDEX=NO", "FID=fid", "GEOMETRY_NAME=geom", nullptr};
+            OGRLayer* layer = ds->CreateLayer("crest", &srs, wkbPolygon, const_cast<char**>(lco));
+            if (!layer) throw Error(Code::OutputExists, "-o '" + path + "': cannot create layer crest");
+            OGRFieldDefn rid("ridge_id", OFTInteger64), fsty("style", OFTString);
+            layer->CreateField(&rid);
+            layer->CreateField(&fsty);
+            ds->StartTransaction();
+            OGRFeature feat(layer->GetLayerDefn());
+            feat.SetField(1, crest_style.c_str());
+            for (const auto& c : *crests)
+                for (const auto& poly : crest_polygons(c)) {
+                    feat.SetFID(OGRNullFID);
+                    feat.SetField(0, GIntBig(c.ridge));
+                    auto* pg = new OGRPolygon();
+                    for (std::size_t r : poly) {
+                        OGRLinearRing ring;
+                        const auto& pts = c.rings[r];
+                        ring.setNumPoints(int(pts.size() + 1), FALSE);
+                        for (std::size_t i = 0; i <= pts.size(); ++i)
+                            ring.setPoint(int(i), pts[i % pts.size()].x, pts[i % pts.size()].y);
+                        pg->addRing(&ring);
+                    }
+                    feat.SetGeometryDirectly(pg);
+                    if (layer->CreateFeature(&feat) != OGRERR_NONE)
+                        throw Error(Code::OutputExists, "-o '" + path + "': write failed (" + CPLGetLastErrorMsg() + ")");
+                }
             ds->CommitTransaction();
         }
         // Closing the dataset flushes it; the index is added after, then the file is renamed.
@@ -177,6 +236,12 @@ void write_hatch_gpkg(const std::string& path, const std::string& crs_wkt, bool 
                             boxes[std::size_t(fam)]);
             std::vector<BoxD>().swap(boxes[std::size_t(fam)]);
         }
+    if (spatial_index && crests) {
+        std::vector<BoxD> crest_boxes;
+        for (const auto& c : *crests)
+            for (const auto& poly : crest_polygons(c)) crest_boxes.push_back(box_of(c.rings[poly[0]]));
+        bulk_load_rtree(tmp.path, "crest", "geom", "fid", crest_boxes);
+    }
     tmp.commit(path);
 }
 
@@ -232,7 +297,7 @@ void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index,
                 if (h.closed && !pts.empty()) pts.push_back(pts.front());
                 sink(face.face_id, d.style.c_str(), pts);
             }
-    });
+    }, d.crests ? &*d.crests : nullptr, d.style);
 }
 
 std::size_t merge_gpkg(const std::vector<std::string>& parts, const std::string& path, bool spatial_index,
@@ -346,6 +411,24 @@ void write_svg(const Drawing& d, const std::string& path) {
             }
         s += "</g>\n";
     }
+    if (d.crests) {
+        // Filled, holes by even-odd: one path per ridge.
+        s += "<g id=\"crest\" fill=\"black\" fill-rule=\"evenodd\" stroke=\"none\">\n";
+        for (const auto& c : *d.crests) {
+            s += "<path d=\"";
+            for (const auto& ring : c.rings) {
+                for (std::size_t i = 0; i < ring.size(); ++i) {
+                    s += i ? " L" : "M";
+                    num(s, ring[i].x - b.xmin);
+                    s += ',';
+                    num(s, b.ymax - ring[i].y);
+                }
+                s += " Z";
+            }
+            s += "\"/>\n";
+        }
+        s += "</g>\n";
+    }
     s += "</svg>\n";
     TempFile tmp(path, ".svg");
     {
@@ -397,6 +480,33 @@ void write_png(const Drawing& d, const std::string& path, int pixels, const Rast
                 }
             }
         }
+    if (d.crests) {
+        // Filled by even-odd at the pixel centres, row by row (crossings of each ring's edges).
+        std::vector<double> xs;
+        for (const auto& c : *d.crests) {
+            tex::BBox cb;
+            for (const auto& ring : c.rings)
+                for (const Point& q : ring) cb.add(q);
+            if (cb.empty()) continue;
+            const int r0 = std::max(0, int(std::floor((b.ymax - cb.ymax) / upp)));
+            const int r1 = std::min(h - 1, int(std::ceil((b.ymax - cb.ymin) / upp)));
+            for (int r = r0; r <= r1; ++r) {
+                const double y = b.ymax - (r + 0.5) * upp;
+                xs.clear();
+                for (const auto& ring : c.rings)
+                    for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+                        const Point &p = ring[i], &q = ring[j];
+                        if ((p.y > y) != (q.y > y)) xs.push_back(p.x + (y - p.y) * (q.x - p.x) / (q.y - p.y));
+                    }
+                std::sort(xs.begin(), xs.end());
+                for (std::size_t k = 0; k + 1 < xs.size(); k += 2) {
+                    const int c0 = std::max(0, int(std::ceil((xs[k] - b.xmin) / upp - 0.5)));
+                    const int c1 = std::min(w - 1, int(std::floor((xs[k + 1] - b.xmin) / upp - 0.5)));
+                    for (int col = c0; col <= c1; ++col) img[std::size_t(r) * w + col] = std::min(img[std::size_t(r) * w + col], 0.1f);
+                }
+            }
+        }
+    }
     std::vector<unsigned char> bytes(img.size());
     for (std::size_t i = 0; i < img.size(); ++i) bytes[i] = (unsigned char)std::lround(std::clamp(img[i], 0.0f, 1.0f) * 255);
     write_png_pixels(bytes, w, h, 1, path, "-o");

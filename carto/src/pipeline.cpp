@@ -9,6 +9,7 @@
 #include <sstream>
 #include <mutex>
 
+#include "carto/crest.hpp"
 #include "carto/error.hpp"
 #include "carto/extract.hpp"
 #include "carto/fields.hpp"
@@ -45,6 +46,9 @@ Style selected_style(const Options& o) {
     if (o.custom_style) return *o.custom_style;
     return builtin_style(o.style.empty() ? default_style() : o.style);
 }
+
+// A crest band higher than this is a typo for a scale or a unit (it would cover the faces).
+constexpr double kMaxCrestHeightMm = 50;
 
 // The number of squares of the style's finest length (a "mm" parameter, in ground units)
 // over the faces to hatch: beyond this, a scale or a parameter asks for more geometry than
@@ -88,6 +92,16 @@ void validate(const Options& o) {
             throw Error(Code::Usage, "-o '" + out + "': unknown format (use .gpkg, .svg or .png)");
     }
     if (o.png_pixels < 16 || o.png_pixels > 20000) throw Error(Code::Usage, "--png-size must be in 16..20000");
+    if (o.crest_height_mm) {
+        if (!o.crest_ornament) throw Error(Code::Usage, "--crest-height needs --crest-ornament");
+        if (!(*o.crest_height_mm > 0) || *o.crest_height_mm > kMaxCrestHeightMm) {
+            std::ostringstream m;
+            m << "--crest-height: " << *o.crest_height_mm << " mm is not in (0, " << kMaxCrestHeightMm << "]";
+            throw Error(Code::Usage, m.str());
+        }
+    }
+    // The exemplar is read (and tried) now: a bad one is refused before any work.
+    if (o.crest_ornament) load_crest_exemplar(*o.crest_ornament);
     if (o.threads > kMaxThreads)
         throw Error(Code::Usage, "--threads: " + std::to_string(o.threads) + " is more than " +
                                      std::to_string(kMaxThreads));
@@ -97,8 +111,10 @@ void check_files(const Options& o) {
     std::vector<FileArg> outputs;
     for (const auto& out : o.outputs) outputs.push_back({"-o", out});
     const std::string partition = o.partition.path == "auto" ? "" : o.partition.path;
+    const std::string crest =
+        o.crest_ornament && *o.crest_ornament != kDefaultCrest ? *o.crest_ornament : std::string();
     check_outputs({{"--dem", o.dem}, {"--partition", partition}, {"--slope", o.slope}, {"--roughness", o.roughness},
-                   {"--script", o.style_file}},
+                   {"--script", o.style_file}, {"--crest-ornament", crest}},
                   outputs, o.overwrite);
 }
 
@@ -218,6 +234,16 @@ Drawing hatch(const Prepared& p, const Options& o, const std::vector<int>& selec
     }
     if (cancelled) throw Error(Code::Cancelled, "cancelled during hatching");
     for (std::size_t k = 0; k < selected.size(); ++k) d.bounds.add(part.faces[selected[k]].region.bbox());
+    if (o.crest_ornament) {
+        tick(progress, 0.9, "crest ornaments");
+        const double height = o.crest_height_mm.value_or(kDefaultCrestHeightMm) * o.scale / 1000;
+        CrestResult crests = draw_crests(part, load_crest_exemplar(*o.crest_ornament), height, o.seed, o.window);
+        for (const auto& c : crests.ornaments)
+            for (const auto& ring : c.rings)
+                for (const Point& q : ring) d.bounds.add(q);
+        d.crests = std::move(crests.ornaments);
+        d.notes = std::move(crests.notes);
+    }
     return d;
 }
 
@@ -239,8 +265,10 @@ Stats run(const Options& o, const Progress& progress) {
     Stats s;
     s.faces = d.faces.size();
     for (const auto& f : d.faces) s.hatches += f.hatches.size();
+    if (d.crests) s.crests = d.crests->size();
     s.crs = crs_name(d.crs_wkt);
     s.notes = p.notes;
+    s.notes.insert(s.notes.end(), d.notes.begin(), d.notes.end());
     s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return s;
 }

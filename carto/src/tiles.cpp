@@ -80,6 +80,9 @@ TileReport run_tile(const Options& o, const tex::BBox& tile, const std::string& 
     if (o.partition.path == "auto")
         throw Error(Code::Usage, "--partition auto: a tiled run hatches a partition file; extract it first with "
                                  "'rockhatch partition --dem DEM -o faces.gpkg' and pass --partition faces.gpkg");
+    if (o.crest_ornament)
+        throw Error(Code::Usage, "--crest-ornament: not available in a tiled run yet (the ornaments follow ridge lines "
+                                 "that cross tiles); draw them with a whole run, e.g. with --window");
     // The tile file is one more output: never an input, never an existing file unless asked.
     Options checked = o;
     checked.outputs.push_back(out);

@@ -224,6 +224,10 @@ def param(w, option, value):
     return main(w, "--param", f"spacing_min={value}")
 
 
+# Two squares apart: no sequence of their pieces is one connected crest band.
+APART_SVG = ('<svg xmlns="http://www.w3.org/2000/svg"><path d="M 0 0 L 10 0 L 10 10 L 0 10 Z '
+             'M 0 20 L 10 20 L 10 30 L 0 30 Z"/></svg>')
+
 RH = "rockhatch"
 PART = "rockhatch partition"
 
@@ -318,6 +322,21 @@ CASES: List[Case] = [
     *number_cases(RH, "--png-size", lambda w, opt, v: main(w, opt, v, o=out(w, "o.png")), extra_bad=[
         ("zero", "0", ()), ("negative", "-10", ()), ("so large it would exhaust memory", "10000000", ()),
     ]),
+    Case(RH, "--crest-ornament", "missing file", lambda w: main(w, "--crest-ornament", w / "none.svg"), 3,
+         ("--crest-ornament", "none.svg", "no such file")),
+    Case(RH, "--crest-ornament", "not SVG", lambda w: main(w, "--crest-ornament", text_file(w, "junk.svg", "<<<")), 3,
+         ("--crest-ornament", "junk.svg", "not an SVG")),
+    Case(RH, "--crest-ornament", "shapes that cannot join into one band",
+         lambda w: main(w, "--crest-ornament", text_file(w, "apart.svg", APART_SVG)), 6,
+         ("apart.svg", "one connected crest band")),
+    Case(RH, "--crest-ornament", "the output, with --overwrite",
+         lambda w: main(w, "--overwrite", "--crest-ornament", text_file(w, "mine.svg", APART_SVG), o=w / "mine.svg"), 9,
+         ("mine.svg", "--crest-ornament", "onto an input")),
+    *number_cases(RH, "--crest-height", lambda w, opt, v: main(w, "--crest-ornament", "default", opt, v), extra_bad=[
+        ("zero", "0", ()), ("negative", "-1", ()), ("over 50 mm", "80", ()),
+    ]),
+    Case(RH, "--crest-height", "without --crest-ornament", lambda w: main(w, "--crest-height", "2"), 2,
+         ("--crest-height needs --crest-ornament",)),
     Case(RH, "--window", "not four numbers", lambda w: main(w, "--window", "1,2,3"), 2, ("--window",)),
     Case(RH, "--window", "empty box", lambda w: main(w, "--window", "10,10,0,0"), 2, ("--window",)),
     Case(RH, "--window", "NaN", lambda w: main(w, "--window", "nan,0,1,1"), 2, ("--window",)),

@@ -216,6 +216,32 @@ def test_layers_load_styled(qgis, sample_dir, tmp_path):
         project.removeMapLayers([lay.id() for lay in loaded])
 
 
+def test_crest_ornaments_through_the_algorithm(qgis, rockhatch_exe, sample_dir, tmp_path):
+    """CREST draws what `rockhatch --crest-ornament default` draws, and the crest layer is
+    loaded filled."""
+    import processing
+    subprocess.run([str(rockhatch_exe), "-q", "--dem", str(sample_dir / "dem.tif"), "--partition",
+                    str(sample_dir / "partition.gpkg"), "--crest-ornament", "default", "--crest-height", "3",
+                    "-o", str(tmp_path / "cli.svg")], check=True)
+    project = QgsProject.instance()
+    before = set(project.mapLayers())
+    processing.runAndLoadResults("rockhatch:rockhatching", sample_params(
+        sample_dir, tmp_path / "q.gpkg", CREST=True, CREST_HEIGHT=3, SVG=str(tmp_path / "q.svg")),
+        feedback=QgsProcessingFeedback())
+    loaded = [project.mapLayer(i) for i in set(project.mapLayers()) - before]
+    try:
+        assert (tmp_path / "q.svg").read_bytes() == (tmp_path / "cli.svg").read_bytes()
+        crest = [lay for lay in loaded if lay.name() == "crest"]
+        assert len(crest) == 1 and crest[0].featureCount() >= 5
+        assert crest[0].renderer().symbol().color().name() == "#000000"
+    finally:
+        project.removeMapLayers([lay.id() for lay in loaded])
+    (tmp_path / "junk.svg").write_text("not SVG <<<")
+    with pytest.raises(QgsProcessingException, match="--crest-ornament .*junk.svg"):
+        run("rockhatch:rockhatching", sample_params(sample_dir, tmp_path / "b.gpkg",
+                                                    CREST_EXEMPLAR=str(tmp_path / "junk.svg")))
+
+
 # ---- partition from the DEM
 
 

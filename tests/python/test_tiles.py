@@ -68,6 +68,38 @@ def test_tiled_run_equals_the_whole_run(tmp_path, sample_whole, tile_size, worke
         assert ds.ExecuteSQL(f"SELECT HasSpatialIndex('{name}', 'geom')").GetNextFeature().GetField(0) == 1
 
 
+def test_the_dashboard_serves_the_cluster_pages(tmp_path, sample_whole):
+    import socket
+    import urllib.request
+
+    with socket.socket() as sk:
+        sk.bind(("127.0.0.1", 0))
+        port = sk.getsockname()[1]
+    pages = []
+
+    def progress(fraction, stage):
+        if stage.startswith("tiles 1/") and not pages:
+            with urllib.request.urlopen(f"http://127.0.0.1:{port}/info/main/workers.html", timeout=10) as r:
+                pages.append((r.status, r.read().decode()))
+        return True
+
+    out = tmp_path / "t.gpkg"
+    tiles.run(DEM, FACES, 1200, [out], seed=3, workers=1, args=["--dashboard", f"127.0.0.1:{port}"], progress=progress)
+    assert pages and pages[0][0] == 200 and "Workers" in pages[0][1]
+    assert features(out) == sample_whole
+
+
+def test_an_unreachable_scheduler_is_one_line(tmp_path):
+    t0 = time.monotonic()
+    r = subprocess.run([sys.executable, "-m", "rockhatch", "tiles", "--dem", DEM, "--partition", FACES,
+                        "--tile-size", "1000", "--scheduler", "tcp://127.0.0.1:9", "-q", "-o", str(tmp_path / "o.gpkg")],
+                       capture_output=True, text=True, env=python_env(), timeout=120)
+    assert r.returncode == 1
+    assert "127.0.0.1:9" in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
+    assert time.monotonic() - t0 < 60
+    assert not (tmp_path / "o.gpkg").exists()
+
+
 def test_command_line_tiles_and_svg(tmp_path, rockhatch_exe, sample_whole):
     gpkg, svg = tmp_path / "t.gpkg", tmp_path / "t.svg"
     r = subprocess.run([str(rockhatch_exe), "tiles", "--dem", DEM, "--partition", FACES, "--seed", "3",
@@ -208,6 +240,7 @@ def test_tiled_equals_whole_on_chamonix(tmp_path, rockhatch_exe):
     (["--workers", "2", "--scheduler", "tcp://127.0.0.1:1"], 2, "exclude"),
     (["-o", FACES, "--overwrite"], 9, "input"),
     (["--style", "nosuch"], 7, "nosuch"),
+    (["--crest-ornament", "default"], 2, "crest"),
 ])
 def test_bad_input_is_refused_before_any_work(tmp_path, args, code, words):
     base = {"--dem": DEM, "--partition": FACES, "--tile-size": "1000", "-o": str(tmp_path / "o.gpkg")}

@@ -36,7 +36,7 @@ TILE_OPTIONS = [
     ("--workdir", True, "DIR  folder of the tile files (default: the first output + '.tiles')"),
     ("--restart", False, "start again: remove the tiles a previous run of this job left"),
     ("--keep-tiles", False, "keep the tile files after the merge"),
-    ("--dashboard", True, "ADDRESS  serve the Dask dashboard of the local cluster there (e.g. :8787)"),
+    ("--dashboard", True, "ADDRESS  serve the local cluster's Dask dashboard there (e.g. :8787)"),
 ]
 
 _MANIFEST = "job.json"
@@ -136,6 +136,7 @@ class Summary:
         self.seconds = 0.0
         self.tile_seconds = []  # per tile computed in this run
         self.peak_mb = 0.0      # largest peak resident memory reported by a worker
+        self.merge_seconds = 0.0  # merging the tiles and writing the outputs
         self.workers = 0
 
     def __repr__(self):
@@ -168,6 +169,9 @@ def run_args(argv, progress=None):
         carto.check_files(options)
         options.custom_style = carto.load_style(cl.script)
     carto.validate(options)
+    if options.crest_ornament is not None:
+        raise carto.error(2, "--crest-ornament: not available in a tiled run yet (the ornaments follow ridge lines "
+                             "that cross tiles); draw them with a whole run, e.g. with --window")
     if options.partition.path == "auto":
         raise carto.error(2, "--partition auto: a tiled run hatches a partition file; extract it first with "
                              "'rockhatch partition --dem DEM -o faces.gpkg' and pass --partition faces.gpkg")
@@ -224,6 +228,7 @@ def run_args(argv, progress=None):
 
     if progress:
         progress(0.99, "merging")
+    t_merge = time.monotonic()
     gpkg = [o for o in options.outputs if o.lower().endswith(".gpkg")]
     merged = gpkg[0] if gpkg else os.path.join(workdir, "merged.gpkg")
     summary.hatches = carto.merge_gpkg(paths, merged, options.spatial_index)
@@ -237,6 +242,7 @@ def run_args(argv, progress=None):
                 carto.write_svg(drawing, out)
             else:
                 carto.write_png(drawing, out, options.png_pixels)
+    summary.merge_seconds = time.monotonic() - t_merge
     if not mine.get("--keep-tiles"):
         if not gpkg:
             os.remove(merged)
@@ -252,11 +258,19 @@ def _compute(todo, grid, paths, task_args, job, mine, workers, summary, progress
 
     cluster = None
     if "--scheduler" in mine:
-        client = Client(mine["--scheduler"], timeout="30s")
+        client = Client(mine["--scheduler"], timeout="15s")
     else:
+        # The workers import this very module (the folder holding the package first on their
+        # path, set in their environment only).
+        here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+        path = os.pathsep.join([here] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p])
         cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                               dashboard_address=mine.get("--dashboard"), silence_logs=50)
+                               dashboard_address=mine.get("--dashboard"), silence_logs=50, env={"PYTHONPATH": path})
         client = Client(cluster)
+        if mine.get("--dashboard"):
+            # Without bokeh (not packaged by Debian bookworm) this serves distributed's
+            # information pages (/info/main/workers.html), not the graphical dashboard.
+            sys.stderr.write(f"rockhatch tiles: Dask dashboard at {client.dashboard_link}\n")
     try:
         summary.workers = len(client.scheduler_info().get("workers", {}))
         futures = []
@@ -360,6 +374,8 @@ def main(argv=None):
         return 0
     except (RockhatchError, TexError, OSError) as e:
         return fail(e, bar, "rockhatch tiles")
+    except Exception as e:  # the cluster's own failures (a task lost on every retry, a timeout)
+        return fail(f"the Dask cluster failed: {type(e).__name__}: {e}", bar, "rockhatch tiles")
 
 
 if __name__ == "__main__":

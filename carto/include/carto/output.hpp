@@ -1,12 +1,15 @@
-// Writers: GeoPackage (one LineString layer per hatch family), SVG (one group per family,
-// true scale, CRS and bounds in its metadata) and a PNG preview. All writes are atomic:
+// Writers: GeoPackage (one LineString layer per hatch family, and a polygon layer "crest"
+// for the crest ornaments), SVG (one group per family and a filled group "crest", true
+// scale, CRS and bounds in its metadata) and a PNG preview. All writes are atomic:
 // to a temporary file in the same folder, renamed at the end.
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "carto/crest.hpp"
 #include "carto/raster.hpp"
 #include "carto/styles.hpp"
 
@@ -23,6 +26,10 @@ struct Drawing {
     std::string style;
     double scale = 10000;
     tex::BBox bounds;  // extent of the drawing in the working CRS
+    // The crest ornaments, when the run asked for them (written as the polygon layer or
+    // group "crest", filled); unset: no such layer or group.
+    std::optional<std::vector<CrestOrnament>> crests;
+    std::vector<std::string> notes;  // what drawing noted (ridges skipped)
 };
 
 // `keep_going(fraction written)` is asked every few thousand features; false cancels

@@ -29,6 +29,11 @@ struct Options {
     // The style script custom_style was read from (--script): an input no output may replace.
     std::string style_file;
     std::map<std::string, double> params;  // --param name=value
+    // --crest-ornament: draw every ridge line as a synthesised band (carto/crest.hpp), from the
+    // project's exemplar (kDefaultCrest) or an SVG file; unset: no crest ornaments.
+    std::optional<std::string> crest_ornament;
+    // --crest-height: height of that band, mm on paper (kDefaultCrestHeightMm when unset).
+    std::optional<double> crest_height_mm;
     double scale = 10000;                // --scale (1:scale)
     // Half-side (ground units) of the square over which elevation is normalised into the
     // styles' height field (--relief-radius): local, so an edit moves the output nearby only.
@@ -47,6 +52,7 @@ struct Options {
 struct Stats {
     std::size_t faces = 0;
     std::size_t hatches = 0;
+    std::size_t crests = 0;           // ridge lines drawn with a crest ornament
     double seconds = 0;
     std::string crs;                  // working CRS name
     std::vector<std::string> notes;   // what was repaired, derived or assumed
@@ -81,7 +87,7 @@ void check_roughness(const Raster& r, const std::string& path);
 // rasters and the partition.
 Prepared prepare(const Options& o, const Progress& progress = {});
 // Hatches the faces (in parallel, deterministic): all of them, or those whose anchor
-// (face_anchor) lies in Options::window.
+// (face_anchor) lies in Options::window; and draws the crest ornaments when asked.
 Drawing hatch(const Prepared& p, const Options& o, const Progress& progress = {});
 // Hatches the faces of these indices, in this order.
 Drawing hatch(const Prepared& p, const Options& o, const std::vector<int>& faces, const Progress& progress = {});

@@ -2,9 +2,9 @@
 import os
 
 from osgeo import ogr
-from qgis.core import (QgsLineSymbol, QgsProcessing, QgsProcessingContext, QgsProcessingException,
+from qgis.core import (QgsFillSymbol, QgsLineSymbol, QgsProcessing, QgsProcessingContext, QgsProcessingException,
                        QgsProcessingLayerPostProcessorInterface, QgsProcessingOutputMultipleLayers,
-                       QgsProcessingOutputNumber, QgsProcessingParameterEnum,
+                       QgsProcessingOutputNumber, QgsProcessingParameterBoolean, QgsProcessingParameterEnum,
                        QgsProcessingParameterFeatureSource, QgsProcessingParameterField,
                        QgsProcessingParameterFile, QgsProcessingParameterFileDestination,
                        QgsProcessingParameterNumber, QgsProcessingParameterRasterLayer,
@@ -17,6 +17,8 @@ from .common import Progress, RockhatchAlgorithm
 # The GeoPackage layers the pipeline writes, one per hatch family, with the line width a
 # renderer uses when a feature has no width_mm (mm on paper).
 FAMILIES = {"hatch_fill": 0.10, "hatch_ridge": 0.12, "hatch_valley": 0.25, "hatch_cross": 0.08}
+# The polygon layer of the crest ornaments (filled black).
+CREST_LAYER = "crest"
 # Vector formats handed to the pipeline as they are; other layers are written to a GeoPackage.
 OGR_EXTENSIONS = ["gpkg", "shp", "geojson", "json", "fgb", "sqlite", "gml", "kml", "tab", "mif", "csv"]
 
@@ -33,15 +35,20 @@ def hatch_renderer(family):
     return QgsSingleSymbolRenderer(symbol)
 
 
+def crest_renderer():
+    """The crest ornaments filled black, with no outline (holes stay open)."""
+    return QgsSingleSymbolRenderer(QgsFillSymbol.createSimple({"color": "0,0,0,255", "outline_style": "no"}))
+
+
 class HatchStyler(QgsProcessingLayerPostProcessorInterface):
-    """Gives a hatch layer loaded on completion its line style."""
+    """Gives a hatch layer loaded on completion its line style (its fill for the crests)."""
 
     def __init__(self, family):
         super().__init__()
         self.family = family
 
     def postProcessLayer(self, layer, context, feedback):  # noqa: N802 (QGIS's name)
-        layer.setRenderer(hatch_renderer(self.family))
+        layer.setRenderer(crest_renderer() if self.family == CREST_LAYER else hatch_renderer(self.family))
         layer.triggerRepaint()
 
 
@@ -86,6 +93,7 @@ class RockHatching(RockhatchAlgorithm):
     SLOPE, ROUGHNESS, STYLE, STYLE_SCRIPT, PARAMS = "SLOPE", "ROUGHNESS", "STYLE", "STYLE_SCRIPT", "PARAMS"
     SCALE, SEED, OUTPUT, SVG = "SCALE", "SEED", "OUTPUT", "SVG"
     RELIEF_RADIUS = "RELIEF_RADIUS"
+    CREST, CREST_EXEMPLAR, CREST_HEIGHT = "CREST", "CREST_EXEMPLAR", "CREST_HEIGHT"
 
     def name(self):
         return "rockhatching"
@@ -163,6 +171,18 @@ class RockHatching(RockhatchAlgorithm):
         self.add(QgsProcessingParameterNumber(self.SEED, "Random seed", QgsProcessingParameterNumber.Integer, 0,
                                          minValue=0),
             "Seed of the styles' jitter: the same seed gives the same hatches. Default: 0.")
+        self.add(QgsProcessingParameterBoolean(self.CREST, "Crest ornaments on the ridges", False),
+            "Draws every ridge line as one connected band pattern synthesised from an exemplar (the "
+            "project's, or the SVG below), written as the polygon layer crest. Default: off.")
+        self.add(QgsProcessingParameterFile(self.CREST_EXEMPLAR, "Crest exemplar (SVG)", extension="svg",
+                                            optional=True),
+            "An SVG of polygons (with holes) drawn along the ridges instead of the project's spine with "
+            "barbs; giving one turns the crest ornaments on. It must be able to repeat into one connected "
+            "band (shapes hanging on a line that runs through it).", advanced=True)
+        self.add(QgsProcessingParameterNumber(self.CREST_HEIGHT, "Crest band height (mm)",
+                                              QgsProcessingParameterNumber.Double, 2, minValue=0.01, maxValue=50),
+            "Height of the crest band centred on the ridge, mm on paper at the map scale. Default: 2.",
+            advanced=True)
         self.add(QgsProcessingParameterFileDestination(self.OUTPUT, "Hatches (GeoPackage)", "GeoPackage (*.gpkg)"),
             "GeoPackage written with one LineString layer per hatch family (hatch_fill, hatch_ridge, "
             "hatch_valley, hatch_cross; fields face_id, family, style, width_mm) in the DEM's CRS (UTM "
@@ -185,7 +205,10 @@ class RockHatching(RockhatchAlgorithm):
                 "map scale 1:SCALE, default 1:10000) may be overridden in Style parameters. Seed: 0 by "
                 "default.\n"
                 "Outputs: a GeoPackage with one layer per hatch family (loaded with black lines as wide "
-                "as width_mm) and an optional SVG.\n\n")
+                "as width_mm) and an optional SVG.\n"
+                "Crest ornaments (optional): every ridge line drawn as one connected band synthesised "
+                "from an exemplar, in the polygon layer crest (loaded filled black); ridges too short or "
+                "too tight for the band are skipped and counted in the log.\n\n")
         try:
             carto = self.carto()
             for s in carto.styles():
@@ -259,6 +282,9 @@ class RockHatching(RockhatchAlgorithm):
         output = self.parameterAsFileOutput(parameters, self.OUTPUT, context)
         svg = self.parameterAsFileOutput(parameters, self.SVG, context)
         outputs = [output] + ([svg] if svg else [])
+        exemplar = self.parameterAsFile(parameters, self.CREST_EXEMPLAR, context)
+        crest = exemplar or ("default" if self.parameterAsBool(parameters, self.CREST, context) else None)
+        crest_height = self.parameterAsDouble(parameters, self.CREST_HEIGHT, context) if crest else None
         feedback.pushInfo(f"rockhatch: DEM {dem}, partition {partition} {layers}, style {style}")
         stats = self.call(
             carto.run, dem, partition, outputs, progress=Progress(feedback),
@@ -267,14 +293,15 @@ class RockHatching(RockhatchAlgorithm):
             relief_radius=self.parameterAsDouble(parameters, self.RELIEF_RADIUS, context),
             seed=self.parameterAsInt(parameters, self.SEED, context), overwrite=True,
             slope=self.raster_path(parameters, self.SLOPE, context, feedback),
-            roughness=self.raster_path(parameters, self.ROUGHNESS, context, feedback), **layers, **fields)
+            roughness=self.raster_path(parameters, self.ROUGHNESS, context, feedback),
+            crest_ornament=crest, crest_height_mm=crest_height, **layers, **fields)
         for note in stats.notes:
             feedback.pushInfo(note)
         feedback.pushInfo(f"{stats.faces} faces, {stats.hatches} hatches in {stats.seconds:.1f} s ({stats.crs})")
 
         uris = []
         for family, count in gpkg_layers(output).items():
-            if family not in FAMILIES:
+            if family not in FAMILIES and family != CREST_LAYER:
                 continue
             uri = f"{output}|layername={family}"
             uris.append(uri)

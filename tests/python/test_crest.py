@@ -1,0 +1,108 @@
+"""Crest ornaments from Python: the pipeline's crest_ornament / crest_height_mm options, the
+Python command line (same option table, same bytes as the C++ program), draw_crests on a
+partition, and errors with the command's exit codes."""
+import subprocess
+import sys
+
+import pytest
+from osgeo import ogr
+
+from conftest import SHARED_DEM, python_env
+from rockhatch import RockhatchError, carto
+
+
+def run_sample(sample_dir, outputs, **kwargs):
+    return carto.run(str(sample_dir / "dem.tif"), str(sample_dir / "partition.gpkg"), [str(p) for p in outputs],
+                     style="noisy", **kwargs)
+
+
+def test_crests_from_python_one_polygon_per_ridge(sample_dir, tmp_path):
+    stats = run_sample(sample_dir, [tmp_path / "c.gpkg"], crest_ornament="default", crest_height_mm=2.5)
+    part = carto.prepare(str(sample_dir / "dem.tif"), str(sample_dir / "partition.gpkg")).partition
+    ridges = [i for i, line in enumerate(part.lines) if line.kind == carto.LineKind.RIDGE]
+    assert stats.crests == len(ridges) >= 5
+    ds = ogr.Open(str(tmp_path / "c.gpkg"))  # kept: the layer dies with its dataset
+    layer = ds.GetLayerByName("crest")
+    ids = []
+    for f in layer:
+        g = f.GetGeometryRef()
+        assert g.GetGeometryType() == ogr.wkbPolygon and g.IsValid() and g.GetArea() > 0
+        ids.append(f.GetField("ridge_id"))
+    assert sorted(ids) == ridges  # one polygon per ridge, no more
+    assert any(n.startswith("crest ornaments on") for n in stats.notes)
+
+
+def test_draw_crests_is_keyed_by_the_ridge(sample_dir):
+    part = carto.prepare(str(sample_dir / "dem.tif"), str(sample_dir / "partition.gpkg")).partition
+    a = _rings(carto.draw_crests(part, "default", 20.0, seed=5))
+    b = _rings(carto.draw_crests(part, band_height=20.0, seed=5))
+    c = _rings(carto.draw_crests(part, "default", 20.0, seed=6))
+    assert a == b and a != c
+    assert all(len([r for r in o if _area(r) > 0]) == 1 for o in a)  # one outer ring each
+    assert "<svg" in carto.default_crest_svg()
+
+
+def _rings(result):
+    return [[[(p.x, p.y) for p in ring] for ring in o.rings] for o in result.ornaments]
+
+
+def _area(ring):
+    return 0.5 * sum(p[0] * q[1] - q[0] * p[1] for p, q in zip(ring, ring[1:] + ring[:1]))
+
+
+def test_python_command_writes_the_same_bytes_as_the_program(rockhatch_exe, sample_dir, tmp_path):
+    args = ["-q", "--dem", str(sample_dir / "dem.tif"), "--partition", str(sample_dir / "partition.gpkg"),
+            "--style", "noisy", "--crest-ornament", "default", "--crest-height", "1.5", "--seed", "4"]
+    subprocess.run([str(rockhatch_exe), *args, "-o", str(tmp_path / "cpp.svg")], check=True)
+    subprocess.run([sys.executable, "-m", "rockhatch", *args, "-o", str(tmp_path / "py.svg")], check=True,
+                   env=python_env())
+    svg = (tmp_path / "cpp.svg").read_bytes()
+    assert b'<g id="crest"' in svg
+    assert svg == (tmp_path / "py.svg").read_bytes()
+
+
+@pytest.mark.parametrize("exemplar, height, code, message", [
+    ("/nonexistent/crest.svg", None, 3, r"--crest-ornament '/nonexistent/crest.svg': no such file"),
+    ("default", 0.0, 2, r"--crest-height"),
+    ("default", 80.0, 2, r"--crest-height"),
+    (None, 2.0, 2, r"--crest-height needs --crest-ornament"),
+])
+def test_bad_crest_options(sample_dir, tmp_path, exemplar, height, code, message):
+    with pytest.raises(RockhatchError, match=message) as e:
+        run_sample(sample_dir, [tmp_path / "x.svg"], crest_ornament=exemplar, crest_height_mm=height)
+    assert e.value.code == code
+    assert not (tmp_path / "x.svg").exists()
+
+
+def test_an_exemplar_that_cannot_make_one_band_is_refused(rockhatch_exe, sample_dir, tmp_path):
+    apart = tmp_path / "apart.svg"
+    apart.write_text('<svg xmlns="http://www.w3.org/2000/svg"><path d="M 0 0 L 10 0 L 10 10 L 0 10 Z '
+                     'M 0 20 L 10 20 L 10 30 L 0 30 Z"/></svg>')
+    r = subprocess.run([str(rockhatch_exe), "-q", "--dem", str(sample_dir / "dem.tif"), "--partition",
+                        str(sample_dir / "partition.gpkg"), "--crest-ornament", str(apart), "-o",
+                        str(tmp_path / "o.svg")], capture_output=True, text=True)
+    assert r.returncode == 6
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and "cannot make one connected crest band" in lines[0]
+
+
+@pytest.mark.skipif(not SHARED_DEM.exists(), reason=f"{SHARED_DEM} absent (real DEM kept outside the project)")
+def test_every_ridge_of_the_real_dem_is_one_valid_polygon():
+    """The automatic partition of Chamonix.tif (599 ridge lines, jagged from 31 m cells): each
+    ornament drawn is one polygon GEOS finds valid (its outer ring and the holes inside it),
+    and the ridges skipped are few and counted in the note."""
+    part = carto.prepare(str(SHARED_DEM), "auto").partition
+    ridges = sum(1 for line in part.lines if line.kind == carto.LineKind.RIDGE)
+    r = carto.draw_crests(part, "default", 20.0)
+    assert len(r.ornaments) >= 0.98 * ridges
+    assert f"on {len(r.ornaments)} of {ridges} ridge line(s)" in r.notes[0]
+    for o in r.ornaments:
+        outer = [ring for ring in o.rings if _area([(p.x, p.y) for p in ring]) > 0]
+        assert len(outer) == 1, f"ridge {o.ridge}"
+        poly = ogr.Geometry(ogr.wkbPolygon)
+        for ring in sorted(o.rings, key=lambda ring: -_area([(p.x, p.y) for p in ring])):
+            lr = ogr.Geometry(ogr.wkbLinearRing)
+            for p in list(ring) + [ring[0]]:
+                lr.AddPoint_2D(p.x, p.y)
+            poly.AddGeometry(lr)
+        assert poly.IsValid(), f"ridge {o.ridge}"
