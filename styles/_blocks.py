@@ -63,7 +63,7 @@ TONE = [
     ("follow_fall_line", 1.0, "ratio", "1: strokes follow the local fall line; 0: one direction per face"),
 ]
 CREST = [
-    ("crest_spacing", 0.6, "mm", "distance between two crest strokes along a ridge"),
+    ("crest_spacing", 0.4, "mm", "distance between two crest strokes along a ridge"),
     ("crest_length", 1.2, "mm", "longest crest stroke on low ground"),
     ("crest_height_gain", 1.0, "ratio", "crest strokes grow by this fraction on the highest ground"),
 ]
@@ -305,13 +305,14 @@ def toned_hatching(f, p, face, spent):
             if not isnan(local):
                 theta = local
         out = Nothing()
-        # Rough cells: cross strokes take up to half the cell's tone, denser when rougher.
         cross_cover = 0
         rough = roughness(c)
-        if rough > r0:
-            t = clamp01((rough - r0) / (r1 - r0))
-            s = s_max - (s_max - s_min) * t
-            s = max(s, wc * gap / (0.5 * target))
+        # Rough cells: cross strokes take up to half the cell's tone, denser when rougher;
+        # none where that half is too little ink to space them within cross_spacing_max
+        # (lone crosses on lit ground read as noise, not texture).
+        s_cross = max(s_max - (s_max - s_min) * clamp01((rough - r0) / (r1 - r0)), wc * gap / (0.5 * target))
+        if rough > r0 and s_cross <= s_max:
+            s = s_cross
             cross_cover = wc * gap / s
             angle = theta + p["cross_angle"]
             out = MapToEdges(JitterEdges("cross", angle, s, length, 0.5, gap),

@@ -24,7 +24,7 @@ Parameters (--param NAME=VALUE; "mm" are millimetres on paper at --scale):
     cell_spacing       3.0  mm     width of the coarse jittered cells that carry local density
     cell_jitter        1.0  ratio  jitter of the coarse cells
     gap                0.95 ratio  each hatch is shortened to this fraction, leaving gaps
-    crest_spacing      0.6  mm     distance between two crest strokes along a ridge
+    crest_spacing      0.4  mm     distance between two crest strokes along a ridge
     crest_length       1.2  mm     longest crest stroke on low ground
     crest_height_gain  1.0  ratio  crest strokes grow by this fraction on the highest ground
     roughness_min      0.01 ratio  roughness (0..1) below which no cross hatching is drawn

@@ -142,7 +142,8 @@ Prepared prepare(const Options& o, const Progress& progress) {
         throw Error(Code::NoOverlap, "--partition '" + o.partition.path + "' does not overlap --dem '" + o.dem + "'");
 
     // Resolve orientation and density of every face (neighbours need them too).
-    for (const auto& f : p.partition.faces) p.orientation_derived.push_back(!f.orientation);
+    // An extracted partition's orientations are its faces' mean fall lines (derived, not given).
+    for (const auto& f : p.partition.faces) p.orientation_derived.push_back(o.partition.path == "auto" || !f.orientation);
     const auto [derived_o, derived_d] = derive_face_controls(p.partition, p.terrain);
     if (derived_o)
         p.notes.push_back("orientation of " + std::to_string(derived_o) + " face(s) derived from the terrain (mean fall line)");

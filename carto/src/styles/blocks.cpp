@@ -66,7 +66,7 @@ const std::vector<StyleParam> kTone = {
     {"follow_fall_line", 1.0, "ratio", "1: strokes follow the local fall line; 0: one direction per face"},
 };
 const std::vector<StyleParam> kCrest = {
-    {"crest_spacing", 0.6, "mm", "distance between two crest strokes along a ridge"},
+    {"crest_spacing", 0.4, "mm", "distance between two crest strokes along a ridge"},
     {"crest_length", 1.2, "mm", "longest crest stroke on low ground"},
     {"crest_height_gain", 1.0, "ratio", "crest strokes grow by this fraction on the highest ground"},
 };
@@ -228,14 +228,19 @@ Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const F
             if (!std::isnan(local)) theta = local;
         }
         Curves out;
-        // Rough cells: cross strokes take up to half the cell's tone, denser when rougher.
         double cross_cover = 0;
         const double r0 = p.at("roughness_min"), r1 = std::max(p.at("roughness_max"), r0 + 1e-9);
         const double rough = f.roughness(c);
-        if (rough > r0) {
-            const double t = clamp01((rough - r0) / (r1 - r0)), wc = family_width_mm(Family::Cross) * mm;
-            double s = p.at("cross_spacing_max") - (p.at("cross_spacing_max") - p.at("cross_spacing_min")) * t;
-            s = std::max(s, wc * gap / (0.5 * target));
+        // Rough cells: cross strokes take up to half the cell's tone, denser when rougher;
+        // none where that half is too little ink to space them within cross_spacing_max
+        // (lone crosses on lit ground read as noise, not texture).
+        const double wc = family_width_mm(Family::Cross) * mm;
+        const double s_cross = std::max(
+            p.at("cross_spacing_max") -
+                (p.at("cross_spacing_max") - p.at("cross_spacing_min")) * clamp01((rough - r0) / (r1 - r0)),
+            wc * gap / (0.5 * target));
+        if (rough > r0 && s_cross <= p.at("cross_spacing_max")) {
+            const double s = s_cross;
             cross_cover = wc * gap / s;
             const double angle = theta + p.at("cross_angle");
             out = MapToEdges(JitterEdges("cross", angle, s, len, 0.5, gap),
