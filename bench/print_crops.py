@@ -48,7 +48,9 @@ def crop(exe, case, scale, style, size_mm, out_png, tmp):
     left = (cx - half - xmin) * px_per_ground
     top = (ymax - (cy + half)) * px_per_ground
     side = 2 * half * px_per_ground
-    im.crop((round(left), round(top), round(left + side), round(top + side))).convert("L").save(out_png, optimize=True)
+    # One bit per pixel, as a printer lays ink (rsvg-convert's anti-aliasing thresholded at half grey).
+    im = im.crop((round(left), round(top), round(left + side), round(top + side))).convert("L")
+    im.point(lambda v: 255 if v >= 128 else 0).convert("1").save(out_png, optimize=True)
     print(f"{out_png}: 1:{scale} {case}, {size_mm} mm square at {DPI} dpi")
 
 

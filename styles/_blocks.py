@@ -11,8 +11,8 @@ block of the same name does, so a script draws what the built-in style draws, bi
 from math import cos, isnan, sin
 
 from rockhatch.carto import Family, family_width_mm, ink_area, interior_point
-from rockhatch.tex import (CROP, CROP_ADD_BOUNDARY, KEEP_OUTSIDE, AlignToField, Arrangement, Centroid, Crop,
-                           GridPartition, HasLabel, IncidentEdges, JitterEdges, Labelled, LeftFace, Location,
+from rockhatch.tex import (CROP, CROP_ADD_BOUNDARY, KEEP_OUTSIDE, AlignToField, Arrangement, Centroid, Crop, Fallback,
+                           Field, GridPartition, HasLabel, IncidentEdges, JitterEdges, Labelled, LeftFace, Location,
                            LocationAt, MapToEdges, MapToFaces, MapToVertices, Nothing, Outline, Point, Polyline,
                            Random, Region, RightFace, Scale, SetEdgeLabels, StripesPartition, StripesProperties,
                            ToCurve, ToRegion, distance, dot, pi)
@@ -321,9 +321,10 @@ def toned_hatching(f, p, face, spent):
         # paper between neighbours whatever the tone asks.
         s = max(wf * gap / (target - cross_cover), wf + p["min_gap"])
         lines = Crop(noisy_lines("fill", theta, s, length, jitter, gap, slope, p["slope_min"]), CROP)
-        if follow:
-            lines = AlignToField(lines, fall_line)
-        out.append(lines(cell))
+        # Each stroke laid on the fall line at its middle (where the partition gave no
+        # orientation), else on the cell's direction: the jitter of the break points moves
+        # strokes, it does not tilt them (tilted, sparse strokes read as zigzags).
+        out.append(AlignToField(lines, Fallback(fall_line, theta) if follow else Field(theta))(cell))
         return out
 
     return MapToFaces(hatch_cell, grid)

@@ -250,10 +250,12 @@ Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const F
         // paper between neighbours whatever the tone asks.
         const double wf = family_width_mm(Family::Fill) * mm;
         const double s = std::max(wf * gap / (target - cross_cover), wf + p.at("min_gap"));
-        Arrangement lines =
+        const Arrangement lines =
             Crop(noisy_lines("fill", theta, s, len, p.at("jitter"), gap, f.slope, p.at("slope_min")), CROP);
-        if (follow) lines = AlignToField(lines, f.fall_line);
-        out.append(lines(cell));
+        // Each stroke laid on the fall line at its middle (where the partition gave no
+        // orientation), else on the cell's direction: the jitter of the break points moves
+        // strokes, it does not tilt them (tilted, sparse strokes read as zigzags).
+        out.append(AlignToField(lines, follow ? Fallback(f.fall_line, Field(theta)) : Field(theta))(cell));
         return out;
     };
     return MapToFaces(hatch_cell, grid);

@@ -73,7 +73,8 @@ double tone_coverage(const ParamValues& p, double shade);
 // shade at its centre, under the ceiling ink_max less the ink `spent` has in the cell
 // (crests, valleys), with at least min_gap between fill strokes; fill strokes run along the
 // fall line read at the cell's centre and are turned to the fall line at their middles
-// (AlignToField) when follow_fall_line > 0, else along the face's orientation.
+// (AlignToField) when follow_fall_line > 0, else along the face's orientation (and are
+// turned onto it: break-point jitter shifts strokes without tilting them).
 Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const FaceReading& face,
                            const tex::Curves& spent);
 
