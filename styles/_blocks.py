@@ -10,7 +10,7 @@ block of the same name does, so a script draws what the built-in style draws, bi
 """
 from math import cos, isnan, sin
 
-from rockhatch.carto import Family, family_width_mm, ink_area, interior_point
+from rockhatch.carto import Family, area_within, family_width_mm, ink_area, interior_point
 from rockhatch.tex import (CROP, CROP_ADD_BOUNDARY, KEEP_OUTSIDE, AlignToField, Arrangement, Centroid, Crop, Fallback,
                            Field, GridPartition, HasLabel, IncidentEdges, JitterEdges, Labelled, LeftFace, Location,
                            LocationAt, MapToEdges, MapToFaces, MapToVertices, Nothing, Outline, Point, Polyline,
@@ -270,10 +270,10 @@ def tone_coverage(p, shade):
     return p["tone_min"] + (p["tone_max"] - p["tone_min"]) * clamp01(shade) ** p["tone_gamma"]
 
 
-def toned_hatching(f, p, face, spent):
+def toned_hatching(f, p, face, region, spent):
     """Coarse jittered cells, each hatched so that its fill and cross ink follows the tone of
     the shade at its centre, under ink_max less the ink `spent` (crests, valleys) has in the
-    cell, with at least min_gap between fill strokes; strokes along the fall line when
+    cell over the cell's area inside the face `region`, with at least min_gap between fill strokes; strokes along the fall line when
     follow_fall_line > 0."""
     cs, theta0 = p["cell_spacing"], face.theta
     grid = MapToEdges(JitterEdges("grid", theta0, cs, cs, 0.5 * p["cell_jitter"]),
@@ -293,8 +293,9 @@ def toned_hatching(f, p, face, spent):
         shade = shade_f(c)
         if isnan(shade):
             shade = face.density
-        # The ceiling less what the crests and valleys already put in this cell.
-        area = box.area()
+        # The ceiling less what the crests and valleys already put in this cell (they run
+        # along the face's border, where cells reach out of the face: its part counts).
+        area = area_within(region, box)
         room = p["ink_max"] - (ink_area(spent, mm, box) / area if area > 0 else 0.0)
         target = min(tone_coverage(p, shade), room)
         if not target > 0:

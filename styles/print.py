@@ -68,7 +68,7 @@ def style(fields, params):
         face = read_face(fields, region)
         spent = Crop(crest_strokes(fields, params, face), CROP)(region)
         spent.append(valleys()(region))
-        out = Crop(toned_hatching(fields, params, face, spent), CROP)(region)
+        out = Crop(toned_hatching(fields, params, face, region, spent), CROP)(region)
         out.append(spent)
         return out
 

@@ -205,19 +205,20 @@ double tone_coverage(const ParamValues& p, double shade) {
 }
 
 Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const FaceReading& face,
-                           const Curves& spent) {
+                           const Region& region, const Curves& spent) {
     const double cs = p.at("cell_spacing");
     const Arrangement grid = MapToEdges(
         JitterEdges("grid", face.theta, cs, cs, 0.5 * p.at("cell_jitter")),
         GridPartition(stripes(face.theta, cs, "grid"), stripes(face.theta + pi / 2, cs, "grid"), KEEP_OUTSIDE));
-    auto hatch_cell = [f, p, face, spent](const Face& cell) {
+    auto hatch_cell = [f, p, face, region, spent](const Face& cell) {
         const double mm = p.at(kGroundPerMm), gap = p.at("gap"), len = p.at("length");
         const Region box = ToRegion(cell);
         const Point c = Centroid(cell);
         double shade = f.shade(c);
         if (std::isnan(shade)) shade = face.density;
-        // The ceiling less what the crests and valleys already put in this cell.
-        const double area = box.area();
+        // The ceiling less what the crests and valleys already put in this cell (they run
+        // along the face's border, where cells reach out of the face: its part counts).
+        const double area = area_within(region, box);
         const double room = p.at("ink_max") - (area > 0 ? ink_area(spent, mm, &box) / area : 0.0);
         const double target = std::min(tone_coverage(p, shade), room);
         if (!(target > 0)) return Nothing();

@@ -71,12 +71,12 @@ Arrangement crest_strokes(const ControlFields& f, const ParamValues& p, const Fa
 double tone_coverage(const ParamValues& p, double shade);
 // Coarse jittered cells, each hatched so that its fill and cross ink follows the tone of the
 // shade at its centre, under the ceiling ink_max less the ink `spent` has in the cell
-// (crests, valleys), with at least min_gap between fill strokes; fill strokes run along the
+// (crests, valleys) over the cell's area inside the face `region`, with at least min_gap between fill strokes; fill strokes run along the
 // fall line read at the cell's centre and are turned to the fall line at their middles
 // (AlignToField) when follow_fall_line > 0, else along the face's orientation (and are
 // turned onto it: break-point jitter shifts strokes without tilting them).
 Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const FaceReading& face,
-                           const tex::Curves& spent);
+                           const tex::Region& region, const tex::Curves& spent);
 
 // (f) the valleys the face owns (a valley between two faces is drawn once).
 Arrangement valleys();

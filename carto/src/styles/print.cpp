@@ -42,7 +42,7 @@ Builtin print() {
             const FaceReading face = read_face(f, r);
             tex::Curves spent = tex::Crop(crest_strokes(f, p, face), tex::CROP)(r);
             spent.append(valleys()(r));
-            tex::Curves out = tex::Crop(toned_hatching(f, p, face, spent), tex::CROP)(r);
+            tex::Curves out = tex::Crop(toned_hatching(f, p, face, r, spent), tex::CROP)(r);
             out.append(spent);
             return out;
         });
