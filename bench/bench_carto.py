@@ -26,7 +26,8 @@ from realdem import grid_partition  # noqa: E402  (shared with the tests)
 from partition_quality import precision_recall  # noqa: E402
 SAMPLE = ROOT / "data" / "sample_montblanc"
 SHARED_DEM = ROOT.parent / "shared" / "data" / "montblanc" / "Chamonix.tif"
-STYLES = ["noisy", "ridge-triangles", "density-cells", "fine-ridges", "balanced", "high-ridges", "bidirectional"]
+STYLES = ["noisy", "ridge-triangles", "density-cells", "fine-ridges", "balanced", "high-ridges", "bidirectional",
+          "print"]
 
 
 def timed(cmd):

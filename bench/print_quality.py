@@ -171,7 +171,8 @@ def main():
         with open(args.markdown, "w") as f:
             f.write("<!-- written by bench/print_quality.py -->\n# How the drawing reads in print\n\n"
                     "Measured by `/usr/bin/python3 bench/print_quality.py --markdown docs/print-quality.md` with the "
-                    "default style (bidirectional). Border along grid axes: share of face-border length running "
+                    "default style (print: issue 16's tone, fall line and crests; the figures of the thesis's "
+                    "final design, bidirectional, are in docs/print.md). Border along grid axes: share of face-border length running "
                     "exactly along an axis of the working CRS (raster stair steps). Ink: stroke length x stroke "
                     "width over face area, faces of 25 mm2 or more on paper. Ink vs shade: Spearman's rho over "
                     "100 m blocks at least half rock (number of blocks). Angle: median between fill strokes and "

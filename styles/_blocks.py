@@ -10,12 +10,12 @@ block of the same name does, so a script draws what the built-in style draws, bi
 """
 from math import cos, isnan, sin
 
-from rockhatch.carto import interior_point
-from rockhatch.tex import (CROP, CROP_ADD_BOUNDARY, KEEP_OUTSIDE, Arrangement, Centroid, Crop, GridPartition,
-                           HasLabel, IncidentEdges, JitterEdges, Labelled, LeftFace, Location, LocationAt,
-                           MapToEdges, MapToFaces, MapToVertices, Nothing, Outline, Point, Polyline, Random, Region,
-                           RightFace, Scale, SetEdgeLabels, StripesPartition, StripesProperties, ToCurve, ToRegion,
-                           distance, dot, pi)
+from rockhatch.carto import Family, area_within, family_width_mm, ink_area, interior_point
+from rockhatch.tex import (CROP, CROP_ADD_BOUNDARY, KEEP_OUTSIDE, AlignToField, Arrangement, Centroid, Crop, Fallback,
+                           Field, GridPartition, HasLabel, IncidentEdges, JitterEdges, Labelled, LeftFace, Location,
+                           LocationAt, MapToEdges, MapToFaces, MapToVertices, Nothing, Outline, Point, Polyline,
+                           Random, Region, RightFace, Scale, SetEdgeLabels, StripesPartition, StripesProperties,
+                           ToCurve, ToRegion, distance, dot, pi)
 
 # ---- Parameters (defaults follow App. E at 1:10000) ----
 
@@ -50,6 +50,22 @@ BALANCED = [
 ]
 HIGH = [
     ("peak_height_gain", 1.0, "ratio", "ridge shapes grow by this fraction on the highest ground"),
+]
+TONE = [
+    ("length", 1.5, "mm", "length of a hatch between two jittered break points"),
+    ("jitter", 0.5, "ratio", "jitter of the break points, as a fraction of spacing and length"),
+    ("slope_min", 0.0, "%", "no fill hatch where the slope is below this (percent; 0: everywhere)"),
+    ("tone_min", 0.05, "ratio", "ink coverage of fill and cross strokes on fully lit ground"),
+    ("tone_max", 0.36, "ratio", "ink coverage of fill and cross strokes in full shade"),
+    ("tone_gamma", 1.0, "ratio", "exponent of the tone curve (above 1: mid-tones lighter)"),
+    ("ink_max", 0.40, "ratio", "ceiling of the ink coverage of every cell, crests and valleys included"),
+    ("min_gap", 0.15, "mm", "least white paper between two neighbouring fill strokes"),
+    ("follow_fall_line", 1.0, "ratio", "1: strokes follow the local fall line; 0: one direction per face"),
+]
+CREST = [
+    ("crest_spacing", 0.4, "mm", "distance between two crest strokes along a ridge"),
+    ("crest_length", 1.2, "mm", "longest crest stroke on low ground"),
+    ("crest_height_gain", 1.0, "ratio", "crest strokes grow by this fraction on the highest ground"),
 ]
 CROSS = [
     ("roughness_min", 0.01, "ratio", "roughness (0..1) below which no cross hatching is drawn"),
@@ -175,6 +191,21 @@ def ridge_triangles(f, p, face):
                                                 stripes(face.theta + pi / 4, p["ridge_length"]), CROP_ADD_BOUNDARY))
 
 
+def ridge_foot(f, face, v):
+    """Whether the vertex v lies on a ridge on the darker side of it, and the edge that
+    leaves it into the face (None when there is none): where ridge shapes and crest
+    strokes hang from."""
+    dark, into = False, None
+    for e in IncidentEdges(v):
+        if HasLabel(e, "ridge"):
+            if not dark:
+                left = LeftFace(e)
+                dark = darker_across(f, face, e, left if left.is_bounded_face() else RightFace(e))
+        elif not HasLabel(e, "valley") and not HasLabel(e, "other"):
+            into = e
+    return dark, into
+
+
 def ridge_peaks(f, p, face, gain):
     """(d) Ridge shapes: triangles hanging from the dark ridges where stripes at theta meet
     them, filled with sub-scale hatching; `gain` grows them on high ground (f)."""
@@ -184,14 +215,7 @@ def ridge_peaks(f, p, face, gain):
     fill = stripes(theta, p["peak_fill"])
 
     def shape(v):
-        dark, into = False, None
-        for e in IncidentEdges(v):
-            if HasLabel(e, "ridge"):
-                if not dark:
-                    left = LeftFace(e)
-                    dark = darker_across(f, face, e, left if left.is_bounded_face() else RightFace(e))
-            elif not HasLabel(e, "valley") and not HasLabel(e, "other"):
-                into = e
+        dark, into = ridge_foot(f, face, v)
         if not dark or into is None:
             return Nothing()
         apex = Location(v)
@@ -206,6 +230,105 @@ def ridge_peaks(f, p, face, gain):
         return Labelled(StripesPartition(fill)(tri), "ridge")
 
     return MapToVertices(shape, StripesPartition(stripes(theta, p["peak_spacing"])))
+
+
+def crest_strokes(f, p, face):
+    """Crest strokes: where stripes at theta every crest_spacing meet a ridge on its darker
+    side, one stroke down the local fall line (read crest_length / 2 inside the face); their
+    upper ends line up on the crest, the lit side gets none (dark sides denser)."""
+    height, fall_line, theta = f.height, f.fall_line, face.theta
+    follow, crest_length, gain = p["follow_fall_line"] > 0, p["crest_length"], p["crest_height_gain"]
+
+    def stroke(v):
+        dark, into_edge = ridge_foot(f, face, v)
+        if not dark or into_edge is None:
+            return Nothing()
+        apex = Location(v)
+        into = LocationAt(into_edge, 0.5) - apex
+        reach = distance(LocationAt(into_edge, 0.5), apex)
+        if reach == 0:
+            return Nothing()
+        # The fall line on the crest itself averages two opposite slopes: read it a little
+        # down the face instead.
+        a = theta
+        if follow:
+            local = fall_line(apex + into * (min(reach, 0.5 * crest_length) / reach))
+            if not isnan(local):
+                a = local
+        d = unit(a) if dot(into, unit(a)) >= 0 else -unit(a)
+        h = height(apex)
+        if isnan(h):
+            h = face.height
+        length = crest_length * (1 + gain * clamp01(h)) * Random(v, 0.4, 1.0, 5)
+        return Labelled(Polyline([apex, apex + d * length]), "ridge")
+
+    return MapToVertices(stroke, StripesPartition(stripes(theta, p["crest_spacing"])))
+
+
+def tone_coverage(p, shade):
+    """The tone curve: ink coverage of fill and cross strokes for a shade in 0..1."""
+    return p["tone_min"] + (p["tone_max"] - p["tone_min"]) * clamp01(shade) ** p["tone_gamma"]
+
+
+def toned_hatching(f, p, face, region, spent):
+    """Coarse jittered cells, each hatched so that its fill and cross ink follows the tone of
+    the shade at its centre, under ink_max less the ink `spent` (crests, valleys) has in the
+    cell over the cell's area inside the face `region`, with at least min_gap between fill strokes; strokes along the fall line when
+    follow_fall_line > 0."""
+    cs, theta0 = p["cell_spacing"], face.theta
+    grid = MapToEdges(JitterEdges("grid", theta0, cs, cs, 0.5 * p["cell_jitter"]),
+                      GridPartition(stripes(theta0, cs, "grid"), stripes(theta0 + pi / 2, cs, "grid"), KEEP_OUTSIDE))
+    mm, gap, length, jitter = p["ground_per_mm"], p["gap"], p["length"], p["jitter"]
+    shade_f, fall_line, roughness, slope = f.shade, f.fall_line, f.roughness, f.slope
+    follow = p["follow_fall_line"] > 0
+    r0 = p["roughness_min"]
+    r1 = max(p["roughness_max"], r0 + 1e-9)
+    s_min, s_max = p["cross_spacing_min"], p["cross_spacing_max"]
+    wc = family_width_mm(Family.CROSS) * mm
+    wf = family_width_mm(Family.FILL) * mm
+
+    def hatch_cell(cell):
+        box = ToRegion(cell)
+        c = Centroid(cell)
+        shade = shade_f(c)
+        if isnan(shade):
+            shade = face.density
+        # The ceiling less what the crests and valleys already put in this cell (they run
+        # along the face's border, where cells reach out of the face: its part counts).
+        area = area_within(region, box)
+        room = p["ink_max"] - (ink_area(spent, mm, box) / area if area > 0 else 0.0)
+        target = min(tone_coverage(p, shade), room)
+        if not target > 0:
+            return Nothing()
+        theta = theta0
+        if follow:
+            local = fall_line(c)
+            if not isnan(local):
+                theta = local
+        out = Nothing()
+        cross_cover = 0
+        rough = roughness(c)
+        # Rough cells: cross strokes take up to half the cell's tone, denser when rougher;
+        # none where that half is too little ink to space them within cross_spacing_max
+        # (lone crosses on lit ground read as noise, not texture).
+        s_cross = max(s_max - (s_max - s_min) * clamp01((rough - r0) / (r1 - r0)), wc * gap / (0.5 * target))
+        if rough > r0 and s_cross <= s_max:
+            s = s_cross
+            cross_cover = wc * gap / s
+            angle = theta + p["cross_angle"]
+            out = MapToEdges(JitterEdges("cross", angle, s, length, 0.5, gap),
+                             StripesPartition(stripes(angle, s, "cross"), CROP))(cell)
+        # Fill strokes of width w every s cover w x gap / s of the cell; min_gap keeps white
+        # paper between neighbours whatever the tone asks.
+        s = max(wf * gap / (target - cross_cover), wf + p["min_gap"])
+        lines = Crop(noisy_lines("fill", theta, s, length, jitter, gap, slope, p["slope_min"]), CROP)
+        # Each stroke laid on the fall line at its middle (where the partition gave no
+        # orientation), else on the cell's direction: the jitter of the break points moves
+        # strokes, it does not tilt them (tilted, sparse strokes read as zigzags).
+        out.append(AlignToField(lines, Fallback(fall_line, theta) if follow else Field(theta))(cell))
+        return out
+
+    return MapToFaces(hatch_cell, grid)
 
 
 def _owned_valley(e):

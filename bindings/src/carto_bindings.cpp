@@ -194,11 +194,13 @@ void bind_carto(py::module_& m) {
 
     py::class_<ControlFields>(m, "ControlFields", "The control fields a style is applied to")
         .def(py::init([](const py::object& o, const py::object& d, const py::object& h, const py::object& r,
-                         const py::object& sl) {
-                 return ControlFields{to_field(o), to_field(d), to_field(h), to_field(r), to_field(sl)};
+                         const py::object& sl, const py::object& fl, const py::object& sh) {
+                 return ControlFields{to_field(o),  to_field(d), to_field(h), to_field(r),
+                                      to_field(sl), to_field(fl), to_field(sh)};
              }),
              py::arg("orientation"), py::arg("density"), py::arg("height"), py::arg("roughness"),
-             py::arg("slope") = py::float_(std::nan("")))
+             py::arg("slope") = py::float_(std::nan("")), py::arg("fall_line") = py::float_(std::nan("")),
+             py::arg("shade") = py::float_(std::nan("")))
         .def_property(
             "orientation", [](const ControlFields& c) { return c.orientation; },
             [](ControlFields& c, const py::object& o) { c.orientation = to_field(o); }, "hatch direction (radians)")
@@ -213,7 +215,15 @@ void bind_carto(py::module_& m) {
             [](ControlFields& c, const py::object& o) { c.roughness = to_field(o); }, "0..1")
         .def_property(
             "slope", [](const ControlFields& c) { return c.slope; },
-            [](ControlFields& c, const py::object& o) { c.slope = to_field(o); }, "percent");
+            [](ControlFields& c, const py::object& o) { c.slope = to_field(o); }, "percent")
+        .def_property(
+            "fall_line", [](const ControlFields& c) { return c.fall_line; },
+            [](ControlFields& c, const py::object& o) { c.fall_line = to_field(o); },
+            "the fall line smoothed at map scale (radians, axial); NaN where the partition gives the orientation")
+        .def_property(
+            "shade", [](const ControlFields& c) { return c.shade; },
+            [](ControlFields& c, const py::object& o) { c.shade = to_field(o); },
+            "1 - hillshade smoothed at map scale (0 lit, 1 in shade)");
 
     // ---- Partition ----
     py::enum_<LineKind>(m, "LineKind")
@@ -302,6 +312,16 @@ void bind_carto(py::module_& m) {
             },
             py::arg("lines"), py::arg("family"), "appends every line as an open hatch (the lines are moved)");
 
+    m.def(
+        "ink_area",
+        [](const tex::Curves& c, double ground_per_mm, const std::optional<tex::Region>& within) {
+            return ink_area(c, ground_per_mm, within ? &*within : nullptr);
+        },
+        py::arg("curves"), py::arg("ground_per_mm"), py::arg("within") = py::none(),
+        "ink on the ground: length x family stroke width (mm x ground_per_mm) of the curves, or of their segments "
+        "whose middle lies in `within`");
+    m.def("area_within", &area_within, py::arg("face"), py::arg("cell"),
+          "area of the face (less its holes) inside the cell, whose outer ring is taken as convex");
     m.def("hatches_from_curves", &hatches_from_curves, py::arg("curves"),
           "libtex curves (an evaluated style) as hatches, their family read from their labels");
 
@@ -322,11 +342,11 @@ void bind_carto(py::module_& m) {
         .def_readonly("figure", &StyleInfo::figure)
         .def_readonly("title", &StyleInfo::title)
         .def_readonly("params", &StyleInfo::params);
-    m.def("styles", &styles, "the built-in styles, Fig. 5.4 (a) to (g)");
+    m.def("styles", &styles, "the built-in styles: Fig. 5.4 (a) to (g), then print (the default)");
     m.def("default_style", &default_style);
     m.def("find_style", &find_style, py::arg("name"));
     m.def("resolve_params", &resolve_params, py::arg("style"), py::arg("overrides"), py::arg("scale"),
-          "parameters in ground units ('mm' x scale / 1000, 'deg' to radians)");
+          "parameters in ground units ('mm' x scale / 1000, 'deg' to radians), plus ground_per_mm");
     m.def(
         "hatch_face",
         [](const Style& s, const ParamValues& p, const ControlFields& f, const Partition& part, std::size_t face,

@@ -223,6 +223,9 @@ void bind_fields(py::module_& m) {
              py::arg("source"))
         .def("__call__", [](const VectorField& v, const Point& p) { return v(p); }, py::arg("p"))
         .def("__call__", [](const VectorField& v, double x, double y) { return v({x, y}); }, py::arg("x"), py::arg("y"));
+    m.def("AlignToField", &AlignToField, py::arg("a"), py::arg("angle"),
+          "each open curve of the arrangement turned about its middle onto the axis the angle field (radians) "
+          "gives there");
     m.def("Angle", &Angle, py::arg("v"), "atan2 of the vectors");
     m.def("Norm", &Norm, py::arg("v"), "length of the vectors");
     m.def("Gradient", [](const py::object& f, double h) { return Gradient(to_field(f), h); }, py::arg("f"),

@@ -55,7 +55,7 @@ std::vector<Option> options(CommandLine& cl) {
          [&](const std::string& v) { o.slope = v; }},
         {"--roughness", "PATH", "roughness raster in 0..1 (default: computed from the DEM)",
          [&](const std::string& v) { o.roughness = v; }},
-        {"--style", "NAME", "hatching style (see --list-styles; default: the final design, bidirectional)",
+        {"--style", "NAME", "hatching style (see --list-styles; default: print, the tone, fall-line and crest design after (g))",
          [&](const std::string& v) { o.style = v; }},
         {"--script", "PATH", "a Python style script (see styles/); its parameters are set with --param",
          [&](const std::string& v) { cl.script = o.style_file = v; }},

@@ -39,32 +39,9 @@ void step(const Progress& p, double f, const std::string& stage) {
     if (p && !p(f, stage)) throw Error(Code::Cancelled, "cancelled during " + stage);
 }
 
-// NoData-aware mean over the (2 radius + 1)^2 window (NaN where the centre is NoData), by
-// running sums along rows then columns.
+// NoData-aware window mean (carto/fields.hpp) on the extraction's grid.
 std::vector<float> box_mean(const Grid& g, const std::vector<float>& v, int radius) {
-    std::vector<double> sum(g.size(), 0.0), cnt(g.size(), 0.0);
-    for (int r = 0; r < g.h; ++r)
-        for (int c = 0; c < g.w; ++c) {
-            double s = 0, n = 0;
-            for (int k = std::max(0, c - radius); k <= std::min(g.w - 1, c + radius); ++k) {
-                const float x = v[g.at(k, r)];
-                if (!std::isnan(x)) s += x, n += 1;
-            }
-            sum[g.at(c, r)] = s;
-            cnt[g.at(c, r)] = n;
-        }
-    std::vector<float> out(g.size(), NAN);
-    for (int r = 0; r < g.h; ++r)
-        for (int c = 0; c < g.w; ++c) {
-            if (std::isnan(v[g.at(c, r)])) continue;
-            double s = 0, n = 0;
-            for (int k = std::max(0, r - radius); k <= std::min(g.h - 1, r + radius); ++k) {
-                s += sum[g.at(c, k)];
-                n += cnt[g.at(c, k)];
-            }
-            out[g.at(c, r)] = float(s / n);
-        }
-    return out;
+    return carto::box_mean(v, g.w, g.h, radius);
 }
 
 // Connected components of the cells where on[i] is true (4- or 8-connected), numbered from 0

@@ -131,6 +131,62 @@ Raster local_relief(const Raster& dem, double radius) {
     return out;
 }
 
+std::vector<float> box_mean(const std::vector<float>& v, int width, int height, int radius) {
+    const auto at = [width](int c, int r) { return std::size_t(r) * std::size_t(width) + std::size_t(c); };
+    std::vector<double> sum(v.size(), 0.0), cnt(v.size(), 0.0);
+    for (int r = 0; r < height; ++r)
+        for (int c = 0; c < width; ++c) {
+            double s = 0, n = 0;
+            for (int k = std::max(0, c - radius); k <= std::min(width - 1, c + radius); ++k) {
+                const float x = v[at(k, r)];
+                if (!std::isnan(x)) s += x, n += 1;
+            }
+            sum[at(c, r)] = s;
+            cnt[at(c, r)] = n;
+        }
+    std::vector<float> out(v.size(), NAN);
+    for (int r = 0; r < height; ++r)
+        for (int c = 0; c < width; ++c) {
+            if (std::isnan(v[at(c, r)])) continue;
+            double s = 0, n = 0;
+            for (int k = std::max(0, r - radius); k <= std::min(height - 1, r + radius); ++k) {
+                s += sum[at(c, k)];
+                n += cnt[at(c, k)];
+            }
+            out[at(c, r)] = float(s / n);
+        }
+    return out;
+}
+
+namespace {
+// The window of a ground radius, in cells (at least one).
+int radius_cells(const Raster& r, double radius) {
+    return std::max(1, int(std::lround(radius / std::max(r.cell_x(), r.cell_y()))));
+}
+}  // namespace
+
+Field fall_line_field(const Terrain& t, double radius) {
+    const int k = radius_cells(t.slope, radius);
+    std::vector<float> gx(t.slope.data.size(), NAN), gy(t.slope.data.size(), NAN);
+    for (std::size_t i = 0; i < gx.size(); ++i) {
+        const float s = t.slope.data[i], a = t.aspect.data[i];
+        if (std::isnan(s)) continue;
+        gx[i] = std::isnan(a) ? 0.0f : float(s * std::cos(a));  // flat cells pull towards no direction
+        gy[i] = std::isnan(a) ? 0.0f : float(s * std::sin(a));
+    }
+    auto x = std::make_shared<Raster>(t.slope), y = std::make_shared<Raster>(t.slope);
+    x->data = box_mean(gx, t.slope.width, t.slope.height, k);
+    y->data = box_mean(gy, t.slope.width, t.slope.height, k);
+    return tex::Combine(raster_field(std::shared_ptr<const Raster>(x)), raster_field(std::shared_ptr<const Raster>(y)),
+                        [](double vx, double vy) { return vx == 0 && vy == 0 ? NAN : std::atan2(vy, vx); });
+}
+
+Field shade_field(const Terrain& t, double radius) {
+    auto s = std::make_shared<Raster>(t.hillshade);
+    s->data = box_mean(t.hillshade.data, t.hillshade.width, t.hillshade.height, radius_cells(t.hillshade, radius));
+    return raster_field(std::shared_ptr<const Raster>(s), 1.0, -1.0);  // (h - 1) / -1 = 1 - h
+}
+
 namespace {
 
 // Sample points inside a face (a lattice of about 400 points, no finer than the cells).

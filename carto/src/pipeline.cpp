@@ -162,6 +162,8 @@ Prepared prepare(const Options& o, const Progress& progress) {
         throw Error(Code::NoOverlap, "--partition '" + o.partition.path + "' does not overlap --dem '" + o.dem + "'");
 
     // Resolve orientation and density of every face (neighbours need them too).
+    // An extracted partition's orientations are its faces' mean fall lines (derived, not given).
+    for (const auto& f : p.partition.faces) p.orientation_derived.push_back(o.partition.path == "auto" || !f.orientation);
     const auto [derived_o, derived_d] = derive_face_controls(p.partition, p.terrain);
     if (derived_o)
         p.notes.push_back("orientation of " + std::to_string(derived_o) + " face(s) derived from the terrain (mean fall line)");
@@ -196,9 +198,20 @@ Drawing hatch(const Prepared& p, const Options& o, const std::vector<int>& selec
         orient.push_back(*f.orientation);
         dens.push_back(*f.density);
     }
-    const ControlFields fields{face_field(part, std::move(orient)), face_field(part, std::move(dens)),
-                               raster_field(p.relief), raster_field(p.terrain.roughness),
-                               raster_field(p.terrain.slope)};
+    // The local fall line, smoothed at map scale, where the partition gave no orientation.
+    std::vector<double> follows;
+    for (std::size_t i = 0; i < part.faces.size(); ++i)
+        follows.push_back(i < p.orientation_derived.size() && p.orientation_derived[i] ? 1.0 : NAN);
+    const double smoothing = kFieldSmoothingMm * o.scale / 1000.0;
+    const Field fall_line = tex::Combine(face_field(part, std::move(follows)), fall_line_field(p.terrain, smoothing),
+                                         [](double, double angle) { return angle; });
+    const ControlFields fields{face_field(part, std::move(orient)),
+                               face_field(part, std::move(dens)),
+                               raster_field(p.relief),
+                               raster_field(p.terrain.roughness),
+                               raster_field(p.terrain.slope),
+                               fall_line,
+                               shade_field(p.terrain, smoothing)};
     // The run's thread count, on this thread only: the process's (tex::SetThreads) is left
     // as it was, and the next call does not inherit this one's.
     const tex::ThreadsScope threads(o.threads);

@@ -18,6 +18,7 @@ const std::vector<blocks::Builtin>& builtins() {
     static const std::vector<blocks::Builtin> all = {
         blocks::noisy(),       blocks::ridge_triangles_style(), blocks::density_cells(), blocks::fine_ridges(),
         blocks::balanced(),    blocks::high_ridges(),           blocks::bidirectional(),
+        blocks::print(),
     };
     return all;
 }
@@ -66,7 +67,7 @@ const StyleInfo& find_style(const std::string& name) {
 Style builtin_style(const std::string& name) {
     const StyleInfo& info = find_style(name);
     for (const auto& b : builtins())
-        if (b.info.name == info.name) return {b.info, blocks::per_face(b.body, b.valleys)};
+        if (b.info.name == info.name) return {b.info, b.program ? b.program : blocks::per_face(b.body, b.valleys)};
     throw Error(Code::UnknownStyle, "--style: unknown style '" + name + "'");
 }
 
@@ -99,6 +100,7 @@ ParamValues resolve_params(const StyleInfo& s, const std::map<std::string, doubl
         }
         out[p.name] = ground;
     }
+    out[kGroundPerMm] = scale / 1000.0;
     return out;
 }
 
@@ -159,17 +161,74 @@ tex::Region face_region(const Partition& p, std::size_t face) {
 std::vector<Hatch> hatches_from_curves(const tex::Curves& c) {
     std::vector<Hatch> out;
     out.reserve(c.curves.size());
-    const tex::LabelId ridge = tex::intern_label("ridge"), valley = tex::intern_label("valley"),
-                       cross = tex::intern_label("cross");
     for (const auto& cv : c.curves) {
         if (cv.points.size() < 2) continue;
-        Hatch h{cv.points, cv.closed, Family::Fill};
-        if (cv.labels.has(valley)) h.family = Family::Valley;
-        else if (cv.labels.has(ridge)) h.family = Family::Ridge;
-        else if (cv.labels.has(cross)) h.family = Family::Cross;
-        out.push_back(std::move(h));
+        out.push_back(Hatch{cv.points, cv.closed, family_of(cv.labels)});
     }
     return out;
+}
+
+Family family_of(const tex::Labels& labels) {
+    static const tex::LabelId ridge = tex::intern_label("ridge"), valley = tex::intern_label("valley"),
+                              cross = tex::intern_label("cross");
+    if (labels.has(valley)) return Family::Valley;
+    if (labels.has(ridge)) return Family::Ridge;
+    if (labels.has(cross)) return Family::Cross;
+    return Family::Fill;
+}
+
+double ink_area(const tex::Curves& c, double ground_per_mm, const tex::Region* within) {
+    double ink = 0;
+    for (const auto& cv : c.curves) {
+        const std::size_t n = cv.points.size();
+        if (n < 2) continue;
+        const double width = family_width_mm(family_of(cv.labels)) * ground_per_mm;
+        for (std::size_t i = 0; i + 1 < n + (cv.closed ? 1 : 0); ++i) {
+            const Point& a = cv.points[i];
+            const Point& b = cv.points[(i + 1) % n];
+            if (within && !within->contains((a + b) * 0.5)) continue;
+            ink += tex::distance(a, b) * width;
+        }
+    }
+    return ink;
+}
+
+namespace {
+
+double ring_area(const std::vector<Point>& ring) {
+    double a = 0;
+    for (std::size_t i = 0, n = ring.size(); i < n; ++i) a += tex::cross(ring[i], ring[(i + 1) % n]);
+    return a / 2;
+}
+
+// The ring clipped by the convex polygon `clip` (Sutherland-Hodgman); its area is exact for a
+// ring of any shape, though the result may run along the clip's edges more than once.
+std::vector<Point> clip_ring(std::vector<Point> ring, const std::vector<Point>& clip) {
+    const double side = ring_area(clip) >= 0 ? 1.0 : -1.0;
+    for (std::size_t i = 0, n = clip.size(); i < n && !ring.empty(); ++i) {
+        const Point a = clip[i], b = clip[(i + 1) % n];
+        auto inside = [&](const Point& q) { return side * tex::cross(b - a, q - a) >= 0; };
+        std::vector<Point> out;
+        for (std::size_t k = 0, m = ring.size(); k < m; ++k) {
+            const Point p = ring[k], q = ring[(k + 1) % m];
+            const bool pin = inside(p), qin = inside(q);
+            if (pin) out.push_back(p);
+            if (pin != qin) {
+                const double dp = tex::cross(b - a, p - a), dq = tex::cross(b - a, q - a);
+                out.push_back(p + (q - p) * (dp / (dp - dq)));
+            }
+        }
+        ring = std::move(out);
+    }
+    return ring;
+}
+
+}  // namespace
+
+double area_within(const tex::Region& face, const tex::Region& cell) {
+    double a = std::abs(ring_area(clip_ring(face.outer(), cell.outer())));
+    for (const auto& h : face.holes()) a -= std::abs(ring_area(clip_ring(h, cell.outer())));
+    return std::max(a, 0.0);
 }
 
 std::vector<Hatch> hatch_face(const tex::Arrangement& style, const Partition& p, std::size_t face,

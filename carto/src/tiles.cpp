@@ -71,7 +71,9 @@ double tile_context_margin(const Options& o, double cell) {
 }
 
 int tile_halo_cells(const Options& o, double cell) {
-    return int(std::ceil(o.relief_radius / cell)) + kKernelCells;
+    // The relief window, or the style's reach when longer (its smoothed fields, such as the
+    // fall line and the shade, average over a paper length shorter than that reach).
+    return int(std::ceil(std::max(o.relief_radius, tile_context_margin(o, cell)) / cell)) + kKernelCells;
 }
 
 TileReport run_tile(const Options& o, const tex::BBox& tile, const std::string& out) {

@@ -402,6 +402,29 @@ Field Norm(VectorField v) {
     return of_vector(std::move(v), [](const Point& q) { return std::hypot(q.x, q.y); });
 }
 
+Arrangement AlignToField(Arrangement a, Field angle) {
+    return Arrangement([a = std::move(a), angle = std::move(angle)](const Region& r) {
+        Curves c = a(r);
+        for (Curve& cv : c.curves) {
+            if (cv.closed || cv.points.size() < 2) continue;
+            const Point p0 = cv.points.front(), p1 = cv.points.back();
+            const Point d = p1 - p0;
+            if (std::hypot(d.x, d.y) < 1e-12) continue;
+            const Point mid = (p0 + p1) * 0.5;
+            const double want = angle(mid);
+            if (std::isnan(want)) continue;
+            // Turn by the smallest angle that lays the curve on the axis `want`.
+            double turn = std::remainder(want - std::atan2(d.y, d.x), M_PI);
+            const double cs = std::cos(turn), sn = std::sin(turn);
+            for (Point& q : cv.points) {
+                const Point v = q - mid;
+                q = mid + Point{cs * v.x - sn * v.y, sn * v.x + cs * v.y};
+            }
+        }
+        return c;
+    });
+}
+
 VectorField Gradient(Field f, double h) {
     if (!(h > 0) || !std::isfinite(h)) throw Error("Gradient", "the step must be positive");
     return VectorField(std::make_shared<GradientImpl>(std::move(f), h));

@@ -105,7 +105,7 @@ TEST(Pipeline, SampleHasLabelledBorders) {
 }
 
 TEST(Pipeline, NoHatchCrossesARidgeOrValleyOfItsFace) {
-    for (const char* style : {"noisy", "bidirectional"}) {
+    for (const char* style : {"noisy", "bidirectional", "print"}) {
         const Drawing d = hatch(sample(), sample_options(style));
         const Partition& p = sample().partition;
         std::size_t checked = 0;
@@ -129,7 +129,7 @@ TEST(Pipeline, NoHatchCrossesARidgeOrValleyOfItsFace) {
 // Regression: the fine hatching of ridge shapes was clipped to the shape's triangle only,
 // so it could spill out of the face where the face is narrower than the triangle.
 TEST(Pipeline, EveryHatchStaysInsideItsFace) {
-    for (const char* style : {"ridge-triangles", "fine-ridges", "bidirectional"}) {
+    for (const char* style : {"ridge-triangles", "fine-ridges", "bidirectional", "print"}) {
         const Drawing d = hatch(sample(), sample_options(style));
         const Partition& p = sample().partition;
         std::size_t checked = 0;
@@ -196,7 +196,11 @@ TEST(Pipeline, HatchDirectionsFollowTheOrientationField) {
     EXPECT_LT(all[all.size() / 2], 5.0);
 }
 
-TEST(Pipeline, ChangingAFieldInAWindowChangesOnlyNearby) {
+// The properties every kind of style keeps: the thesis's final iteration (g) and print.
+class EveryStyleKind : public ::testing::TestWithParam<const char*> {};
+INSTANTIATE_TEST_SUITE_P(Pipeline, EveryStyleKind, ::testing::Values("bidirectional", "print"));
+
+TEST_P(EveryStyleKind, ChangingAFieldInAWindowChangesOnlyNearby) {
     Prepared changed = sample();
     // Make the terrain very rough in a 150 m box.
     const tex::BBox win{1004300, 6540100, 1004450, 6540250};
@@ -204,7 +208,7 @@ TEST(Pipeline, ChangingAFieldInAWindowChangesOnlyNearby) {
     for (int y = 0; y < r.height; ++y)
         for (int x = 0; x < r.width; ++x)
             if (win.contains(r.to_world(x + 0.5, y + 0.5))) r.at(x, y) = 0.5f;
-    const Options o = sample_options("bidirectional");
+    const Options o = sample_options(GetParam());
     const Drawing before = hatch(sample(), o), after = hatch(changed, o);
     ASSERT_EQ(before.faces.size(), after.faces.size());
     int changed_faces = 0;
@@ -240,8 +244,8 @@ TEST(Pipeline, EditingElevationInAWindowChangesOnlyNearby) {
     const std::string edited_dem =
         (std::filesystem::temp_directory_path() / ("rh_edited_dem_" + std::to_string(::getpid()) + ".tif")).string();
     write_geotiff(dem, edited_dem);
-    auto changed_faces = [&](double radius) {  // faces whose hatches changed
-        Options o = sample_options("high-ridges");
+    auto changed_faces = [&](double radius, const char* style) {  // faces whose hatches changed
+        Options o = sample_options(style);
         o.relief_radius = radius;
         Options e = o;
         e.dem = edited_dem;
@@ -265,8 +269,10 @@ TEST(Pipeline, EditingElevationInAWindowChangesOnlyNearby) {
         }
         return n;
     };
-    EXPECT_GT(changed_faces(150), 0);
-    EXPECT_GT(changed_faces(400), 0);
+    EXPECT_GT(changed_faces(150, "high-ridges"), 0);
+    EXPECT_GT(changed_faces(400, "high-ridges"), 0);
+    // print also reads the fall line and the shade, averaged over 1 mm on paper (10 m).
+    EXPECT_GT(changed_faces(150, "print"), 0);
     std::filesystem::remove(edited_dem);
 }
 
@@ -295,8 +301,8 @@ TEST(Pipeline, AnErrorInAStyleNamesTheStyleTheFaceAndTheValue) {
     }
 }
 
-TEST(Pipeline, TwoHalvesGiveTheSameHatchesAsTheWhole) {
-    Options o = sample_options("bidirectional");
+TEST_P(EveryStyleKind, TwoHalvesGiveTheSameHatchesAsTheWhole) {
+    Options o = sample_options(GetParam());
     const Drawing whole = hatch(sample(), o);
     const tex::BBox b = sample().partition.bounds();
     // Split in the middle, and exactly through the anchor of one face: that face goes to the
@@ -330,8 +336,8 @@ TEST(Pipeline, TwoHalvesGiveTheSameHatchesAsTheWhole) {
     }
 }
 
-TEST(Pipeline, SameHatchesWithOneOrTwoThreads) {
-    Options o = sample_options("bidirectional");
+TEST_P(EveryStyleKind, SameHatchesWithOneOrTwoThreads) {
+    Options o = sample_options(GetParam());
     o.threads = 1;
     const Drawing one = hatch(sample(), o);
     o.threads = 2;
@@ -400,9 +406,153 @@ TEST(Pipeline, RidgeShapesFallIntoTheDarkerFace) {
     EXPECT_GT(with_triangles, 3);
 }
 
+// Ink per face as a printer lays it: stroke length x the family's width on the ground over
+// the face's area, for faces of at least 25 mm2 on paper (smaller ones are specks of tone).
+std::vector<std::pair<const RockFace*, double>> ink_per_face(const Drawing& d, const Partition& p, double scale) {
+    std::vector<std::pair<const RockFace*, double>> out;
+    const double mm = scale / 1000.0;
+    for (const auto& fh : d.faces) {
+        const RockFace& f = face_by_id(p, fh.face_id);
+        const double area = f.region.area();
+        if (area < 25 * mm * mm) continue;
+        double ink = 0;
+        for (const auto& h : fh.hatches)
+            for (std::size_t i = 0, n = h.points.size(); i + 1 < n + (h.closed ? 1 : 0); ++i)
+                ink += tex::distance(h.points[i], h.points[(i + 1) % n]) * family_width_mm(h.family) * mm;
+        out.push_back({&f, ink / area});
+    }
+    return out;
+}
+
+// The tone of print: no face above the ceiling at any scale, darker faces darker.
+TEST(Pipeline, PrintInkStaysUnderTheCeilingAtEveryScale) {
+    for (const double scale : {10000.0, 25000.0, 50000.0}) {
+        SCOPED_TRACE(scale);
+        Options o = sample_options("print");
+        o.scale = scale;
+        const auto ink = ink_per_face(hatch(sample(), o), sample().partition, scale);
+        ASSERT_GT(ink.size(), 5u);
+        std::vector<double> measured, wanted;
+        double darkest = 0;
+        for (const auto& [f, cover] : ink) {
+            EXPECT_LT(cover, 0.45) << "face " << f->id;
+            darkest = std::max(darkest, cover);
+            measured.push_back(cover);
+            wanted.push_back(*f->density);  // 1 - mean hillshade
+        }
+        EXPECT_GT(darkest, 0.2);  // a tone, not an empty drawing
+        EXPECT_GE(spearman(measured, wanted), 0.8);
+    }
+    // The ceiling is a parameter: lowered, it holds too.
+    Options o = sample_options("print");
+    o.params = {{"ink_max", 0.2}};
+    for (const auto& [f, cover] : ink_per_face(hatch(sample(), o), sample().partition, o.scale))
+        EXPECT_LT(cover, 0.22) << "face " << f->id;
+}
+
+namespace {
+// Median angle (degrees) between the fill strokes and the axis `want` gives at their middle.
+template <class Want>
+double median_fill_angle(const Drawing& d, Want want) {
+    std::vector<double> e;
+    for (const auto& fh : d.faces)
+        for (const auto& h : fh.hatches) {
+            if (h.family != Family::Fill) continue;
+            const Point a = h.points.front(), b = h.points.back();
+            const double w = want(fh.face_id, (a + b) / 2);
+            if (tex::distance(a, b) < 1e-6 || std::isnan(w)) continue;
+            const double x = std::fmod(std::abs(std::atan2(b.y - a.y, b.x - a.x) - w), M_PI);
+            e.push_back(std::min(x, M_PI - x) * 180 / M_PI);
+        }
+    if (e.size() < 1000) return NAN;
+    std::nth_element(e.begin(), e.begin() + e.size() / 2, e.end());
+    return e[e.size() / 2];
+}
+}  // namespace
+
+// Where the partition gives no orientation, print's strokes follow the local fall line
+// (better than one direction per face); where it gives one, they keep it.
+TEST(Pipeline, PrintStrokesFollowTheFallLineWhereNoOrientationIsGiven) {
+    Prepared derived = sample();
+    derived.orientation_derived.assign(derived.partition.faces.size(), true);
+    const Raster& aspect = derived.terrain.aspect;
+    auto fall_line = [&](std::int64_t, const Point& q) { return aspect.sample(q); };
+    Options o = sample_options("print");
+    const double follow = median_fill_angle(hatch(derived, o), fall_line);
+    o.params = {{"follow_fall_line", 0}};
+    const double per_face = median_fill_angle(hatch(derived, o), fall_line);
+    EXPECT_LT(follow, 12.0);
+    EXPECT_LT(follow, per_face - 1.0);
+    // Given orientations are kept (the sample's partition gives one per face).
+    auto given = [&](std::int64_t id, const Point&) { return *face_by_id(sample().partition, id).orientation; };
+    EXPECT_LT(median_fill_angle(hatch(sample(), sample_options("print")), given), 5.0);
+}
+
+// Crest strokes start on a ridge of their face, on its darker side, and run into the face.
+TEST(Pipeline, PrintCrestStrokesHangFromTheDarkSideOfRidges) {
+    const Drawing d = hatch(sample(), sample_options("print"));
+    const Partition& p = sample().partition;
+    int faces_with_crests = 0;
+    std::size_t strokes = 0;
+    for (const auto& fh : d.faces) {
+        const RockFace& f = face_by_id(p, fh.face_id);
+        bool any = false;
+        for (const auto& h : fh.hatches) {
+            if (h.family != Family::Ridge) continue;
+            any = true;
+            ++strokes;
+            double to_ridge = 1e300;
+            for (const auto& s : f.boundary) {
+                if (s.kind != LineKind::Ridge) continue;
+                const Point e = s.b - s.a;
+                const double t = std::clamp(tex::dot(h.points.front() - s.a, e) / tex::dot(e, e), 0.0, 1.0);
+                to_ridge = std::min(to_ridge, tex::distance(h.points.front(), s.a + e * t));
+            }
+            EXPECT_LT(to_ridge, 0.01) << "face " << f.id;
+        }
+        if (!any) continue;
+        ++faces_with_crests;
+        bool darker = false;
+        for (const auto& s : f.boundary)
+            if (s.kind == LineKind::Ridge && (s.neighbor < 0 || *f.density > *p.faces[s.neighbor].density)) darker = true;
+        EXPECT_TRUE(darker) << "face " << f.id;
+    }
+    EXPECT_GT(faces_with_crests, 3);
+    EXPECT_GT(strokes, 100u);
+}
+
+// The tone budget divides a cell's ink by the cell's area inside the face: a face with a
+// hole, a concave notch, and a cell reaching out of it.
+TEST(Pipeline, AreaWithinCountsOnlyThePartOfTheFaceInTheCell) {
+    // A 10 x 10 square less a 2 x 2 hole at (1..3, 1..3), with a notch (4..6 x 8..10) cut from
+    // its top edge: area 100 - 4 - 4 = 92.
+    const tex::Region face({{0, 0}, {10, 0}, {10, 10}, {6, 10}, {6, 8}, {4, 8}, {4, 10}, {0, 10}},
+                           {{{1, 1}, {1, 3}, {3, 3}, {3, 1}}});
+    EXPECT_NEAR(area_within(face, tex::Region({{-5, -5}, {20, -5}, {20, 20}, {-5, 20}})), 92, 1e-9);
+    // The cell 0..4 x 0..4 holds 16 less the hole: 12.
+    EXPECT_NEAR(area_within(face, tex::Region({{0, 0}, {4, 0}, {4, 4}, {0, 4}})), 12, 1e-9);
+    // A cell over the notch reaching out of the face: 3..7 x 7..10 less the notch, 12 - 4.
+    EXPECT_NEAR(area_within(face, tex::Region({{3, 7}, {7, 7}, {7, 12}, {3, 12}})), 8, 1e-9);
+    // A cell clockwise, and one outside the face.
+    EXPECT_NEAR(area_within(face, tex::Region({{0, 4}, {0, 0}, {4, 0}, {4, 4}})), 12, 1e-9);
+    EXPECT_NEAR(area_within(face, tex::Region({{20, 20}, {21, 20}, {21, 21}, {20, 21}})), 0, 1e-12);
+}
+
+TEST(Pipeline, PrintRefusesAToneCurveAboveItself) {
+    Options o = sample_options("print");
+    o.params = {{"tone_min", 0.5}, {"tone_max", 0.2}};
+    try {
+        hatch(sample(), o);
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), Code::Usage);
+        EXPECT_NE(std::string(e.what()).find("tone_min=0.5 is above tone_max=0.2"), std::string::npos) << e.what();
+    }
+}
+
 TEST(Pipeline, StylesAndParameters) {
-    EXPECT_EQ(styles().size(), 7u);
-    EXPECT_EQ(default_style(), "bidirectional");
+    EXPECT_EQ(styles().size(), 8u);
+    EXPECT_EQ(default_style(), "print");
     EXPECT_EQ(find_style("5.4a").name, "noisy");
     EXPECT_EQ(find_style("c").name, "density-cells");
     try {

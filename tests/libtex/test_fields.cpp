@@ -335,3 +335,32 @@ TEST(LocalityCheck, NoCheckNoCount) {
     EXPECT_EQ(fresh.violations(), 0u);
     EXPECT_THROW(LocalityCheck(-1), Error);
 }
+
+// AlignToField turns each open curve about its middle onto the field's axis there, keeping
+// its length and the sense nearer its own; closed curves and NaN reads leave curves alone.
+TEST(AlignToField, TurnsOpenCurvesOntoTheFieldAxis) {
+    const Arrangement strokes([](const Region&) {
+        Curves c = Polyline({{0, 0}, {2, 0}});            // middle (1, 0)
+        c.append(Polyline({{10, 0}, {12, 0}}));           // middle (11, 0): NaN there
+        c.append(Polyline({{0, 5}, {1, 5}, {1, 6}}, true));  // closed: left as it is
+        c.append(Polyline({{20, 0}, {22, 0}}));           // wants an axis almost reversed
+        return c;
+    });
+    const Field angle = [](const Point& p) {
+        if (p.x > 10 && p.x < 12) return double(NAN);
+        return p.x > 15 ? M_PI - 0.1 : M_PI / 2;
+    };
+    const Curves out = AlignToField(strokes, angle)(Region({{-1, -1}, {30, -1}, {30, 10}, {-1, 10}}));
+    ASSERT_EQ(out.curves.size(), 4u);
+    const auto& v = out.curves[0].points;
+    EXPECT_NEAR(v[0].x, 1, 1e-12);
+    EXPECT_NEAR(v[0].y, -1, 1e-12);
+    EXPECT_NEAR(v[1].x, 1, 1e-12);
+    EXPECT_NEAR(v[1].y, 1, 1e-12);
+    EXPECT_EQ(out.curves[1].points, (std::vector<Point>{{10, 0}, {12, 0}}));
+    EXPECT_EQ(out.curves[2].points, (std::vector<Point>{{0, 5}, {1, 5}, {1, 6}}));
+    // The axis pi - 0.1 is the same as -0.1: the curve turns by -0.1, not by pi - 0.1.
+    const auto& w = out.curves[3].points;
+    EXPECT_NEAR(std::atan2(w[1].y - w[0].y, w[1].x - w[0].x), -0.1, 1e-12);
+    EXPECT_NEAR(distance(w[0], w[1]), 2, 1e-12);
+}

@@ -221,7 +221,7 @@ def sub_opt(w, option, value):
 
 
 def param(w, option, value):
-    return main(w, "--param", f"spacing_min={value}")
+    return main(w, "--style", "bidirectional", "--param", f"spacing_min={value}")
 
 
 # Two squares apart: no sequence of their pieces is one connected crest band.
@@ -301,7 +301,7 @@ CASES: List[Case] = [
     Case(RH, "--script", "no style in it", lambda w: main(w, "--script", text_file(w, "empty.py", "x = 1\n")), 7,
          ("empty.py",)),
     Case(RH, "--style", "unknown name", lambda w: main(w, "--style", "watercolour"), 7,
-         ("--style", "'watercolour'", "bidirectional")),
+         ("--style", "'watercolour'", "bidirectional", "print")),
     Case(RH, "--param", "unknown name", lambda w: main(w, "--style", "noisy", "--param", "peak_length=3"), 7,
          ("'noisy'", "'peak_length'")),
     Case(RH, "--param", "no value", lambda w: main(w, "--param", "spacing_min"), 2, ("expected NAME=VALUE",)),

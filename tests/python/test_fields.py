@@ -212,3 +212,22 @@ def test_python_field_read_by_a_style_on_the_pipeline_workers(sample_dir, tmp_pa
         outs.append(out.read_bytes())
     assert outs[0] == outs[1] and len(seen) == 40
     assert len(gate_reads) % 2 == 0 and len(gate_reads) > 100
+
+
+def test_align_to_field_and_the_print_budget_helpers():
+    """AlignToField turns strokes onto the field's axis at their middle; ink_area and
+    area_within are what print's per-cell ink budget reads (issue 16)."""
+    from rockhatch.tex import AlignToField, Arrangement, Labelled, Point, Polyline, Region
+
+    square = Region([Point(0, 0), Point(10, 0), Point(10, 10), Point(0, 10)])
+    strokes = Arrangement(lambda r: Polyline([Point(4, 5), Point(6, 5)]))
+    out = AlignToField(strokes, lambda p: math.pi / 2)(square)
+    a, b = out.curves[0].points
+    assert abs(a.x - 5) < 1e-12 and abs(b.x - 5) < 1e-12 and abs(abs(b.y - a.y) - 2) < 1e-12
+    # A 2-unit valley (0.25 mm wide) and fill stroke (0.10 mm) at 1 ground unit per mm.
+    curves = Labelled(Polyline([Point(0, 0), Point(2, 0)]), "valley")
+    curves.append(Polyline([Point(5, 5), Point(7, 5)]))
+    assert abs(carto.ink_area(curves, 1.0) - (2 * 0.25 + 2 * 0.10)) < 1e-12
+    left = Region([Point(-1, -1), Point(4, -1), Point(4, 4), Point(-1, 4)])
+    assert abs(carto.ink_area(curves, 1.0, left) - 0.5) < 1e-12
+    assert abs(carto.area_within(square, left) - 16) < 1e-9

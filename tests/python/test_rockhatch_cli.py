@@ -46,7 +46,7 @@ def test_geopackage_layers_crs_and_attributes(sample_run):
         assert layer.GetFeatureCount() > 0, name
         f = layer.GetNextFeature()
         assert f["family"] == name.split("_")[1]
-        assert f["style"] == "bidirectional"
+        assert f["style"] == "print"  # the default style
         assert 1 <= f["face_id"] <= 20
         assert f["width_mm"] > 0
 
@@ -97,7 +97,7 @@ def test_seed_changes_the_hatches(rockhatch_exe, sample_dir, tmp_path):
 
 
 @pytest.mark.parametrize("style", ["noisy", "ridge-triangles", "density-cells", "fine-ridges", "balanced",
-                                   "high-ridges", "bidirectional"])
+                                   "high-ridges", "bidirectional", "print"])
 def test_every_style_runs(rockhatch_exe, sample_dir, tmp_path, style):
     r = run(rockhatch_exe, *sample_args(sample_dir), "-q", "--style", style, "-o", tmp_path / "o.gpkg")
     assert r.returncode == 0, r.stderr
@@ -105,14 +105,14 @@ def test_every_style_runs(rockhatch_exe, sample_dir, tmp_path, style):
     assert ds.GetLayerByName("hatch_fill").GetFeatureCount() > 1000
     ridge = ds.GetLayerByName("hatch_ridge").GetFeatureCount()
     assert (ridge > 0) == (style != "noisy")
-    assert (ds.GetLayerByName("hatch_cross").GetFeatureCount() > 0) == (style == "bidirectional")
+    assert (ds.GetLayerByName("hatch_cross").GetFeatureCount() > 0) == (style in ("bidirectional", "print"))
 
 
 def test_list_styles_and_help(rockhatch_exe):
     r = run(rockhatch_exe, "--list-styles")
     assert r.returncode == 0
     for name in ["noisy", "ridge-triangles", "density-cells", "fine-ridges", "balanced", "high-ridges",
-                 "bidirectional"]:
+                 "bidirectional", "print"]:
         assert name in r.stdout
     assert "spacing_min = 0.35 mm" in r.stdout
     h = run(rockhatch_exe, "--help")

@@ -36,6 +36,21 @@ inline Point interior_point(const RockFace& f) { return interior_point(f.region)
 // A local field: editing the elevation somewhere changes it within `radius` only.
 Raster local_relief(const Raster& dem, double radius);
 
+// NoData-aware mean over the (2 radius + 1)^2 window of cells around each cell of a
+// width x height grid (row-major), by running sums along rows then columns; NaN where the
+// cell itself is NoData.
+std::vector<float> box_mean(const std::vector<float>& v, int width, int height, int radius);
+
+// The fall line smoothed at map scale: the downhill gradient (slope times the direction of
+// the aspect) averaged over the square of half-side `radius` (ground units) around each
+// cell, read bilinearly as an angle (radians, 0 = east, counter-clockwise); NaN where that
+// mean vanishes or the DEM has no value. Averaging vectors, not angles, keeps a surface
+// that turns smoothly free of jumps. Local: an edit of the DEM moves it within `radius`.
+Field fall_line_field(const Terrain& t, double radius);
+// 1 - hillshade averaged the same way (0 lit, 1 in full shade): the value a tone curve
+// turns into ink.
+Field shade_field(const Terrain& t, double radius);
+
 // Fills in the orientation (the mean fall line: downhill aspect weighted by slope) and the
 // density (1 - mean hillshade) of the faces that lack them, from samples inside each face.
 // Returns how many orientations and densities were derived.

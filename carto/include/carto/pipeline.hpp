@@ -67,8 +67,16 @@ struct Prepared {
     Partition partition;
     // Elevation within its neighbourhood (Options::relief_radius), the styles' height field.
     Raster relief;
+    // Per face: true when the partition gave no orientation and derive_face_controls put in
+    // the face's mean fall line; strokes there may follow the local fall line instead.
+    std::vector<bool> orientation_derived;
     std::vector<std::string> notes;
 };
+
+// Half-side, in millimetres on paper, of the square over which the fall line and the shade
+// are averaged for the styles (ControlFields::fall_line, ::shade): the map's scale of detail
+// (10 m at 1:10000, 25 m at 1:25000), finer than a coarse cell of the styles.
+inline constexpr double kFieldSmoothingMm = 1.0;
 
 // Reads a DEM for the pipeline: refuses one without valid cells, and reprojects a
 // geographic DEM to the UTM zone of its centre (notes say so).

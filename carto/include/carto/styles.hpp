@@ -59,11 +59,18 @@ struct ControlFields {
     Field height;       // 0..1: elevation within its neighbourhood (local relief)
     Field roughness;    // 0..1
     Field slope;        // percent
+    // The fall line smoothed at map scale (radians, axial), read per cell or per stroke; NaN
+    // in the faces whose orientation the partition gives (they keep `orientation`).
+    Field fall_line;
+    // 1 - hillshade smoothed at map scale (0 lit .. 1 in shade), the input of a tone curve.
+    Field shade;
 };
 
 // Style parameters resolved to ground units (mm x scale / 1000 for "mm" parameters,
-// radians for "deg").
+// radians for "deg"), plus kGroundPerMm: ground units per millimetre on paper, for
+// programs that turn the families' stroke widths (mm) into ink on the ground.
 using ParamValues = std::map<std::string, double>;
+inline constexpr const char* kGroundPerMm = "ground_per_mm";
 
 // A style program: the controlled arrangement (fields) -> arrangement, its parameters
 // bound. The arrangement is evaluated on each face of the partition (a labelled region).
@@ -90,6 +97,19 @@ ParamValues resolve_params(const StyleInfo& s, const std::map<std::string, doubl
 
 // The region a style draws a face in: the face's rings, with its border as labelled edges.
 tex::Region face_region(const Partition& p, std::size_t face);
+
+// The family a stroke's labels name ("valley" before "ridge" before "cross"; else fill).
+Family family_of(const tex::Labels& labels);
+
+// Ink on the ground of the curves, or of their segments whose middle lies in `within`
+// (when given): length times the family's stroke width (family_width_mm x ground_per_mm),
+// overlaps counted twice. What a tone budget spends.
+double ink_area(const tex::Curves& c, double ground_per_mm, const tex::Region* within = nullptr);
+
+// Area of `face` (its outer ring less its holes) inside `cell`, whose outer ring is taken as
+// convex (a cell of a jittered grid): each ring clipped by the cell (Sutherland-Hodgman).
+// What a tone budget divides a cell's ink by where the cell reaches out of the face.
+double area_within(const tex::Region& face, const tex::Region& cell);
 
 // The strokes of an evaluated style, their family read from their labels.
 std::vector<Hatch> hatches_from_curves(const tex::Curves& c);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "carto/error.hpp"
+
 namespace carto::blocks {
 using namespace tex;
 
@@ -51,6 +53,22 @@ const std::vector<StyleParam> kBalanced = {
 };
 const std::vector<StyleParam> kHigh = {
     {"peak_height_gain", 1.0, "ratio", "ridge shapes grow by this fraction on the highest ground"},
+};
+const std::vector<StyleParam> kTone = {
+    {"length", 1.5, "mm", "length of a hatch between two jittered break points"},
+    {"jitter", 0.5, "ratio", "jitter of the break points, as a fraction of spacing and length"},
+    {"slope_min", 0.0, "%", "no fill hatch where the slope is below this (percent; 0: everywhere)"},
+    {"tone_min", 0.05, "ratio", "ink coverage of fill and cross strokes on fully lit ground"},
+    {"tone_max", 0.36, "ratio", "ink coverage of fill and cross strokes in full shade"},
+    {"tone_gamma", 1.0, "ratio", "exponent of the tone curve (above 1: mid-tones lighter)"},
+    {"ink_max", 0.40, "ratio", "ceiling of the ink coverage of every cell, crests and valleys included"},
+    {"min_gap", 0.15, "mm", "least white paper between two neighbouring fill strokes"},
+    {"follow_fall_line", 1.0, "ratio", "1: strokes follow the local fall line; 0: one direction per face"},
+};
+const std::vector<StyleParam> kCrest = {
+    {"crest_spacing", 0.4, "mm", "distance between two crest strokes along a ridge"},
+    {"crest_length", 1.2, "mm", "longest crest stroke on low ground"},
+    {"crest_height_gain", 1.0, "ratio", "crest strokes grow by this fraction on the highest ground"},
 };
 const std::vector<StyleParam> kCross = {
     {"roughness_min", 0.01, "ratio", "roughness (0..1) below which no cross hatching is drawn"},
@@ -128,23 +146,27 @@ Arrangement ridge_triangles(const ControlFields& f, const ParamValues& p, const 
                                                 stripes(face.theta + pi / 4, p.at("ridge_length")), CROP_ADD_BOUNDARY));
 }
 
+RidgeFoot ridge_foot(const ControlFields& f, const FaceReading& face, const Vertex& v) {
+    RidgeFoot foot;
+    for (const Edge& e : IncidentEdges(v)) {
+        if (HasLabel(e, "ridge")) {
+            const Face cell = record(LeftFace(e)).unbounded ? RightFace(e) : LeftFace(e);
+            foot.dark = foot.dark || darker_across(f, face, e, cell);
+        } else if (!HasLabel(e, "valley") && !HasLabel(e, "other")) {
+            foot.into = e;
+            foot.has_into = true;
+        }
+    }
+    return foot;
+}
+
 Arrangement ridge_peaks(const ControlFields& f, const ParamValues& p, const FaceReading& face, double gain) {
     auto shape = [f, p, face, gain](const Vertex& v) {
-        Edge ridge, into;
-        bool dark = false, has_into = false;
-        for (const Edge& e : IncidentEdges(v)) {
-            if (HasLabel(e, "ridge")) {
-                const Face cell = record(LeftFace(e)).unbounded ? RightFace(e) : LeftFace(e);
-                dark |= darker_across(f, face, e, cell);
-            } else if (!HasLabel(e, "valley") && !HasLabel(e, "other")) {
-                into = e;
-                has_into = true;
-            }
-        }
-        if (!dark || !has_into) return Nothing();
+        const RidgeFoot foot = ridge_foot(f, face, v);
+        if (!foot.dark || !foot.has_into) return Nothing();
         const Point apex = Location(v), d = dir(face.theta), n{-d.y, d.x};
         // Down the slope: along the stripe that leaves the ridge into the face.
-        const Point down = dot(LocationAt(into, 0.5) - apex, d) >= 0 ? d : -d;
+        const Point down = dot(LocationAt(foot.into, 0.5) - apex, d) >= 0 ? d : -d;
         double h = f.height(apex);
         if (std::isnan(h)) h = face.height;
         const double len = p.at("peak_length") * (1 + gain * h) * Random(v, 0.7, 1.0, 4);
@@ -153,6 +175,91 @@ Arrangement ridge_peaks(const ControlFields& f, const ParamValues& p, const Face
         return Labelled(StripesPartition(stripes(face.theta, p.at("peak_fill")))(tri), "ridge");
     };
     return MapToVertices(shape, StripesPartition(stripes(face.theta, p.at("peak_spacing"))));
+}
+
+Arrangement crest_strokes(const ControlFields& f, const ParamValues& p, const FaceReading& face) {
+    auto stroke = [f, p, face](const Vertex& v) {
+        const RidgeFoot foot = ridge_foot(f, face, v);
+        if (!foot.dark || !foot.has_into) return Nothing();
+        const Point apex = Location(v), into = LocationAt(foot.into, 0.5) - apex;
+        const double reach = norm(into);
+        if (reach == 0) return Nothing();
+        // The fall line on the crest itself is the mean of two opposite slopes: read it a
+        // little down the face instead.
+        double a = face.theta;
+        if (p.at("follow_fall_line") > 0) {
+            const double local = f.fall_line(apex + into * (std::min(reach, 0.5 * p.at("crest_length")) / reach));
+            if (!std::isnan(local)) a = local;
+        }
+        const Point d = dot(into, dir(a)) >= 0 ? dir(a) : -dir(a);
+        double h = f.height(apex);
+        if (std::isnan(h)) h = face.height;
+        const double len = p.at("crest_length") * (1 + p.at("crest_height_gain") * clamp01(h)) * Random(v, 0.4, 1.0, 5);
+        return Labelled(tex::Polyline({apex, apex + d * len}), "ridge");
+    };
+    return MapToVertices(stroke, StripesPartition(stripes(face.theta, p.at("crest_spacing"))));
+}
+
+double tone_coverage(const ParamValues& p, double shade) {
+    return p.at("tone_min") + (p.at("tone_max") - p.at("tone_min")) * std::pow(clamp01(shade), p.at("tone_gamma"));
+}
+
+Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const FaceReading& face,
+                           const Region& region, const Curves& spent) {
+    const double cs = p.at("cell_spacing");
+    const Arrangement grid = MapToEdges(
+        JitterEdges("grid", face.theta, cs, cs, 0.5 * p.at("cell_jitter")),
+        GridPartition(stripes(face.theta, cs, "grid"), stripes(face.theta + pi / 2, cs, "grid"), KEEP_OUTSIDE));
+    auto hatch_cell = [f, p, face, region, spent](const Face& cell) {
+        const double mm = p.at(kGroundPerMm), gap = p.at("gap"), len = p.at("length");
+        const Region box = ToRegion(cell);
+        const Point c = Centroid(cell);
+        double shade = f.shade(c);
+        if (std::isnan(shade)) shade = face.density;
+        // The ceiling less what the crests and valleys already put in this cell (they run
+        // along the face's border, where cells reach out of the face: its part counts).
+        const double area = area_within(region, box);
+        const double room = p.at("ink_max") - (area > 0 ? ink_area(spent, mm, &box) / area : 0.0);
+        const double target = std::min(tone_coverage(p, shade), room);
+        if (!(target > 0)) return Nothing();
+        const bool follow = p.at("follow_fall_line") > 0;
+        double theta = face.theta;
+        if (follow) {
+            const double local = f.fall_line(c);
+            if (!std::isnan(local)) theta = local;
+        }
+        Curves out;
+        double cross_cover = 0;
+        const double r0 = p.at("roughness_min"), r1 = std::max(p.at("roughness_max"), r0 + 1e-9);
+        const double rough = f.roughness(c);
+        // Rough cells: cross strokes take up to half the cell's tone, denser when rougher;
+        // none where that half is too little ink to space them within cross_spacing_max
+        // (lone crosses on lit ground read as noise, not texture).
+        const double wc = family_width_mm(Family::Cross) * mm;
+        const double s_cross = std::max(
+            p.at("cross_spacing_max") -
+                (p.at("cross_spacing_max") - p.at("cross_spacing_min")) * clamp01((rough - r0) / (r1 - r0)),
+            wc * gap / (0.5 * target));
+        if (rough > r0 && s_cross <= p.at("cross_spacing_max")) {
+            const double s = s_cross;
+            cross_cover = wc * gap / s;
+            const double angle = theta + p.at("cross_angle");
+            out = MapToEdges(JitterEdges("cross", angle, s, len, 0.5, gap),
+                             StripesPartition(stripes(angle, s, "cross"), CROP))(cell);
+        }
+        // Fill strokes of width w every s cover w x gap / s of the cell; min_gap keeps white
+        // paper between neighbours whatever the tone asks.
+        const double wf = family_width_mm(Family::Fill) * mm;
+        const double s = std::max(wf * gap / (target - cross_cover), wf + p.at("min_gap"));
+        const Arrangement lines =
+            Crop(noisy_lines("fill", theta, s, len, p.at("jitter"), gap, f.slope, p.at("slope_min")), CROP);
+        // Each stroke laid on the fall line at its middle (where the partition gave no
+        // orientation), else on the cell's direction: the jitter of the break points moves
+        // strokes, it does not tilt them (tilted, sparse strokes read as zigzags).
+        out.append(AlignToField(lines, follow ? Fallback(f.fall_line, Field(theta)) : Field(theta))(cell));
+        return out;
+    };
+    return MapToFaces(hatch_cell, grid);
 }
 
 Arrangement valleys() {

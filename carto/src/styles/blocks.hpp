@@ -14,7 +14,7 @@ using tex::Arrangement;
 
 // Parameter lists (defaults follow App. E at 1:10000).
 std::vector<StyleParam> fill_params(double length_mm, double jitter);
-extern const std::vector<StyleParam> kTriangles, kCoarse, kPeaks, kBalanced, kHigh, kCross;
+extern const std::vector<StyleParam> kTriangles, kCoarse, kPeaks, kBalanced, kHigh, kCross, kTone, kCrest;
 std::vector<StyleParam> operator+(std::vector<StyleParam> a, const std::vector<StyleParam>& b);
 
 // What a style reads about the face it draws (the region it is evaluated on): the
@@ -52,6 +52,32 @@ Arrangement ridge_triangles(const ControlFields& f, const ParamValues& p, const 
 // them, filled with sub-scale hatching; `gain` grows them on high ground (f).
 Arrangement ridge_peaks(const ControlFields& f, const ParamValues& p, const FaceReading& face, double gain);
 
+// Whether a vertex lies on a ridge on the darker side of it (`dark`), and the edge that
+// leaves it into the face (`into`, when `has_into`): where ridge shapes and crest strokes
+// hang from.
+struct RidgeFoot {
+    bool dark = false;
+    bool has_into = false;
+    tex::Edge into;
+};
+RidgeFoot ridge_foot(const ControlFields& f, const FaceReading& face, const tex::Vertex& v);
+// Crest strokes: where stripes at theta every crest_spacing meet a ridge on its darker
+// side, one stroke down the local fall line (read crest_length / 2 inside the face), its
+// length crest_length x (1 + crest_height_gain x relief) x a random 0.4 .. 1. Their upper
+// ends line up on the crest; the lit side gets none (Swiss-style: dark sides denser).
+Arrangement crest_strokes(const ControlFields& f, const ParamValues& p, const FaceReading& face);
+// The tone curve: ink coverage (stroke area over area) for a shade in 0..1,
+// tone_min + (tone_max - tone_min) x shade^tone_gamma.
+double tone_coverage(const ParamValues& p, double shade);
+// Coarse jittered cells, each hatched so that its fill and cross ink follows the tone of the
+// shade at its centre, under the ceiling ink_max less the ink `spent` has in the cell
+// (crests, valleys) over the cell's area inside the face `region`, with at least min_gap between fill strokes; fill strokes run along the
+// fall line read at the cell's centre and are turned to the fall line at their middles
+// (AlignToField) when follow_fall_line > 0, else along the face's orientation (and are
+// turned onto it: break-point jitter shifts strokes without tilting them).
+Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const FaceReading& face,
+                           const tex::Region& region, const tex::Curves& spent);
+
 // (f) the valleys the face owns (a valley between two faces is drawn once).
 Arrangement valleys();
 
@@ -68,6 +94,8 @@ struct Builtin {
     StyleInfo info;
     FaceBody body;
     bool valleys = false;
+    // A whole program, for a style that draws its face in steps (print): replaces body.
+    StyleProgram program;
 };
 // The built-ins, one per file (noisy.cpp ... bidirectional.cpp).
 Builtin noisy();
@@ -77,5 +105,6 @@ Builtin fine_ridges();
 Builtin balanced();
 Builtin high_ridges();
 Builtin bidirectional();
+Builtin print();
 
 }  // namespace carto::blocks

@@ -172,6 +172,13 @@ Field Norm(VectorField v);
 // Central differences with step h.
 VectorField Gradient(Field f, double h);
 
+// Each open curve of `a` turned about its middle (half-way between its two ends) so that
+// its end-to-end direction follows the axial angle `angle` (radians) read there; of the two
+// senses of that axis the one nearer the curve's own is kept. Closed curves, curves shorter
+// than 1e-12 and curves whose middle reads NaN are left as they are. A control field read
+// once per curve (thesis 5.3.2): strokes laid out by any partition bend with the field.
+Arrangement AlignToField(Arrangement a, Field angle);
+
 // ---- Controlled arrangements and mappers (thesis 5.3.1, 5.3.2) ----
 
 namespace detail {

@@ -1,0 +1,75 @@
+#!/usr/bin/env python3
+"""Crops of the drawing at true print scale, for docs/print.md: the sample and
+../shared/data/montblanc/Chamonix.tif at 1:10000 and 1:25000, each a square of SIZE mm on
+paper around the same ground point, rendered at 300 dpi (rsvg-convert) so that one pixel
+is 1/300 inch on paper when the PNG is printed at 300 dpi.
+
+    /usr/bin/python3 bench/print_crops.py BUILD_DIR OUT_DIR [--style print] [--size 60]
+
+Only the faces centred near the crop are hatched (--window), so a large DEM stays quick.
+"""
+import argparse
+import pathlib
+import re
+import subprocess
+import sys
+
+from PIL import Image
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+SAMPLE = ROOT / "data" / "sample_montblanc"
+SHARED_DEM = ROOT.parent / "shared" / "data" / "montblanc" / "Chamonix.tif"
+DPI = 300
+# Ground points the crops are centred on (working CRS): the sample's summit, and the
+# steepest 1.5 km square of Chamonix.tif (72% of it over 90% slope; UTM 32N).
+CASES = {
+    "sample": (SAMPLE / "dem.tif", SAMPLE / "partition.gpkg", (1004100.0, 6539900.0)),
+    "chamonix": (SHARED_DEM, "auto", (343730.0, 5081360.0)),
+}
+
+
+def crop(exe, case, scale, style, size_mm, out_png, tmp):
+    dem, partition, (cx, cy) = CASES[case]
+    half = size_mm / 2 * scale / 1000.0  # ground units
+    margin = half * 1.5  # faces centred this far out still reach into the crop
+    svg = tmp / f"{case}-{scale}-{style}.svg"
+    cmd = [str(exe), "--dem", str(dem), "--partition", str(partition), "--style", style, "--scale", str(scale),
+           "--window", f"{cx - half - margin},{cy - half - margin},{cx + half + margin},{cy + half + margin}",
+           "-q", "--overwrite", "-o", str(svg)]
+    subprocess.run(cmd, check=True)
+    text = svg.read_text()
+    geo = re.search(r'xmin="([-\d.e+]+)" ymin="([-\d.e+]+)" xmax="([-\d.e+]+)" ymax="([-\d.e+]+)"', text)
+    xmin, ymin, xmax, ymax = map(float, geo.groups())
+    png = tmp / (svg.stem + ".png")
+    subprocess.run(["rsvg-convert", "--dpi-x", str(DPI), "--dpi-y", str(DPI), "-b", "white", str(svg), "-o", str(png)],
+                   check=True)
+    im = Image.open(png)
+    px_per_ground = im.size[0] / (xmax - xmin)
+    left = (cx - half - xmin) * px_per_ground
+    top = (ymax - (cy + half)) * px_per_ground
+    side = 2 * half * px_per_ground
+    # One bit per pixel, as a printer lays ink (rsvg-convert's anti-aliasing thresholded at half grey).
+    im = im.crop((round(left), round(top), round(left + side), round(top + side))).convert("L")
+    im.point(lambda v: 255 if v >= 128 else 0).convert("1").save(out_png, optimize=True)
+    print(f"{out_png}: 1:{scale} {case}, {size_mm} mm square at {DPI} dpi")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("build", type=pathlib.Path)
+    ap.add_argument("out", type=pathlib.Path)
+    ap.add_argument("--style", default="print")
+    ap.add_argument("--size", type=float, default=60.0)
+    ap.add_argument("--tmp", type=pathlib.Path, default=pathlib.Path("/tmp"))
+    args = ap.parse_args()
+    exe = args.build / "carto" / "rockhatch"
+    for case in CASES:
+        if not CASES[case][0].exists():
+            print(f"print_crops: {CASES[case][0]} absent, {case} skipped")
+            continue
+        for scale in (10000, 25000):
+            crop(exe, case, scale, args.style, args.size, args.out / f"print-{case}-{scale}-{args.style}.png", args.tmp)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,53 @@
+// Print: the drawing of issue 16 after (g). Ink follows the shade through a tone curve
+// under a ceiling, strokes follow the fall line, crests are drawn by strokes falling from
+// them on their dark side. The face is drawn in two steps: the crests and valleys first,
+// then the fill and cross hatching in the ink they leave under the ceiling.
+#include <sstream>
+
+#include "blocks.hpp"
+#include "carto/error.hpp"
+
+namespace carto::blocks {
+
+namespace {
+
+// The tone parameters must describe a curve under its ceiling.
+void check_tone(const ParamValues& p) {
+    auto bad = [](const std::string& what) { throw Error(Code::Usage, "style 'print': " + what); };
+    std::ostringstream m;
+    if (p.at("tone_min") > p.at("tone_max")) {
+        m << "--param tone_min=" << p.at("tone_min") << " is above tone_max=" << p.at("tone_max");
+        bad(m.str());
+    }
+    if (p.at("ink_max") <= 0 || p.at("ink_max") > 1) {
+        m << "--param ink_max=" << p.at("ink_max") << " is not a coverage in (0, 1]";
+        bad(m.str());
+    }
+    if (p.at("gap") <= 0 || p.at("gap") > 1) {
+        m << "--param gap=" << p.at("gap") << " is not a fraction in (0, 1]";
+        bad(m.str());
+    }
+}
+
+}  // namespace
+
+Builtin print() {
+    Builtin b;
+    b.info = {"print", "after 5.4g",
+              "print tone: ink follows the shade under a ceiling, strokes along the fall line, crests",
+              kTone + kCoarse + kBalanced + kCrest + kCross};
+    b.program = [](const ControlFields& f, const ParamValues& p) {
+        check_tone(p);
+        return Arrangement([f, p](const tex::Region& r) {
+            const FaceReading face = read_face(f, r);
+            tex::Curves spent = tex::Crop(crest_strokes(f, p, face), tex::CROP)(r);
+            spent.append(valleys()(r));
+            tex::Curves out = tex::Crop(toned_hatching(f, p, face, r, spent), tex::CROP)(r);
+            out.append(spent);
+            return out;
+        });
+    };
+    return b;
+}
+
+}  // namespace carto::blocks
