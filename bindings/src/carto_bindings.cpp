@@ -277,7 +277,9 @@ void bind_carto(py::module_& m) {
         .value("FILL", Family::Fill)
         .value("RIDGE", Family::Ridge)
         .value("VALLEY", Family::Valley)
-        .value("CROSS", Family::Cross);
+        .value("CROSS", Family::Cross)
+        .value("STONE", Family::Stone)
+        .value("HACHURE", Family::Hachure);
     m.def("family_width_mm", &family_width_mm, py::arg("family"), "stroke width of a hatch family, mm on paper");
     py::class_<Hatch>(m, "Hatch", "One stroke (or closed shape) of a hatch family")
         .def(py::init([](std::vector<Point> pts, bool closed, Family f) { return Hatch{std::move(pts), closed, f}; }),
@@ -319,7 +321,10 @@ void bind_carto(py::module_& m) {
         .def_readonly("name", &StyleInfo::name)
         .def_readonly("figure", &StyleInfo::figure)
         .def_readonly("title", &StyleInfo::title)
-        .def_readonly("params", &StyleInfo::params);
+        .def_readonly("params", &StyleInfo::params)
+        .def_readonly("terrain", &StyleInfo::terrain,
+                      "True for a terrain style (scree, slope-hachures): it draws around the rock faces, over "
+                      "the whole DEM, after the faces are hatched with the default rock style.");
     m.def("styles", &styles, "the built-in styles, Fig. 5.4 (a) to (g)");
     m.def("default_style", &default_style);
     m.def("find_style", &find_style, py::arg("name"));

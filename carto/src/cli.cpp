@@ -121,7 +121,8 @@ std::vector<Option> options(CommandLine& cl) {
 std::string styles_text() {
     std::ostringstream os;
     for (const auto& s : carto::styles()) {
-        os << "  " << s.name << " (Fig. " << s.figure << ")" << (s.name == carto::default_style() ? " [default]" : "")
+        os << "  " << s.name << (s.terrain ? std::string(" (terrain, around the rock)") : " (Fig. " + s.figure + ")")
+           << (s.name == carto::default_style() ? " [default]" : "")
            << ": " << s.title << "\n";
         for (const auto& p : s.params) {
             std::ostringstream v;
@@ -144,7 +145,7 @@ std::string help_text() {
         out << "  " << head << (head.size() < 26 ? std::string(26 - head.size(), ' ') : "\n" + std::string(28, ' '))
                   << o.help << "\n";
     }
-    out << "\nstyles (parameters in mm on paper at the map scale, ratios, or degrees):\n";
+    out << "\nstyles (parameters in mm on paper at the map scale, m on the ground, ratios, or degrees):\n";
     out << styles_text();
     out << "\nexit codes: 0 ok, 1 failure, 2 usage, 3 missing input, 4 no CRS, 5 no overlap,\n"
                  "6 bad layer or attribute, 7 unknown style or parameter, 8 invalid geometry,\n"

@@ -90,6 +90,18 @@ void check_outputs(const std::vector<FileArg>& inputs, const std::vector<FileArg
     }
 }
 
+namespace {
+// The rock families are always written (an empty layer says "none drawn"); the terrain
+// families only by the styles that draw them.
+bool has_family(const Drawing& d, Family f) {
+    if (int(f) < kRockFamilies) return true;
+    for (const auto& face : d.faces)
+        for (const auto& h : face.hatches)
+            if (h.family == f) return true;
+    return false;
+}
+}  // namespace
+
 void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index,
                 const std::function<bool(double)>& keep_going) {
     std::size_t total = 0, written = 0;
@@ -115,11 +127,14 @@ void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index,
         srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
         for (int fam = 0; fam < kFamilies; ++fam) {
             const Family f = Family(fam);
+            if (!has_family(d, f)) continue;
             const std::string name = std::string("hatch_") + family_name(f);
             // GDAL 3.6 would fill the R-tree row by row, most of the time spent writing a large
             // drawing: the index is bulk-loaded once the file is closed (gpkg_rtree.cpp).
             const char* lco[] = {"SPATIAL_INDEX=NO", "FID=fid", "GEOMETRY_NAME=geom", nullptr};
-            OGRLayer* layer = ds->CreateLayer(name.c_str(), &srs, wkbLineString, const_cast<char**>(lco));
+            // Stones and hachures are filled shapes: polygons; hatches are lines.
+            OGRLayer* layer = ds->CreateLayer(name.c_str(), &srs, family_filled(f) ? wkbPolygon : wkbLineString,
+                                              const_cast<char**>(lco));
             if (!layer) throw Error(Code::OutputExists, "-o '" + path + "': cannot create layer " + name);
             OGRFieldDefn fid("face_id", OFTInteger64), ffam("family", OFTString), fsty("style", OFTString),
                 fw("width_mm", OFTReal);
@@ -138,11 +153,17 @@ void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index,
                     check();
                     feat.SetFID(OGRNullFID);
                     feat.SetField(0, GIntBig(face.face_id));
-                    auto* ls = new OGRLineString();
+                    auto* ls = family_filled(f) ? new OGRLinearRing() : new OGRLineString();
                     ls->setNumPoints(int(h.points.size() + (h.closed ? 1 : 0)), FALSE);
                     for (std::size_t i = 0; i < h.points.size(); ++i) ls->setPoint(int(i), h.points[i].x, h.points[i].y);
                     if (h.closed) ls->setPoint(int(h.points.size()), h.points[0].x, h.points[0].y);
-                    feat.SetGeometryDirectly(ls);
+                    if (family_filled(f)) {
+                        auto* poly = new OGRPolygon();
+                        poly->addRingDirectly(static_cast<OGRLinearRing*>(ls));
+                        feat.SetGeometryDirectly(poly);
+                    } else {
+                        feat.SetGeometryDirectly(ls);
+                    }
                     if (layer->CreateFeature(&feat) != OGRERR_NONE)
                         throw Error(Code::OutputExists, "-o '" + path + "': write failed (" + CPLGetLastErrorMsg() + ")");
                 }
@@ -152,6 +173,7 @@ void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index,
     }
     if (spatial_index) {
         for (int fam = 0; fam < kFamilies; ++fam) {
+            if (!has_family(d, Family(fam))) continue;
             std::vector<BoxD> boxes;
             for (const auto& face : d.faces)
                 for (const auto& h : face.hatches) {
@@ -199,11 +221,16 @@ void write_svg(const Drawing& d, const std::string& path) {
     s += "  <rh:crs-wkt>" + xml_escape(d.crs_wkt) + "</rh:crs-wkt>\n</metadata>\n";
     for (int fam = 0; fam < kFamilies; ++fam) {
         const Family f = Family(fam);
+        if (!has_family(d, f)) continue;
         s += "<g id=\"";
         s += family_name(f);
-        s += "\" fill=\"none\" stroke=\"black\" stroke-linecap=\"round\" stroke-linejoin=\"round\" stroke-width=\"";
-        num(s, family_width_mm(f) / mm_per_unit);
-        s += "\">\n";
+        if (family_filled(f)) {
+            s += "\" fill=\"black\" stroke=\"none\">\n";
+        } else {
+            s += "\" fill=\"none\" stroke=\"black\" stroke-linecap=\"round\" stroke-linejoin=\"round\" stroke-width=\"";
+            num(s, family_width_mm(f) / mm_per_unit);
+            s += "\">\n";
+        }
         for (const auto& face : d.faces)
             for (const auto& h : face.hatches) {
                 if (h.family != f || h.points.size() < 2) continue;
@@ -253,8 +280,35 @@ void write_png(const Drawing& d, const std::string& path, int pixels, const Rast
                 px = std::min(px, float(1.0 - ink * cover));
             }
     };
+    // A filled ring (stone, hachure): the pixels whose centre it holds (even-odd scan lines),
+    // its outline stamped below as a half-pixel stroke for the edge.
+    auto fill = [&](const std::vector<Point>& ring, float ink) {
+        std::vector<std::pair<double, double>> px;
+        double ymin = INFINITY, ymax = -INFINITY;
+        for (const Point& q : ring) {
+            px.push_back({(q.x - b.xmin) / upp, (b.ymax - q.y) / upp});
+            ymin = std::min(ymin, px.back().second), ymax = std::max(ymax, px.back().second);
+        }
+        std::vector<double> xs;
+        for (int r = std::max(0, int(std::floor(ymin))); r <= std::min(h - 1, int(std::ceil(ymax))); ++r) {
+            const double y = r + 0.5;
+            xs.clear();
+            for (std::size_t i = 0; i < px.size(); ++i) {
+                const auto& [x0, y0] = px[i];
+                const auto& [x1, y1] = px[(i + 1) % px.size()];
+                if ((y0 <= y) != (y1 <= y)) xs.push_back(x0 + (y - y0) / (y1 - y0) * (x1 - x0));
+            }
+            std::sort(xs.begin(), xs.end());
+            for (std::size_t i = 0; i + 1 < xs.size(); i += 2)
+                for (int c = std::max(0, int(std::ceil(xs[i] - 0.5))); c <= std::min(w - 1, int(std::floor(xs[i + 1] - 0.5))); ++c) {
+                    float& v = img[std::size_t(r) * w + c];
+                    v = std::min(v, 1.0f - ink);
+                }
+        }
+    };
     for (const auto& face : d.faces)
         for (const auto& hh : face.hatches) {
+            if (family_filled(hh.family) && hh.closed) fill(hh.points, 0.9f);
             const double radius = std::max(0.5, family_width_mm(hh.family) * d.scale / 1000.0 / upp / 2);
             const std::size_t n = hh.points.size();
             const std::size_t segs = hh.closed ? n : n - 1;

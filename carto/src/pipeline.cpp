@@ -88,6 +88,9 @@ void validate(const Options& o) {
             throw Error(Code::Usage, "-o '" + out + "': unknown format (use .gpkg, .svg or .png)");
     }
     if (o.png_pixels < 16 || o.png_pixels > 20000) throw Error(Code::Usage, "--png-size must be in 16..20000");
+    if (o.window && selected_style(o).terrain)
+        throw Error(Code::Usage, "--window: style '" + selected_style(o).info.name +
+                                     "' draws the whole DEM and cannot be tiled by a window");
     if (o.threads > kMaxThreads)
         throw Error(Code::Usage, "--threads: " + std::to_string(o.threads) + " is more than " +
                                      std::to_string(kMaxThreads));
@@ -152,7 +155,10 @@ Prepared prepare(const Options& o, const Progress& progress) {
 
 Drawing hatch(const Prepared& p, const Options& o, const Progress& progress) {
     const Style style = selected_style(o);
-    const ParamValues params = resolve_params(style.info, o.params, o.scale);
+    // A terrain style's parameters are its own; its faces are hatched with the default
+    // rock style at its default values.
+    const ParamValues params = resolve_params(style.terrain ? find_style(default_style()) : style.info,
+                                              style.terrain ? std::map<std::string, double>{} : o.params, o.scale);
     const Partition& part = p.partition;
     std::vector<int> selected;
     for (std::size_t i = 0; i < part.faces.size(); ++i) {
@@ -164,7 +170,7 @@ Drawing hatch(const Prepared& p, const Options& o, const Progress& progress) {
         }
         selected.push_back(int(i));
     }
-    check_workload(style.info, params, part, selected, o.scale);
+    check_workload(style.terrain ? find_style(default_style()) : style.info, params, part, selected, o.scale);
     Drawing d;
     d.crs_wkt = part.crs_wkt;
     d.style = style.info.name;
@@ -215,6 +221,20 @@ Drawing hatch(const Prepared& p, const Options& o, const Progress& progress) {
     }
     if (cancelled) throw Error(Code::Cancelled, "cancelled during hatching");
     for (std::size_t k = 0; k < selected.size(); ++k) d.bounds.add(part.faces[selected[k]].region.bbox());
+    if (style.terrain) {
+        tick(progress, 0.9, "drawing the terrain");
+        std::vector<Hatch> rock;
+        for (const auto& f : d.faces) rock.insert(rock.end(), f.hatches.begin(), f.hatches.end());
+        const ParamValues own = resolve_params(style.info, o.params, o.scale);
+        try {
+            d.faces.push_back({kTerrainFaceId, style.terrain({p.terrain, part, rock, o.scale, o.seed}, own)});
+        } catch (const Error&) {
+            throw;
+        } catch (const std::exception& e) {
+            throw Error(Code::Failure, "style '" + style.info.name + "': " + e.what());
+        }
+        d.bounds.add(p.terrain.elevation.bounds());
+    }
     return d;
 }
 
@@ -234,7 +254,8 @@ Stats run(const Options& o, const Progress& progress) {
     }
     tick(progress, 1.0, "done");
     Stats s;
-    s.faces = d.faces.size();
+    s.faces = std::size_t(std::count_if(d.faces.begin(), d.faces.end(),
+                                        [](const FaceHatches& f) { return f.face_id != kTerrainFaceId; }));
     for (const auto& f : d.faces) s.hatches += f.hatches.size();
     s.crs = crs_name(d.crs_wkt);
     s.notes = p.notes;

@@ -401,7 +401,9 @@ TEST(Pipeline, RidgeShapesFallIntoTheDarkerFace) {
 }
 
 TEST(Pipeline, StylesAndParameters) {
-    EXPECT_EQ(styles().size(), 7u);
+    // The seven rock styles of Fig. 5.4, then the two terrain styles (issue 13).
+    EXPECT_EQ(styles().size(), 9u);
+    EXPECT_EQ(std::count_if(styles().begin(), styles().end(), [](const StyleInfo& s) { return s.terrain; }), 2);
     EXPECT_EQ(default_style(), "bidirectional");
     EXPECT_EQ(find_style("5.4a").name, "noisy");
     EXPECT_EQ(find_style("c").name, "density-cells");

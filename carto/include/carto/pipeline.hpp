@@ -77,7 +77,10 @@ void check_files(const Options& o);
 // Reads the DEM (reprojected to a projected working CRS when geographic), the optional
 // rasters and the partition.
 Prepared prepare(const Options& o, const Progress& progress = {});
-// Hatches the faces (in parallel, deterministic).
+// The face id of the elements a terrain style draws outside the faces.
+inline constexpr std::int64_t kTerrainFaceId = -1;
+// Hatches the faces (in parallel, deterministic); a terrain style then draws its elements
+// (sequentially) around them, as one more entry of Drawing::faces with kTerrainFaceId.
 Drawing hatch(const Prepared& p, const Options& o, const Progress& progress = {});
 // Everything: validate, prepare, hatch, write.
 Stats run(const Options& o, const Progress& progress = {});

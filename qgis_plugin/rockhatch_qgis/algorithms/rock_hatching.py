@@ -2,7 +2,7 @@
 import os
 
 from osgeo import ogr
-from qgis.core import (QgsLineSymbol, QgsProcessing, QgsProcessingContext, QgsProcessingException,
+from qgis.core import (QgsFillSymbol, QgsLineSymbol, QgsProcessing, QgsProcessingContext, QgsProcessingException,
                        QgsProcessingLayerPostProcessorInterface, QgsProcessingOutputMultipleLayers,
                        QgsProcessingOutputNumber, QgsProcessingParameterEnum,
                        QgsProcessingParameterFeatureSource, QgsProcessingParameterField,
@@ -17,12 +17,17 @@ from .common import Progress, RockhatchAlgorithm
 # The GeoPackage layers the pipeline writes, one per hatch family, with the line width a
 # renderer uses when a feature has no width_mm (mm on paper).
 FAMILIES = {"hatch_fill": 0.10, "hatch_ridge": 0.12, "hatch_valley": 0.25, "hatch_cross": 0.08}
+# The polygon layers of the terrain styles (scree, slope-hachures), filled black, no outline.
+FILLED = ("hatch_stone", "hatch_hachure")
 # Vector formats handed to the pipeline as they are; other layers are written to a GeoPackage.
 OGR_EXTENSIONS = ["gpkg", "shp", "geojson", "json", "fgb", "sqlite", "gml", "kml", "tab", "mif", "csv"]
 
 
 def hatch_renderer(family):
-    """Black lines as wide as their width_mm attribute (mm on paper), round caps."""
+    """Black lines as wide as their width_mm attribute (mm on paper), round caps; the terrain
+    styles' stones and hachures filled black."""
+    if family in FILLED:
+        return QgsSingleSymbolRenderer(QgsFillSymbol.createSimple({"color": "0,0,0,255", "outline_style": "no"}))
     symbol = QgsLineSymbol.createSimple({"color": "0,0,0,255", "width": str(FAMILIES.get(family, 0.1)),
                                          "width_unit": "MM", "capstyle": "round", "joinstyle": "round"})
     layer = symbol.symbolLayer(0)
@@ -144,8 +149,9 @@ class RockHatching(RockhatchAlgorithm):
         names, default = self.style_names()
         style = QgsProcessingParameterEnum(self.STYLE, "Style", names, defaultValue=default)
         style.setUsesStaticStrings(True)
-        self.add(style, f"Built-in style (thesis Fig. 5.4 a to g). Default: {default}. See the algorithm's help for "
-                   "each style's parameters.")
+        self.add(style, f"Built-in style (thesis Fig. 5.4 a to g), or a terrain style drawn around the rock faces "
+                   f"(scree: stones below the rock; slope-hachures: Lehmann hachures on the other slopes). "
+                   f"Default: {default}. See the algorithm's help for each style's parameters.")
         self.add(QgsProcessingParameterFile(self.STYLE_SCRIPT, "Style script (Python)", extension="py", optional=True),
             "A Python style script (styles/*.py of rockhatch: NAME, PARAMS, style(fields, params) returning a libtex arrangement); "
             "replaces the built-in style when given.")
@@ -166,7 +172,8 @@ class RockHatching(RockhatchAlgorithm):
         self.add(QgsProcessingParameterFileDestination(self.OUTPUT, "Hatches (GeoPackage)", "GeoPackage (*.gpkg)"),
             "GeoPackage written with one LineString layer per hatch family (hatch_fill, hatch_ridge, "
             "hatch_valley, hatch_cross; fields face_id, family, style, width_mm) in the DEM's CRS (UTM "
-            "for a geographic DEM). An existing file is replaced.")
+            "for a geographic DEM), and with a terrain style a Polygon layer of filled shapes (hatch_stone "
+            "for scree, hatch_hachure for slope hachures; face_id -1). An existing file is replaced.")
         self.add(QgsProcessingParameterFileDestination(self.SVG, "Hatches (SVG)", "SVG files (*.svg)", optional=True,
                                                   createByDefault=False),
             "Optional SVG drawing of the hatches at the map scale (millimetres on paper).")
@@ -190,7 +197,8 @@ class RockHatching(RockhatchAlgorithm):
             carto = self.carto()
             for s in carto.styles():
                 params = ", ".join(f"{p.name} {p.value:g} {p.unit}" for p in s.params)
-                text += f"{s.name} ({s.figure}): {s.title}. Parameters: {params}.\n"
+                where = "terrain, around the rock" if s.terrain else s.figure
+                text += f"{s.name} ({where}): {s.title}. Parameters: {params}.\n"
         except QgsProcessingException as e:
             text += str(e)
         return text
@@ -274,7 +282,7 @@ class RockHatching(RockhatchAlgorithm):
 
         uris = []
         for family, count in gpkg_layers(output).items():
-            if family not in FAMILIES:
+            if family not in FAMILIES and family not in FILLED:
                 continue
             uri = f"{output}|layername={family}"
             uris.append(uri)
