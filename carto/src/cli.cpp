@@ -47,7 +47,8 @@ std::vector<Option> options(CommandLine& cl) {
     return {
         {"--dem", "PATH", "DEM raster (any GDAL format and CRS; geographic DEMs are reprojected to UTM)",
          [&](const std::string& v) { o.dem = v; }},
-        {"--partition", "PATH", "partition of the rock areas (GeoPackage, shapefile...): faces + labelled lines",
+        {"--partition", "PATH", "partition of the rock areas (GeoPackage, shapefile...): faces + labelled lines; auto: extracted "
+                                "from the DEM; none: no rock (terrain styles only)",
          [&](const std::string& v) { o.partition.path = v; }},
         {"-o", "PATH", "output: .gpkg (one layer per hatch family), .svg (true scale) or .png (preview); repeatable",
          [&](const std::string& v) { o.outputs.push_back(v); }},

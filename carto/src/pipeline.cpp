@@ -88,6 +88,9 @@ void validate(const Options& o) {
             throw Error(Code::Usage, "-o '" + out + "': unknown format (use .gpkg, .svg or .png)");
     }
     if (o.png_pixels < 16 || o.png_pixels > 20000) throw Error(Code::Usage, "--png-size must be in 16..20000");
+    if (o.partition.path == "none" && !selected_style(o).terrain)
+        throw Error(Code::Usage, "--partition none: style '" + selected_style(o).info.name +
+                                     "' hatches rock faces and needs a partition (a file or auto)");
     if (o.window && selected_style(o).terrain)
         throw Error(Code::Usage, "--window: style '" + selected_style(o).info.name +
                                      "' draws the whole DEM and cannot be tiled by a window");
@@ -99,7 +102,7 @@ void validate(const Options& o) {
 void check_files(const Options& o) {
     std::vector<FileArg> outputs;
     for (const auto& out : o.outputs) outputs.push_back({"-o", out});
-    const std::string partition = o.partition.path == "auto" ? "" : o.partition.path;
+    const std::string partition = o.partition.path == "auto" || o.partition.path == "none" ? "" : o.partition.path;
     check_outputs({{"--dem", o.dem}, {"--partition", partition}, {"--slope", o.slope}, {"--roughness", o.roughness},
                    {"--script", o.style_file}},
                   outputs, o.overwrite);
@@ -130,7 +133,11 @@ Prepared prepare(const Options& o, const Progress& progress) {
     p.relief = local_relief(dem, o.relief_radius);
 
     tick(progress, 0.15, "reading the partition");
-    if (o.partition.path == "auto") {
+    if (o.partition.path == "none") {
+        // No rock at all: a terrain style draws the whole DEM (validate refuses it otherwise).
+        p.partition.crs_wkt = dem.crs_wkt;
+        return p;
+    } else if (o.partition.path == "auto") {
         // No partition: extract one from the DEM (carto/extract.hpp) with its defaults.
         ExtractOptions eo;
         eo.raster = dem;
