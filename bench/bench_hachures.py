@@ -33,7 +33,8 @@ def rockhatch_once(exe, dem, scale, interval, out):
     seconds = time.perf_counter() - t0
     if r.returncode != 0:
         sys.exit(f"rockhatch failed: {r.stderr.strip()}")
-    layer = ogr.Open(out).GetLayerByName("hatch_hachure")
+    ds = ogr.Open(out)  # kept open while its layer is read
+    layer = ds.GetLayerByName("hatch_hachure")
     n, length = 0, 0.0
     for f in layer:
         n += 1

@@ -181,6 +181,21 @@ def test_style_seed_params_and_script(qgis, sample_dir, tmp_path):
     assert (tmp_path / "s.svg").read_bytes() == (tmp_path / "q.svg").read_bytes()
 
 
+@pytest.mark.parametrize("style,layer", [("scree", "hatch_stone"), ("slope-hachures", "hatch_hachure")])
+def test_terrain_styles_through_the_algorithm(qgis, sample_dir, tmp_path, style, layer):
+    # The same drawing as carto.run, and the filled layer loaded as a polygon layer.
+    from rockhatch import carto
+    carto.run(str(sample_dir / "dem.tif"), str(sample_dir / "partition.gpkg"), [str(tmp_path / "m.svg")], style=style)
+    result = run("rockhatch:rockhatching", sample_params(sample_dir, tmp_path / "q.gpkg", STYLE=style,
+                                                         SVG=str(tmp_path / "q.svg")))
+    assert (tmp_path / "q.svg").read_bytes() == (tmp_path / "m.svg").read_bytes()
+    uri = f"{tmp_path / 'q.gpkg'}|layername={layer}"
+    assert result["LAYERS"] == [f"{tmp_path / 'q.gpkg'}|layername={f}" for f in FAMILIES] + [uri]
+    loaded = QgsVectorLayer(uri, layer, "ogr")
+    assert loaded.isValid() and loaded.geometryType() == qgis_core.QgsWkbTypes.PolygonGeometry
+    assert loaded.featureCount() > 1000
+
+
 def test_an_operator_style_of_the_tests_through_the_algorithm(qgis, rockhatch_exe, sample_dir, tmp_path):
     # A style none of the seven, from libtex operators only (style_scripts/framed_tiles.py):
     # the algorithm draws what `rockhatch --script` draws.

@@ -22,12 +22,18 @@ using tex::disc::Polyline;
 
 namespace {
 
-// Steps per cell of the DEM, and per smallest spacing, along a stream line.
-constexpr double kStepsPerCell = 2.0, kStepsPerSpacing = 2.0;
+// Steps per cell of the DEM, and per smallest spacing, along a stream line: a step follows
+// the bilinear DEM within a cell and draws the stroke within half the finest spacing
+// (finer steps only add vertices that every distance check then has to visit).
+constexpr double kStepsPerCell = 1.0, kStepsPerSpacing = 2.0;
 // A stroke is at most this many contour intervals long on the gentlest hachured slope.
 constexpr double kMaxIntervals = 1.5;
 // Catmull-Rom pieces per step when the stroke is smoothed before thickening.
 constexpr int kSmoothing = 2;
+// A pin nearer than this fraction of the local spacing to a stroke of its band is not traced:
+// the stroke through it would come nearer than the spacing (the fall line through a pin
+// passes by the pin), so the check would refuse it after the costly tracing.
+constexpr double kPinReach = 0.9;
 
 std::vector<Hatch> draw_hachures(const TerrainInput& in, const ParamValues& p) {
     const Terrain& t = in.terrain;
@@ -92,7 +98,8 @@ std::vector<Hatch> draw_hachures(const TerrainInput& in, const ParamValues& p) {
         RegionSet strokes;  // this band's strokes, filled by greedy_distribution
         // Shaping: climb to the upper contour, then follow the fall line down to the lower one.
         const Shaping shaping = [=](const Point& pin) -> Region {
-            if (MinimalDistance(strokes, pin, 0.5 * spacing_at(pin))) return Region();
+            // A stroke through a pin this close to a kept one would be refused by the check.
+            if (MinimalDistance(strokes, pin, kPinReach * spacing_at(pin))) return Region();
             const Polyline climb = trace_stream(pin, up, in_band, max_length);
             const Point top = elevation->sample(climb.points.back()) > elevation->sample(pin)
                                   ? climb.points.back() : pin;
