@@ -96,6 +96,11 @@ std::vector<Hatch> draw_hachures(const TerrainInput& in, const ParamValues& p) {
             return in_mask(*ground, q) && band_of(q) == b;
         };
         RegionSet strokes;  // this band's strokes, filled by greedy_distribution
+        // On the way down a stroke stops where it would come within the spacing of a kept
+        // one (converging fall lines), rather than being traced to the contour and refused.
+        const PointCheck open = [=](const Point& q) {
+            return in_band(q) && !MinimalDistance(strokes, q, spacing_at(q) + 0.5 * width_max);
+        };
         // Shaping: climb to the upper contour, then follow the fall line down to the lower one.
         const Shaping shaping = [=](const Point& pin) -> Region {
             // A stroke through a pin this close to a kept one would be refused by the check.
@@ -103,7 +108,8 @@ std::vector<Hatch> draw_hachures(const TerrainInput& in, const ParamValues& p) {
             const Polyline climb = trace_stream(pin, up, in_band, max_length);
             const Point top = elevation->sample(climb.points.back()) > elevation->sample(pin)
                                   ? climb.points.back() : pin;
-            Polyline line = trace_stream(top, down, in_band, max_length);
+            if (top != pin && MinimalDistance(strokes, top, kPinReach * spacing_at(top))) return Region();
+            Polyline line = trace_stream(top, down, open, max_length);
             if (line.points.size() < 3) return Region();
             if (elevation->sample(line.points.front()) < elevation->sample(line.points.back()))
                 std::reverse(line.points.begin(), line.points.end());
