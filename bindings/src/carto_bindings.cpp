@@ -250,6 +250,7 @@ void bind_carto(py::module_& m) {
         .def_readwrite("orientation_layer", &PartitionOptions::orientation_layer)
         .def_readwrite("density_field", &PartitionOptions::density_field)
         .def_readwrite("density_layer", &PartitionOptions::density_layer)
+        .def_readwrite("scree_layer", &PartitionOptions::scree_layer)
         .def_readwrite("repair", &PartitionOptions::repair)
         .def_readwrite("snap", &PartitionOptions::snap);
     m.def(

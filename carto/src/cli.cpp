@@ -92,6 +92,9 @@ std::vector<Option> options(CommandLine& cl) {
          [&](const std::string& v) { o.partition.density_field = v; }},
         {"--density-layer", "NAME", "point or polygon layer carrying the density field",
          [&](const std::string& v) { o.partition.density_layer = v; }},
+        {"--scree-layer", "NAME", "polygon layer of the scree areas, for --style scree (default: the band below the "
+                                  "rock where the slope is moderate)",
+         [&](const std::string& v) { o.partition.scree_layer = v; }},
         {"--snap", "UNITS", "tolerance snapping neighbouring borders together and matching them to lines (default 0.5 m)",
          [&](const std::string& v) { o.partition.snap = parse_double("--snap", v); }},
         {"--no-repair", nullptr, "refuse invalid face polygons instead of repairing them",

@@ -795,6 +795,32 @@ Partition load_partition(const PartitionOptions& opt, const std::string& working
                 if (f.region.contains({centre.getX(), centre.getY()})) f.density = d;
         }
     }
+    if (OGRLayer* slayer = find_layer(opt.scree_layer, is_polygon_layer, "polygon")) {
+        const Reprojector proj = reprojector(slayer, working_wkt, what);
+        slayer->ResetReading();
+        for (auto& feat : *slayer) {
+            const OGRGeometry* g0 = feat->GetGeometryRef();
+            if (!g0 || g0->IsEmpty()) continue;
+            const std::string which = "scree area " + std::to_string(feat->GetFID()) + " of layer '" + opt.scree_layer + "'";
+            std::unique_ptr<OGRGeometry> g(g0->clone());
+            proj.apply(g.get());
+            require_finite(g.get(), what, which);
+            if (!g->IsValid()) g.reset(g->MakeValid());
+            if (!g || g->IsEmpty()) throw Error(Code::BadGeometry, what + ": " + which + " is invalid and cannot be repaired");
+            std::function<void(const OGRGeometry*)> add = [&](const OGRGeometry* x) {
+                const auto t = wkbFlatten(x->getGeometryType());
+                if (t == wkbMultiPolygon || t == wkbGeometryCollection)
+                    for (const auto* part : *x->toGeometryCollection()) add(part);
+                if (t != wkbPolygon) return;
+                const OGRPolygon* poly = x->toPolygon();
+                std::vector<std::vector<Point>> holes;
+                for (int i = 0; i < poly->getNumInteriorRings(); ++i) holes.push_back(ring_points(poly->getInteriorRing(i)));
+                p.scree.emplace_back(ring_points(poly->getExteriorRing()), std::move(holes), what + ": " + which);
+            };
+            add(g.get());
+        }
+        p.notes.push_back(std::to_string(p.scree.size()) + " scree area(s) from layer '" + opt.scree_layer + "'");
+    }
     label_boundaries(p, opt.snap);
     return p;
 }

@@ -233,6 +233,20 @@ TEST(Scree, DenserAndLargerOnSteeperGround) {
     EXPECT_GT(a_steep, 1.3 * a_gentle) << "mean stone area steep " << a_steep << ", gentle " << a_gentle;
 }
 
+TEST(Scree, GivenAreasReplaceTheBand) {
+    // A scree polygon far from the rock, across the ramp: stones only there, none in the band.
+    Prepared p = synthetic();
+    const tex::Region given = tex::Region::rectangle(400, 100, 700, 200);
+    p.partition.scree = {given};
+    const Split s = split(hatch(p, options("scree")), Family::Stone);
+    ASSERT_GT(s.elements.size(), 100u);
+    for (const auto& r : s.elements)
+        for (const Point& q : r.outer()) {
+            EXPECT_TRUE(q.x >= 400 - kCell && q.x <= 700 + kCell && q.y >= 100 - kCell && q.y <= 200 + kCell)
+                << q.x << "," << q.y;
+        }
+}
+
 TEST(SlopeHachures, StrokesNeverTouchAndAvoidRockAndNoData) {
     const Split s = split(hachure_drawing(), Family::Hachure);
     ASSERT_GT(s.elements.size(), 300u);

@@ -17,7 +17,7 @@ os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 os.environ["GDAL_PAM_ENABLED"] = "NO"
 import qgis.core as qgis_core  # noqa: E402  (python3-qgis: scripts/setup.sh installs it)
 
-from conftest import PYTHON_DIR, ROOT, python_env  # noqa: E402
+from conftest import PYTHON_DIR, ROOT, partition_with_scree, python_env  # noqa: E402
 from osgeo import gdal, ogr  # noqa: E402
 
 from qgis.core import (QgsApplication, QgsProcessingException, QgsProcessingFeedback, QgsProject,  # noqa: E402
@@ -194,6 +194,18 @@ def test_terrain_styles_through_the_algorithm(qgis, sample_dir, tmp_path, style,
     loaded = QgsVectorLayer(uri, layer, "ogr")
     assert loaded.isValid() and loaded.geometryType() == qgis_core.QgsWkbTypes.PolygonGeometry
     assert loaded.featureCount() > 1000
+
+
+def test_scree_areas_parameter(qgis, sample_dir, tmp_path):
+    # A scree polygon layer in the partition's file: the stones stay inside it.
+    part = tmp_path / "partition.gpkg"
+    box = partition_with_scree(sample_dir, part)
+    run("rockhatch:rockhatching", {"DEM": str(sample_dir / "dem.tif"), "FACES": f"{part}|layername=faces",
+                                   "SCREE": f"{part}|layername=scree", "STYLE": "scree",
+                                   "OUTPUT": str(tmp_path / "s.gpkg")})
+    out = ogr.Open(str(tmp_path / "s.gpkg"))
+    stones = [g.GetGeometryRef().Clone() for g in out.GetLayerByName("hatch_stone")]
+    assert len(stones) > 100 and all(box.Buffer(1.0).Contains(g) for g in stones)
 
 
 def test_an_operator_style_of_the_tests_through_the_algorithm(qgis, rockhatch_exe, sample_dir, tmp_path):

@@ -7,7 +7,7 @@ import pytest
 from osgeo import gdal, ogr
 
 from rockhatch import carto
-from conftest import SHARED_DEM
+from conftest import SHARED_DEM, partition_with_scree
 
 gdal.UseExceptions()
 
@@ -78,6 +78,24 @@ def test_partition_none_is_for_terrain_styles_only(rockhatch_exe, sample_dir, tm
     assert "0 faces" in r.stderr
     assert ogr.Open(str(tmp_path / "h.gpkg")).GetLayerByName("hatch_fill").GetFeatureCount() == 0
     assert len(polygons(tmp_path / "h.gpkg", "hatch_hachure")) > 1000
+
+
+def test_scree_layer_replaces_the_band(rockhatch_exe, sample_dir, tmp_path):
+    # The sample's partition plus a polygon layer "scree" south-west of the summit.
+    part = tmp_path / "partition.gpkg"
+    box = partition_with_scree(sample_dir, part)
+    out = tmp_path / "s.gpkg"
+    r = run(rockhatch_exe, "--dem", sample_dir / "dem.tif", "--partition", part, "--faces-layer", "faces",
+            "--scree-layer", "scree", "--style", "scree", "-o", out)
+    assert r.returncode == 0, r.stderr
+    assert "1 scree area(s) from layer 'scree'" in r.stderr
+    stones = polygons(out, "hatch_stone")
+    assert len(stones) > 100
+    grown = box.Buffer(1.0)
+    assert all(grown.Contains(g) for g in stones)
+    r = run(rockhatch_exe, "--dem", sample_dir / "dem.tif", "--partition", part, "--scree-layer", "nope",
+            "--style", "scree", "-q", "-o", tmp_path / "x.gpkg")
+    assert r.returncode == 6 and "no layer named 'nope'" in r.stderr
 
 
 def test_no_hachure_in_nodata(rockhatch_exe, sample_dir, tmp_path):

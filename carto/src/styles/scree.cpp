@@ -3,6 +3,7 @@
 // distribution of seed 004 (section 3.1): a pinning that follows the scree density, a
 // shaping that scales and turns a stone at the pin, and a check that refuses a stone
 // closer than the local gap to the stones kept or touching a rock hatch.
+#include <algorithm>
 #include <cmath>
 
 #include "libtex/random.hpp"
@@ -30,9 +31,15 @@ std::vector<Hatch> draw_scree(const TerrainInput& in, const ParamValues& p) {
     require_order("scree", "shade_weight", shade, "1", 1.0);
     // The scree area: below the nearest rock, within `reach` of it, slope in range, outside
     // the faces themselves.
+    // With scree areas given (--scree-layer) they replace the band, the faces kept out.
     const RockProximity near = rock_proximity(in.partition, t.elevation);
+    const std::vector<Region>& given = in.partition.scree;
     auto area = std::make_shared<const Raster>(cell_mask(t.elevation, [&](int c, int r) {
         const double d = near.distance.at(c, r), s = t.slope.at(c, r);
+        if (!given.empty()) {
+            const Point q = t.elevation.to_world(c + 0.5, r + 0.5);
+            return d > 0 && std::any_of(given.begin(), given.end(), [&](const Region& g) { return g.contains(q); });
+        }
         return d > 0 && d <= reach && t.elevation.at(c, r) < near.rock_elevation.at(c, r) && s >= slope_min &&
                s <= slope_max;
     }));

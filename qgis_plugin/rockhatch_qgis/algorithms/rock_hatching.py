@@ -91,6 +91,7 @@ class RockHatching(RockhatchAlgorithm):
     SLOPE, ROUGHNESS, STYLE, STYLE_SCRIPT, PARAMS = "SLOPE", "ROUGHNESS", "STYLE", "STYLE_SCRIPT", "PARAMS"
     SCALE, SEED, OUTPUT, SVG = "SCALE", "SEED", "OUTPUT", "SVG"
     RELIEF_RADIUS = "RELIEF_RADIUS"
+    SCREE = "SCREE"
 
     def name(self):
         return "rockhatching"
@@ -140,6 +141,10 @@ class RockHatching(RockhatchAlgorithm):
                                                 [QgsProcessing.TypeVectorLine], optional=True),
             "Lines along the faces' fall lines: a face takes the direction of the line it holds. "
             "Default: a layer named orientation* in the partition's file.", advanced=True)
+        self.add(QgsProcessingParameterFeatureSource(self.SCREE, "Scree areas (polygons)",
+                                                     [QgsProcessing.TypeVectorPolygon], optional=True),
+            "Polygons where the scree style throws its stones (outside the rock faces). Default: the band "
+            "below the rock faces where the slope is moderate. Read by the scree style only.", advanced=True)
         self.add(QgsProcessingParameterRasterLayer(self.SLOPE, "Slope raster", optional=True),
             "Slope in percent replacing the one computed from the DEM (resampled onto the DEM's grid). "
             "Default: computed from the DEM (Horn).", advanced=True)
@@ -229,7 +234,8 @@ class RockHatching(RockhatchAlgorithm):
         else a temporary GeoPackage with the layers faces, lines, orientation."""
         roles = {"faces_layer": self.source_path(parameters, self.FACES, context, feedback),
                  "lines_layer": self.source_path(parameters, self.LINES, context, feedback),
-                 "orientation_layer": self.source_path(parameters, self.ORIENTATION_LAYER, context, feedback)}
+                 "orientation_layer": self.source_path(parameters, self.ORIENTATION_LAYER, context, feedback),
+                 "scree_layer": self.source_path(parameters, self.SCREE, context, feedback)}
         given = {k: v for k, v in roles.items() if v is not None}
         files = {os.path.realpath(p) for p, _ in given.values()}
         if len(files) == 1:
