@@ -261,6 +261,7 @@ void bind_carto(py::module_& m) {
         .def_readwrite("orientation_layer", &PartitionOptions::orientation_layer)
         .def_readwrite("density_field", &PartitionOptions::density_field)
         .def_readwrite("density_layer", &PartitionOptions::density_layer)
+        .def_readwrite("scree_layer", &PartitionOptions::scree_layer)
         .def_readwrite("repair", &PartitionOptions::repair)
         .def_readwrite("snap", &PartitionOptions::snap)
         .def_readwrite("filter", &PartitionOptions::filter, "read only the features meeting this box (working CRS)");
@@ -289,7 +290,9 @@ void bind_carto(py::module_& m) {
         .value("FILL", Family::Fill)
         .value("RIDGE", Family::Ridge)
         .value("VALLEY", Family::Valley)
-        .value("CROSS", Family::Cross);
+        .value("CROSS", Family::Cross)
+        .value("STONE", Family::Stone)
+        .value("HACHURE", Family::Hachure);
     m.def("family_width_mm", &family_width_mm, py::arg("family"), "stroke width of a hatch family, mm on paper");
     py::class_<Hatch>(m, "Hatch", "One stroke (or closed shape) of a hatch family")
         .def(py::init([](std::vector<Point> pts, bool closed, Family f) { return Hatch{std::move(pts), closed, f}; }),
@@ -341,8 +344,11 @@ void bind_carto(py::module_& m) {
         .def_readonly("name", &StyleInfo::name)
         .def_readonly("figure", &StyleInfo::figure)
         .def_readonly("title", &StyleInfo::title)
-        .def_readonly("params", &StyleInfo::params);
-    m.def("styles", &styles, "the built-in styles: Fig. 5.4 (a) to (g), then print (the default)");
+        .def_readonly("params", &StyleInfo::params)
+        .def_readonly("terrain", &StyleInfo::terrain,
+                      "True for a terrain style (scree, slope-hachures): it draws around the rock faces, over "
+                      "the whole DEM, after the faces are hatched with the default rock style.");
+    m.def("styles", &styles, "the built-in styles: Fig. 5.4 (a) to (g), print (the default), then the terrain styles");
     m.def("default_style", &default_style);
     m.def("find_style", &find_style, py::arg("name"));
     m.def("resolve_params", &resolve_params, py::arg("style"), py::arg("overrides"), py::arg("scale"),

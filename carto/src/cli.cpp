@@ -47,7 +47,8 @@ std::vector<Option> options(CommandLine& cl) {
     return {
         {"--dem", "PATH", "DEM raster (any GDAL format and CRS; geographic DEMs are reprojected to UTM)",
          [&](const std::string& v) { o.dem = v; }},
-        {"--partition", "PATH", "partition of the rock areas (GeoPackage, shapefile...): faces + labelled lines",
+        {"--partition", "PATH", "partition of the rock areas (GeoPackage, shapefile...): faces + labelled lines; auto: extracted "
+                                "from the DEM; none: no rock (terrain styles only)",
          [&](const std::string& v) { o.partition.path = v; }},
         {"-o", "PATH", "output: .gpkg (one layer per hatch family), .svg (true scale) or .png (preview); repeatable",
          [&](const std::string& v) { o.outputs.push_back(v); }},
@@ -97,6 +98,9 @@ std::vector<Option> options(CommandLine& cl) {
          [&](const std::string& v) { o.partition.density_field = v; }},
         {"--density-layer", "NAME", "point or polygon layer carrying the density field",
          [&](const std::string& v) { o.partition.density_layer = v; }},
+        {"--scree-layer", "NAME", "polygon layer of the scree areas, for --style scree (default: the band below the "
+                                  "rock where the slope is moderate)",
+         [&](const std::string& v) { o.partition.scree_layer = v; }},
         {"--snap", "UNITS", "tolerance snapping neighbouring borders together and matching them to lines (default 0.5 m)",
          [&](const std::string& v) { o.partition.snap = parse_double("--snap", v); }},
         {"--no-repair", nullptr, "refuse invalid face polygons instead of repairing them",
@@ -127,7 +131,8 @@ std::vector<Option> options(CommandLine& cl) {
 std::string styles_text() {
     std::ostringstream os;
     for (const auto& s : carto::styles()) {
-        os << "  " << s.name << " (Fig. " << s.figure << ")" << (s.name == carto::default_style() ? " [default]" : "")
+        os << "  " << s.name << (s.terrain ? std::string(" (terrain, around the rock)") : " (Fig. " + s.figure + ")")
+           << (s.name == carto::default_style() ? " [default]" : "")
            << ": " << s.title << "\n";
         for (const auto& p : s.params) {
             std::ostringstream v;
@@ -150,7 +155,7 @@ std::string help_text() {
         out << "  " << head << (head.size() < 26 ? std::string(26 - head.size(), ' ') : "\n" + std::string(28, ' '))
                   << o.help << "\n";
     }
-    out << "\nstyles (parameters in mm on paper at the map scale, ratios, or degrees):\n";
+    out << "\nstyles (parameters in mm on paper at the map scale, m on the ground, ratios, or degrees):\n";
     out << styles_text();
     out << "\nexit codes: 0 ok, 1 failure, 2 usage, 3 missing input, 4 no CRS, 5 no overlap,\n"
                  "6 bad layer or attribute, 7 unknown style or parameter, 8 invalid geometry,\n"

@@ -130,18 +130,30 @@ void check_outputs(const std::vector<FileArg>& inputs, const std::vector<FileArg
 
 namespace {
 
+// The rock families are always written (an empty layer says "none drawn"); the terrain
+// families only by the styles that draw them.
+bool has_family(const Drawing& d, Family f) {
+    if (int(f) < kRockFamilies) return true;
+    for (const auto& face : d.faces)
+        for (const auto& h : face.hatches)
+            if (h.family == f) return true;
+    return false;
+}
+
 // Receives the hatches of one family, each as the points written (a closed hatch with its
 // first point repeated at the end), with its face and style.
 using HatchSink = std::function<void(std::int64_t face_id, const char* style, const std::vector<Point>& points)>;
 
-// The hatch GeoPackage: one LineString layer per family (fid, geom, face_id, family,
-// style, width_mm), written family by family from `source`, which hands every hatch of the
+// The hatch GeoPackage: one layer per family that is `present` (fid, geom, face_id, family,
+// style, width_mm; LineStrings, Polygons for the filled families), written family by family
+// from `source`, which hands every hatch of the
 // family it is asked for to the sink, in order. `total` (hatches, for the progress) may be an
 // estimate. The R-trees are bulk-loaded once the file is closed; the file is renamed in
 // place at the end.
 void write_hatch_gpkg(const std::string& path, const std::string& crs_wkt, bool spatial_index, std::size_t total,
                       const std::function<bool(double)>& keep_going,
                       const std::function<void(Family, const HatchSink&)>& source,
+                      const std::function<bool(Family)>& present,
                       const std::vector<CrestOrnament>* crests = nullptr, const std::string& crest_style = "") {
     std::size_t written = 0;
     auto check = [&] {
@@ -167,11 +179,14 @@ void write_hatch_gpkg(const std::string& path, const std::string& crs_wkt, bool 
         srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
         for (int fam = 0; fam < kFamilies; ++fam) {
             const Family f = Family(fam);
+            if (!present(f)) continue;
             const std::string name = std::string("hatch_") + family_name(f);
             // GDAL 3.6 would fill the R-tree row by row, most of the time spent writing a large
             // drawing: the index is bulk-loaded once the file is closed (gpkg_rtree.cpp).
             const char* lco[] = {"SPATIAL_INDEX=NO", "FID=fid", "GEOMETRY_NAME=geom", nullptr};
-            OGRLayer* layer = ds->CreateLayer(name.c_str(), &srs, wkbLineString, const_cast<char**>(lco));
+            // Stones and hachures are filled shapes: polygons; hatches are lines.
+            OGRLayer* layer = ds->CreateLayer(name.c_str(), &srs, family_filled(f) ? wkbPolygon : wkbLineString,
+                                              const_cast<char**>(lco));
             if (!layer) throw Error(Code::OutputExists, "-o '" + path + "': cannot create layer " + name);
             OGRFieldDefn fid("face_id", OFTInteger64), ffam("family", OFTString), fsty("style", OFTString),
                 fw("width_mm", OFTReal);
@@ -189,10 +204,17 @@ void write_hatch_gpkg(const std::string& path, const std::string& crs_wkt, bool 
                 feat.SetFID(OGRNullFID);
                 feat.SetField(0, GIntBig(face_id));
                 feat.SetField(2, style);
-                auto* ls = new OGRLineString();
+                // Stones and hachures are filled shapes (closed: the first point repeated).
+                auto* ls = family_filled(f) ? new OGRLinearRing() : new OGRLineString();
                 ls->setNumPoints(int(pts.size()), FALSE);
                 for (std::size_t i = 0; i < pts.size(); ++i) ls->setPoint(int(i), pts[i].x, pts[i].y);
-                feat.SetGeometryDirectly(ls);
+                if (family_filled(f)) {
+                    auto* poly = new OGRPolygon();
+                    poly->addRingDirectly(static_cast<OGRLinearRing*>(ls));
+                    feat.SetGeometryDirectly(poly);
+                } else {
+                    feat.SetGeometryDirectly(ls);
+                }
                 if (layer->CreateFeature(&feat) != OGRERR_NONE)
                     throw Error(Code::OutputExists, "-o '" + path + "': write failed (" + CPLGetLastErrorMsg() + ")");
                 if (spatial_index) boxes[std::size_t(fam)].push_back(box_of(pts));
@@ -232,6 +254,7 @@ void write_hatch_gpkg(const std::string& path, const std::string& crs_wkt, bool 
     }
     if (spatial_index)
         for (int fam = 0; fam < kFamilies; ++fam) {
+            if (!present(Family(fam))) continue;
             bulk_load_rtree(tmp.path, std::string("hatch_") + family_name(Family(fam)), "geom", "fid",
                             boxes[std::size_t(fam)]);
             std::vector<BoxD>().swap(boxes[std::size_t(fam)]);
@@ -256,7 +279,7 @@ std::unique_ptr<GDALDataset, DatasetCloser> open_hatches(const std::string& path
     std::unique_ptr<GDALDataset, DatasetCloser> ds(GDALDataset::FromHandle(
         GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
     if (!ds) throw Error(Code::InputMissing, what + " '" + path + "': not a GeoPackage OGR can read");
-    for (int fam = 0; fam < kFamilies; ++fam)
+    for (int fam = 0; fam < kRockFamilies; ++fam)
         if (!ds->GetLayerByName((std::string("hatch_") + family_name(Family(fam))).c_str()))
             throw Error(Code::BadLayer, what + " '" + path + "': no layer hatch_" + family_name(Family(fam)) +
                                             " (not a rockhatch output)");
@@ -297,7 +320,7 @@ void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index,
                 if (h.closed && !pts.empty()) pts.push_back(pts.front());
                 sink(face.face_id, d.style.c_str(), pts);
             }
-    }, d.crests ? &*d.crests : nullptr, d.style);
+    }, [&](Family f) { return has_family(d, f); }, d.crests ? &*d.crests : nullptr, d.style);
 }
 
 std::size_t merge_gpkg(const std::vector<std::string>& parts, const std::string& path, bool spatial_index,
@@ -307,7 +330,7 @@ std::size_t merge_gpkg(const std::vector<std::string>& parts, const std::string&
     std::size_t total = 0;
     for (const auto& part : parts) {
         auto ds = open_hatches(part, "tile");
-        for (int fam = 0; fam < kFamilies; ++fam)
+        for (int fam = 0; fam < kRockFamilies; ++fam)
             total += std::size_t(std::max<GIntBig>(
                 0, ds->GetLayerByName((std::string("hatch_") + family_name(Family(fam))).c_str())->GetFeatureCount()));
         if (crs_wkt.empty()) {
@@ -330,7 +353,7 @@ std::size_t merge_gpkg(const std::vector<std::string>& parts, const std::string&
                 sink(id, style, p);
             });
         }
-    });
+    }, [](Family f) { return int(f) < kRockFamilies; });
     return n;
 }
 
@@ -346,7 +369,7 @@ Drawing read_gpkg(const std::string& path, double scale) {
         CPLFree(wkt);
     }
     std::map<std::int64_t, std::size_t> face_index;
-    for (int fam = 0; fam < kFamilies; ++fam)
+    for (int fam = 0; fam < kRockFamilies; ++fam)
         read_family(*ds, Family(fam), "hatches '" + path + "'", [&](std::int64_t id, const char* style,
                                                                    const std::vector<Point>& p) {
             if (d.style.empty()) d.style = style;
@@ -392,11 +415,16 @@ void write_svg(const Drawing& d, const std::string& path) {
     s += "  <rh:crs-wkt>" + xml_escape(d.crs_wkt) + "</rh:crs-wkt>\n</metadata>\n";
     for (int fam = 0; fam < kFamilies; ++fam) {
         const Family f = Family(fam);
+        if (!has_family(d, f)) continue;
         s += "<g id=\"";
         s += family_name(f);
-        s += "\" fill=\"none\" stroke=\"black\" stroke-linecap=\"round\" stroke-linejoin=\"round\" stroke-width=\"";
-        num(s, family_width_mm(f) / mm_per_unit);
-        s += "\">\n";
+        if (family_filled(f)) {
+            s += "\" fill=\"black\" stroke=\"none\">\n";
+        } else {
+            s += "\" fill=\"none\" stroke=\"black\" stroke-linecap=\"round\" stroke-linejoin=\"round\" stroke-width=\"";
+            num(s, family_width_mm(f) / mm_per_unit);
+            s += "\">\n";
+        }
         for (const auto& face : d.faces)
             for (const auto& h : face.hatches) {
                 if (h.family != f || h.points.size() < 2) continue;
@@ -464,8 +492,35 @@ void write_png(const Drawing& d, const std::string& path, int pixels, const Rast
                 px = std::min(px, float(1.0 - ink * cover));
             }
     };
+    // A filled ring (stone, hachure): the pixels whose centre it holds (even-odd scan lines),
+    // its outline stamped below as a half-pixel stroke for the edge.
+    auto fill = [&](const std::vector<Point>& ring, float ink) {
+        std::vector<std::pair<double, double>> px;
+        double ymin = INFINITY, ymax = -INFINITY;
+        for (const Point& q : ring) {
+            px.push_back({(q.x - b.xmin) / upp, (b.ymax - q.y) / upp});
+            ymin = std::min(ymin, px.back().second), ymax = std::max(ymax, px.back().second);
+        }
+        std::vector<double> xs;
+        for (int r = std::max(0, int(std::floor(ymin))); r <= std::min(h - 1, int(std::ceil(ymax))); ++r) {
+            const double y = r + 0.5;
+            xs.clear();
+            for (std::size_t i = 0; i < px.size(); ++i) {
+                const auto& [x0, y0] = px[i];
+                const auto& [x1, y1] = px[(i + 1) % px.size()];
+                if ((y0 <= y) != (y1 <= y)) xs.push_back(x0 + (y - y0) / (y1 - y0) * (x1 - x0));
+            }
+            std::sort(xs.begin(), xs.end());
+            for (std::size_t i = 0; i + 1 < xs.size(); i += 2)
+                for (int c = std::max(0, int(std::ceil(xs[i] - 0.5))); c <= std::min(w - 1, int(std::floor(xs[i + 1] - 0.5))); ++c) {
+                    float& v = img[std::size_t(r) * w + c];
+                    v = std::min(v, 1.0f - ink);
+                }
+        }
+    };
     for (const auto& face : d.faces)
         for (const auto& hh : face.hatches) {
+            if (family_filled(hh.family) && hh.closed) fill(hh.points, 0.9f);
             const double radius = std::max(0.5, family_width_mm(hh.family) * d.scale / 1000.0 / upp / 2);
             const std::size_t n = hh.points.size();
             const std::size_t segs = hh.closed ? n : n - 1;

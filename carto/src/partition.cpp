@@ -718,6 +718,11 @@ Partition load_partition(const PartitionOptions& opt, const std::string& working
     if (p.faces.empty() && !opt.filter)
         throw Error(Code::BadLayer, what + ": no face keeps an area once its borders are snapped");
 
+    // The lines, orientations and densities of every face read, including the parts of the
+    // faces beyond the filter box (a face meeting the box is read whole, its attributes too).
+    std::optional<tex::BBox> around = opt.filter;
+    if (around) around->add(p.bounds());
+
     // ---- Lines: one layer with a label attribute, or one layer per kind.
     OGRLayer* lines = find_layer(opt.lines_layer, is_line_layer, "line");
     std::vector<std::pair<OGRLayer*, LineKind>> per_kind;
@@ -739,7 +744,7 @@ Partition load_partition(const PartitionOptions& opt, const std::string& working
         if (idx < 0)
             throw Error(Code::BadLayer, what + ": line layer '" + std::string(lines->GetName()) + "' has no label field '" +
                                             opt.label_field + "' (ridge / valley / other)");
-        filter_layer(lines, proj, opt.filter);
+        filter_layer(lines, proj, around);
         lines->ResetReading();
         for (auto& feat : *lines) {
             OGRGeometry* g = feat->GetGeometryRef();
@@ -753,19 +758,19 @@ Partition load_partition(const PartitionOptions& opt, const std::string& working
             std::unique_ptr<OGRGeometry> c(g->clone());
             proj.apply(c.get());
             require_finite(c.get(), what, "line " + std::to_string(feat->GetFID()));
-            if (keep(c.get(), opt.filter)) add_lines(c.get(), kind, p.lines);
+            if (keep(c.get(), around)) add_lines(c.get(), kind, p.lines);
         }
     } else if (!per_kind.empty()) {
         for (auto [l, kind] : per_kind) {
             const Reprojector proj = reprojector(l, working_wkt, what);
-            filter_layer(l, proj, opt.filter);
+            filter_layer(l, proj, around);
             l->ResetReading();
             for (auto& feat : *l) {
                 if (!feat->GetGeometryRef()) continue;
                 std::unique_ptr<OGRGeometry> c(feat->GetGeometryRef()->clone());
                 proj.apply(c.get());
                 require_finite(c.get(), what, "line " + std::to_string(feat->GetFID()) + " of layer '" + l->GetName() + "'");
-                if (keep(c.get(), opt.filter)) add_lines(c.get(), kind, p.lines);
+                if (keep(c.get(), around)) add_lines(c.get(), kind, p.lines);
             }
         }
     } else {
@@ -784,7 +789,7 @@ Partition load_partition(const PartitionOptions& opt, const std::string& working
     if (olayer) {
         const Reprojector proj = reprojector(olayer, working_wkt, what);
         int matched = 0;
-        filter_layer(olayer, proj, opt.filter);
+        filter_layer(olayer, proj, around);
         olayer->ResetReading();
         for (auto& feat : *olayer) {
             if (!feat->GetGeometryRef()) continue;
@@ -811,7 +816,7 @@ Partition load_partition(const PartitionOptions& opt, const std::string& working
         const Reprojector proj = reprojector(dlayer, working_wkt, what);
         const int idx = dlayer->GetLayerDefn()->GetFieldIndex(dens_name.c_str());
         if (idx < 0) throw Error(Code::BadLayer, what + ": layer '" + opt.density_layer + "' has no field '" + dens_name + "'");
-        filter_layer(dlayer, proj, opt.filter);
+        filter_layer(dlayer, proj, around);
         dlayer->ResetReading();
         for (auto& feat : *dlayer) {
             if (!feat->GetGeometryRef() || !feat->IsFieldSetAndNotNull(idx)) continue;
@@ -826,6 +831,32 @@ Partition load_partition(const PartitionOptions& opt, const std::string& working
             for (auto& f : p.faces)
                 if (f.region.contains({centre.getX(), centre.getY()})) f.density = d;
         }
+    }
+    if (OGRLayer* slayer = find_layer(opt.scree_layer, is_polygon_layer, "polygon")) {
+        const Reprojector proj = reprojector(slayer, working_wkt, what);
+        slayer->ResetReading();
+        for (auto& feat : *slayer) {
+            const OGRGeometry* g0 = feat->GetGeometryRef();
+            if (!g0 || g0->IsEmpty()) continue;
+            const std::string which = "scree area " + std::to_string(feat->GetFID()) + " of layer '" + opt.scree_layer + "'";
+            std::unique_ptr<OGRGeometry> g(g0->clone());
+            proj.apply(g.get());
+            require_finite(g.get(), what, which);
+            if (!g->IsValid()) g.reset(g->MakeValid());
+            if (!g || g->IsEmpty()) throw Error(Code::BadGeometry, what + ": " + which + " is invalid and cannot be repaired");
+            std::function<void(const OGRGeometry*)> add = [&](const OGRGeometry* x) {
+                const auto t = wkbFlatten(x->getGeometryType());
+                if (t == wkbMultiPolygon || t == wkbGeometryCollection)
+                    for (const auto* part : *x->toGeometryCollection()) add(part);
+                if (t != wkbPolygon) return;
+                const OGRPolygon* poly = x->toPolygon();
+                std::vector<std::vector<Point>> holes;
+                for (int i = 0; i < poly->getNumInteriorRings(); ++i) holes.push_back(ring_points(poly->getInteriorRing(i)));
+                p.scree.emplace_back(ring_points(poly->getExteriorRing()), std::move(holes), what + ": " + which);
+            };
+            add(g.get());
+        }
+        p.notes.push_back(std::to_string(p.scree.size()) + " scree area(s) from layer '" + opt.scree_layer + "'");
     }
     label_boundaries(p, opt.snap);
     return p;

@@ -102,6 +102,12 @@ void validate(const Options& o) {
     }
     // The exemplar is read (and tried) now: a bad one is refused before any work.
     if (o.crest_ornament) load_crest_exemplar(*o.crest_ornament);
+    if (o.partition.path == "none" && !selected_style(o).terrain)
+        throw Error(Code::Usage, "--partition none: style '" + selected_style(o).info.name +
+                                     "' hatches rock faces and needs a partition (a file or auto)");
+    if (o.window && selected_style(o).terrain)
+        throw Error(Code::Usage, "--window: style '" + selected_style(o).info.name +
+                                     "' draws the whole DEM and cannot be tiled by a window");
     if (o.threads > kMaxThreads)
         throw Error(Code::Usage, "--threads: " + std::to_string(o.threads) + " is more than " +
                                      std::to_string(kMaxThreads));
@@ -110,7 +116,7 @@ void validate(const Options& o) {
 void check_files(const Options& o) {
     std::vector<FileArg> outputs;
     for (const auto& out : o.outputs) outputs.push_back({"-o", out});
-    const std::string partition = o.partition.path == "auto" ? "" : o.partition.path;
+    const std::string partition = o.partition.path == "auto" || o.partition.path == "none" ? "" : o.partition.path;
     const std::string crest =
         o.crest_ornament && *o.crest_ornament != kDefaultCrest ? *o.crest_ornament : std::string();
     check_outputs({{"--dem", o.dem}, {"--partition", partition}, {"--slope", o.slope}, {"--roughness", o.roughness},
@@ -147,7 +153,11 @@ Prepared prepare(const Options& o, const Progress& progress) {
     p.relief = local_relief(dem, o.relief_radius);
 
     tick(progress, 0.15, "reading the partition");
-    if (o.partition.path == "auto") {
+    if (o.partition.path == "none") {
+        // No rock at all: a terrain style draws the whole DEM (validate refuses it otherwise).
+        p.partition.crs_wkt = dem.crs_wkt;
+        return p;
+    } else if (o.partition.path == "auto") {
         // No partition: extract one from the DEM (carto/extract.hpp) with its defaults.
         ExtractOptions eo;
         eo.raster = dem;
@@ -161,15 +171,20 @@ Prepared prepare(const Options& o, const Progress& progress) {
     if (!p.partition.bounds().intersects(dem.bounds()))
         throw Error(Code::NoOverlap, "--partition '" + o.partition.path + "' does not overlap --dem '" + o.dem + "'");
 
+    resolve_face_controls(p, o);
+    return p;
+}
+
+void resolve_face_controls(Prepared& p, const Options& o) {
     // Resolve orientation and density of every face (neighbours need them too).
     // An extracted partition's orientations are its faces' mean fall lines (derived, not given).
+    p.orientation_derived.clear();
     for (const auto& f : p.partition.faces) p.orientation_derived.push_back(o.partition.path == "auto" || !f.orientation);
     const auto [derived_o, derived_d] = derive_face_controls(p.partition, p.terrain);
     if (derived_o)
         p.notes.push_back("orientation of " + std::to_string(derived_o) + " face(s) derived from the terrain (mean fall line)");
     if (derived_d)
         p.notes.push_back("density of " + std::to_string(derived_d) + " face(s) derived from the terrain (1 - mean hillshade)");
-    return p;
 }
 
 Drawing hatch(const Prepared& p, const Options& o, const Progress& progress) {
@@ -183,9 +198,12 @@ Drawing hatch(const Prepared& p, const Options& o, const Progress& progress) {
 
 Drawing hatch(const Prepared& p, const Options& o, const std::vector<int>& selected, const Progress& progress) {
     const Style style = selected_style(o);
-    const ParamValues params = resolve_params(style.info, o.params, o.scale);
+    // A terrain style's parameters are its own; its faces are hatched with the default
+    // rock style at its default values.
+    const ParamValues params = resolve_params(style.terrain ? find_style(default_style()) : style.info,
+                                              style.terrain ? std::map<std::string, double>{} : o.params, o.scale);
     const Partition& part = p.partition;
-    check_workload(style.info, params, part, selected, o.scale);
+    check_workload(style.terrain ? find_style(default_style()) : style.info, params, part, selected, o.scale);
     Drawing d;
     d.crs_wkt = part.crs_wkt;
     d.style = style.info.name;
@@ -257,6 +275,20 @@ Drawing hatch(const Prepared& p, const Options& o, const std::vector<int>& selec
         d.crests = std::move(crests.ornaments);
         d.notes = std::move(crests.notes);
     }
+    if (style.terrain) {
+        tick(progress, 0.9, "drawing the terrain");
+        std::vector<Hatch> rock;
+        for (const auto& f : d.faces) rock.insert(rock.end(), f.hatches.begin(), f.hatches.end());
+        const ParamValues own = resolve_params(style.info, o.params, o.scale);
+        try {
+            d.faces.push_back({kTerrainFaceId, style.terrain({p.terrain, part, rock, o.scale, o.seed}, own)});
+        } catch (const Error&) {
+            throw;
+        } catch (const std::exception& e) {
+            throw Error(Code::Failure, "style '" + style.info.name + "': " + e.what());
+        }
+        d.bounds.add(p.terrain.elevation.bounds());
+    }
     return d;
 }
 
@@ -276,7 +308,8 @@ Stats run(const Options& o, const Progress& progress) {
     }
     tick(progress, 1.0, "done");
     Stats s;
-    s.faces = d.faces.size();
+    s.faces = std::size_t(std::count_if(d.faces.begin(), d.faces.end(),
+                                        [](const FaceHatches& f) { return f.face_id != kTerrainFaceId; }));
     for (const auto& f : d.faces) s.hatches += f.hatches.size();
     if (d.crests) s.crests = d.crests->size();
     s.crs = crs_name(d.crs_wkt);

@@ -10,6 +10,7 @@
 #include "carto/error.hpp"
 #include "libtex/random.hpp"
 #include "styles/blocks.hpp"
+#include "styles/terrain.hpp"
 
 namespace carto {
 namespace {
@@ -23,6 +24,13 @@ const std::vector<blocks::Builtin>& builtins() {
     return all;
 }
 
+const std::vector<terrain::Builtin>& terrain_builtins() {
+    static const std::vector<terrain::Builtin> all = {terrain::scree(), terrain::slope_hachures()};
+    return all;
+}
+
+const std::string kDefaultStyle = "print";
+
 }  // namespace
 
 const char* family_name(Family f) {
@@ -31,6 +39,8 @@ const char* family_name(Family f) {
         case Family::Ridge: return "ridge";
         case Family::Valley: return "valley";
         case Family::Cross: return "cross";
+        case Family::Stone: return "stone";
+        case Family::Hachure: return "hachure";
     }
     return "?";
 }
@@ -41,6 +51,9 @@ double family_width_mm(Family f) {
         case Family::Ridge: return 0.12;
         case Family::Valley: return 0.25;
         case Family::Cross: return 0.08;
+        // Filled rings: the outline is not stroked (the width is the PNG preview's minimum).
+        case Family::Stone: return 0.0;
+        case Family::Hachure: return 0.0;
     }
     return 0.1;
 }
@@ -49,16 +62,17 @@ const std::vector<StyleInfo>& styles() {
     static const std::vector<StyleInfo> all = [] {
         std::vector<StyleInfo> v;
         for (const auto& b : builtins()) v.push_back(b.info);
+        for (const auto& b : terrain_builtins()) v.push_back(b.info);
         return v;
     }();
     return all;
 }
 
-const std::string& default_style() { return styles().back().name; }
+const std::string& default_style() { return kDefaultStyle; }
 
 const StyleInfo& find_style(const std::string& name) {
     for (const auto& s : styles())
-        if (s.name == name || s.figure == name || "5.4" + name == s.figure) return s;
+        if (s.name == name || (!s.figure.empty() && (s.figure == name || "5.4" + name == s.figure))) return s;
     std::string names;
     for (const auto& s : styles()) names += (names.empty() ? "" : ", ") + s.name;
     throw Error(Code::UnknownStyle, "--style: unknown style '" + name + "' (known: " + names + ")");
@@ -68,6 +82,14 @@ Style builtin_style(const std::string& name) {
     const StyleInfo& info = find_style(name);
     for (const auto& b : builtins())
         if (b.info.name == info.name) return {b.info, b.program ? b.program : blocks::per_face(b.body, b.valleys)};
+    for (const auto& b : terrain_builtins())
+        if (b.info.name == info.name) {
+            // The rock faces are hatched with the default style, then the terrain is drawn.
+            Style s = builtin_style(default_style());
+            s.info = b.info;
+            s.terrain = b.program;
+            return s;
+        }
     throw Error(Code::UnknownStyle, "--style: unknown style '" + name + "'");
 }
 
@@ -81,7 +103,7 @@ ParamValues resolve_params(const StyleInfo& s, const std::map<std::string, doubl
     for (const auto& p : s.params) {
         double v = p.value;
         if (auto it = overrides.find(p.name); it != overrides.end()) v = it->second;
-        if (!std::isfinite(v) || (p.unit == "mm" && v <= 0) || ((p.unit == "ratio" || p.unit == "%") && v < 0)) {
+        if (!std::isfinite(v) || ((p.unit == "mm" || p.unit == "m") && v <= 0) || ((p.unit == "ratio" || p.unit == "%") && v < 0)) {
             std::ostringstream m;
             m << "--param " << p.name << ": " << v << " is not a valid value (" << p.unit << ") for style '" << s.name
               << "'";

@@ -82,6 +82,9 @@ TileReport run_tile(const Options& o, const tex::BBox& tile, const std::string& 
     if (o.partition.path == "auto")
         throw Error(Code::Usage, "--partition auto: a tiled run hatches a partition file; extract it first with "
                                  "'rockhatch partition --dem DEM -o faces.gpkg' and pass --partition faces.gpkg");
+    if (selected_style(o).terrain)
+        throw Error(Code::Usage, "--style " + selected_style(o).info.name +
+                                     ": a terrain style draws the whole DEM in one sequence and cannot be tiled yet");
     if (o.crest_ornament)
         throw Error(Code::Usage, "--crest-ornament: not available in a tiled run yet (the ornaments follow ridge lines "
                                  "that cross tiles); draw them with a whole run, e.g. with --window");
@@ -130,7 +133,7 @@ TileReport run_tile(const Options& o, const tex::BBox& tile, const std::string& 
             check_roughness(p.terrain.roughness, o.roughness);
         }
         p.relief = local_relief(dem, o.relief_radius);
-        derive_face_controls(p.partition, p.terrain);
+        resolve_face_controls(p, o);
         std::vector<int> owned;
         for (std::size_t i = 0; i < p.partition.faces.size(); ++i)
             if (mine(p.partition.faces[i])) owned.push_back(int(i));

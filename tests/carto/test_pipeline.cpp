@@ -551,7 +551,9 @@ TEST(Pipeline, PrintRefusesAToneCurveAboveItself) {
 }
 
 TEST(Pipeline, StylesAndParameters) {
-    EXPECT_EQ(styles().size(), 8u);
+    // The seven rock styles of Fig. 5.4, print (the default), then the two terrain styles.
+    EXPECT_EQ(styles().size(), 10u);
+    EXPECT_EQ(std::count_if(styles().begin(), styles().end(), [](const StyleInfo& s) { return s.terrain; }), 2);
     EXPECT_EQ(default_style(), "print");
     EXPECT_EQ(find_style("5.4a").name, "noisy");
     EXPECT_EQ(find_style("c").name, "density-cells");

@@ -49,3 +49,20 @@ def rockhatch_exe() -> pathlib.Path:
 @pytest.fixture(scope="session")
 def sample_dir() -> pathlib.Path:
     return SAMPLE
+
+
+def partition_with_scree(sample_dir, path):
+    """Copies the sample's partition to `path` with a polygon layer "scree": a 600 m square at
+    the south-west corner of the faces. Returns the square (an OGR geometry)."""
+    from osgeo import gdal, ogr
+    gdal.VectorTranslate(str(path), str(sample_dir / "partition.gpkg"))
+    ds = ogr.Open(str(path), 1)  # kept open while its layers are used
+    faces = ds.GetLayerByName("faces")
+    xmin, _, ymin, _ = faces.GetExtent()
+    box = ogr.CreateGeometryFromWkt(
+        f"POLYGON(({xmin} {ymin},{xmin + 600} {ymin},{xmin + 600} {ymin + 600},{xmin} {ymin + 600},{xmin} {ymin}))")
+    layer = ds.CreateLayer("scree", faces.GetSpatialRef(), ogr.wkbPolygon)
+    f = ogr.Feature(layer.GetLayerDefn())
+    f.SetGeometry(box)
+    layer.CreateFeature(f)
+    return box

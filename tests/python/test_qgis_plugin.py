@@ -17,7 +17,7 @@ os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 os.environ["GDAL_PAM_ENABLED"] = "NO"
 import qgis.core as qgis_core  # noqa: E402  (python3-qgis: scripts/setup.sh installs it)
 
-from conftest import PYTHON_DIR, ROOT, python_env  # noqa: E402
+from conftest import PYTHON_DIR, ROOT, partition_with_scree, python_env  # noqa: E402
 from osgeo import gdal, ogr  # noqa: E402
 
 from qgis.core import (QgsApplication, QgsProcessingException, QgsProcessingFeedback, QgsProject,  # noqa: E402
@@ -179,6 +179,33 @@ def test_style_seed_params_and_script(qgis, sample_dir, tmp_path):
         ROOT / "styles" / "noisy.py"), SEED=3, SCALE=5000, PARAMS="spacing_min=0.5", SVG=str(tmp_path / "s.svg")))
     assert layer_counts(tmp_path / "s.gpkg") == layer_counts(tmp_path / "q.gpkg")
     assert (tmp_path / "s.svg").read_bytes() == (tmp_path / "q.svg").read_bytes()
+
+
+@pytest.mark.parametrize("style,layer", [("scree", "hatch_stone"), ("slope-hachures", "hatch_hachure")])
+def test_terrain_styles_through_the_algorithm(qgis, sample_dir, tmp_path, style, layer):
+    # The same drawing as carto.run, and the filled layer loaded as a polygon layer.
+    from rockhatch import carto
+    carto.run(str(sample_dir / "dem.tif"), str(sample_dir / "partition.gpkg"), [str(tmp_path / "m.svg")], style=style)
+    result = run("rockhatch:rockhatching", sample_params(sample_dir, tmp_path / "q.gpkg", STYLE=style,
+                                                         SVG=str(tmp_path / "q.svg")))
+    assert (tmp_path / "q.svg").read_bytes() == (tmp_path / "m.svg").read_bytes()
+    uri = f"{tmp_path / 'q.gpkg'}|layername={layer}"
+    assert result["LAYERS"] == [f"{tmp_path / 'q.gpkg'}|layername={f}" for f in FAMILIES] + [uri]
+    loaded = QgsVectorLayer(uri, layer, "ogr")
+    assert loaded.isValid() and loaded.geometryType() == qgis_core.QgsWkbTypes.PolygonGeometry
+    assert loaded.featureCount() > 1000
+
+
+def test_scree_areas_parameter(qgis, sample_dir, tmp_path):
+    # A scree polygon layer in the partition's file: the stones stay inside it.
+    part = tmp_path / "partition.gpkg"
+    box = partition_with_scree(sample_dir, part)
+    run("rockhatch:rockhatching", {"DEM": str(sample_dir / "dem.tif"), "FACES": f"{part}|layername=faces",
+                                   "SCREE": f"{part}|layername=scree", "STYLE": "scree",
+                                   "OUTPUT": str(tmp_path / "s.gpkg")})
+    out = ogr.Open(str(tmp_path / "s.gpkg"))
+    stones = [g.GetGeometryRef().Clone() for g in out.GetLayerByName("hatch_stone")]
+    assert len(stones) > 100 and all(box.Buffer(1.0).Contains(g) for g in stones)
 
 
 def test_an_operator_style_of_the_tests_through_the_algorithm(qgis, rockhatch_exe, sample_dir, tmp_path):

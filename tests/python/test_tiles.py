@@ -241,6 +241,7 @@ def test_tiled_equals_whole_on_chamonix(tmp_path, rockhatch_exe):
     (["-o", FACES, "--overwrite"], 9, "input"),
     (["--style", "nosuch"], 7, "nosuch"),
     (["--crest-ornament", "default"], 2, "crest"),
+    (["--style", "scree"], 2, "terrain style"),
 ])
 def test_bad_input_is_refused_before_any_work(tmp_path, args, code, words):
     base = {"--dem": DEM, "--partition": FACES, "--tile-size": "1000", "-o": str(tmp_path / "o.gpkg")}
@@ -284,3 +285,18 @@ def test_a_vrt_mosaic_of_many_files_gives_the_same_hatches(tmp_path, sample_whol
     out = tmp_path / "tiled.gpkg"
     tiles.run(vrt, FACES, 900, [out], seed=3, workers=2)
     assert features(out) == sample_whole
+
+
+def test_faces_without_orientation_follow_the_fall_line_tiled_as_whole(tmp_path):
+    # The sample's faces and lines without its orientation layer: every face's direction is
+    # derived, and the print style lays its strokes along the smoothed fall line, a field the
+    # tiles must compute from the same cells as the whole run.
+    src = ogr.Open(FACES)
+    faces = str(tmp_path / "faces.gpkg")
+    out = ogr.GetDriverByName("GPKG").CreateDataSource(faces)
+    for name in ("faces", "lines"):
+        out.CopyLayer(src.GetLayerByName(name), name)
+    out = None
+    expected = whole_run(["--dem", DEM, "--partition", faces, "--style", "print"], tmp_path / "whole.gpkg")
+    tiles.run(DEM, faces, 700, [tmp_path / "tiled.gpkg"], style="print", workers=2)
+    assert features(tmp_path / "tiled.gpkg") == expected

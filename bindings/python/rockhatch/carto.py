@@ -108,7 +108,7 @@ def style_file(style):
 
 
 _PARTITION_KEYS = ("faces_layer", "lines_layer", "label_field", "id_field", "orientation_field",
-                   "orientation_layer", "density_field", "density_layer", "repair", "snap")
+                   "orientation_layer", "density_field", "density_layer", "scree_layer", "repair", "snap")
 
 
 def make_options(dem="", partition="", outputs=(), style=None, params=None, scale=10000.0, seed=0, threads=0,

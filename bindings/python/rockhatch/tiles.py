@@ -169,6 +169,10 @@ def run_args(argv, progress=None):
         carto.check_files(options)
         options.custom_style = carto.load_style(cl.script)
     carto.validate(options)
+    style = None if options.custom_style else carto.find_style(options.style or carto.default_style())
+    if style is not None and style.terrain:
+        raise carto.error(2, f"--style {style.name}: a terrain style draws the whole DEM in one sequence and cannot "
+                             "be tiled yet")
     if options.crest_ornament is not None:
         raise carto.error(2, "--crest-ornament: not available in a tiled run yet (the ornaments follow ridge lines "
                              "that cross tiles); draw them with a whole run, e.g. with --window")

@@ -52,6 +52,9 @@ struct Partition {
     std::vector<LabelledLine> lines;  // ridge and valley lines in the working CRS
     std::string crs_wkt;
     std::vector<std::string> notes;   // what was repaired or derived, for the log
+    // Scree areas given by the user (PartitionOptions::scree_layer), in the working CRS;
+    // empty: the scree style derives them from the faces and the slope.
+    std::vector<tex::Region> scree;
     tex::BBox bounds() const;
 };
 
@@ -67,6 +70,7 @@ struct PartitionOptions {
     std::string orientation_layer;        // line layer, one line per face ("" = look for one)
     std::string density_field;            // 0..1
     std::string density_layer;            // point or polygon layer with a density field
+    std::string scree_layer;              // polygon layer of the scree areas (the scree style); "" = none
     bool repair = true;                   // repair invalid polygons (else refuse them)
     double snap = 0.5;                    // ground units: border snapping and line matching tolerance
     // Read only the features that meet this box (working CRS): a tile's neighbourhood. A

@@ -89,13 +89,20 @@ void validate(const Options& o);
 // slope, roughness, style script); validate calls it, front ends that read a style script
 // call it before.
 void check_files(const Options& o);
+// Orientation and density of every face of p.partition, derived from p.terrain where the
+// partition gives none (and which faces follow the fall line), with notes.
+void resolve_face_controls(Prepared& p, const Options& o);
 // Refuses a --roughness raster with values outside 0..1 (NoData aside).
 void check_roughness(const Raster& r, const std::string& path);
 // Reads the DEM (reprojected to a projected working CRS when geographic), the optional
 // rasters and the partition.
 Prepared prepare(const Options& o, const Progress& progress = {});
+// The face id of the elements a terrain style draws outside the faces.
+inline constexpr std::int64_t kTerrainFaceId = -1;
 // Hatches the faces (in parallel, deterministic): all of them, or those whose anchor
-// (face_anchor) lies in Options::window; and draws the crest ornaments when asked.
+// (face_anchor) lies in Options::window; draws the crest ornaments when asked; a terrain
+// style then draws its elements (sequentially) around them, as one more entry of
+// Drawing::faces with kTerrainFaceId.
 Drawing hatch(const Prepared& p, const Options& o, const Progress& progress = {});
 // Hatches the faces of these indices, in this order.
 Drawing hatch(const Prepared& p, const Options& o, const std::vector<int>& faces, const Progress& progress = {});

@@ -19,6 +19,7 @@
 
 #include "carto/fields.hpp"
 #include "carto/partition.hpp"
+#include "carto/terrain.hpp"
 #include "libtex/arrangement.hpp"
 #include "libtex/curves.hpp"
 
@@ -26,8 +27,14 @@ namespace carto {
 
 using Polyline = std::vector<Point>;
 
-enum class Family { Fill = 0, Ridge = 1, Valley = 2, Cross = 3 };
-inline constexpr int kFamilies = 4;
+// Stone and Hachure are the filled outlines of the terrain styles (scree, slope-hachures):
+// closed rings drawn filled, no stroke.
+enum class Family { Fill = 0, Ridge = 1, Valley = 2, Cross = 3, Stone = 4, Hachure = 5 };
+inline constexpr int kFamilies = 6;
+// The rock families, always written; the terrain families only when a drawing has them.
+inline constexpr int kRockFamilies = 4;
+// Whether the family's rings are filled (terrain elements) rather than stroked.
+inline bool family_filled(Family f) { return f == Family::Stone || f == Family::Hachure; }
 const char* family_name(Family f);
 // Suggested stroke width on paper (mm).
 double family_width_mm(Family f);
@@ -50,6 +57,9 @@ struct StyleInfo {
     std::string figure;  // "5.4g"
     std::string title;
     std::vector<StyleParam> params;
+    // A terrain style (scree, slope-hachures) draws around the rock faces, over the whole
+    // DEM, after the faces are hatched with the default rock style.
+    bool terrain = false;
 };
 
 // The control fields f1..fn a style reads (thesis 5.3.1).
@@ -76,6 +86,17 @@ inline constexpr const char* kGroundPerMm = "ground_per_mm";
 // bound. The arrangement is evaluated on each face of the partition (a labelled region).
 using StyleProgram = std::function<tex::Arrangement(const ControlFields&, const ParamValues&)>;
 
+// What a terrain style reads: the terrain fields, the rock faces and the rock hatches drawn
+// in them (which its elements must not touch), the map scale and the seed.
+struct TerrainInput {
+    const Terrain& terrain;
+    const Partition& partition;
+    const std::vector<Hatch>& rock;
+    double scale = 10000;
+    std::uint64_t seed = 0;
+};
+using TerrainProgram = std::function<std::vector<Hatch>(const TerrainInput&, const ParamValues&)>;
+
 struct Style {
     StyleInfo info;
     StyleProgram program;
@@ -83,9 +104,13 @@ struct Style {
     // on several threads (Python styles run in parallel by default: their native operators
     // release the interpreter's lock; python_style(..., serial=True) asks for this).
     bool serial = false;
+    // Set for a terrain style: `program` then hatches the rock faces (the default rock
+    // style) and `terrain` draws the style's own elements around them.
+    TerrainProgram terrain;
 };
 
-// All built-in styles, (a) to (g); the default is the last one.
+// All built-in styles: the rock styles (a) to (g), then the terrain styles; the default is
+// (g), bidirectional.
 const std::vector<StyleInfo>& styles();
 const std::string& default_style();
 // Throws carto::Error(UnknownStyle) listing the known names.

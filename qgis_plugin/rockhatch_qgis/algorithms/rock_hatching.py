@@ -19,12 +19,17 @@ from .common import Progress, RockhatchAlgorithm
 FAMILIES = {"hatch_fill": 0.10, "hatch_ridge": 0.12, "hatch_valley": 0.25, "hatch_cross": 0.08}
 # The polygon layer of the crest ornaments (filled black).
 CREST_LAYER = "crest"
+# The polygon layers of the terrain styles (scree, slope-hachures), filled black, no outline.
+FILLED = ("hatch_stone", "hatch_hachure")
 # Vector formats handed to the pipeline as they are; other layers are written to a GeoPackage.
 OGR_EXTENSIONS = ["gpkg", "shp", "geojson", "json", "fgb", "sqlite", "gml", "kml", "tab", "mif", "csv"]
 
 
 def hatch_renderer(family):
-    """Black lines as wide as their width_mm attribute (mm on paper), round caps."""
+    """Black lines as wide as their width_mm attribute (mm on paper), round caps; the terrain
+    styles' stones and hachures filled black."""
+    if family in FILLED:
+        return QgsSingleSymbolRenderer(QgsFillSymbol.createSimple({"color": "0,0,0,255", "outline_style": "no"}))
     symbol = QgsLineSymbol.createSimple({"color": "0,0,0,255", "width": str(FAMILIES.get(family, 0.1)),
                                          "width_unit": "MM", "capstyle": "round", "joinstyle": "round"})
     layer = symbol.symbolLayer(0)
@@ -94,6 +99,7 @@ class RockHatching(RockhatchAlgorithm):
     SCALE, SEED, OUTPUT, SVG = "SCALE", "SEED", "OUTPUT", "SVG"
     RELIEF_RADIUS = "RELIEF_RADIUS"
     CREST, CREST_EXEMPLAR, CREST_HEIGHT = "CREST", "CREST_EXEMPLAR", "CREST_HEIGHT"
+    SCREE = "SCREE"
 
     def name(self):
         return "rockhatching"
@@ -143,6 +149,10 @@ class RockHatching(RockhatchAlgorithm):
                                                 [QgsProcessing.TypeVectorLine], optional=True),
             "Lines along the faces' fall lines: a face takes the direction of the line it holds. "
             "Default: a layer named orientation* in the partition's file.", advanced=True)
+        self.add(QgsProcessingParameterFeatureSource(self.SCREE, "Scree areas (polygons)",
+                                                     [QgsProcessing.TypeVectorPolygon], optional=True),
+            "Polygons where the scree style throws its stones (outside the rock faces). Default: the band "
+            "below the rock faces where the slope is moderate. Read by the scree style only.", advanced=True)
         self.add(QgsProcessingParameterRasterLayer(self.SLOPE, "Slope raster", optional=True),
             "Slope in percent replacing the one computed from the DEM (resampled onto the DEM's grid). "
             "Default: computed from the DEM (Horn).", advanced=True)
@@ -152,8 +162,9 @@ class RockHatching(RockhatchAlgorithm):
         names, default = self.style_names()
         style = QgsProcessingParameterEnum(self.STYLE, "Style", names, defaultValue=default)
         style.setUsesStaticStrings(True)
-        self.add(style, f"Built-in style (thesis Fig. 5.4 a to g). Default: {default}. See the algorithm's help for "
-                   "each style's parameters.")
+        self.add(style, f"Built-in style (thesis Fig. 5.4 a to g), or a terrain style drawn around the rock faces "
+                   f"(scree: stones below the rock; slope-hachures: Lehmann hachures on the other slopes). "
+                   f"Default: {default}. See the algorithm's help for each style's parameters.")
         self.add(QgsProcessingParameterFile(self.STYLE_SCRIPT, "Style script (Python)", extension="py", optional=True),
             "A Python style script (styles/*.py of rockhatch: NAME, PARAMS, style(fields, params) returning a libtex arrangement); "
             "replaces the built-in style when given.")
@@ -186,7 +197,8 @@ class RockHatching(RockhatchAlgorithm):
         self.add(QgsProcessingParameterFileDestination(self.OUTPUT, "Hatches (GeoPackage)", "GeoPackage (*.gpkg)"),
             "GeoPackage written with one LineString layer per hatch family (hatch_fill, hatch_ridge, "
             "hatch_valley, hatch_cross; fields face_id, family, style, width_mm) in the DEM's CRS (UTM "
-            "for a geographic DEM). An existing file is replaced.")
+            "for a geographic DEM), and with a terrain style a Polygon layer of filled shapes (hatch_stone "
+            "for scree, hatch_hachure for slope hachures; face_id -1). An existing file is replaced.")
         self.add(QgsProcessingParameterFileDestination(self.SVG, "Hatches (SVG)", "SVG files (*.svg)", optional=True,
                                                   createByDefault=False),
             "Optional SVG drawing of the hatches at the map scale (millimetres on paper).")
@@ -213,7 +225,8 @@ class RockHatching(RockhatchAlgorithm):
             carto = self.carto()
             for s in carto.styles():
                 params = ", ".join(f"{p.name} {p.value:g} {p.unit}" for p in s.params)
-                text += f"{s.name} ({s.figure}): {s.title}. Parameters: {params}.\n"
+                where = "terrain, around the rock" if s.terrain else s.figure
+                text += f"{s.name} ({where}): {s.title}. Parameters: {params}.\n"
         except QgsProcessingException as e:
             text += str(e)
         return text
@@ -244,7 +257,8 @@ class RockHatching(RockhatchAlgorithm):
         else a temporary GeoPackage with the layers faces, lines, orientation."""
         roles = {"faces_layer": self.source_path(parameters, self.FACES, context, feedback),
                  "lines_layer": self.source_path(parameters, self.LINES, context, feedback),
-                 "orientation_layer": self.source_path(parameters, self.ORIENTATION_LAYER, context, feedback)}
+                 "orientation_layer": self.source_path(parameters, self.ORIENTATION_LAYER, context, feedback),
+                 "scree_layer": self.source_path(parameters, self.SCREE, context, feedback)}
         given = {k: v for k, v in roles.items() if v is not None}
         files = {os.path.realpath(p) for p, _ in given.values()}
         if len(files) == 1:
@@ -301,7 +315,7 @@ class RockHatching(RockhatchAlgorithm):
 
         uris = []
         for family, count in gpkg_layers(output).items():
-            if family not in FAMILIES and family != CREST_LAYER:
+            if family not in FAMILIES and family != CREST_LAYER and family not in FILLED:
                 continue
             uri = f"{output}|layername={family}"
             uris.append(uri)
