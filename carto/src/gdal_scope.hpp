@@ -7,6 +7,7 @@
 #include <cpl_conv.h>
 #include <cpl_error.h>
 #include <gdal.h>
+#include <ogr_spatialref.h>
 
 #include <optional>
 #include <string>
@@ -51,5 +52,16 @@ struct QuietGdal {
     QuietGdal(const QuietGdal&) = delete;
     QuietGdal& operator=(const QuietGdal&) = delete;
 };
+
+// A CRS as WKT2 (2019), the form carto keeps CRSs in ("" when there is none).
+inline std::string wkt2_of(const OGRSpatialReference* srs) {
+    if (!srs) return "";
+    char* wkt = nullptr;
+    const char* opts[] = {"FORMAT=WKT2_2019", nullptr};
+    srs->exportToWkt(&wkt, opts);
+    std::string out = wkt ? wkt : "";
+    CPLFree(wkt);
+    return out;
+}
 
 }  // namespace carto

@@ -333,15 +333,7 @@ std::size_t merge_gpkg(const std::vector<std::string>& parts, const std::string&
         for (int fam = 0; fam < kRockFamilies; ++fam)
             total += std::size_t(std::max<GIntBig>(
                 0, ds->GetLayerByName((std::string("hatch_") + family_name(Family(fam))).c_str())->GetFeatureCount()));
-        if (crs_wkt.empty()) {
-            if (const OGRSpatialReference* srs = ds->GetLayer(0)->GetSpatialRef()) {
-                char* wkt = nullptr;
-                const char* opts[] = {"FORMAT=WKT2_2019", nullptr};
-                srs->exportToWkt(&wkt, opts);
-                if (wkt) crs_wkt = wkt;
-                CPLFree(wkt);
-            }
-        }
+        if (crs_wkt.empty()) crs_wkt = wkt2_of(ds->GetLayer(0)->GetSpatialRef());
     }
     std::size_t n = 0;
     write_hatch_gpkg(path, crs_wkt, spatial_index, total, keep_going, [&](Family f, const HatchSink& sink) {
@@ -361,13 +353,7 @@ Drawing read_gpkg(const std::string& path, double scale) {
     auto ds = open_hatches(path, "hatches");
     Drawing d;
     d.scale = scale;
-    if (const OGRSpatialReference* srs = ds->GetLayer(0)->GetSpatialRef()) {
-        char* wkt = nullptr;
-        const char* opts[] = {"FORMAT=WKT2_2019", nullptr};
-        srs->exportToWkt(&wkt, opts);
-        if (wkt) d.crs_wkt = wkt;
-        CPLFree(wkt);
-    }
+    d.crs_wkt = wkt2_of(ds->GetLayer(0)->GetSpatialRef());
     std::map<std::int64_t, std::size_t> face_index;
     for (int fam = 0; fam < kRockFamilies; ++fam)
         read_family(*ds, Family(fam), "hatches '" + path + "'", [&](std::int64_t id, const char* style,

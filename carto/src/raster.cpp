@@ -46,13 +46,7 @@ RasterInfo info_of(GDALDataset& ds, const std::string& what, const std::string& 
         throw Error(Code::InputMissing, what + " '" + path + "': no raster band");
     if (ds.GetGeoTransform(r.gt.data()) != CE_None)
         throw Error(Code::NoCrs, what + " '" + path + "': no georeferencing (geotransform)");
-    if (const OGRSpatialReference* srs = ds.GetSpatialRef()) {
-        char* wkt = nullptr;
-        const char* opts[] = {"FORMAT=WKT2_2019", nullptr};
-        srs->exportToWkt(&wkt, opts);
-        if (wkt) r.crs_wkt = wkt;
-        CPLFree(wkt);
-    }
+    r.crs_wkt = wkt2_of(ds.GetSpatialRef());
     return r;
 }
 
@@ -225,12 +219,7 @@ std::string epsg_wkt(int code) {
     OGRSpatialReference srs;
     if (srs.importFromEPSG(code) != OGRERR_NONE)
         throw Error(Code::NoCrs, "EPSG:" + std::to_string(code) + " is not a CRS PROJ knows");
-    char* wkt = nullptr;
-    const char* opts[] = {"FORMAT=WKT2_2019", nullptr};
-    srs.exportToWkt(&wkt, opts);
-    std::string out = wkt ? wkt : "";
-    CPLFree(wkt);
-    return out;
+    return wkt2_of(&srs);
 }
 
 std::string crs_name(const std::string& wkt) {

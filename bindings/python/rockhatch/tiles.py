@@ -212,10 +212,10 @@ def run_args(argv, progress=None):
             os.remove(os.path.join(workdir, name))
 
     paths = [os.path.join(workdir, "tile_%07d.gpkg" % i) for i in range(len(grid))]
-    todo = [i for i, p in enumerate(paths) if not os.path.exists(p)]
+    pending = [i for i, p in enumerate(paths) if not os.path.exists(p)]
     summary = Summary()
     summary.tiles = len(grid)
-    summary.done_before = len(grid) - len(todo)
+    summary.done_before = len(grid) - len(pending)
     # One hatching thread per core of the machine, shared by the local workers.
     task_args = list(rest)
     if "--threads" not in " ".join(rest) and "--scheduler" not in mine:
@@ -224,8 +224,8 @@ def run_args(argv, progress=None):
 
     if progress and not progress(summary.done_before / len(grid), f"tiles {summary.done_before}/{len(grid)}"):
         raise carto.error(10, "cancelled before the first tile")
-    if todo:
-        _compute(todo, grid, paths, task_args, job, mine, workers, summary, progress)
+    if pending:
+        _compute(pending, grid, paths, task_args, job, mine, workers, summary, progress)
     missing = [p for p in paths if not os.path.exists(p)]
     if missing:
         raise carto.error(1, f"{len(missing)} tile(s) missing after the run (first: {missing[0]})")
@@ -257,7 +257,7 @@ def run_args(argv, progress=None):
     return summary
 
 
-def _compute(todo, grid, paths, task_args, job, mine, workers, summary, progress):
+def _compute(pending, grid, paths, task_args, job, mine, workers, summary, progress):
     from distributed import Client, LocalCluster, as_completed
 
     cluster = None
@@ -278,7 +278,7 @@ def _compute(todo, grid, paths, task_args, job, mine, workers, summary, progress
     try:
         summary.workers = len(client.scheduler_info().get("workers", {}))
         futures = []
-        for i in todo:
+        for i in pending:
             b = grid[i]
             futures.append(client.submit(_tile_task, task_args, (b.xmin, b.ymin, b.xmax, b.ymax), paths[i],
                                          key=f"rockhatch-tile-{job}-{i}", retries=2, pure=False))
