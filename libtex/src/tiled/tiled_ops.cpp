@@ -189,9 +189,10 @@ TiledMap StripesPartition(const Stripes& s, Tiled t) {
         e.curves.curves.push_back(segment(a, a + along, f.edge_label(i), f.face_label(i), f.face_label(i - 1)));
         e.anchor = a + along / 2;
         e.key = anchor_key(e.anchor);
+        e.continues = true;
         elements.push_back(std::move(e));
     }
-    return TiledMap(across, along, std::move(elements), t.border, {}, false);
+    return TiledMap(across, along, std::move(elements), t.border, s);
 }
 
 TiledMap::Block TiledMap::block() const {
@@ -279,13 +280,32 @@ std::string periods_text(const TiledMap& a) {
     return s.str();
 }
 
-// The elements of a repeated m1 x m2 times, as the elements of a coarser lattice.
+// The elements of a repeated m1 x m2 times, as the elements of a coarser lattice. A piece of
+// a line (continues along period2) becomes one piece m2 times as long, which continues along
+// the coarser period2.
 std::vector<TiledMap::Element> repeat(const TiledMap& a, int m1, int m2) {
     std::vector<TiledMap::Element> out;
+    for (int i = 0; i < m1; ++i)
+        for (const auto& e : a.elements()) {
+            if (!e.continues) continue;
+            TiledMap::Element c;
+            const Curve& piece = e.curves.curves.front();
+            Curve line = piece;
+            line.points.assign(1, piece.points.front() + a.shift(i, 0));
+            for (int j = 0; j < m2; ++j)  // the inner points of every piece
+                for (std::size_t k = 1; k + 1 < piece.points.size(); ++k) line.points.push_back(piece.points[k] + a.shift(i, j));
+            line.points.push_back(piece.points.back() + a.shift(i, m2 - 1));
+            c.curves.curves.push_back(std::move(line));
+            c.anchor = e.anchor + a.shift(i, 0);
+            c.key = anchor_key(c.anchor);
+            c.continues = true;
+            out.push_back(std::move(c));
+        }
     for (int i = 0; i < m1; ++i)
         for (int j = 0; j < m2; ++j) {
             const Point s = a.shift(i, j);
             for (const auto& e : a.elements()) {
+                if (e.continues) continue;
                 TiledMap::Element c;
                 c.curves = e.curves;
                 c.curves.transform(Affine::translation(s));
