@@ -211,10 +211,76 @@ TEST(Tiled, RandomInARegularMapperIsAnError) {
     EXPECT_TEX_ERROR(MapToEdges(unkeyed, t), "MapToEdges", "random");
     auto sub = [](const Face& f) { return UniformPartition(IrregularProperties(0.01), CROP)(f); };
     EXPECT_TEX_ERROR(MapToFaces(sub, t), "MapToFaces", "random");
-    // A sub-partition without Random runs (it is periodic only if its own period fits the
-    // lattice: it is anchored to the plane, see docs/tiled.md).
+}
+
+// A partition built inside a mapper is anchored to the plane, not to the cell. Hatching at
+// 45 degrees, 3 apart, in the cells of a lattice of (0, 90) and (-50, 0): the periods
+// project to 63.6 and 35.4 on the hatching's normal, no rational number of its periods, so
+// the hatched grid has no period at all: a clear error naming both, not a wrong drawing.
+TEST(Tiled, SubPartitionThatCannotRepeatIsAnError) {
+    const TiledMap t = GridPartition(rows(), columns(), Tiled());
     auto hatch = [](const Face& f) { return StripesPartition(StripesProperties(pi / 4, 3), CROP)(f); };
-    EXPECT_FALSE(MapToFaces(hatch, t)(kWindow).curves.empty());
+    EXPECT_TEX_ERROR(MapToFaces(hatch, t), "MapToFaces", "every 3 ");
+    EXPECT_TEX_ERROR(MapToFaces(hatch, t), "MapToFaces", "(0, 90) and (-50, 0)");
+    EXPECT_TEX_ERROR(MapToFaces(hatch, t), "MapToFaces", "not periodic");
+    // Inside a grid too (both its families are checked), and in an edge mapper.
+    auto cells = [](const Face& f) {
+        return GridPartition(StripesProperties(0, 7), StripesProperties(pi / 2, 25 * std::sqrt(2.0)), CROP)(f);
+    };
+    EXPECT_TEX_ERROR(MapToFaces(cells, t), "MapToFaces", "not periodic");
+    auto around = [](const Edge& e) {
+        const BBox b = CellBBox(e).expanded(5);
+        return StripesPartition(StripesProperties(0.1, 4), CROP)(Region::rectangle(b.xmin, b.ymin, b.xmax, b.ymax));
+    };
+    EXPECT_TEX_ERROR(MapToEdges(around, t), "MapToEdges", "not periodic");
+}
+
+// Horizontal hatching 40 apart with two edge labels (it repeats every 80) in cells of a
+// lattice 90 high: both repeat every 720 = 8 periods of the grid (and with every column).
+// The tiled map is mapped on that coarser lattice and equals the engine; without it, every
+// copy of a cell would get the central cell's hatching.
+TEST(Tiled, SubPartitionOnACoarserLattice) {
+    Stripes lines = StripesProperties(0, 40);
+    SetEdgeLabels(lines, {"a", "b"});
+    auto hatch = [lines](const Face& f) { return StripesPartition(lines, CROP)(f); };
+    const TiledMap t = MapToFaces(hatch, GridPartition(rows(), columns(), Tiled()));
+    EXPECT_NEAR(t.period1().y, 720, 1e-9);
+    EXPECT_NEAR(t.period2().x, -50, 1e-9);
+    const Region inner = Region::rectangle(60, 100, 330, 450), window = Region::rectangle(0, 0, 400, 560);
+    const Curves engine = MapToFaces(hatch, GridPartition(rows(), columns(), KEEP_OUTSIDE))(window);
+    const BBox keep = inner.bbox().expanded(-0.01);
+    const Curves tiled_in = th::inside_box(t.Convert(inner, KEEP_OUTSIDE), keep);
+    EXPECT_GT(tiled_in.curves.size(), 50u);
+    EXPECT_SAME_CURVES(tiled_in, th::inside_box(engine, keep));
+    // Same bytes at 1 and 2 threads.
+    std::string one, two;
+    {
+        ThreadsScope s(1);
+        one = dump(MapToFaces(hatch, GridPartition(rows(), columns(), Tiled()))(kTriangle));
+    }
+    {
+        ThreadsScope s(2);
+        two = dump(MapToFaces(hatch, GridPartition(rows(), columns(), Tiled()))(kTriangle));
+    }
+    EXPECT_EQ(one, two);
+}
+
+// On a lattice turned 45 degrees the copies of one vertex made by different translations
+// differ in their last bits; the block's planar map must still see one vertex, not two and a
+// sliver edge between them (every edge a mapper visits is a real edge of the grid).
+TEST(Tiled, TurnedLatticeHasNoSliverEdges) {
+    const TiledMap t = GridPartition(StripesProperties(pi / 4, 200), StripesProperties(-pi / 4, 300), Tiled());
+    std::vector<double> lengths;
+    const TiledMap edges = MapToEdges(
+        [](const Edge& e) { return ToCurve(e); }, t, MapperThreads::Serial);
+    for (const auto& e : edges.elements()) {
+        const auto& pts = e.curves.curves.front().points;
+        lengths.push_back(distance(pts.front(), pts.back()));
+    }
+    ASSERT_EQ(lengths.size(), 2u);  // one cell per period: one edge of each family
+    std::sort(lengths.begin(), lengths.end());
+    EXPECT_NEAR(lengths[0], 200, 1e-6);
+    EXPECT_NEAR(lengths[1], 300, 1e-6);
 }
 
 TEST(Tiled, StripesCannotBeMapped) {

@@ -159,3 +159,57 @@ TEST(TiledGallery, RegularResultA) {
     EXPECT_GT(tiled.size(), 100u);
     EXPECT_SAME_RUNS(tiled, engine);
 }
+
+TEST(TiledGallery, RegularResultBIsNotPeriodicAndSaysSo) {
+    // Horizontal hatching 40 apart in the tiles of a lattice turned 45 degrees: the periods
+    // project on the hatching's normal to 400 * sqrt(2), an irrational number of hatching
+    // periods, so no translation of the lattice maps the hatching onto itself: the engine's
+    // drawing has no two independent periods and no tiled map can stand for it.
+    namespace mo = gallery::more;
+    const Curves wobble = ImportSVG(gallery::default_elements_dir() + "/wobble.svg");
+    const TiledMap grid = GridPartition(mo::chevron_lines(pi / 4, "h"), mo::chevron_lines(-pi / 4, "v"), Tiled());
+    try {
+        mo::regular_b_on(grid, wobble, 40);
+        ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("MapToFaces"), std::string::npos) << m;
+        EXPECT_NE(m.find("every 40 "), std::string::npos) << m;
+        EXPECT_NE(m.find("(-565.685, 565.685)"), std::string::npos) << m;
+        EXPECT_NE(m.find("not periodic"), std::string::npos) << m;
+    }
+}
+
+TEST(TiledGallery, RegularResultBWithCommensurableHatching) {
+    // The same script with the hatching 200 * sqrt(2) / 7 (about 40.4) apart: both periods
+    // then hold 14 hatching periods, the tiled map keeps its lattice and equals the engine.
+    // (Tiled.SubPartitionOnACoarserLattice in test_tiled.cpp: a spacing that needs a coarser
+    // lattice.)
+    namespace mo = gallery::more;
+    const Curves wobble = ImportSVG(gallery::default_elements_dir() + "/wobble.svg");
+    const double spacing = 200 * std::sqrt(2.0) / 7;
+    const TiledMap tiled =
+        mo::regular_b_on(GridPartition(mo::chevron_lines(pi / 4, "h"), mo::chevron_lines(-pi / 4, "v"), Tiled()),
+                         wobble, spacing);
+    const Curves engine = mo::regular_b_on(
+        GridPartition(mo::chevron_lines(pi / 4, "h"), mo::chevron_lines(-pi / 4, "v"), KEEP_OUTSIDE), wobble,
+        spacing)(kWindow);
+    expect_same_inside(tiled.Convert(kInnerRegion, KEEP_OUTSIDE), engine);
+}
+
+TEST(TiledGallery, ChevronStagesOnALatticeTurned45Degrees) {
+    // Each stage of regular result (b) on its own: the chevron rule (which reads the labels
+    // around an edge's target), the shrunk chevrons, the hatching.
+    namespace mo = gallery::more;
+    const double spacing = 200 * std::sqrt(2.0) / 7;
+    auto hatch = [spacing](const Face& f) { return mo::hatch_tile(f, spacing); };
+    const TiledMap t1 =
+        MapToEdges(mo::chevron_rule, GridPartition(mo::chevron_lines(pi / 4, "h"), mo::chevron_lines(-pi / 4, "v"), Tiled()));
+    const Arrangement e1 = MapToEdges(
+        mo::chevron_rule, GridPartition(mo::chevron_lines(pi / 4, "h"), mo::chevron_lines(-pi / 4, "v"), KEEP_OUTSIDE));
+    expect_same_inside(t1.Convert(kInnerRegion, KEEP_OUTSIDE), e1(kWindow));
+    const TiledMap t2 = MapToFaces(mo::chevron_shrink, t1);
+    const Arrangement e2 = MapToFaces(mo::chevron_shrink, e1);
+    expect_same_inside(t2.Convert(kInnerRegion, KEEP_OUTSIDE), e2(kWindow));
+    expect_same_inside(MapToFaces(hatch, t2).Convert(kInnerRegion, KEEP_OUTSIDE), MapToFaces(hatch, e2)(kWindow));
+}
