@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <random>
 #include <set>
 #include <sstream>
 
@@ -440,4 +441,58 @@ TEST(Tiled, InsideAndOutsideMatchTheEngine) {
     EXPECT_SAME_RUNS(cut(tiled_out), cut(engine_out));
     const TiledMap skew = StripesPartition(StripesProperties(0.3, 6), Tiled());
     EXPECT_TEX_ERROR(Inside(skew, squares, CROP), "Inside", "no common multiple");
+}
+
+// Which face contains a point, on a mapped tiled map: each cell of a labelled grid turned 45
+// degrees into a square 1.2 times as wide (so that neighbours overlap), its inner side
+// labelled with the cell's labels and "tile". The faces of that drawing (overlaps, the holes
+// between squares, pieces carrying one, two or more squares' labels) against the engine's
+// planar map of the same script over a window, at random points of an inner window.
+TEST(Tiled, FaceAtAPointIsTheEnginesFace) {
+    auto turned = [](const Face& f) {
+        Curves c = Rotate(Scale(Contour(f), 0.85), pi / 4);
+        for (auto& cv : c.curves) {
+            cv.left = record(f).labels;
+            cv.left.add("tile");
+            cv.right = Labels{};
+        }
+        return c;
+    };
+    const TiledMap t = MapToFaces(turned, GridPartition(rows(), columns(), Tiled()));
+    const Region window = Region::rectangle(-200, -200, 600, 600);
+    const FaceLocator engine(MapToFaces(turned, GridPartition(rows(), columns(), KEEP_OUTSIDE)).induce(window));
+    std::mt19937_64 rng(12);
+    std::uniform_real_distribution<double> x(50, 350), y(50, 350);
+    int checked = 0;
+    std::set<std::string> seen;
+    for (int k = 0; k < 3000; ++k) {
+        const Point p{x(rng), y(rng)};
+        const Labels want = engine.map().faces()[std::size_t(engine.face_at(p))].labels;
+        const Labels got = t.FaceLabelsAt(p);
+        EXPECT_EQ(th::label_text(got), th::label_text(want)) << "at (" << p.x << ", " << p.y << ")";
+        seen.insert(th::label_text(want));
+        ++checked;
+        // The same face one period away in both directions.
+        EXPECT_EQ(th::label_text(t.FaceLabelsAt(p + t.period1() * 3.0 - t.period2() * 7.0)), th::label_text(got));
+    }
+    EXPECT_EQ(checked, 3000);
+    EXPECT_GE(seen.size(), 3u) << *seen.begin();  // several kinds of faces were met
+}
+
+// The locator on its own: nested faces (a square inside a square) and the unbounded face.
+TEST(Tiled, FaceLocatorFindsNestedFaces) {
+    Curves c;
+    Curve outer, inner;
+    outer.points = {{0, 0}, {10, 0}, {10, 10}, {0, 10}};
+    outer.closed = true;
+    outer.left.add("ring");
+    inner.points = {{3, 3}, {7, 3}, {7, 7}, {3, 7}};
+    inner.closed = true;
+    inner.left.add("core");
+    c.curves = {outer, inner};
+    const FaceLocator loc(PlanarMap::induce(c));
+    auto labels = [&](Point p) { return th::label_text(loc.map().faces()[std::size_t(loc.face_at(p))].labels); };
+    EXPECT_EQ(labels({1, 1}), "ring,");
+    EXPECT_EQ(labels({5, 5}), "core,");
+    EXPECT_EQ(loc.face_at({20, 5}), loc.map().unbounded_face());
 }

@@ -125,7 +125,11 @@ public:
     // ---- Point queries (cost independent of the window) ----
     // Distance from p to the nearest curve of the infinite arrangement (ghost ignored).
     double DistanceToCurves(const Point& p) const;
-    // Labels of the face containing p, read from the side labels of the nearest curve.
+    // Labels of the face of the infinite arrangement containing p: for a tiled partition,
+    // of the cell containing p; for a map with bounded faces, of the face of the NIZ block's
+    // planar map (built once, on the first query) containing p moved into the central tile,
+    // found through a FaceLocator; for a map with unbounded faces (stripes), the side labels
+    // of the nearest curve on p's side.
     Labels FaceLabelsAt(const Point& p) const;
 
     // Lattice coordinates of p (p = a * period1 + b * period2).
@@ -145,6 +149,8 @@ private:
         bool bounded_faces;
         std::optional<Stripes> stripes;
         GhostMapper ghost;
+        struct Locator;  // the block's planar map and its FaceLocator, made on first use
+        std::shared_ptr<Locator> locator;
     };
     explicit TiledMap(std::shared_ptr<const Data> d) : d_(std::move(d)) {}
     std::shared_ptr<const Data> d_;

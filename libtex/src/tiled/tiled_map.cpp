@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <sstream>
 
 #include "../segment_index.hpp"
@@ -110,6 +111,11 @@ std::string period_text(const Point& p) {
 
 }  // namespace
 
+struct TiledMap::Data::Locator {
+    std::once_flag once;
+    std::optional<FaceLocator> faces;
+};
+
 double Random(const TiledElement& e, double min, double max, double n) {
     const std::uint64_t h = hash_double(hash_combine(mix64(GetSeed() ^ 0x54494c45ULL), e.key), n);
     return min + (max - min) * unit_from_hash(h);
@@ -137,6 +143,7 @@ TiledMap::TiledMap(Point p1, Point p2, std::vector<Element> elements, Border bor
     d->cells = std::move(cells);
     d->border = border;
     d->bounded_faces = bounded_faces;
+    d->locator = std::make_shared<Data::Locator>();
     d_ = std::move(d);
 }
 
@@ -448,7 +455,19 @@ Labels TiledMap::FaceLabelsAt(const Point& p) const {
             for (const auto& c : d_->cells)
                 if (c.box.contains(q) && point_in_ring(q, c.ring)) return c.labels;
         }
-    // Otherwise the side labels of the nearest curve, on p's side of it.
+    // Bounded faces: the face of the block's planar map containing p moved into the central
+    // tile (the block holds every curve that can bound a face meeting that tile).
+    if (d_->bounded_faces) {
+        Data::Locator& loc = *d_->locator;
+        std::call_once(loc.once, [&] {
+            BBox tile;
+            for (const Point& c : {Point{0, 0}, d_->p1, d_->p2, d_->p1 + d_->p2}) tile.add(c);
+            loc.faces.emplace(block().map, tile.expanded(1e-9 * (1 + tile.width() + tile.height())));
+        });
+        const Point q = p - shift(ti, tj);
+        return loc.faces->map().faces()[std::size_t(loc.faces->face_at(q))].labels;
+    }
+    // Otherwise (stripes: infinite bands) the side labels of the nearest curve, on p's side.
     double best = std::numeric_limits<double>::infinity();
     Labels labels;
     for (long long i = ti - reach; i <= ti + reach; ++i)
