@@ -114,6 +114,24 @@ TEST_P(TiledModes, StripesConversionGivesTheEnginesWholeLines) {
     }
 }
 
+TEST(Tiled, StripesSameBytesAtOneAndTwoThreads) {
+    Stripes s = StripesProperties(pi / 5, 12, 30);
+    SetFaceLabels(s, {"a", "b", "c"});
+    const TiledMap t = StripesPartition(s, Tiled());
+    for (Border b : {CROP, CROP_ADD_BOUNDARY, KEEP_INSIDE, KEEP_OUTSIDE}) {
+        std::string one, two;
+        {
+            ThreadsScope scope(1);
+            one = dump(t.Convert(kTriangle, b));
+        }
+        {
+            ThreadsScope scope(2);
+            two = dump(t.Convert(kTriangle, b));
+        }
+        EXPECT_EQ(one, two) << border_name(b);
+    }
+}
+
 TEST(Tiled, StripesLinesStayWholeThroughAUnion) {
     // Stripes of period 36 with a grid of 40 x 90 along them: the common period along the
     // lines is 360, ten pieces of the stripes' own; the lines still come out whole.
