@@ -6,6 +6,7 @@
 #include <ogrsf_frmts.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -73,8 +74,8 @@ std::vector<int> components(const Grid& g, const std::vector<char>& on, bool eig
     return lab;
 }
 
-// The 8-connected non-rock pieces: label per cell (-1 on rock), and per piece its size and
-// whether it is open (reaches the grid's edge, NoData or the outside of the user's mask)
+// The 8- (or 4-) connected non-rock pieces: label per cell (-1 on rock), and per piece its
+// size and whether it is open (reaches the grid's edge, NoData or the outside of the user's mask)
 // rather than a hole in the rock.
 struct NonRock {
     std::vector<int> lab;
@@ -83,12 +84,12 @@ struct NonRock {
 };
 
 NonRock non_rock_pieces(const Grid& g, const std::vector<char>& rock, const std::vector<float>& dem,
-                        const std::vector<char>& inside_mask) {
+                        const std::vector<char>& inside_mask, bool eight) {
     std::vector<char> non_rock(g.size());
     for (std::size_t i = 0; i < g.size(); ++i) non_rock[i] = !rock[i];
     NonRock out;
     int n = 0;
-    out.lab = components(g, non_rock, true, n);
+    out.lab = components(g, non_rock, eight, n);
     out.size.assign(std::size_t(n), 0);
     out.open.assign(std::size_t(n), 0);
     for (int r = 0; r < g.h; ++r)
@@ -471,20 +472,30 @@ void extend_heads(const Grid& g, std::vector<int>& down, std::vector<char>& ch, 
 
 // ---- Polygons from the face grid
 
+// Douglas-Peucker tolerance of the lighter fallback generalisation, in cells.
+constexpr double kHalfCell = 0.5;
+
 // Directions between cell corners: E, S, W, N (rows go south).
 constexpr int kCx[4] = {1, 0, -1, 0};
 constexpr int kCy[4] = {0, 1, 0, -1};
 
 struct Chain {
     std::vector<Point> raw;     // corner coordinates (col, row)
-    std::vector<Point> simple;  // generalised (level 0)
-    std::vector<Point> plain;   // the cell edges simplified within half a cell (level 1)
+    // The shapes a face may use, from the most generalised to the cell edges themselves
+    // (`level` picks one): 0 the generalised chain, 1 the cut steps simplified within half a
+    // cell and rounded once, 2 the cut steps themselves (a one-cell staircase becomes its
+    // diagonal), 3 the steps cut at the middles of the cell edges (a face of line cells alone
+    // would lose its width if both of its borders moved onto the line), 4 the cell edges.
+    // Levels 0 to 3 run along a grid axis only where the trace runs straight; level 4 is the
+    // last resort. All five end at the same node places (NodePlaces).
+    std::array<std::vector<Point>, 5> shapes;
     int right = -1, left = -1;  // faces on either side (-1: outside)
     int first_dir = 0, last_dir = 0;
     long long start = -1, end = -1;  // corner ids (closed chains: start == end)
     bool closed = false;
-    int level = 0;  // which shape the faces use: 0 generalised, 1 plain, 2 the cell edges
-    const std::vector<Point>& shape() const { return level == 0 ? simple : level == 1 ? plain : raw; }
+    int level = 0;
+    static constexpr int kLevels = 5;
+    const std::vector<Point>& shape() const { return shapes[std::size_t(level)]; }
     LineKind kind = LineKind::Other;
     std::vector<unsigned char> edges;  // per cell edge: bit 0 along a ridge cell, bit 1 along a thalweg cell
 };
@@ -535,24 +546,129 @@ std::vector<Point> simplify(const std::vector<Point>& pts, bool closed, double t
     return out;
 }
 
-// A border chain generalised: the stair steps of cell edges are cut at the point `across`
-// gives for every edge (its middle, or the centre of the ridge or thalweg cell beside it for a
-// labelled border: the line itself, half a cell off the edge), so a one-cell staircase becomes
-// its diagonal,
-// simplified within `tol` cells, then rounded by `rounds` passes of corner cutting at 1/4 and
-// 3/4 of each segment (each pass stays inside the previous polyline's hull). The chain's end
-// nodes stay where they are, so the chains of neighbouring faces still meet and the faces
-// still tile the rock exactly: both faces of a border use the same generalised chain.
-template <class Across>
-std::vector<Point> generalise(const std::vector<Point>& raw, bool closed, double tol, int rounds, Across across) {
-    if (raw.size() < 3) return raw;
-    std::vector<Point> mid;
-    mid.reserve(raw.size() + 1);
-    if (!closed) mid.push_back(raw.front());
-    for (std::size_t i = 0; i + 1 < raw.size(); ++i) mid.push_back(across(raw[i], raw[i + 1]));
-    if (closed) mid.push_back(mid.front());
-    else mid.push_back(raw.back());
-    return cut_corners(simplify(mid, closed, tol), rounds);
+// The stair steps of a border chain cut at one point per cell edge (`cuts`: BorderPlaces, the
+// edge's middle or a sub-cell position near it), so a one-cell staircase becomes its
+// diagonal, between the chain's end nodes `from` and `to` (NodePlaces). Every chain through a
+// node ends at the same point, so the chains of neighbouring faces still meet and the faces
+// still tile the rock exactly: both faces of a border use the same chain. A closed chain
+// without a node is the loop of its cut points.
+std::vector<Point> cut_steps(const std::vector<Point>& cuts, bool closed, const Point& from, const Point& to) {
+    std::vector<Point> out;
+    out.reserve(cuts.size() + 2);
+    if (!closed) out.push_back(from);
+    out.insert(out.end(), cuts.begin(), cuts.end());
+    if (closed) out.push_back(cuts.front());
+    else out.push_back(to);
+    return out;
+}
+
+// Where a border crosses each cell edge, below the cell size (issue 16: borders traced at
+// sub-cell precision, not along the grid's axes):
+//  - a ridge or thalweg border lies on its line, through the line cell beside the edge: a
+//    ridge through the cell's centre; a thalweg on its floor, moved across from the centre to
+//    the low point of a parabola through the smoothed heights of the cell and its two
+//    neighbours across the edge (sub-pixel peak fitting). Not ridges: a border that wraps
+//    around a crest cell would then turn more tightly than the crest ornaments' band can
+//    follow (51 of Chamonix.tif's 599 ridges lost their ornament), and ridge precision on
+//    the sample did not gain;
+//  - the rock outline lies where the averaged slope crosses the rock threshold between the
+//    centres of the rock cell and the cell outside, where it does cross it (elsewhere the
+//    outline was drawn by the closing or the gap filling, and the edge's middle is kept);
+//  - any other border crosses at the edge's middle.
+struct BorderPlaces {
+    const Grid& g;
+    const std::vector<int>& face;
+    const std::vector<int>& line_cells;  // 0 none, 1 ridge, 2 thalweg
+    const std::vector<float>& slope;     // averaged slope, percent
+    const std::vector<float>& z;         // the smoothed DEM
+    double min_slope;
+
+    // How far a thalweg's floor may move off its cell's centre, and how close the outline may
+    // come to a cell's centre, in cells: the points stay near the edge they cut, so borders
+    // of narrow faces seldom cross.
+    static constexpr double kMaxFloorShiftCells = 0.45;
+    static constexpr double kOutlineMarginCells = 0.15;
+
+    Point cut(const Point& a, const Point& b, LineKind kind) const {
+        const Point m = (a + b) / 2;
+        // The two cells across the unit edge a-b: 0 above (left), 1 below (right).
+        const bool horizontal = a.y == b.y;
+        const int c0 = int(std::floor(horizontal ? m.x : m.x - 0.5));
+        const int r0 = int(std::floor(horizontal ? m.y - 0.5 : m.y));
+        const int c1 = horizontal ? c0 : c0 + 1, r1 = horizontal ? r0 + 1 : r0;
+        if (kind != LineKind::Other) {
+            // Only onto line cells of a face: the rock outline does not move out of the rock.
+            auto on = [&](int c, int r) {
+                return g.inside(c, r) && line_cells[g.at(c, r)] == int(kind) && face[g.at(c, r)] >= 0;
+            };
+            const bool on0 = on(c0, r0), on1 = on(c1, r1);
+            if (on0 == on1) return m;
+            const int c = on0 ? c0 : c1, r = on0 ? r0 : r1;
+            const Point centre{c + 0.5, r + 0.5};
+            if (kind == LineKind::Ridge) return centre;
+            // Across the edge: rows for a horizontal edge, columns for a vertical one.
+            const int sc = horizontal ? 0 : 1, sr = horizontal ? 1 : 0;
+            if (!g.inside(c - sc, r - sr) || !g.inside(c + sc, r + sr)) return centre;
+            const double zm = z[g.at(c - sc, r - sr)], z0 = z[g.at(c, r)], zp = z[g.at(c + sc, r + sr)];
+            const double curve = zm - 2 * z0 + zp;  // > 0 across a floor
+            if (!std::isfinite(curve) || curve <= 0) return centre;
+            const double t = std::clamp(0.5 * (zm - zp) / curve, -kMaxFloorShiftCells, kMaxFloorShiftCells);
+            return centre + Point{sc * t, sr * t};
+        }
+        const bool in0 = g.inside(c0, r0) && face[g.at(c0, r0)] >= 0, in1 = g.inside(c1, r1) && face[g.at(c1, r1)] >= 0;
+        if (in0 == in1 || !g.inside(c0, r0) || !g.inside(c1, r1)) return m;
+        const double s_in = slope[g.at(in0 ? c0 : c1, in0 ? r0 : r1)], s_out = slope[g.at(in0 ? c1 : c0, in0 ? r1 : r0)];
+        if (!(s_in >= min_slope && s_out < min_slope)) return m;
+        // Fraction of the way from the rock cell's centre to the outside cell's centre.
+        const double t = std::clamp((s_in - min_slope) / (s_in - s_out), kOutlineMarginCells, 1 - kOutlineMarginCells);
+        const Point from = in0 ? Point{c0 + 0.5, r0 + 0.5} : Point{c1 + 0.5, r1 + 0.5};
+        const Point to = in0 ? Point{c1 + 0.5, r1 + 0.5} : Point{c0 + 0.5, r0 + 0.5};
+        return from + (to - from) * t;
+    }
+};
+
+// Where the chains meeting at a node end: the cell corner moved to the mean of the middles of
+// the cell edges that meet there (by at most kMaxNodeShiftCells along each axis), so a short
+// border between two nodes does not run along a cell edge. The middles, not the chains' cut
+// points, so that the place does not depend on the borders' labels (labelling the outline or
+// not leaves the inner borders as they are). Every chain through the node ends at this one
+// point, whatever its level of generalisation.
+class NodePlaces {
+public:
+    static constexpr double kMaxNodeShiftCells = 0.35;
+
+    void add(long long id, const Point& corner, const Point& edge_middle) {
+        Sum& s = sums_[id];
+        s.corner = corner;
+        s.middles = s.middles + edge_middle;
+        ++s.n;
+    }
+    // The node stays at its corner from now on (a face whose cell edges alone are valid).
+    void pin(long long id) { sums_[id].pinned = true; }
+    Point place(long long id) const {
+        const auto it = sums_.find(id);
+        if (it == sums_.end()) return {};
+        const Sum& s = it->second;
+        const Point d = s.pinned ? Point{0, 0} : s.middles / double(s.n) - s.corner;
+        return s.corner + Point{std::clamp(d.x, -kMaxNodeShiftCells, kMaxNodeShiftCells),
+                                std::clamp(d.y, -kMaxNodeShiftCells, kMaxNodeShiftCells)};
+    }
+
+private:
+    struct Sum {
+        Point corner, middles{0, 0};
+        int n = 0;
+        bool pinned = false;
+    };
+    std::map<long long, Sum> sums_;
+};
+
+// The cut chain generalised: simplified within `tol` cells, then rounded by `rounds` passes
+// of corner cutting at 1/4 and 3/4 of each segment (each pass stays inside the previous
+// polyline's hull; the ends stay).
+std::vector<Point> generalise(const std::vector<Point>& cut, bool closed, double tol, int rounds) {
+    if (cut.size() < 3) return cut;
+    return cut_corners(simplify(cut, closed, tol), rounds);
 }
 
 // Traces the borders between faces (and between faces and the outside) as chains of cell
@@ -977,8 +1093,10 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
             if (l >= 0) ++size[l];
         for (std::size_t i = 0; i < g.size(); ++i)
             if (lab[i] >= 0 && double(size[lab[i]]) * cell_area < keep_area) rock[i] = 0;
-        // Gaps: 8-connected non-rock pieces enclosed by rock, without NoData, below the area.
-        const NonRock gaps = non_rock_pieces(g, rock, dem.data, inside_mask);
+        // Gaps: non-rock pieces enclosed by rock, without NoData, below the area. 4-connected,
+        // as the face outlines see them: a gap touching a bigger one (or the outside) only at a
+        // cell's corner is a hole of its own in the face's polygon.
+        const NonRock gaps = non_rock_pieces(g, rock, dem.data, inside_mask, false);
         for (std::size_t i = 0; i < g.size(); ++i) {
             const int l = gaps.lab[i];
             if (l >= 0 && !gaps.open[l] && double(gaps.size[l]) * cell_area < keep_area) rock[i] = 1;
@@ -1037,7 +1155,7 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
     // The open non-rock (not the holes in the rock).
     std::vector<char> open(g.size(), 0);
     {
-        const NonRock pieces = non_rock_pieces(g, rock, dem.data, inside_mask);
+        const NonRock pieces = non_rock_pieces(g, rock, dem.data, inside_mask, true);
         for (std::size_t i = 0; i < g.size(); ++i) open[i] = pieces.lab[i] >= 0 && pieces.open[pieces.lab[i]];
     }
     // Steps of the steepest finishes: ridge ones label no border (a ridge finished straight
@@ -1163,35 +1281,54 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
     for (std::size_t i = 0; i < g.size(); ++i)
         if (straight[i]) label_cells[i] = 0;
     std::vector<Chain> chains = label_chains(trace_chains(g, face, label_cells), g.w + 1, min_run, o.label_outline);
-    std::vector<std::vector<int>> of_face(static_cast<std::size_t>(nfaces));
+    const BorderPlaces places{g, face, label_cells, slope, z, o.min_slope};
+    // Cut points per chain: sub-cell (levels 0 to 2) and at the edges' middles (level 3).
+    std::vector<std::vector<Point>> fine(chains.size()), middles(chains.size());
+    NodePlaces nodes;
     for (std::size_t k = 0; k < chains.size(); ++k) {
-        chains[k].simple = generalise(chains[k].raw, chains[k].closed, o.simplify, o.smooth_rounds,
-                                      [&, kind = int(chains[k].kind)](const Point& a, const Point& b) {
-                                          const Point m = (a + b) / 2;
-                                          if (kind == 0) return m;
-                                          // The two cells across the unit edge a-b.
-                                          const bool horizontal = a.y == b.y;
-                                          const int c0 = int(std::floor(horizontal ? m.x : m.x - 0.5));
-                                          const int r0 = int(std::floor(horizontal ? m.y - 0.5 : m.y));
-                                          const int c1 = horizontal ? c0 : c0 + 1, r1 = horizontal ? r0 + 1 : r0;
-                                          // Only onto line cells of a face: the rock outline
-                                          // does not move out of the rock.
-                                          auto on = [&](int c, int r) {
-                                              return g.inside(c, r) && label_cells[g.at(c, r)] == kind &&
-                                                     face[g.at(c, r)] >= 0;
-                                          };
-                                          const bool on0 = on(c0, r0), on1 = on(c1, r1);
-                                          if (on0 == on1) return m;
-                                          return on0 ? Point{c0 + 0.5, r0 + 0.5} : Point{c1 + 0.5, r1 + 0.5};
-                                      });
-        chains[k].plain = simplify(chains[k].raw, chains[k].closed, 0.5);
-        if (chains[k].right >= 0) of_face[chains[k].right].push_back(int(k));
-        if (chains[k].left >= 0) of_face[chains[k].left].push_back(int(k));
+        const std::vector<Point>& raw = chains[k].raw;
+        for (std::size_t i = 0; i + 1 < raw.size(); ++i) {
+            fine[k].push_back(places.cut(raw[i], raw[i + 1], chains[k].kind));
+            middles[k].push_back((raw[i] + raw[i + 1]) / 2);
+        }
+        if (!chains[k].closed) {
+            nodes.add(chains[k].start, raw.front(), middles[k].front());
+            nodes.add(chains[k].end, raw.back(), middles[k].back());
+        }
+    }
+    auto shape_chain = [&](std::size_t k) {
+        Chain& c = chains[k];
+        const Point from = nodes.place(c.start), to = nodes.place(c.end);
+        const std::vector<Point> cut = cut_steps(fine[k], c.closed, from, to);
+        std::vector<Point> edges = c.raw;
+        if (!c.closed) {
+            edges.front() = from;
+            edges.back() = to;
+        }
+        c.shapes = {generalise(cut, c.closed, o.simplify, o.smooth_rounds), generalise(cut, c.closed, kHalfCell, 1), cut,
+                    cut_steps(middles[k], c.closed, from, to), std::move(edges)};
+    };
+    std::vector<std::vector<int>> of_face(static_cast<std::size_t>(nfaces));
+    std::multimap<long long, int> at_node;  // the open chains ending at each node
+    for (std::size_t k = 0; k < chains.size(); ++k) {
+        shape_chain(k);
+        const Chain& c = chains[k];
+        if (c.right >= 0) of_face[c.right].push_back(int(k));
+        if (c.left >= 0) of_face[c.left].push_back(int(k));
+        if (!c.closed) {
+            at_node.insert({c.start, int(k)});
+            if (c.end != c.start) at_node.insert({c.end, int(k)});
+        }
     }
     std::vector<std::vector<FacePolygon>> polys(static_cast<std::size_t>(nfaces));
     std::vector<char> redo(static_cast<std::size_t>(nfaces), 1);
     std::vector<char> degraded(static_cast<std::size_t>(nfaces), 0);
-    for (int round = 0; round < 6; ++round) {
+    const QuietGdal quiet;  // IsValid reports each crossing it finds as a warning
+    // Each round a bad face's chains step back one level; at the last level its nodes go back
+    // to their corners too, which gives the face its cell edges exactly (valid, and as large
+    // as its cells). A few more rounds settle the faces across.
+    constexpr int kRounds = Chain::kLevels + 4;
+    for (int round = 0; round <= kRounds; ++round) {
         std::vector<char> bad(std::size_t(nfaces), 0);
         bool any = false;
         for (int f = 0; f < nfaces; ++f) {
@@ -1206,31 +1343,52 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
                 ok = ok && std::abs(tex::signed_area(fp.outer)) >= min_area;
                 for (const auto& h : fp.holes) ok = ok && std::abs(tex::signed_area(h)) >= min_area;
             }
-            if (!ok && round < 5) {
+            if (!ok && round < kRounds) {
                 bad[f] = 1;
                 any = true;
             }
         }
         if (!any) break;
         // Invalid once generalised (two borders of a narrow face crossing), or under the
-        // minimum area: the face's chains
-        // step back to the cell edges simplified within half a cell, then to the cell edges
-        // themselves, and the faces across them (which share those chains) are rebuilt.
+        // minimum area: the face's chains step back one level (Chain: a lighter
+        // generalisation, then the cut steps, then the cell edges themselves), and the faces
+        // across them (which share those chains) are rebuilt.
         std::fill(redo.begin(), redo.end(), 0);
-        for (int f = 0; f < nfaces; ++f)
-            if (bad[f]) {
-                degraded[f] = 1;
-                for (int k : of_face[f]) {
-                    chains[k].level = std::min(chains[k].level + 1, 2);
-                    if (chains[k].right >= 0) redo[chains[k].right] = 1;
-                    if (chains[k].left >= 0) redo[chains[k].left] = 1;
+        auto redo_faces_of = [&](int k) {
+            if (chains[k].right >= 0) redo[chains[k].right] = 1;
+            if (chains[k].left >= 0) redo[chains[k].left] = 1;
+        };
+        for (int f = 0; f < nfaces; ++f) {
+            if (!bad[f]) continue;
+            degraded[f] = 1;
+            const bool last = std::all_of(of_face[f].begin(), of_face[f].end(),
+                                          [&](int k) { return chains[k].level == Chain::kLevels - 1; });
+            for (int k : of_face[f]) {
+                if (!last) {
+                    chains[k].level = std::min(chains[k].level + 1, Chain::kLevels - 1);
+                    redo_faces_of(k);
+                    continue;
+                }
+                if (chains[k].closed) continue;
+                for (const long long node : {chains[k].start, chains[k].end}) {
+                    nodes.pin(node);
+                    for (auto [it, stop] = at_node.equal_range(node); it != stop; ++it) {
+                        shape_chain(std::size_t(it->second));
+                        redo_faces_of(it->second);
+                    }
                 }
             }
+        }
     }
-    if (const auto n = std::count(degraded.begin(), degraded.end(), 1))
+    if (const auto n = std::count(degraded.begin(), degraded.end(), 1)) {
+        std::array<int, Chain::kLevels> at_level{};
+        for (const Chain& c : chains) ++at_level[std::size_t(c.level)];
         res.notes.push_back("kept the borders of " + std::to_string(n) +
                             " narrow or small faces closer to the cell edges (generalised, they would cross or "
-                            "fall under the minimum area)");
+                            "fall under the minimum area): " + std::to_string(at_level[1]) + " borders lightly generalised, " +
+                            std::to_string(at_level[2] + at_level[3]) + " on the cut steps, " +
+                            std::to_string(at_level[4]) + " on the cell edges");
+    }
 
     // ---- 5. The partition, with orientation and density per face
     step(progress, 0.85, "orientation and density");

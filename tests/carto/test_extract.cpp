@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <memory>
 
 #include "carto/error.hpp"
@@ -275,6 +276,12 @@ TEST(Extract, RidgesAndThalwegsMatchTheSyntheticTruth) {
     std::unique_ptr<OGRGeometry> hull(all_truth.ConvexHull());
     std::unique_ptr<OGRGeometry> zone(m->Intersection(hull.get()));
     const double tol = 10;
+    // Floors: the measures before the borders were traced below the cell size (issue 16:
+    // generalising must not lose the lines), rounded down to two decimals.
+    const std::map<std::string, std::pair<double, double>> floor{{"network ridges", {0.88, 0.90}},
+                                                                 {"network thalwegs", {0.82, 0.82}},
+                                                                 {"borders ridges", {0.93, 0.84}},
+                                                                 {"borders thalwegs", {0.84, 0.82}}};
     // The traced network, and the face borders (what rockhatch reads: a traced line ending
     // inside a face is no border).
     for (auto [lines, what] : {std::pair{&r.network, "network"}, std::pair{&r.partition.lines, "borders"}})
@@ -284,8 +291,9 @@ TEST(Extract, RidgesAndThalwegsMatchTheSyntheticTruth) {
             const auto [r_hit, r_all] = near_length(t, extracted, tol, zone.get());
             std::printf("%s %s: precision %.3f recall %.3f (extracted %.0f m, true %.0f m)\n", what, name,
                         p_hit / p_all, r_hit / r_all, p_all, r_all);
-            EXPECT_GE(p_hit / p_all, 0.8) << what << " " << name << " precision";
-            EXPECT_GE(r_hit / r_all, 0.8) << what << " " << name << " recall";
+            const auto [p_min, r_min] = floor.at(std::string(what) + " " + name);
+            EXPECT_GE(p_hit / p_all, p_min) << what << " " << name << " precision";
+            EXPECT_GE(r_hit / r_all, r_min) << what << " " << name << " recall";
         }
 }
 

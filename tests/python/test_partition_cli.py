@@ -111,6 +111,39 @@ def test_real_dem(rockhatch_exe, tmp_path):
     assert_no_overlap(polys)
 
 
+def axis_share(polys):
+    """Share of the face-border length running exactly along a grid axis (raster stair steps)."""
+    along = total = 0.0
+    for p in polys:
+        for k in range(p.GetGeometryCount()):
+            pts = p.GetGeometryRef(k).GetPoints()
+            for (ax, ay), (bx, by) in zip(pts, pts[1:]):
+                length = ((bx - ax) ** 2 + (by - ay) ** 2) ** 0.5
+                total += length
+                if abs(bx - ax) < 1e-6 or abs(by - ay) < 1e-6:
+                    along += length
+    return along / total
+
+
+@pytest.mark.skipif(not SHARED_DEM.exists(), reason=f"{SHARED_DEM} absent (real DEM kept outside the project)")
+@pytest.mark.parametrize("scale", [10000, 25000])
+def test_real_dem_borders_are_generalised_without_specks_or_small_holes(rockhatch_exe, tmp_path, scale):
+    # Issue 16 on a real DEM (31 m cells): under 10% of the border length along a grid axis
+    # (84% when borders were cell edges, 12% when narrow faces fell back to them), no face and
+    # no hole under the minimum area (16 mm2 on paper), faces valid and not overlapping.
+    out = tmp_path / "cham.gpkg"
+    r = run(rockhatch_exe, "partition", "--dem", SHARED_DEM, "-o", out, "--scale", str(scale), "-q")
+    assert r.returncode == 0, r.stderr
+    polys, _ = layer_stats(out)
+    assert axis_share(polys) < 0.10
+    min_area = 16 * (scale / 1000) ** 2
+    specks = [p.GetArea() for p in polys if p.GetArea() < min_area]
+    holes = [p.GetGeometryRef(k).GetArea()
+             for p in polys for k in range(1, p.GetGeometryCount())]
+    assert specks == [] and [h for h in holes if h < min_area] == []
+    assert_no_overlap(polys)
+
+
 def outline_kinds(path):
     """Kinds of the `lines` features lying on the rock outline (the mask's boundary)."""
     ds = ogr.Open(str(path))
