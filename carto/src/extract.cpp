@@ -1428,7 +1428,7 @@ void check_extract_files(const ExtractOptions& o, const std::string& out, const 
 }
 
 void write_partition_gpkg(const Partition& p, const std::string& path, bool overwrite,
-                          const std::vector<LabelledLine>* network) {
+                          const std::vector<LabelledLine>* network, bool fixed_controls) {
     check_output(path, overwrite);
     register_gdal();
     TempFile tmp(path, ".gpkg");
@@ -1456,9 +1456,11 @@ void write_partition_gpkg(const Partition& p, const std::string& path, bool over
         auto put = [&](OGRLayer* l, OGRFeature& f) {
             if (l->CreateFeature(&f) != OGRERR_NONE) throw Error(Code::OutputExists, "-o '" + path + "': write failed");
         };
-        OGRLayer* faces =
-            layer("faces", wkbPolygon,
-                  {{"id", OFTInteger64}, {"orientation", OFTReal}, {"density", OFTReal}, {"area", OFTReal}});
+        // Derived controls under names rockhatch does not read unless told (see the header).
+        const char* orientation_name = fixed_controls ? "orientation" : "fall_line";
+        const char* density_name = fixed_controls ? "density" : "shade";
+        OGRLayer* faces = layer("faces", wkbPolygon,
+                                {{"id", OFTInteger64}, {orientation_name, OFTReal}, {density_name, OFTReal}, {"area", OFTReal}});
         OGRLayer* lines = layer("lines", wkbLineString, {{"kind", OFTString}});
         OGRLayer* mask = layer("mask", wkbMultiPolygon, {});
         OGRLayer* net = network ? layer("network", wkbLineString, {{"kind", OFTString}}) : nullptr;
@@ -1467,8 +1469,8 @@ void write_partition_gpkg(const Partition& p, const std::string& path, bool over
         for (const RockFace& rf : p.faces) {
             OGRFeature f(faces->GetLayerDefn());
             f.SetField("id", GIntBig(rf.id));
-            if (rf.orientation) f.SetField("orientation", std::round(azimuth_degrees(*rf.orientation) * 100) / 100);
-            if (rf.density) f.SetField("density", std::round(*rf.density * 1000) / 1000);
+            if (rf.orientation) f.SetField(orientation_name, std::round(azimuth_degrees(*rf.orientation) * 100) / 100);
+            if (rf.density) f.SetField(density_name, std::round(*rf.density * 1000) / 1000);
             f.SetField("area", std::round(rf.region.area() * 10) / 10);
             std::unique_ptr<OGRPolygon> poly = to_ogr({rf.region.outer(), rf.region.holes()});
             all.addGeometry(poly.get());

@@ -23,8 +23,8 @@ def layer_stats(path):
         kinds[f.GetField("kind")] = kinds.get(f.GetField("kind"), 0) + 1
     polys = []
     for f in faces:
-        assert f.GetField("orientation") is not None and 0 <= f.GetField("orientation") < 360
-        assert 0 <= f.GetField("density") <= 1
+        assert f.GetField("fall_line") is not None and 0 <= f.GetField("fall_line") < 360
+        assert 0 <= f.GetField("shade") <= 1
         polys.append(f.GetGeometryRef().Clone())
     return polys, kinds
 
@@ -61,6 +61,29 @@ def test_two_commands_from_a_bare_dem(rockhatch_exe, sample_dir, tmp_path):
     again = tmp_path / "again.gpkg"
     assert run(rockhatch_exe, "partition", "--dem", sample_dir / "dem.tif", "-o", again, "-q").returncode == 0
     assert again.read_bytes() == faces.read_bytes()
+
+
+def test_a_saved_partition_is_hatched_as_the_automatic_one(rockhatch_exe, sample_dir, tmp_path):
+    # Issue 16: the partition written by `rockhatch partition` carries the faces' fall line
+    # and shade as derived attributes, so hatching it follows the terrain exactly as
+    # --partition auto does (the print style, the default): the same drawing, byte for byte.
+    # With --fixed-controls they are written as orientation and density, read as given: each
+    # face is hatched in one direction, which is another drawing.
+    dem = sample_dir / "dem.tif"
+    saved, fixed = tmp_path / "saved.gpkg", tmp_path / "fixed.gpkg"
+    assert run(rockhatch_exe, "partition", "-q", "--dem", dem, "-o", saved).returncode == 0
+    assert run(rockhatch_exe, "partition", "-q", "--dem", dem, "-o", fixed, "--fixed-controls").returncode == 0
+    ds = ogr.Open(str(fixed))
+    names = {ds.GetLayerByName("faces").GetLayerDefn().GetFieldDefn(i).GetName()
+             for i in range(ds.GetLayerByName("faces").GetLayerDefn().GetFieldCount())}
+    assert {"orientation", "density"} <= names
+    svgs = {}
+    for name, partition in (("auto", "auto"), ("saved", saved), ("fixed", fixed)):
+        svgs[name] = tmp_path / f"{name}.svg"
+        r = run(rockhatch_exe, "-q", "--dem", dem, "--partition", partition, "--style", "print", "-o", svgs[name])
+        assert r.returncode == 0, r.stderr
+    assert svgs["saved"].read_bytes() == svgs["auto"].read_bytes()
+    assert svgs["fixed"].read_bytes() != svgs["auto"].read_bytes()
 
 
 def test_one_option_on_the_main_command(rockhatch_exe, sample_dir, tmp_path):
