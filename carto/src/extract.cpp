@@ -19,6 +19,7 @@
 #include "carto/fields.hpp"
 #include "carto/output.hpp"
 #include "extract/borders.hpp"
+#include "extract/faces.hpp"
 #include "extract/flow.hpp"
 #include "extract/grid.hpp"
 #include "extract/mask.hpp"
@@ -49,7 +50,6 @@ constexpr double kMaxFinishM = 150.0;         // the steepest finish of a walk: 
 constexpr int kMinFinishCells = 4;            //   (at least 4 cells)
 constexpr double kConcavityDistanceM = 20.0;  // cross-profile concavity read 20 m (2 cells at least) away
 constexpr double kFloorDepthRatio = 0.05;     // a floor is 5 % of that distance below both sides
-constexpr int kMaxMergePasses = 50;           // rounds of merging small faces
 constexpr double kMinLabelRunM = 40.0;        // a border is labelled where it runs 40 m along a line
 constexpr int kMinRunCells = 3;               //   (3 cells at least)
 constexpr double kLabelSnapCells = 0.1;       // lines are the borders: matched within a tenth of a cell
@@ -118,54 +118,9 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
     for (std::size_t i = 0; i < g.size(); ++i)
         rock[i] = !std::isnan(dem.data[i]) && slope[i] >= o.min_slope && rough[i] >= o.min_roughness &&
                   (inside_mask.empty() || inside_mask[i]);
-    {
-        // Closing over about 15 m (dilation then erosion by a disc, at least the 4 neighbours):
-        // crests and couloir floors are less steep than the flanks around them but belong to
-        // the rock. A round window keeps the outline and the gaps free of square corners.
-        const int rc = std::max(1, int(std::lround(kClosingRadiusM / dx)));
-        std::vector<std::pair<int, int>> disc;
-        for (int dr = -rc; dr <= rc; ++dr)
-            for (int dc = -rc; dc <= rc; ++dc)
-                if (dr * dr + dc * dc <= rc * (rc + 1)) disc.push_back({dc, dr});
-        auto grow = [&](const std::vector<char>& on, bool dilate) {
-            // NoData counts as not rock when dilating and as rock when eroding; cells off the
-            // grid do not count.
-            std::vector<char> out(g.size());
-            for (int r = 0; r < g.h; ++r)
-                for (int c = 0; c < g.w; ++c) {
-                    bool any = false, all = true;
-                    for (auto [dc, dr] : disc) {
-                        if (!g.inside(c + dc, r + dr)) continue;
-                        const std::size_t j = g.at(c + dc, r + dr);
-                        const bool v = std::isnan(dem.data[j]) ? !dilate : on[j] != 0;
-                        any = any || v;
-                        all = all && v;
-                        if (dilate ? any : !all) break;
-                    }
-                    out[g.at(c, r)] = dilate ? any : all;
-                }
-            return out;
-        };
-        std::vector<char> closed = grow(grow(rock, true), false);
-        for (std::size_t i = 0; i < g.size(); ++i)
-            rock[i] = closed[i] && !std::isnan(dem.data[i]) && (inside_mask.empty() || inside_mask[i]);
-        // Specks: 4-connected rock pieces smaller than the minimum area.
-        int n = 0;
-        const std::vector<int> lab = components(g, rock, false, n);
-        std::vector<std::size_t> size(std::size_t(n), 0);
-        for (int l : lab)
-            if (l >= 0) ++size[l];
-        for (std::size_t i = 0; i < g.size(); ++i)
-            if (lab[i] >= 0 && double(size[lab[i]]) * cell_area < keep_area) rock[i] = 0;
-        // Gaps: non-rock pieces enclosed by rock, without NoData, below the area. 4-connected,
-        // as the face outlines see them: a gap touching a bigger one (or the outside) only at a
-        // cell's corner is a hole of its own in the face's polygon.
-        const NonRock gaps = non_rock_pieces(g, rock, dem.data, inside_mask, false);
-        for (std::size_t i = 0; i < g.size(); ++i) {
-            const int l = gaps.lab[i];
-            if (l >= 0 && !gaps.open[l] && double(gaps.size[l]) * cell_area < keep_area) rock[i] = 1;
-        }
-    }
+    // Closing over about 15 m (at least the 4 neighbours), specks dropped and gaps filled:
+    // close_rock (extract/mask.hpp).
+    close_rock(g, rock, dem.data, inside_mask, std::max(1, int(std::lround(kClosingRadiusM / dx))), cell_area, keep_area);
     std::size_t rock_cells = 0;
     for (char v : rock) rock_cells += v;
     if (rock_cells == 0) {
@@ -244,95 +199,8 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
 
     // ---- 3. Faces
     step(progress, 0.6, "faces");
-    std::vector<char> free_cell(g.size());
-    for (std::size_t i = 0; i < g.size(); ++i) free_cell[i] = rock[i] && res.line_cells[i] == 0;
     int nfaces = 0;
-    std::vector<int> face = components(g, free_cell, false, nfaces);
-    // Line cells join a 4-neighbouring face, wave by wave (the smallest face index wins).
-    while (true) {
-        std::vector<std::pair<std::size_t, int>> wave;
-        for (int r = 0; r < g.h; ++r)
-            for (int c = 0; c < g.w; ++c) {
-                const std::size_t i = g.at(c, r);
-                if (!rock[i] || face[i] >= 0) continue;
-                int best = -1;
-                for (int k = 0; k < 8; k += 2) {
-                    const int cc = c + kDc[k], rr = r + kDr[k];
-                    if (!g.inside(cc, rr)) continue;
-                    const int f = face[g.at(cc, rr)];
-                    if (f >= 0 && (best < 0 || f < best)) best = f;
-                }
-                if (best >= 0) wave.push_back({i, best});
-            }
-        if (wave.empty()) break;
-        for (auto [i, f] : wave) face[i] = f;
-    }
-    // Rock made only of line cells (narrow ribs): faces of their own.
-    for (std::size_t i = 0; i < g.size(); ++i)
-        if (rock[i] && face[i] < 0) {
-            std::vector<char> rest(g.size());
-            for (std::size_t j = 0; j < g.size(); ++j) rest[j] = rock[j] && face[j] < 0;
-            int n = 0;
-            const std::vector<int> lab = components(g, rest, false, n);
-            for (std::size_t j = 0; j < g.size(); ++j)
-                if (lab[j] >= 0) face[j] = nfaces + lab[j];
-            nfaces += n;
-            break;
-        }
-    // Small faces merge into the neighbour they share most border with, smallest first.
-    for (int pass = 0; pass < kMaxMergePasses; ++pass) {
-        std::vector<std::size_t> area(std::size_t(nfaces), 0);
-        std::map<std::pair<int, int>, int> shared;
-        for (int r = 0; r < g.h; ++r)
-            for (int c = 0; c < g.w; ++c) {
-                const int f = face[g.at(c, r)];
-                if (f < 0) continue;
-                ++area[f];
-                for (int k : {0, 2}) {  // east and south neighbours
-                    const int cc = c + kDc[k], rr = r + kDr[k];
-                    if (!g.inside(cc, rr)) continue;
-                    const int e = face[g.at(cc, rr)];
-                    if (e >= 0 && e != f) {
-                        ++shared[{f, e}];
-                        ++shared[{e, f}];
-                    }
-                }
-            }
-        std::vector<int> order;
-        for (int f = 0; f < nfaces; ++f)
-            if (area[f] > 0 && double(area[f]) * cell_area < min_area) order.push_back(f);
-        std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return area[a] < area[b]; });
-        std::vector<int> target(std::size_t(nfaces), -1);
-        std::vector<char> touched(std::size_t(nfaces), 0);
-        bool merged = false;
-        for (int f : order) {
-            if (touched[f]) continue;
-            int best = -1, most = 0;
-            for (auto it = shared.lower_bound({f, -1}); it != shared.end() && it->first.first == f; ++it)
-                if (it->second > most && !touched[it->first.second]) {
-                    most = it->second;
-                    best = it->first.second;
-                }
-            if (best < 0) continue;
-            target[f] = best;
-            touched[f] = touched[best] = 1;
-            merged = true;
-        }
-        if (!merged) break;
-        for (int& f : face)
-            if (f >= 0 && target[f] >= 0) f = target[f];
-    }
-    // Compact numbering in raster order of the faces' first cells.
-    {
-        std::vector<int> renum(std::size_t(nfaces), -1);
-        int n = 0;
-        for (int& f : face)
-            if (f >= 0) {
-                if (renum[f] < 0) renum[f] = n++;
-                f = renum[f];
-            }
-        nfaces = n;
-    }
+    std::vector<int> face = face_grid(g, rock, res.line_cells, cell_area, min_area, nfaces);
     res.faces = dem;
     for (std::size_t i = 0; i < g.size(); ++i) res.faces.data[i] = float(face[i]);
 

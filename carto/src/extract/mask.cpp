@@ -4,6 +4,7 @@
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
+#include <cmath>
 #include <filesystem>
 #include <memory>
 
@@ -88,6 +89,52 @@ std::vector<char> rasterize_mask(const std::string& path, const Raster& grid) {
                                         GDT_Byte, 0, 0) != CE_None)
         throw Error(Code::Failure, what + ": cannot read the rasterized mask");
     return out;
+}
+
+void close_rock(const Grid& g, std::vector<char>& rock, const std::vector<float>& dem,
+                const std::vector<char>& inside_mask, int rc, double cell_area, double keep_area) {
+    std::vector<std::pair<int, int>> disc;
+    for (int dr = -rc; dr <= rc; ++dr)
+        for (int dc = -rc; dc <= rc; ++dc)
+            if (dr * dr + dc * dc <= rc * (rc + 1)) disc.push_back({dc, dr});
+    auto grow = [&](const std::vector<char>& on, bool dilate) {
+        // NoData counts as not rock when dilating and as rock when eroding; cells off the
+        // grid do not count.
+        std::vector<char> out(g.size());
+        for (int r = 0; r < g.h; ++r)
+            for (int c = 0; c < g.w; ++c) {
+                bool any = false, all = true;
+                for (auto [dc, dr] : disc) {
+                    if (!g.inside(c + dc, r + dr)) continue;
+                    const std::size_t j = g.at(c + dc, r + dr);
+                    const bool v = std::isnan(dem[j]) ? !dilate : on[j] != 0;
+                    any = any || v;
+                    all = all && v;
+                    if (dilate ? any : !all) break;
+                }
+                out[g.at(c, r)] = dilate ? any : all;
+            }
+        return out;
+    };
+    std::vector<char> closed = grow(grow(rock, true), false);
+    for (std::size_t i = 0; i < g.size(); ++i)
+        rock[i] = closed[i] && !std::isnan(dem[i]) && (inside_mask.empty() || inside_mask[i]);
+    // Specks: 4-connected rock pieces smaller than the minimum area.
+    int n = 0;
+    const std::vector<int> lab = components(g, rock, false, n);
+    std::vector<std::size_t> size(std::size_t(n), 0);
+    for (int l : lab)
+        if (l >= 0) ++size[l];
+    for (std::size_t i = 0; i < g.size(); ++i)
+        if (lab[i] >= 0 && double(size[lab[i]]) * cell_area < keep_area) rock[i] = 0;
+    // Gaps: non-rock pieces enclosed by rock, without NoData, below the area. 4-connected,
+    // as the face outlines see them: a gap touching a bigger one (or the outside) only at a
+    // cell's corner is a hole of its own in the face's polygon.
+    const NonRock gaps = non_rock_pieces(g, rock, dem, inside_mask, false);
+    for (std::size_t i = 0; i < g.size(); ++i) {
+        const int l = gaps.lab[i];
+        if (l >= 0 && !gaps.open[l] && double(gaps.size[l]) * cell_area < keep_area) rock[i] = 1;
+    }
 }
 
 }  // namespace carto::extraction
