@@ -19,7 +19,9 @@ inline std::unique_ptr<GDALDataset> create_gpkg(const std::string& tmp, const st
     GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GPKG");
     if (!drv) throw Error(Code::Failure, "GDAL has no GeoPackage driver");
     std::unique_ptr<GDALDataset> ds(drv->Create(tmp.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
-    if (!ds) throw Error(Code::OutputExists, "-o '" + path + "': cannot create (" + CPLGetLastErrorMsg() + ")");
+    if (!ds)
+        throw Error(Code::OutputExists,
+                    "-o '" + path + "': cannot create (" + CPLGetLastErrorMsg() + ")");
     return ds;
 }
 

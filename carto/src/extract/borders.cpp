@@ -14,7 +14,8 @@ double seg_dist(const Point& p, const Point& a, const Point& b) {
     return tex::distance(p, a + d * t);
 }
 
-void douglas_peucker(const std::vector<Point>& pts, std::size_t a, std::size_t b, double tol, std::vector<char>& keep) {
+void douglas_peucker(const std::vector<Point>& pts, std::size_t a, std::size_t b, double tol,
+                     std::vector<char>& keep) {
     if (b <= a + 1) return;
     double best = -1;
     std::size_t idx = a;
@@ -53,13 +54,16 @@ std::vector<Point> simplify(const std::vector<Point>& pts, bool closed, double t
     return out;
 }
 
-std::vector<Point> cut_steps(const std::vector<Point>& cuts, bool closed, const Point& from, const Point& to) {
+std::vector<Point> cut_steps(const std::vector<Point>& cuts, bool closed, const Point& from,
+                             const Point& to) {
     std::vector<Point> out;
     out.reserve(cuts.size() + 2);
     if (!closed) out.push_back(from);
     out.insert(out.end(), cuts.begin(), cuts.end());
-    if (closed) out.push_back(cuts.front());
-    else out.push_back(to);
+    if (closed)
+        out.push_back(cuts.front());
+    else
+        out.push_back(to);
     return out;
 }
 
@@ -68,11 +72,13 @@ std::vector<Point> generalise(const std::vector<Point>& cut, bool closed, double
     return cut_corners(simplify(cut, closed, tol), rounds);
 }
 
-std::vector<Chain> trace_chains(const Grid& g, const std::vector<int>& face, const std::vector<int>& kind) {
+std::vector<Chain> trace_chains(const Grid& g, const std::vector<int>& face,
+                                const std::vector<int>& kind) {
     auto label = [&](int c, int r) { return g.inside(c, r) ? face[g.at(c, r)] : -1; };
     const int W = g.w + 1, H = g.h + 1;
     // Edge from corner (i, j) in direction d exists when the two cells across it differ.
-    auto cells = [&](int i, int j, int d, int& right, int& left, int& rc, int& rr, int& lc, int& lr) {
+    auto cells = [&](int i, int j, int d, int& right, int& left, int& rc, int& rr, int& lc,
+                     int& lr) {
         switch (d) {
             case 0:
                 rc = i, rr = j - 1, lc = i, lr = j;
@@ -130,7 +136,8 @@ std::vector<Chain> trace_chains(const Grid& g, const std::vector<int>& face, con
         while (true) {
             seen(i, j, d) = 1;
             cells(i, j, d, right, left, rc, rr, lc, lr);
-            const int kr = g.inside(rc, rr) ? kind[g.at(rc, rr)] : 0, kl = g.inside(lc, lr) ? kind[g.at(lc, lr)] : 0;
+            const int kr = g.inside(rc, rr) ? kind[g.at(rc, rr)] : 0,
+                      kl = g.inside(lc, lr) ? kind[g.at(lc, lr)] : 0;
             ch.edges.push_back((unsigned char)((kr == 1 || kl == 1) | ((kr == 2 || kl == 2) << 1)));
             ch.last_dir = d;
             i += kCx[d];
@@ -162,19 +169,26 @@ std::vector<Chain> trace_chains(const Grid& g, const std::vector<int>& face, con
     return chains;
 }
 
-std::vector<Chain> label_chains(std::vector<Chain> chains, int corner_w, int min_run, bool outline) {
+std::vector<Chain> label_chains(std::vector<Chain> chains, int corner_w, int min_run,
+                                bool outline) {
     auto dir_of = [](const Point& a, const Point& b) {
         return b.x > a.x ? 0 : b.y > a.y ? 1 : b.x < a.x ? 2 : 3;
     };
-    auto corner = [&](const Point& q) { return (long long)std::lround(q.y) * corner_w + std::lround(q.x); };
-    auto kind_of = [](int l) { return l == 1 ? LineKind::Ridge : l == 2 ? LineKind::Valley : LineKind::Other; };
+    auto corner = [&](const Point& q) {
+        return (long long)std::lround(q.y) * corner_w + std::lround(q.x);
+    };
+    auto kind_of = [](int l) {
+        return l == 1 ? LineKind::Ridge : l == 2 ? LineKind::Valley : LineKind::Other;
+    };
     std::vector<Chain> out;
     for (Chain& ch : chains) {
         const std::size_t n = ch.edges.size();
         std::vector<int> lab(n, 0);
         if (outline || (ch.right >= 0 && ch.left >= 0))
-            for (std::size_t e = 0; e < n; ++e) lab[e] = (ch.edges[e] & 1) ? 1 : (ch.edges[e] & 2) ? 2 : 0;
-        // A loop without a node starts where its label changes, so its first and last pieces differ.
+            for (std::size_t e = 0; e < n; ++e)
+                lab[e] = (ch.edges[e] & 1) ? 1 : (ch.edges[e] & 2) ? 2 : 0;
+        // A loop without a node starts where its label changes, so its first and last pieces
+        // differ.
         if (ch.closed && lab[n - 1] == lab[0]) {
             std::size_t s = n;  // start of the last run
             while (s > 0 && lab[s - 1] == lab[n - 1]) --s;
@@ -225,8 +239,10 @@ std::vector<Chain> label_chains(std::vector<Chain> chains, int corner_w, int min
         }
         for (const Run& r : runs) {
             Chain piece;
-            piece.raw.assign(ch.raw.begin() + long(r.begin), ch.raw.begin() + long(r.begin + r.len + 1));
-            piece.edges.assign(ch.edges.begin() + long(r.begin), ch.edges.begin() + long(r.begin + r.len));
+            piece.raw.assign(ch.raw.begin() + long(r.begin),
+                             ch.raw.begin() + long(r.begin + r.len + 1));
+            piece.edges.assign(ch.edges.begin() + long(r.begin),
+                               ch.edges.begin() + long(r.begin + r.len));
             piece.right = ch.right;
             piece.left = ch.left;
             piece.first_dir = dir_of(piece.raw[0], piece.raw[1]);

@@ -21,7 +21,7 @@ constexpr int kCx[4] = {1, 0, -1, 0};
 constexpr int kCy[4] = {0, 1, 0, -1};
 
 struct Chain {
-    std::vector<Point> raw;     // corner coordinates (col, row)
+    std::vector<Point> raw;  // corner coordinates (col, row)
     // The shapes a face may use, from the most generalised to the cell edges themselves
     // (`level` picks one): 0 the generalised chain, 1 the cut steps simplified within half a
     // cell and rounded once, 2 the cut steps themselves (a one-cell staircase becomes its
@@ -38,12 +38,14 @@ struct Chain {
     static constexpr int kLevels = 5;
     const std::vector<Point>& shape() const { return shapes[std::size_t(level)]; }
     LineKind kind = LineKind::Other;
-    std::vector<unsigned char> edges;  // per cell edge: bit 0 along a ridge cell, bit 1 along a thalweg cell
+    std::vector<unsigned char>
+        edges;  // per cell edge: bit 0 along a ridge cell, bit 1 along a thalweg cell
 };
 
 double seg_dist(const Point& p, const Point& a, const Point& b);
 
-void douglas_peucker(const std::vector<Point>& pts, std::size_t a, std::size_t b, double tol, std::vector<char>& keep);
+void douglas_peucker(const std::vector<Point>& pts, std::size_t a, std::size_t b, double tol,
+                     std::vector<char>& keep);
 
 std::vector<Point> simplify(const std::vector<Point>& pts, bool closed, double tol);
 
@@ -53,7 +55,8 @@ std::vector<Point> simplify(const std::vector<Point>& pts, bool closed, double t
 // node ends at the same point, so the chains of neighbouring faces still meet and the faces
 // still tile the rock exactly: both faces of a border use the same chain. A closed chain
 // without a node is the loop of its cut points.
-std::vector<Point> cut_steps(const std::vector<Point>& cuts, bool closed, const Point& from, const Point& to);
+std::vector<Point> cut_steps(const std::vector<Point>& cuts, bool closed, const Point& from,
+                             const Point& to);
 
 // Where a border crosses each cell edge, below the cell size (issue 16: borders traced at
 // sub-cell precision, not along the grid's axes):
@@ -92,7 +95,8 @@ struct BorderPlaces {
         if (kind != LineKind::Other) {
             // Only onto line cells of a face: the rock outline does not move out of the rock.
             auto on = [&](int c, int r) {
-                return g.inside(c, r) && line_cells[g.at(c, r)] == int(kind) && face[g.at(c, r)] >= 0;
+                return g.inside(c, r) && line_cells[g.at(c, r)] == int(kind) &&
+                       face[g.at(c, r)] >= 0;
             };
             const bool on0 = on(c0, r0), on1 = on(c1, r1);
             if (on0 == on1) return m;
@@ -102,18 +106,23 @@ struct BorderPlaces {
             // Across the edge: rows for a horizontal edge, columns for a vertical one.
             const int sc = horizontal ? 0 : 1, sr = horizontal ? 1 : 0;
             if (!g.inside(c - sc, r - sr) || !g.inside(c + sc, r + sr)) return centre;
-            const double zm = z[g.at(c - sc, r - sr)], z0 = z[g.at(c, r)], zp = z[g.at(c + sc, r + sr)];
+            const double zm = z[g.at(c - sc, r - sr)], z0 = z[g.at(c, r)],
+                         zp = z[g.at(c + sc, r + sr)];
             const double curve = zm - 2 * z0 + zp;  // > 0 across a floor
             if (!std::isfinite(curve) || curve <= 0) return centre;
-            const double t = std::clamp(0.5 * (zm - zp) / curve, -kMaxFloorShiftCells, kMaxFloorShiftCells);
+            const double t =
+                std::clamp(0.5 * (zm - zp) / curve, -kMaxFloorShiftCells, kMaxFloorShiftCells);
             return centre + Point{sc * t, sr * t};
         }
-        const bool in0 = g.inside(c0, r0) && face[g.at(c0, r0)] >= 0, in1 = g.inside(c1, r1) && face[g.at(c1, r1)] >= 0;
+        const bool in0 = g.inside(c0, r0) && face[g.at(c0, r0)] >= 0,
+                   in1 = g.inside(c1, r1) && face[g.at(c1, r1)] >= 0;
         if (in0 == in1 || !g.inside(c0, r0) || !g.inside(c1, r1)) return m;
-        const double s_in = slope[g.at(in0 ? c0 : c1, in0 ? r0 : r1)], s_out = slope[g.at(in0 ? c1 : c0, in0 ? r1 : r0)];
+        const double s_in = slope[g.at(in0 ? c0 : c1, in0 ? r0 : r1)],
+                     s_out = slope[g.at(in0 ? c1 : c0, in0 ? r1 : r0)];
         if (!(s_in >= min_slope && s_out < min_slope)) return m;
         // Fraction of the way from the rock cell's centre to the outside cell's centre.
-        const double t = std::clamp((s_in - min_slope) / (s_in - s_out), kOutlineMarginCells, 1 - kOutlineMarginCells);
+        const double t = std::clamp((s_in - min_slope) / (s_in - s_out), kOutlineMarginCells,
+                                    1 - kOutlineMarginCells);
         const Point from = in0 ? Point{c0 + 0.5, r0 + 0.5} : Point{c1 + 0.5, r1 + 0.5};
         const Point to = in0 ? Point{c1 + 0.5, r1 + 0.5} : Point{c0 + 0.5, r0 + 0.5};
         return from + (to - from) * t;
@@ -163,7 +172,8 @@ std::vector<Point> generalise(const std::vector<Point>& cut, bool closed, double
 
 // Traces the borders between faces (and between faces and the outside) as chains of cell
 // edges between nodes (corners where three or four edges meet).
-std::vector<Chain> trace_chains(const Grid& g, const std::vector<int>& face, const std::vector<int>& kind);
+std::vector<Chain> trace_chains(const Grid& g, const std::vector<int>& face,
+                                const std::vector<int>& kind);
 
 // Labels the chains by the line cells they run along, piece by piece: each chain is cut where
 // it passes from running along ridge cells to thalweg cells or to neither, pieces shorter than

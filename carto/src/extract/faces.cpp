@@ -7,12 +7,14 @@ namespace carto::extraction {
 
 namespace {
 
-constexpr int kMaxMergePasses = 50;  // rounds of merging small faces (each merges a face at most once)
+constexpr int kMaxMergePasses =
+    50;  // rounds of merging small faces (each merges a face at most once)
 
 }  // namespace
 
-std::vector<int> face_grid(const Grid& g, const std::vector<char>& rock, const std::vector<int>& line_cells, double cell_area,
-                           double min_area, int& nfaces) {
+std::vector<int> face_grid(const Grid& g, const std::vector<char>& rock,
+                           const std::vector<int>& line_cells, double cell_area, double min_area,
+                           int& nfaces) {
     std::vector<char> free_cell(g.size());
     for (std::size_t i = 0; i < g.size(); ++i) free_cell[i] = rock[i] && line_cells[i] == 0;
     nfaces = 0;
@@ -70,14 +72,16 @@ std::vector<int> face_grid(const Grid& g, const std::vector<char>& rock, const s
         std::vector<int> order;
         for (int f = 0; f < nfaces; ++f)
             if (area[f] > 0 && double(area[f]) * cell_area < min_area) order.push_back(f);
-        std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return area[a] < area[b]; });
+        std::stable_sort(order.begin(), order.end(),
+                         [&](int a, int b) { return area[a] < area[b]; });
         std::vector<int> target(std::size_t(nfaces), -1);
         std::vector<char> touched(std::size_t(nfaces), 0);
         bool merged = false;
         for (int f : order) {
             if (touched[f]) continue;
             int best = -1, most = 0;
-            for (auto it = shared.lower_bound({f, -1}); it != shared.end() && it->first.first == f; ++it)
+            for (auto it = shared.lower_bound({f, -1}); it != shared.end() && it->first.first == f;
+                 ++it)
                 if (it->second > most && !touched[it->first.second]) {
                     most = it->second;
                     best = it->first.second;

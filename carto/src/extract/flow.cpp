@@ -65,8 +65,9 @@ Flow flow(const Grid& g, const std::vector<float>& z, double dx, double dy, doub
     idx.reserve(n);
     for (std::size_t i = 0; i < n; ++i)
         if (!std::isnan(z[i])) idx.push_back(i);
-    std::sort(idx.begin(), idx.end(),
-              [&](std::size_t a, std::size_t b) { return s[a] != s[b] ? s[a] > s[b] : order[a] > order[b]; });
+    std::sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) {
+        return s[a] != s[b] ? s[a] > s[b] : order[a] > order[b];
+    });
     Flow f;
     f.down.assign(n, -1);
     f.area.assign(n, 0.0);
@@ -93,7 +94,8 @@ Flow flow(const Grid& g, const std::vector<float>& z, double dx, double dy, doub
         if (wsum > 0) {
             for (int k = 0; k < 8; ++k)
                 if (w[k] > 0) f.area[g.at(c + kDc[k], r + kDr[k])] += f.area[i] * w[k] / wsum;
-        } else if (flooder[i] >= 0 && !(dep[i] >= 0 && depth[dep[i]] > max_fill) && s[flooder[i]] <= s[i]) {
+        } else if (flooder[i] >= 0 && !(dep[i] >= 0 && depth[dep[i]] > max_fill) &&
+                   s[flooder[i]] <= s[i]) {
             f.down[i] = flooder[i];  // a flat (or a filled depression) draining out
             f.area[std::size_t(flooder[i])] += f.area[i];
         }
@@ -123,7 +125,8 @@ std::vector<char> channels(const Grid& g, const Flow& f, double threshold, doubl
             bool crest = convergence(g, f, i) >= converge;
             // Not a side line along a bigger one: no cell within `near` carries twice the area.
             for (int rr = std::max(0, r - near); crest && rr <= std::min(g.h - 1, r + near); ++rr)
-                for (int cc = std::max(0, c - near); crest && cc <= std::min(g.w - 1, c + near); ++cc)
+                for (int cc = std::max(0, c - near); crest && cc <= std::min(g.w - 1, c + near);
+                     ++cc)
                     if (f.area[g.at(cc, rr)] > 2 * f.area[i]) crest = false;
             if (!crest) continue;
             // Into the border band for a few cells only: the line reaches the edge of the DEM
@@ -167,8 +170,10 @@ void prune_spurs(const Grid& g, const Flow& f, std::vector<char>& ch, int min_ce
             for (std::size_t i : path) {
                 const int c = int(i % g.w), r = int(i / g.w);
                 bool found = false;
-                for (int rr = std::max(0, r - near); !found && rr <= std::min(g.h - 1, r + near); ++rr)
-                    for (int cc = std::max(0, c - near); !found && cc <= std::min(g.w - 1, c + near); ++cc) {
+                for (int rr = std::max(0, r - near); !found && rr <= std::min(g.h - 1, r + near);
+                     ++rr)
+                    for (int cc = std::max(0, c - near);
+                         !found && cc <= std::min(g.w - 1, c + near); ++cc) {
                         const std::size_t j = g.at(cc, rr);
                         found = ch[j] && owner[j] != int(k) && f.area[j] > f.area[i];
                     }
@@ -181,7 +186,8 @@ void prune_spurs(const Grid& g, const Flow& f, std::vector<char>& ch, int min_ce
     for (std::size_t i : drop) ch[i] = 0;
 }
 
-std::vector<float> concavity(const Grid& g, const std::vector<float>& z, double dx, double dy, double dist) {
+std::vector<float> concavity(const Grid& g, const std::vector<float>& z, double dx, double dy,
+                             double dist) {
     std::vector<float> out(g.size(), NAN);
     auto at = [&](double c, double r) -> double {  // bilinear at cell coordinates (centres at .5)
         const double fx = c - 0.5, fy = r - 0.5;
@@ -209,10 +215,11 @@ std::vector<float> concavity(const Grid& g, const std::vector<float>& z, double 
     return out;
 }
 
-void extend_heads(const Grid& g, std::vector<int>& down, std::vector<char>& ch, std::vector<char>& straight,
-                  const std::vector<float>& z, const std::vector<float>& conc, double depth,
-                  const std::vector<char>& stop, const std::vector<char>& rock, const std::vector<char>& open,
-                  int max_cells, int finish) {
+void extend_heads(const Grid& g, std::vector<int>& down, std::vector<char>& ch,
+                  std::vector<char>& straight, const std::vector<float>& z,
+                  const std::vector<float>& conc, double depth, const std::vector<char>& stop,
+                  const std::vector<char>& rock, const std::vector<char>& open, int max_cells,
+                  int finish) {
     std::vector<char> has_up(g.size(), 0);
     for (std::size_t i = 0; i < g.size(); ++i)
         if (ch[i] && down[i] >= 0) has_up[down[i]] = 1;
@@ -233,7 +240,8 @@ void extend_heads(const Grid& g, std::vector<int>& down, std::vector<char>& ch, 
         steep.assign(1, 0);
         int weak = 0, finishing = -1;
         bool in_rock = rock[h] || open[h];
-        std::size_t fallback = 0;  // the steps kept if the walk, having entered a hole, gets nowhere
+        std::size_t fallback =
+            0;  // the steps kept if the walk, having entered a hole, gets nowhere
         while (int(path.size()) <= max_cells) {
             const std::size_t i = path.back();
             const int c = int(i % g.w), r = int(i / g.w);
@@ -243,13 +251,16 @@ void extend_heads(const Grid& g, std::vector<int>& down, std::vector<char>& ch, 
                 const int cc = c + kDc[k], rr = r + kDr[k];
                 if (!g.inside(cc, rr)) continue;
                 const std::size_t j = g.at(cc, rr);
-                if (rock[j] && (cc == 0 || rr == 0 || cc == g.w - 1 || rr == g.h - 1) && edge < 0) edge = int(j);
+                if (rock[j] && (cc == 0 || rr == 0 || cc == g.w - 1 || rr == g.h - 1) && edge < 0)
+                    edge = int(j);
                 if (!(z[j] > z[i]) || std::isnan(conc[j])) continue;
                 // Along the floor: the most concave; finishing: the steepest.
-                const double v = finishing < 0 ? conc[j] : -(z[j] - z[i]) / ((kDc[k] && kDr[k]) ? 1.4142 : 1.0);
+                const double v =
+                    finishing < 0 ? conc[j] : -(z[j] - z[i]) / ((kDc[k] && kDr[k]) ? 1.4142 : 1.0);
                 if (best < 0 || v < key) best = int(j), key = v;
             }
-            if (in_rock && edge >= 0 && path.size() > 1) {  // at the grid's edge: the edge cell ends the line
+            if (in_rock && edge >= 0 &&
+                path.size() > 1) {  // at the grid's edge: the edge cell ends the line
                 path.push_back(std::size_t(edge));
                 steep.push_back(finishing >= 0);
                 keep(path.size());
@@ -280,8 +291,9 @@ void extend_heads(const Grid& g, std::vector<int>& down, std::vector<char>& ch, 
     }
 }
 
-std::vector<LabelledLine> trace_network(const Grid& g, const std::vector<int>& down, const std::vector<char>& ch,
-                                        const std::vector<char>& rock, LineKind kind, const Raster& grid, double tol) {
+std::vector<LabelledLine> trace_network(const Grid& g, const std::vector<int>& down,
+                                        const std::vector<char>& ch, const std::vector<char>& rock,
+                                        LineKind kind, const Raster& grid, double tol) {
     std::vector<char> has_up(g.size(), 0), done(g.size(), 0);
     for (std::size_t i = 0; i < g.size(); ++i)
         if (ch[i] && rock[i] && down[i] >= 0) has_up[down[i]] = 1;
@@ -299,7 +311,8 @@ std::vector<LabelledLine> trace_network(const Grid& g, const std::vector<int>& d
         if (pts.size() < 2) return;
         LabelledLine l;
         l.kind = kind;
-        for (const Point& q : simplify(pts, false, tol)) l.points.push_back(grid.to_world(q.x, q.y));
+        for (const Point& q : simplify(pts, false, tol))
+            l.points.push_back(grid.to_world(q.x, q.y));
         out.push_back(std::move(l));
     };
     for (std::size_t i = 0; i < g.size(); ++i)

@@ -46,7 +46,8 @@ void prune_spurs(const Grid& g, const Flow& f, std::vector<char>& ch, int min_ce
 // Cross-profile concavity of a surface at each cell: its height minus the mean of the two
 // points `dist` away along the contour line (across the fall line). Negative on a valley
 // floor, positive on a crest, about 0 on a planar flank.
-std::vector<float> concavity(const Grid& g, const std::vector<float>& z, double dx, double dy, double dist);
+std::vector<float> concavity(const Grid& g, const std::vector<float>& z, double dx, double dy,
+                             double dist);
 
 // Prolongs each head of a network upstream along its valley floor: to the higher neighbour
 // (8 around) that is most concave, while concave by at least `depth` (two cells' tolerance),
@@ -59,14 +60,16 @@ std::vector<float> concavity(const Grid& g, const std::vector<float>& z, double 
 // hole first walks into the rock.
 // Kept steps are linked downstream in `down`, so the network can be traced along them; those
 // of the steepest finish are set in `straight` (they cut the rock but follow no crest or floor).
-void extend_heads(const Grid& g, std::vector<int>& down, std::vector<char>& ch, std::vector<char>& straight,
-                  const std::vector<float>& z, const std::vector<float>& conc, double depth,
-                  const std::vector<char>& stop, const std::vector<char>& rock, const std::vector<char>& open,
-                  int max_cells, int finish);
+void extend_heads(const Grid& g, std::vector<int>& down, std::vector<char>& ch,
+                  std::vector<char>& straight, const std::vector<float>& z,
+                  const std::vector<float>& conc, double depth, const std::vector<char>& stop,
+                  const std::vector<char>& rock, const std::vector<char>& open, int max_cells,
+                  int finish);
 
 // The network cells inside the rock traced into polylines: from each head down the D8
 // directions to a junction (included) or out of the rock; simplified.
-std::vector<LabelledLine> trace_network(const Grid& g, const std::vector<int>& down, const std::vector<char>& ch,
-                                        const std::vector<char>& rock, LineKind kind, const Raster& grid, double tol);
+std::vector<LabelledLine> trace_network(const Grid& g, const std::vector<int>& down,
+                                        const std::vector<char>& ch, const std::vector<char>& rock,
+                                        LineKind kind, const Raster& grid, double tol);
 
 }  // namespace carto::extraction

@@ -35,7 +35,8 @@ inline std::vector<float> box_mean(const Grid& g, const std::vector<float>& v, i
 
 // Connected components of the cells where on[i] is true (4- or 8-connected), numbered from 0
 // in raster order; -1 elsewhere.
-inline std::vector<int> components(const Grid& g, const std::vector<char>& on, bool eight, int& count) {
+inline std::vector<int> components(const Grid& g, const std::vector<char>& on, bool eight,
+                                   int& count) {
     std::vector<int> lab(g.size(), -1);
     std::vector<std::size_t> stack;
     count = 0;

@@ -50,8 +50,10 @@ std::vector<char> rasterize_mask(const std::string& path, const Raster& grid) {
     if (!layer) throw Error(Code::BadLayer, what + ": no polygon layer");
     const OGRSpatialReference* srs = layer->GetSpatialRef();
     const char* srs_name = srs ? srs->GetName() : nullptr;
-    if (!srs || srs->IsEmpty() || (srs_name && std::string(srs_name).find("Undefined") != std::string::npos))
-        throw Error(Code::NoCrs, what + ": layer '" + std::string(layer->GetName()) + "' has no CRS");
+    if (!srs || srs->IsEmpty() ||
+        (srs_name && std::string(srs_name).find("Undefined") != std::string::npos))
+        throw Error(Code::NoCrs,
+                    what + ": layer '" + std::string(layer->GetName()) + "' has no CRS");
     OGRSpatialReference src(*srs), dst;
     src.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
     dst.importFromWkt(grid.crs_wkt.c_str());
@@ -70,9 +72,11 @@ std::vector<char> rasterize_mask(const std::string& path, const Raster& grid) {
         geoms.push_back(std::move(g));
     }
     if (geoms.empty())
-        throw Error(Code::BadLayer, what + ": layer '" + std::string(layer->GetName()) + "' holds no polygon");
+        throw Error(Code::BadLayer,
+                    what + ": layer '" + std::string(layer->GetName()) + "' holds no polygon");
     GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
-    std::unique_ptr<GDALDataset> ras(mem->Create("", grid.width, grid.height, 1, GDT_Byte, nullptr));
+    std::unique_ptr<GDALDataset> ras(
+        mem->Create("", grid.width, grid.height, 1, GDT_Byte, nullptr));
     ras->SetGeoTransform(const_cast<double*>(grid.gt.data()));
     std::vector<OGRGeometryH> handles;
     std::vector<double> burn;
@@ -81,12 +85,13 @@ std::vector<char> rasterize_mask(const std::string& path, const Raster& grid) {
         burn.push_back(1.0);
     }
     int band = 1;
-    if (GDALRasterizeGeometries(GDALDataset::ToHandle(ras.get()), 1, &band, int(handles.size()), handles.data(),
-                                nullptr, nullptr, burn.data(), nullptr, nullptr, nullptr) != CE_None)
+    if (GDALRasterizeGeometries(GDALDataset::ToHandle(ras.get()), 1, &band, int(handles.size()),
+                                handles.data(), nullptr, nullptr, burn.data(), nullptr, nullptr,
+                                nullptr) != CE_None)
         throw Error(Code::BadLayer, what + ": cannot rasterize the polygons");
     std::vector<char> out(std::size_t(grid.width) * grid.height);
-    if (ras->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, grid.width, grid.height, out.data(), grid.width, grid.height,
-                                        GDT_Byte, 0, 0) != CE_None)
+    if (ras->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, grid.width, grid.height, out.data(),
+                                        grid.width, grid.height, GDT_Byte, 0, 0) != CE_None)
         throw Error(Code::Failure, what + ": cannot read the rasterized mask");
     return out;
 }

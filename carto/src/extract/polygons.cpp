@@ -7,7 +7,8 @@
 
 namespace carto::extraction {
 
-std::vector<std::vector<Point>> face_rings(const std::vector<Chain>& chains, const std::vector<int>& mine, int f) {
+std::vector<std::vector<Point>> face_rings(const std::vector<Chain>& chains,
+                                           const std::vector<int>& mine, int f) {
     std::vector<OrientedChain> oc;
     for (int k : mine) {
         if (chains[k].right == f) oc.push_back({k, false});
@@ -19,8 +20,12 @@ std::vector<std::vector<Point>> face_rings(const std::vector<Chain>& chains, con
         if (o.reversed) std::reverse(p.begin(), p.end());
         return p;
     };
-    auto start = [&](const OrientedChain& o) { return o.reversed ? chains[o.chain].end : chains[o.chain].start; };
-    auto end = [&](const OrientedChain& o) { return o.reversed ? chains[o.chain].start : chains[o.chain].end; };
+    auto start = [&](const OrientedChain& o) {
+        return o.reversed ? chains[o.chain].end : chains[o.chain].start;
+    };
+    auto end = [&](const OrientedChain& o) {
+        return o.reversed ? chains[o.chain].start : chains[o.chain].end;
+    };
     auto first_dir = [&](const OrientedChain& o) {
         return o.reversed ? (chains[o.chain].last_dir + 2) % 4 : chains[o.chain].first_dir;
     };
@@ -53,7 +58,9 @@ std::vector<std::vector<Point>> face_rings(const std::vector<Chain>& chains, con
                 const int cross = kCx[din] * kCy[dout] - kCy[din] * kCx[dout];
                 if (pick < 0 || cross > 0) pick = it->second;
             }
-            if (pick < 0) throw Error(Code::Failure, "face " + std::to_string(f + 1) + ": its border does not close");
+            if (pick < 0)
+                throw Error(Code::Failure,
+                            "face " + std::to_string(f + 1) + ": its border does not close");
             used[pick] = 1;
             const std::vector<Point> more = pts(oc[pick]);
             ring.insert(ring.end(), more.begin() + 1, more.end());
@@ -77,8 +84,8 @@ std::unique_ptr<OGRPolygon> to_ogr(const FacePolygon& fp) {
     return poly;
 }
 
-std::vector<FacePolygon> face_polygons(const std::vector<Chain>& chains, const std::vector<int>& mine, int f,
-                                       const Raster& grid) {
+std::vector<FacePolygon> face_polygons(const std::vector<Chain>& chains,
+                                       const std::vector<int>& mine, int f, const Raster& grid) {
     std::vector<std::vector<Point>> rings = face_rings(chains, mine, f);
     for (auto& ring : rings)
         for (Point& p : ring) p = grid.to_world(p.x, p.y);

@@ -2,13 +2,13 @@
 // world coordinates, and their OGR form (step 4 of carto/extract.hpp).
 #pragma once
 
+#include <ogr_geometry.h>
+
 #include <memory>
 #include <vector>
 
-#include <ogr_geometry.h>
-
-#include "carto/raster.hpp"
 #include "borders.hpp"
+#include "carto/raster.hpp"
 
 namespace carto::extraction {
 
@@ -21,7 +21,8 @@ struct OrientedChain {
 // come out counter-clockwise in the world, holes clockwise). At a corner where the face
 // touches itself diagonally, the ring turns to keep the face's two cells joined, which makes
 // shell and hole touch at that point (valid) rather than a ring cross itself.
-std::vector<std::vector<Point>> face_rings(const std::vector<Chain>& chains, const std::vector<int>& mine, int f);
+std::vector<std::vector<Point>> face_rings(const std::vector<Chain>& chains,
+                                           const std::vector<int>& mine, int f);
 
 struct FacePolygon {
     std::vector<Point> outer;
@@ -32,7 +33,7 @@ std::unique_ptr<OGRPolygon> to_ogr(const FacePolygon& fp);
 
 // The polygons of face f in world coordinates: one shell per ring of positive area, each
 // hole given to the shell containing it.
-std::vector<FacePolygon> face_polygons(const std::vector<Chain>& chains, const std::vector<int>& mine, int f,
-                                       const Raster& grid);
+std::vector<FacePolygon> face_polygons(const std::vector<Chain>& chains,
+                                       const std::vector<int>& mine, int f, const Raster& grid);
 
 }  // namespace carto::extraction

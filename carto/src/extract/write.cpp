@@ -1,6 +1,4 @@
 // Writers of an extracted partition: the GeoPackage rockhatch reads and the PNG preview.
-#include "carto/extract.hpp"
-
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
@@ -9,11 +7,12 @@
 #include <cstdint>
 #include <memory>
 
-#include "carto/error.hpp"
-#include "carto/output.hpp"
 #include "../gdal_scope.hpp"
 #include "../gpkg_file.hpp"
 #include "../temp_file.hpp"
+#include "carto/error.hpp"
+#include "carto/extract.hpp"
+#include "carto/output.hpp"
 #include "polygons.hpp"
 
 namespace carto {
@@ -35,7 +34,8 @@ void write_partition_gpkg(const Partition& p, const std::string& path, bool over
                          std::vector<std::pair<const char*, OGRFieldType>> fields) {
             const char* lco[] = {"FID=fid", "GEOMETRY_NAME=geom", nullptr};
             OGRLayer* l = ds->CreateLayer(name, &srs, t, const_cast<char**>(lco));
-            if (!l) throw Error(Code::OutputExists, "-o '" + path + "': cannot create layer " + name);
+            if (!l)
+                throw Error(Code::OutputExists, "-o '" + path + "': cannot create layer " + name);
             for (auto [n, ft] : fields) {
                 OGRFieldDefn fd(n, ft);
                 l->CreateField(&fd);
@@ -43,13 +43,17 @@ void write_partition_gpkg(const Partition& p, const std::string& path, bool over
             return l;
         };
         auto put = [&](OGRLayer* l, OGRFeature& f) {
-            if (l->CreateFeature(&f) != OGRERR_NONE) throw Error(Code::OutputExists, "-o '" + path + "': write failed");
+            if (l->CreateFeature(&f) != OGRERR_NONE)
+                throw Error(Code::OutputExists, "-o '" + path + "': write failed");
         };
         // Derived controls under names rockhatch does not read unless told (see the header).
         const char* orientation_name = fixed_controls ? "orientation" : "fall_line";
         const char* density_name = fixed_controls ? "density" : "shade";
         OGRLayer* faces = layer("faces", wkbPolygon,
-                                {{"id", OFTInteger64}, {orientation_name, OFTReal}, {density_name, OFTReal}, {"area", OFTReal}});
+                                {{"id", OFTInteger64},
+                                 {orientation_name, OFTReal},
+                                 {density_name, OFTReal},
+                                 {"area", OFTReal}});
         OGRLayer* lines = layer("lines", wkbLineString, {{"kind", OFTString}});
         OGRLayer* mask = layer("mask", wkbMultiPolygon, {});
         OGRLayer* net = network ? layer("network", wkbLineString, {{"kind", OFTString}}) : nullptr;
@@ -58,7 +62,9 @@ void write_partition_gpkg(const Partition& p, const std::string& path, bool over
         for (const RockFace& rf : p.faces) {
             OGRFeature f(faces->GetLayerDefn());
             f.SetField("id", GIntBig(rf.id));
-            if (rf.orientation) f.SetField(orientation_name, std::round(azimuth_degrees(*rf.orientation) * 100) / 100);
+            if (rf.orientation)
+                f.SetField(orientation_name,
+                           std::round(azimuth_degrees(*rf.orientation) * 100) / 100);
             if (rf.density) f.SetField(density_name, std::round(*rf.density * 1000) / 1000);
             f.SetField("area", std::round(rf.region.area() * 10) / 10);
             std::unique_ptr<OGRPolygon> poly = to_ogr({rf.region.outer(), rf.region.holes()});
@@ -93,7 +99,8 @@ void write_partition_png(const ExtractResult& r, const std::string& path, int pi
     const Raster& hs = r.terrain.hillshade;
     const tex::BBox b = hs.bounds();
     const double upp = std::max(b.width(), b.height()) / pixels;  // ground units per pixel
-    const int w = std::max(1, int(std::ceil(b.width() / upp))), h = std::max(1, int(std::ceil(b.height() / upp)));
+    const int w = std::max(1, int(std::ceil(b.width() / upp))),
+              h = std::max(1, int(std::ceil(b.height() / upp)));
     std::vector<float> rgb(std::size_t(w) * h * 3, 1.0f);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
@@ -121,25 +128,34 @@ void write_partition_png(const ExtractResult& r, const std::string& path, int pi
             }
         }
     auto stamp = [&](double cx, double cy, double radius, const float* ink) {
-        for (int y = std::max(0, int(cy - radius - 1)); y <= std::min(h - 1, int(cy + radius + 1)); ++y)
-            for (int x = std::max(0, int(cx - radius - 1)); x <= std::min(w - 1, int(cx + radius + 1)); ++x) {
-                const double cover = std::clamp(radius + 0.5 - std::hypot(x + 0.5 - cx, y + 0.5 - cy), 0.0, 1.0);
+        for (int y = std::max(0, int(cy - radius - 1)); y <= std::min(h - 1, int(cy + radius + 1));
+             ++y)
+            for (int x = std::max(0, int(cx - radius - 1));
+                 x <= std::min(w - 1, int(cx + radius + 1)); ++x) {
+                const double cover =
+                    std::clamp(radius + 0.5 - std::hypot(x + 0.5 - cx, y + 0.5 - cy), 0.0, 1.0);
                 float* px = &rgb[(std::size_t(y) * w + x) * 3];
                 for (int k = 0; k < 3; ++k) px[k] = float(px[k] * (1 - cover) + ink[k] * cover);
             }
     };
-    const float red[3] = {0.85f, 0.05f, 0.05f}, blue[3] = {0.05f, 0.25f, 0.95f}, grey[3] = {0.25f, 0.25f, 0.25f};
+    const float red[3] = {0.85f, 0.05f, 0.05f}, blue[3] = {0.05f, 0.25f, 0.95f},
+                grey[3] = {0.25f, 0.25f, 0.25f};
     const double radius = std::max(0.7, pixels / 1600.0);
     for (int pass = 0; pass < 2; ++pass)  // other borders below, ridges and valleys on top
         for (const LabelledLine& l : r.partition.lines) {
             if ((l.kind == LineKind::Other) != (pass == 0)) continue;
-            const float* ink = l.kind == LineKind::Ridge ? red : l.kind == LineKind::Valley ? blue : grey;
+            const float* ink = l.kind == LineKind::Ridge    ? red
+                               : l.kind == LineKind::Valley ? blue
+                                                            : grey;
             for (std::size_t i = 0; i + 1 < l.points.size(); ++i) {
-                const double ax = (l.points[i].x - b.xmin) / upp, ay = (b.ymax - l.points[i].y) / upp;
-                const double bx = (l.points[i + 1].x - b.xmin) / upp, by = (b.ymax - l.points[i + 1].y) / upp;
+                const double ax = (l.points[i].x - b.xmin) / upp,
+                             ay = (b.ymax - l.points[i].y) / upp;
+                const double bx = (l.points[i + 1].x - b.xmin) / upp,
+                             by = (b.ymax - l.points[i + 1].y) / upp;
                 const int n = std::max(1, int(std::ceil(std::hypot(bx - ax, by - ay) * 2)));
                 for (int k = 0; k <= n; ++k)
-                    stamp(ax + (bx - ax) * k / n, ay + (by - ay) * k / n, pass ? radius * 1.4 : radius * 0.8, ink);
+                    stamp(ax + (bx - ax) * k / n, ay + (by - ay) * k / n,
+                          pass ? radius * 1.4 : radius * 0.8, ink);
             }
         }
     std::vector<unsigned char> bytes(rgb.size());
