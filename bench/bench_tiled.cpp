@@ -6,6 +6,12 @@
 //
 // prints one line: cells N, bricks drawn, operator seconds, conversion seconds at 1 and 2
 // threads (medians of R runs; planar: the whole evaluation, at 2 threads), peak RSS in KiB.
+//
+//   bench_tiled --engine queries [--runs R]
+//
+// times FaceLabelsAt on the wall instead: the first query (which builds the point locator),
+// then the median over R batches of the time per query of 100,000 random points near the
+// origin and 100,000 points a million periods away (it should not depend on where).
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -69,6 +75,30 @@ int main(int argc, char** argv) {
         std::size_t n = 0;
         const double t = median_time(runs, [&] { n = tz::shrunk_bricks()(w).curves.size(); });
         std::printf("%.0f %zu - - %.6f %ld\n", cells, n, t, peak_rss_kib());
+        return 0;
+    }
+    if (engine == "queries") {
+        const TiledMap wall = MapToFaces(
+            tz::shrink_brick, MapToEdges(tz::keep_brick_joints, GridPartition(tz::brick_rows(), tz::brick_columns(), Tiled())));
+        auto t0 = std::chrono::steady_clock::now();
+        std::size_t sink = wall.FaceLabelsAt({1, 1}).names().size();
+        const double first = seconds_since(t0);
+        double per_query[2];
+        for (int far = 0; far < 2; ++far) {
+            const Point base = far ? wall.shift(1000000, -1000000) : Point{0, 0};
+            std::vector<Point> pts;
+            std::uint64_t h = 12345;
+            for (int k = 0; k < 100000; ++k) {
+                h = mix64(h + 1);
+                const double u = unit_from_hash(h), v = unit_from_hash(mix64(h ^ 0x55));
+                pts.push_back(base + Point{u * 4000, v * 4000});
+            }
+            per_query[far] = median_time(runs, [&] {
+                for (const auto& p : pts) sink += wall.FaceLabelsAt(p).names().size();
+            }) / double(pts.size());
+        }
+        std::printf("first query %.6f s; per query near %.3f us, far %.3f us (%zu)\n", first, per_query[0] * 1e6,
+                    per_query[1] * 1e6, sink % 2);
         return 0;
     }
     TiledMap wall = GridPartition(tz::brick_rows(), tz::brick_columns(), Tiled(CROP));

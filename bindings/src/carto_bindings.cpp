@@ -588,11 +588,13 @@ CrestResult
         "the partition of the rock areas from the DEM alone (rockhatch partition)");
     m.def(
         "write_partition_gpkg",
-        [](const Partition& p, const std::string& path, bool overwrite, const std::vector<LabelledLine>* network) {
-            write_partition_gpkg(p, path, overwrite, network);
-        },
+        [](const Partition& p, const std::string& path, bool overwrite, const std::vector<LabelledLine>* network,
+           bool fixed_controls) { write_partition_gpkg(p, path, overwrite, network, fixed_controls); },
         py::arg("partition"), py::arg("path"), py::arg("overwrite") = false, py::arg("network") = nullptr,
-        py::call_guard<py::gil_scoped_release>(), "layers faces, lines, mask (and network), as rockhatch reads them");
+        py::arg("fixed_controls") = false, py::call_guard<py::gil_scoped_release>(),
+        "layers faces, lines, mask (and network), as rockhatch reads them; the faces' fall line and shade as "
+        "attributes fall_line and shade (derived: hatching follows the terrain), or, with fixed_controls, as "
+        "orientation and density (read as given: one direction per face)");
     m.def("check_extract_files", &check_extract_files, py::arg("options"), py::arg("output"), py::arg("png") = "",
           py::arg("overwrite") = false, "the outputs of partition_from_dem against its inputs (check_outputs)");
     m.def("write_partition_png", &write_partition_png, py::arg("result"), py::arg("path"), py::arg("pixels") = 1600,

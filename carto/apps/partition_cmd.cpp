@@ -23,9 +23,10 @@ const char* kUsage =
     "usage: rockhatch partition --dem DEM.tif -o faces.gpkg [options]\n\n"
     "Extracts the partition of the rock areas from the DEM alone: the rock mask (steep and\n"
     "rough terrain), ridges and thalwegs (flow accumulation on the inverted and on the plain\n"
-    "DEM), the faces between them with borders labelled ridge / valley / other, and a hatching\n"
-    "orientation (mean fall line) and density (1 - mean hillshade) per face. The output is\n"
-    "read unchanged by `rockhatch --dem DEM.tif --partition faces.gpkg -o out.svg`.\n\n"
+    "DEM), the faces between them with borders labelled ridge / valley / other, and each face's\n"
+    "mean fall line and shade (1 - mean hillshade) as attributes fall_line and shade. The output\n"
+    "is read unchanged by `rockhatch --dem DEM.tif --partition faces.gpkg -o out.svg`, which\n"
+    "hatches it as `--partition auto` does (strokes follow the terrain).\n\n"
     "options:\n"
     "  --dem PATH              DEM raster (any GDAL format and CRS; geographic DEMs are reprojected to UTM)\n"
     "  -o PATH                 output GeoPackage: layers faces, lines (their labelled borders), mask,\n"
@@ -49,6 +50,8 @@ const char* kUsage =
     "  --simplify CELLS        border generalisation tolerance in DEM cells (default 0.8; borders are\n"
     "                          cut through the middle of cell edges or the ridge / thalweg cells\n"
     "                          they run along, simplified within CELLS, then rounded)\n"
+    "  --fixed-controls        write the fall line and shade as orientation and density, the attributes\n"
+    "                          rockhatch reads as given: each face is hatched in one direction\n"
     "  --png PATH              also write a preview: hillshade, faces, ridges red, thalwegs blue\n"
     "  --png-size PIXELS       preview width (default 1600)\n"
     "  --overwrite             replace existing outputs\n"
@@ -70,7 +73,7 @@ int partition_main(int argc, char** argv) {
     carto::ExtractOptions o;
     std::string out, png;
     int png_size = 1600;
-    bool overwrite = false, quiet = false, open_line = false;
+    bool overwrite = false, quiet = false, open_line = false, fixed_controls = false;
     try {
         for (int i = 1; i < argc; ++i) {
             std::string a = argv[i], v;
@@ -100,7 +103,8 @@ int partition_main(int argc, char** argv) {
                 {"--overwrite", [&] { overwrite = true; }},
                 {"-q", [&] { quiet = true; }},
                 {"--no-ridge-extension", [&] { o.extend_ridges = false; }},
-                {"--no-outline-labels", [&] { o.label_outline = false; }}};
+                {"--no-outline-labels", [&] { o.label_outline = false; }},
+                {"--fixed-controls", [&] { fixed_controls = true; }}};
             if (a == "--help" || a == "-h") {
                 std::cout << kUsage;
                 return 0;
@@ -137,7 +141,7 @@ int partition_main(int argc, char** argv) {
         });
         if (open_line) std::fprintf(stderr, "\n");
         open_line = false;
-        carto::write_partition_gpkg(r.partition, out, overwrite, &r.network);
+        carto::write_partition_gpkg(r.partition, out, overwrite, &r.network, fixed_controls);
         if (!png.empty()) carto::write_partition_png(r, png, png_size);
         if (!quiet)
             for (const auto& n : r.notes) std::fprintf(stderr, "rockhatch partition: note: %s\n", n.c_str());

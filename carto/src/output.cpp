@@ -16,6 +16,7 @@
 #include "carto/error.hpp"
 #include "libtex/region.hpp"
 #include "gdal_scope.hpp"
+#include "gpkg_file.hpp"
 #include "gpkg_rtree.hpp"
 #include "temp_file.hpp"
 
@@ -170,13 +171,8 @@ void write_hatch_gpkg(const std::string& path, const std::string& crs_wkt, bool 
         // The file is a temporary one renamed at the end, so SQLite need not journal or sync.
         const ConfigScope sync("OGR_SQLITE_SYNCHRONOUS", "OFF"), journal("OGR_SQLITE_JOURNAL", "OFF");
         const QuietGdal quiet;
-        GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GPKG");
-        if (!drv) throw Error(Code::Failure, "GDAL has no GeoPackage driver");
-        std::unique_ptr<GDALDataset> ds(drv->Create(tmp.path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
-        if (!ds) throw Error(Code::OutputExists, "-o '" + path + "': cannot create (" + CPLGetLastErrorMsg() + ")");
-        OGRSpatialReference srs;
-        srs.importFromWkt(crs_wkt.c_str());
-        srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+        const std::unique_ptr<GDALDataset> ds = create_gpkg(tmp.path, path);
+        OGRSpatialReference srs = layer_srs(crs_wkt);
         for (int fam = 0; fam < kFamilies; ++fam) {
             const Family f = Family(fam);
             if (!present(f)) continue;

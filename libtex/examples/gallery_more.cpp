@@ -47,35 +47,44 @@ Arrangement regular_a(const std::string&) {
 
 // ---- Regular result b ----
 
-Arrangement chevron_grid() {
-    Stripes rising = StripesProperties(pi / 4, 200);
-    Stripes falling = StripesProperties(-pi / 4, 200);
-    SetEdgeLabels(rising, {"h1", "h2", "h3", "h4"});
-    SetEdgeLabels(falling, {"v1", "v2", "v3", "v4"});
+Stripes chevron_lines(double angle, const char* label) {
+    Stripes s = StripesProperties(angle, 200);
+    const std::string l(label);
+    SetEdgeLabels(s, {l + "1", l + "2", l + "3", l + "4"});
+    return s;
+}
+
+Curves chevron_rule(const Edge& e) {
     // An edge goes when the lines meeting at its target carry a given label: "vi" edges
     // ending on an "hi" line, "hi" edges ending on an "v(i+2)" line.
-    auto rules = [](const Edge& e) {
-        const std::vector<Edge> around = IncidentEdges(TargetVertex(e));
-        for (int i = 0; i < 4; ++i) {
-            const std::string h = "h" + std::to_string(i + 1), v = "v" + std::to_string(i + 1);
-            const std::string v2 = "v" + std::to_string((i + 2) % 4 + 1);
-            if (HasLabel(e, v) && HasLabel(around, h)) return Nothing();
-            if (HasLabel(e, h) && HasLabel(around, v2)) return Nothing();
-        }
-        return ToCurve(e);
-    };
-    return MapToEdges(rules, GridPartition(rising, falling, KEEP_OUTSIDE));
+    const std::vector<Edge> around = IncidentEdges(TargetVertex(e));
+    for (int i = 0; i < 4; ++i) {
+        const std::string h = "h" + std::to_string(i + 1), v = "v" + std::to_string(i + 1);
+        const std::string v2 = "v" + std::to_string((i + 2) % 4 + 1);
+        if (HasLabel(e, v) && HasLabel(around, h)) return Nothing();
+        if (HasLabel(e, h) && HasLabel(around, v2)) return Nothing();
+    }
+    return ToCurve(e);
 }
 
-Arrangement chevron_tiles() {
-    return MapToFaces([](const Face& f) { return shrink(f, 0.8); }, chevron_grid());
+Curves chevron_shrink(const Face& f) { return shrink(f, 0.8); }
+
+Curves hatch_tile(const Face& f, double spacing) { return StripesPartition(StripesProperties(0, spacing))(f); }
+
+Curves wobble_stroke(const Curves& wobble, const Edge& e) {
+    return IsBoundary(e) ? Nothing() : stroke_along(wobble, e);
 }
+
+Arrangement chevron_grid() {
+    return MapToEdges(chevron_rule,
+                      GridPartition(chevron_lines(pi / 4, "h"), chevron_lines(-pi / 4, "v"), KEEP_OUTSIDE));
+}
+
+Arrangement chevron_tiles() { return MapToFaces(chevron_shrink, chevron_grid()); }
 
 Arrangement regular_b(const std::string& dir) {
-    const Curves wobble = load(dir, "wobble.svg");
-    auto hatch = [](const Face& f) { return StripesPartition(StripesProperties(0, 40))(f); };
-    auto to_stroke = [wobble](const Edge& e) { return IsBoundary(e) ? Nothing() : stroke_along(wobble, e); };
-    return MapToEdges(to_stroke, MapToFaces(hatch, chevron_tiles()));
+    return regular_b_on(GridPartition(chevron_lines(pi / 4, "h"), chevron_lines(-pi / 4, "v"), KEEP_OUTSIDE),
+                        load(dir, "wobble.svg"), 40);
 }
 
 // ---- Regular result c ----

@@ -29,6 +29,19 @@ tex::Arrangement chevron_tiles();
 // Horizontal hatching 40 apart in each tile, the hatch lines drawn as wobbly strokes and
 // the tiles' outlines dropped.
 tex::Arrangement regular_b(const std::string& dir);
+// Its steps as named mappers, and the whole script over any diagonal grid (a planar-map
+// GridPartition, or a tiled one: the same script runs on both, test_tiled_gallery.cpp).
+tex::Stripes chevron_lines(double angle, const char* label);  // 200 apart, labels label1..4
+tex::Curves chevron_rule(const tex::Edge& e);
+tex::Curves chevron_shrink(const tex::Face& f);
+tex::Curves hatch_tile(const tex::Face& f, double spacing);
+tex::Curves wobble_stroke(const tex::Curves& wobble, const tex::Edge& e);
+template <class Partition>
+auto regular_b_on(const Partition& grid, const tex::Curves& wobble, double spacing) {
+    auto hatch = [spacing](const tex::Face& f) { return hatch_tile(f, spacing); };
+    auto to_stroke = [wobble](const tex::Edge& e) { return wobble_stroke(wobble, e); };
+    return MapToEdges(to_stroke, MapToFaces(hatch, MapToFaces(chevron_shrink, MapToEdges(chevron_rule, grid))));
+}
 
 // ---- Regular result c: a wavy grid of cells hatched at random angles ----
 // Horizontal and vertical stripes 200 apart whose lines become arches, laid up or down by

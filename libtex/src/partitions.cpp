@@ -16,6 +16,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <optional>
 #include <sstream>
 #include <unordered_map>
@@ -151,6 +152,13 @@ struct StripeFamily {
         period = prefix.back();
     }
     std::size_t m() const { return prefix.size() - 1; }
+    // Distance across which the widths and both label cycles repeat.
+    double full_period() const {
+        long long n = (long long)m();
+        if (!p->edge_labels.empty()) n = std::lcm(n, (long long)p->edge_labels.size());
+        if (!p->face_labels.empty()) n = std::lcm(n, (long long)p->face_labels.size());
+        return period * double(n / (long long)m());
+    }
     double offset(long long i) const {
         const long long k = floor_div(i, (long long)m());
         return double(k) * period + prefix[pos_mod(i, (long long)m())];
@@ -197,8 +205,11 @@ std::pair<double, double> project(const BBox& b, const Point& u) {
     return {lo, hi};
 }
 
+thread_local detail::StripesProbe* t_probe = nullptr;
+
 Complex stripes_complex(const Stripes& s, const Region& r) {
     const StripeFamily f(s);
+    detail::StripesProbe::record(f.n, f.full_period());
     const BBox box = r.bbox().expanded(1.0 + 0.01 * std::max(r.bbox().width(), r.bbox().height()));
     auto [tlo, thi] = project(box, f.n);
     auto [slo, shi] = project(box, f.d);
@@ -226,6 +237,8 @@ Complex grid_complex(const Stripes& s1, const Stripes& s2, const Region& r) {
     const StripeFamily f1(s1), f2(s2);
     const double det = cross(f1.n, f2.n);
     if (std::abs(det) < 1e-9) throw Error("GridPartition", "the two stripe families are parallel");
+    detail::StripesProbe::record(f1.n, f1.full_period());
+    detail::StripesProbe::record(f2.n, f2.full_period());
     const BBox box = r.bbox().expanded(1e-6 * (1 + r.bbox().width() + r.bbox().height()));
     auto [t1lo, t1hi] = project(box, f1.n);
     auto [t2lo, t2hi] = project(box, f2.n);
@@ -583,6 +596,12 @@ Irregular& SetWeightedFaceLabels(Irregular& p, std::vector<WeightedLabel> labels
     check_weights(labels, "SetWeightedFaceLabels");
     p.face_labels = std::move(labels);
     return p;
+}
+
+detail::StripesProbe::StripesProbe() : saved_(t_probe) { t_probe = this; }
+detail::StripesProbe::~StripesProbe() { t_probe = saved_; }
+void detail::StripesProbe::record(const Point& normal, double period) {
+    if (t_probe) t_probe->families_.push_back({normal, period});
 }
 
 Arrangement StripesPartition(const Stripes& p, Border b) {

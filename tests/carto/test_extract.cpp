@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <memory>
 
 #include "carto/error.hpp"
@@ -275,6 +276,12 @@ TEST(Extract, RidgesAndThalwegsMatchTheSyntheticTruth) {
     std::unique_ptr<OGRGeometry> hull(all_truth.ConvexHull());
     std::unique_ptr<OGRGeometry> zone(m->Intersection(hull.get()));
     const double tol = 10;
+    // Floors: the measures before the borders were traced below the cell size (issue 16:
+    // generalising must not lose the lines), rounded down to two decimals.
+    const std::map<std::string, std::pair<double, double>> floor{{"network ridges", {0.88, 0.90}},
+                                                                 {"network thalwegs", {0.82, 0.82}},
+                                                                 {"borders ridges", {0.93, 0.84}},
+                                                                 {"borders thalwegs", {0.84, 0.82}}};
     // The traced network, and the face borders (what rockhatch reads: a traced line ending
     // inside a face is no border).
     for (auto [lines, what] : {std::pair{&r.network, "network"}, std::pair{&r.partition.lines, "borders"}})
@@ -284,8 +291,9 @@ TEST(Extract, RidgesAndThalwegsMatchTheSyntheticTruth) {
             const auto [r_hit, r_all] = near_length(t, extracted, tol, zone.get());
             std::printf("%s %s: precision %.3f recall %.3f (extracted %.0f m, true %.0f m)\n", what, name,
                         p_hit / p_all, r_hit / r_all, p_all, r_all);
-            EXPECT_GE(p_hit / p_all, 0.8) << what << " " << name << " precision";
-            EXPECT_GE(r_hit / r_all, 0.8) << what << " " << name << " recall";
+            const auto [p_min, r_min] = floor.at(std::string(what) + " " + name);
+            EXPECT_GE(p_hit / p_all, p_min) << what << " " << name << " precision";
+            EXPECT_GE(r_hit / r_all, r_min) << what << " " << name << " recall";
         }
 }
 
@@ -305,7 +313,9 @@ TEST(Extract, GeoPackageIsReadBackByRockhatchAndDeterministic) {
     ASSERT_EQ(back.faces.size(), sample().partition.faces.size());
     std::size_t ridge = 0, valley = 0;
     for (const auto& f : back.faces) {
-        ASSERT_TRUE(f.orientation && f.density);
+        // The fall line and shade are written as derived attributes, not read as given: the
+        // run derives them again from the terrain, as for --partition auto.
+        ASSERT_FALSE(f.orientation || f.density);
         for (const auto& s : f.boundary) {
             ridge += s.kind == LineKind::Ridge;
             valley += s.kind == LineKind::Valley;
@@ -313,8 +323,14 @@ TEST(Extract, GeoPackageIsReadBackByRockhatchAndDeterministic) {
     }
     EXPECT_GT(ridge, 20u);
     EXPECT_GT(valley, 5u);
-    // The orientation round-trips through the azimuth attribute.
-    EXPECT_NEAR(std::cos(*back.faces[0].orientation - *sample().partition.faces[0].orientation), 1.0, 1e-6);
+    // Written as fixed controls, they are read back as each face's orientation and density,
+    // and the orientation round-trips through the azimuth attribute.
+    const std::string c = temp("c.gpkg");
+    write_partition_gpkg(sample().partition, c, true, nullptr, true);
+    po.path = c;
+    const Partition fixed = load_partition(po, sample().partition.crs_wkt);
+    for (const auto& f : fixed.faces) ASSERT_TRUE(f.orientation && f.density);
+    EXPECT_NEAR(std::cos(*fixed.faces[0].orientation - *sample().partition.faces[0].orientation), 1.0, 1e-6);
 }
 
 TEST(Extract, ErrorCases) {

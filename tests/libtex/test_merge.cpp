@@ -351,3 +351,54 @@ TEST(Crop, CutsToTheRegionItIsEvaluatedOn) {
     for (const auto& c : Crop(Constant(Labelled(strokes()(sq), "fill")), CROP)(sq).curves)
         EXPECT_TRUE(c.labels.has("fill"));
 }
+
+namespace {
+
+// Length of the pieces of `c` carrying the label `label`.
+double length_labelled(const Curves& c, const std::string& label) {
+    double total = 0;
+    for (const auto& cv : c.curves) {
+        bool on = cv.points.size() >= 2 && cv.labels.has(label);
+        if (!on) continue;
+        for (std::size_t k = 1; k < cv.points.size(); ++k) total += distance(cv.points[k - 1], cv.points[k]);
+    }
+    return total;
+}
+
+}  // namespace
+
+// A segment whose midpoint is exactly a corner of the region, at 72 directions: the crop
+// keeps its half inside the corner's quadrant (a half along a side counts as inside) and
+// nothing of a segment that only touches the corner, whether it is cropped alone or with a
+// grid of other lines (some through the corner too), by the fast path or the exact one.
+// Where the segment overlaps a grid line (along the region's side, or inside with the exact
+// path), the shared piece is one curve carrying both curves' labels: the segment is not
+// dropped, it is merged (that is what looked like a segment "dropped with the rest of a
+// grid"), so the segment's own label is what is measured.
+TEST(Merge, CropThroughARegionCorner) {
+    const Region r = Region::rectangle(-3, -3, 10, 10);
+    const Point corner{10, 10};
+    for (int deg = 0; deg < 360; deg += 5) {
+        const double t = deg * pi / 180;
+        const Point d{std::cos(t), std::sin(t)};
+        const Point a = corner - d * 5.0, b = corner + d * 5.0;
+        const bool half_inside = (deg >= 0 && deg <= 90) || (deg >= 180 && deg <= 270);
+        Curves alone = Polyline({a, b});
+        alone.curves.front().labels.add("segment");
+        for (double offset : {0.0, 0.25, 0.5}) {
+            Curves grid = alone;
+            for (int k = -60; k <= 60; k += 5) {
+                grid.curves.push_back(Polyline({{-60, k + offset}, {60, k + offset}}).curves.front());
+                grid.curves.push_back(Polyline({{k + offset, -60}, {k + offset, 60}}).curves.front());
+            }
+            for (bool exact : {false, true}) {
+                std::optional<detail::ExactCropScope> scope;
+                if (exact) scope.emplace();
+                const double l1 = length_labelled(apply_mask(alone, r, CROP), "segment");
+                const double l2 = length_labelled(apply_mask(grid, r, CROP), "segment");
+                EXPECT_NEAR(l1, half_inside ? 5.0 : 0.0, 1e-9) << deg << " degrees, exact " << exact;
+                EXPECT_NEAR(l2, l1, 1e-9) << deg << " degrees, grid offset " << offset << ", exact " << exact;
+            }
+        }
+    }
+}

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <random>
 #include <set>
 #include <sstream>
 
@@ -42,8 +43,9 @@ std::string dump(const Curves& c) {
 }
 
 const Region kWindow = Region::rectangle(-37, -12, 413, 287);
-// Its corners on no line of the grids below (a crop through a corner is a degenerate case).
-const Region kTriangle({{-47, -41}, {400, 11}, {61, 333}});
+// Its corners on no line of the grids below (a crop through a corner is a degenerate case:
+// see CropThroughARegionCorner). x = 400 is a column of columns(), so no corner there.
+const Region kTriangle({{-47, -41}, {401, 11}, {61, 333}});
 
 }  // namespace
 
@@ -82,7 +84,7 @@ TEST_P(TiledModes, GridConversionMatchesTheEngine) {
         const Curves engine = GridPartition(rows(), columns(), b)(r);
         const Curves tiled = t(r);
         ASSERT_FALSE(tiled.curves.empty());
-        EXPECT_SAME_RUNS(th::runs(tiled), th::runs(engine));
+        EXPECT_SAME_CURVES(tiled, engine);
     }
 }
 
@@ -90,12 +92,63 @@ INSTANTIATE_TEST_SUITE_P(AllModes, TiledModes,
                          ::testing::Values(Border::CROP, Border::CROP_ADD_BOUNDARY, Border::KEEP_INSIDE,
                                            Border::KEEP_OUTSIDE));
 
-TEST(Tiled, StripesConversionMatchesTheEngine) {
+// Stripes are stored as line pieces one period long; every mode gives the engine's whole
+// lines (KEEP_*: whole bands, each line once from one side of the engine's box to the other).
+TEST_P(TiledModes, StripesConversionGivesTheEnginesWholeLines) {
+    const Border b = GetParam();
     Stripes s = StripesProperties(pi / 5, 12, 30);
     SetFaceLabels(s, {"a", "b", "c"});
-    const TiledMap t = StripesPartition(s, Tiled(CROP_ADD_BOUNDARY));
-    for (const Region& r : {kWindow, kTriangle})
-        EXPECT_SAME_RUNS(th::runs(t(r)), th::runs(StripesPartition(s, CROP_ADD_BOUNDARY)(r)));
+    SetEdgeLabels(s, {"x", "y"});
+    const TiledMap t = StripesPartition(s, Tiled(b));
+    for (const Region& r : {kWindow, kTriangle}) {
+        const Curves tiled = t(r), engine = StripesPartition(s, b)(r);
+        if (b != KEEP_INSIDE) ASSERT_GT(tiled.curves.size(), 10u);
+        EXPECT_SAME_CURVES(tiled, engine);
+        // No two curves of the output on one line of the stripes.
+        std::set<long long> lines;
+        for (const auto& c : tiled.curves)
+            if (!c.labels.empty()) lines.insert(std::llround(cross(c.points.back() - c.points.front(), c.points.front()) / norm(c.points.back() - c.points.front())));
+        if (b != CROP_ADD_BOUNDARY && b != CROP) {
+            EXPECT_EQ(lines.size(), tiled.curves.size());
+        }
+    }
+}
+
+TEST(Tiled, StripesSameBytesAtOneAndTwoThreads) {
+    Stripes s = StripesProperties(pi / 5, 12, 30);
+    SetFaceLabels(s, {"a", "b", "c"});
+    const TiledMap t = StripesPartition(s, Tiled());
+    for (Border b : {CROP, CROP_ADD_BOUNDARY, KEEP_INSIDE, KEEP_OUTSIDE}) {
+        std::string one, two;
+        {
+            ThreadsScope scope(1);
+            one = dump(t.Convert(kTriangle, b));
+        }
+        {
+            ThreadsScope scope(2);
+            two = dump(t.Convert(kTriangle, b));
+        }
+        EXPECT_EQ(one, two) << border_name(b);
+    }
+}
+
+TEST(Tiled, StripesLinesStayWholeThroughAUnion) {
+    // Stripes of period 36 with a grid of 40 x 90 along them: the common period along the
+    // lines is 360, ten pieces of the stripes' own; the lines still come out whole.
+    const Stripes s = StripesProperties(0, 12, 24);
+    const TiledMap u = Union(StripesPartition(s, Tiled(CROP)), GridPartition(StripesProperties(0, 40), StripesProperties(pi / 2, 90), Tiled(CROP)));
+    const Curves engine = Union(StripesPartition(s, CROP), GridPartition(StripesProperties(0, 40), StripesProperties(pi / 2, 90), CROP))(kWindow);
+    EXPECT_SAME_CURVES(u(kWindow), engine);
+    std::string one, two;
+    {
+        ThreadsScope t(1);
+        one = dump(u(kTriangle));
+    }
+    {
+        ThreadsScope t(2);
+        two = dump(u(kTriangle));
+    }
+    EXPECT_EQ(one, two);
 }
 
 TEST(Tiled, ConversionIsLocal) {
@@ -177,10 +230,76 @@ TEST(Tiled, RandomInARegularMapperIsAnError) {
     EXPECT_TEX_ERROR(MapToEdges(unkeyed, t), "MapToEdges", "random");
     auto sub = [](const Face& f) { return UniformPartition(IrregularProperties(0.01), CROP)(f); };
     EXPECT_TEX_ERROR(MapToFaces(sub, t), "MapToFaces", "random");
-    // A sub-partition without Random runs (it is periodic only if its own period fits the
-    // lattice: it is anchored to the plane, see docs/tiled.md).
+}
+
+// A partition built inside a mapper is anchored to the plane, not to the cell. Hatching at
+// 45 degrees, 3 apart, in the cells of a lattice of (0, 90) and (-50, 0): the periods
+// project to 63.6 and 35.4 on the hatching's normal, no rational number of its periods, so
+// the hatched grid has no period at all: a clear error naming both, not a wrong drawing.
+TEST(Tiled, SubPartitionThatCannotRepeatIsAnError) {
+    const TiledMap t = GridPartition(rows(), columns(), Tiled());
     auto hatch = [](const Face& f) { return StripesPartition(StripesProperties(pi / 4, 3), CROP)(f); };
-    EXPECT_FALSE(MapToFaces(hatch, t)(kWindow).curves.empty());
+    EXPECT_TEX_ERROR(MapToFaces(hatch, t), "MapToFaces", "every 3 ");
+    EXPECT_TEX_ERROR(MapToFaces(hatch, t), "MapToFaces", "(0, 90) and (-50, 0)");
+    EXPECT_TEX_ERROR(MapToFaces(hatch, t), "MapToFaces", "not periodic");
+    // Inside a grid too (both its families are checked), and in an edge mapper.
+    auto cells = [](const Face& f) {
+        return GridPartition(StripesProperties(0, 7), StripesProperties(pi / 2, 25 * std::sqrt(2.0)), CROP)(f);
+    };
+    EXPECT_TEX_ERROR(MapToFaces(cells, t), "MapToFaces", "not periodic");
+    auto around = [](const Edge& e) {
+        const BBox b = CellBBox(e).expanded(5);
+        return StripesPartition(StripesProperties(0.1, 4), CROP)(Region::rectangle(b.xmin, b.ymin, b.xmax, b.ymax));
+    };
+    EXPECT_TEX_ERROR(MapToEdges(around, t), "MapToEdges", "not periodic");
+}
+
+// Horizontal hatching 40 apart with two edge labels (it repeats every 80) in cells of a
+// lattice 90 high: both repeat every 720 = 8 periods of the grid (and with every column).
+// The tiled map is mapped on that coarser lattice and equals the engine; without it, every
+// copy of a cell would get the central cell's hatching.
+TEST(Tiled, SubPartitionOnACoarserLattice) {
+    Stripes lines = StripesProperties(0, 40);
+    SetEdgeLabels(lines, {"a", "b"});
+    auto hatch = [lines](const Face& f) { return StripesPartition(lines, CROP)(f); };
+    const TiledMap t = MapToFaces(hatch, GridPartition(rows(), columns(), Tiled()));
+    EXPECT_NEAR(t.period1().y, 720, 1e-9);
+    EXPECT_NEAR(t.period2().x, -50, 1e-9);
+    const Region inner = Region::rectangle(60, 100, 330, 450), window = Region::rectangle(0, 0, 400, 560);
+    const Curves engine = MapToFaces(hatch, GridPartition(rows(), columns(), KEEP_OUTSIDE))(window);
+    const BBox keep = inner.bbox().expanded(-0.01);
+    const Curves tiled_in = th::inside_box(t.Convert(inner, KEEP_OUTSIDE), keep);
+    EXPECT_GT(tiled_in.curves.size(), 50u);
+    EXPECT_SAME_CURVES(tiled_in, th::inside_box(engine, keep));
+    // Same bytes at 1 and 2 threads.
+    std::string one, two;
+    {
+        ThreadsScope s(1);
+        one = dump(MapToFaces(hatch, GridPartition(rows(), columns(), Tiled()))(kTriangle));
+    }
+    {
+        ThreadsScope s(2);
+        two = dump(MapToFaces(hatch, GridPartition(rows(), columns(), Tiled()))(kTriangle));
+    }
+    EXPECT_EQ(one, two);
+}
+
+// On a lattice turned 45 degrees the copies of one vertex made by different translations
+// differ in their last bits; the block's planar map must still see one vertex, not two and a
+// sliver edge between them (every edge a mapper visits is a real edge of the grid).
+TEST(Tiled, TurnedLatticeHasNoSliverEdges) {
+    const TiledMap t = GridPartition(StripesProperties(pi / 4, 200), StripesProperties(-pi / 4, 300), Tiled());
+    std::vector<double> lengths;
+    const TiledMap edges = MapToEdges(
+        [](const Edge& e) { return ToCurve(e); }, t, MapperThreads::Serial);
+    for (const auto& e : edges.elements()) {
+        const auto& pts = e.curves.curves.front().points;
+        lengths.push_back(distance(pts.front(), pts.back()));
+    }
+    ASSERT_EQ(lengths.size(), 2u);  // one cell per period: one edge of each family
+    std::sort(lengths.begin(), lengths.end());
+    EXPECT_NEAR(lengths[0], 200, 1e-6);
+    EXPECT_NEAR(lengths[1], 300, 1e-6);
 }
 
 TEST(Tiled, StripesCannotBeMapped) {
@@ -340,4 +459,58 @@ TEST(Tiled, InsideAndOutsideMatchTheEngine) {
     EXPECT_SAME_RUNS(cut(tiled_out), cut(engine_out));
     const TiledMap skew = StripesPartition(StripesProperties(0.3, 6), Tiled());
     EXPECT_TEX_ERROR(Inside(skew, squares, CROP), "Inside", "no common multiple");
+}
+
+// Which face contains a point, on a mapped tiled map: each cell of a labelled grid turned 45
+// degrees into a square 1.2 times as wide (so that neighbours overlap), its inner side
+// labelled with the cell's labels and "tile". The faces of that drawing (overlaps, the holes
+// between squares, pieces carrying one, two or more squares' labels) against the engine's
+// planar map of the same script over a window, at random points of an inner window.
+TEST(Tiled, FaceAtAPointIsTheEnginesFace) {
+    auto turned = [](const Face& f) {
+        Curves c = Rotate(Scale(Contour(f), 0.85), pi / 4);
+        for (auto& cv : c.curves) {
+            cv.left = record(f).labels;
+            cv.left.add("tile");
+            cv.right = Labels{};
+        }
+        return c;
+    };
+    const TiledMap t = MapToFaces(turned, GridPartition(rows(), columns(), Tiled()));
+    const Region window = Region::rectangle(-200, -200, 600, 600);
+    const FaceLocator engine(MapToFaces(turned, GridPartition(rows(), columns(), KEEP_OUTSIDE)).induce(window));
+    std::mt19937_64 rng(12);
+    std::uniform_real_distribution<double> x(50, 350), y(50, 350);
+    int checked = 0;
+    std::set<std::string> seen;
+    for (int k = 0; k < 3000; ++k) {
+        const Point p{x(rng), y(rng)};
+        const Labels want = engine.map().faces()[std::size_t(engine.face_at(p))].labels;
+        const Labels got = t.FaceLabelsAt(p);
+        EXPECT_EQ(th::label_text(got), th::label_text(want)) << "at (" << p.x << ", " << p.y << ")";
+        seen.insert(th::label_text(want));
+        ++checked;
+        // The same face one period away in both directions.
+        EXPECT_EQ(th::label_text(t.FaceLabelsAt(p + t.period1() * 3.0 - t.period2() * 7.0)), th::label_text(got));
+    }
+    EXPECT_EQ(checked, 3000);
+    EXPECT_GE(seen.size(), 3u) << *seen.begin();  // several kinds of faces were met
+}
+
+// The locator on its own: nested faces (a square inside a square) and the unbounded face.
+TEST(Tiled, FaceLocatorFindsNestedFaces) {
+    Curves c;
+    Curve outer, inner;
+    outer.points = {{0, 0}, {10, 0}, {10, 10}, {0, 10}};
+    outer.closed = true;
+    outer.left.add("ring");
+    inner.points = {{3, 3}, {7, 3}, {7, 7}, {3, 7}};
+    inner.closed = true;
+    inner.left.add("core");
+    c.curves = {outer, inner};
+    const FaceLocator loc(PlanarMap::induce(c));
+    auto labels = [&](Point p) { return th::label_text(loc.map().faces()[std::size_t(loc.face_at(p))].labels); };
+    EXPECT_EQ(labels({1, 1}), "ring,");
+    EXPECT_EQ(labels({5, 5}), "core,");
+    EXPECT_EQ(loc.face_at({20, 5}), loc.map().unbounded_face());
 }

@@ -110,6 +110,55 @@ inline std::string run_diff(const std::vector<Run>& a, const std::vector<Run>& b
         EXPECT_TRUE(ra_ == rb_) << th::run_diff(ra_, rb_); \
     } while (0)
 
+// Whole curves, compared up to order and direction only: each curve as text (its points
+// rounded to q, its labels, its side labels swapped when it is read backwards; a closed
+// curve from its smallest point), the texts sorted.
+inline std::vector<std::string> whole_curves(const tex::Curves& c, double q = 1e-4) {
+    auto Q = [q](double v) { return (long long)std::llround(v / q); };
+    std::vector<std::string> out;
+    for (const auto& cv : c.curves) {
+        std::vector<std::pair<long long, long long>> pts;
+        for (const auto& p : cv.points) pts.emplace_back(Q(p.x), Q(p.y));
+        auto text = [&](const std::vector<std::pair<long long, long long>>& v, const tex::Labels& l,
+                        const tex::Labels& r) {
+            std::string s = std::string(cv.closed ? "closed " : "open ") + label_text(cv.labels) + "|" +
+                            label_text(l) + "|" + label_text(r) + " ";
+            for (const auto& [x, y] : v) s += "(" + std::to_string(x) + "," + std::to_string(y) + ")";
+            return s;
+        };
+        auto rev = pts;
+        std::reverse(rev.begin(), rev.end());
+        if (cv.closed && !pts.empty()) {
+            std::rotate(pts.begin(), std::min_element(pts.begin(), pts.end()), pts.end());
+            std::rotate(rev.begin(), std::min_element(rev.begin(), rev.end()), rev.end());
+        }
+        out.push_back(std::min(text(pts, cv.left, cv.right), text(rev, cv.right, cv.left)));
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+inline std::string curve_diff(const std::vector<std::string>& a, const std::vector<std::string>& b,
+                              std::size_t n = 6) {
+    std::vector<std::string> ab, ba;
+    std::set_difference(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(ab));
+    std::set_difference(b.begin(), b.end(), a.begin(), a.end(), std::back_inserter(ba));
+    std::string s = std::to_string(a.size()) + " and " + std::to_string(b.size()) + " curves; " +
+                    std::to_string(ab.size()) + " only in the first, " + std::to_string(ba.size()) +
+                    " only in the second\n";
+    for (std::size_t k = 0; k < ab.size() && k < n; ++k) s += "  < " + ab[k] + "\n";
+    for (std::size_t k = 0; k < ba.size() && k < n; ++k) s += "  > " + ba[k] + "\n";
+    return s;
+}
+
+// The same whole curves (not only the same drawing: a line cut in two differs).
+#define EXPECT_SAME_CURVES(a, b)                                            \
+    do {                                                                    \
+        const auto ca_ = th::whole_curves(a);                               \
+        const auto cb_ = th::whole_curves(b);                               \
+        EXPECT_TRUE(ca_ == cb_) << th::curve_diff(ca_, cb_);                \
+    } while (0)
+
 // The curves whose every point lies inside the box.
 inline tex::Curves inside_box(const tex::Curves& c, const tex::BBox& b) {
     tex::Curves out;

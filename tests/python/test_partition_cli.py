@@ -23,8 +23,8 @@ def layer_stats(path):
         kinds[f.GetField("kind")] = kinds.get(f.GetField("kind"), 0) + 1
     polys = []
     for f in faces:
-        assert f.GetField("orientation") is not None and 0 <= f.GetField("orientation") < 360
-        assert 0 <= f.GetField("density") <= 1
+        assert f.GetField("fall_line") is not None and 0 <= f.GetField("fall_line") < 360
+        assert 0 <= f.GetField("shade") <= 1
         polys.append(f.GetGeometryRef().Clone())
     return polys, kinds
 
@@ -61,6 +61,29 @@ def test_two_commands_from_a_bare_dem(rockhatch_exe, sample_dir, tmp_path):
     again = tmp_path / "again.gpkg"
     assert run(rockhatch_exe, "partition", "--dem", sample_dir / "dem.tif", "-o", again, "-q").returncode == 0
     assert again.read_bytes() == faces.read_bytes()
+
+
+def test_a_saved_partition_is_hatched_as_the_automatic_one(rockhatch_exe, sample_dir, tmp_path):
+    # Issue 16: the partition written by `rockhatch partition` carries the faces' fall line
+    # and shade as derived attributes, so hatching it follows the terrain exactly as
+    # --partition auto does (the print style, the default): the same drawing, byte for byte.
+    # With --fixed-controls they are written as orientation and density, read as given: each
+    # face is hatched in one direction, which is another drawing.
+    dem = sample_dir / "dem.tif"
+    saved, fixed = tmp_path / "saved.gpkg", tmp_path / "fixed.gpkg"
+    assert run(rockhatch_exe, "partition", "-q", "--dem", dem, "-o", saved).returncode == 0
+    assert run(rockhatch_exe, "partition", "-q", "--dem", dem, "-o", fixed, "--fixed-controls").returncode == 0
+    ds = ogr.Open(str(fixed))
+    names = {ds.GetLayerByName("faces").GetLayerDefn().GetFieldDefn(i).GetName()
+             for i in range(ds.GetLayerByName("faces").GetLayerDefn().GetFieldCount())}
+    assert {"orientation", "density"} <= names
+    svgs = {}
+    for name, partition in (("auto", "auto"), ("saved", saved), ("fixed", fixed)):
+        svgs[name] = tmp_path / f"{name}.svg"
+        r = run(rockhatch_exe, "-q", "--dem", dem, "--partition", partition, "--style", "print", "-o", svgs[name])
+        assert r.returncode == 0, r.stderr
+    assert svgs["saved"].read_bytes() == svgs["auto"].read_bytes()
+    assert svgs["fixed"].read_bytes() != svgs["auto"].read_bytes()
 
 
 def test_one_option_on_the_main_command(rockhatch_exe, sample_dir, tmp_path):
@@ -108,6 +131,39 @@ def test_real_dem(rockhatch_exe, tmp_path):
     polys, kinds = layer_stats(out)
     assert len(polys) > 50
     assert kinds.get("ridge", 0) > 10 and kinds.get("valley", 0) > 10
+    assert_no_overlap(polys)
+
+
+def axis_share(polys):
+    """Share of the face-border length running exactly along a grid axis (raster stair steps)."""
+    along = total = 0.0
+    for p in polys:
+        for k in range(p.GetGeometryCount()):
+            pts = p.GetGeometryRef(k).GetPoints()
+            for (ax, ay), (bx, by) in zip(pts, pts[1:]):
+                length = ((bx - ax) ** 2 + (by - ay) ** 2) ** 0.5
+                total += length
+                if abs(bx - ax) < 1e-6 or abs(by - ay) < 1e-6:
+                    along += length
+    return along / total
+
+
+@pytest.mark.skipif(not SHARED_DEM.exists(), reason=f"{SHARED_DEM} absent (real DEM kept outside the project)")
+@pytest.mark.parametrize("scale", [10000, 25000])
+def test_real_dem_borders_are_generalised_without_specks_or_small_holes(rockhatch_exe, tmp_path, scale):
+    # Issue 16 on a real DEM (31 m cells): under 10% of the border length along a grid axis
+    # (84% when borders were cell edges, 12% when narrow faces fell back to them), no face and
+    # no hole under the minimum area (16 mm2 on paper), faces valid and not overlapping.
+    out = tmp_path / "cham.gpkg"
+    r = run(rockhatch_exe, "partition", "--dem", SHARED_DEM, "-o", out, "--scale", str(scale), "-q")
+    assert r.returncode == 0, r.stderr
+    polys, _ = layer_stats(out)
+    assert axis_share(polys) < 0.10
+    min_area = 16 * (scale / 1000) ** 2
+    specks = [p.GetArea() for p in polys if p.GetArea() < min_area]
+    holes = [p.GetGeometryRef(k).GetArea()
+             for p in polys for k in range(1, p.GetGeometryCount())]
+    assert specks == [] and [h for h in holes if h < min_area] == []
     assert_no_overlap(polys)
 
 

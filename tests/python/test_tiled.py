@@ -103,3 +103,24 @@ def test_inside_outside_and_rasterize():
     assert image.min() == 0 and image.max() == 255
     with pytest.raises(TexError, match="no common multiple"):
         Inside(StripesPartition(StripesProperties(0.3, 6), Tiled()), squares, CROP)
+
+
+def test_a_sub_partition_is_mapped_on_the_lattice_it_repeats_on():
+    grid = GridPartition(StripesProperties(0, 30), StripesProperties(pi / 2, 50), Tiled())
+    # Hatching 20 apart in cells 30 high: both repeat every 60, two periods of the grid.
+    hatched = MapToFaces(lambda f: StripesPartition(StripesProperties(0, 20), CROP)(f), grid)
+    assert abs(hatched.period1.y) == pytest.approx(60) or abs(hatched.period2.y) == pytest.approx(60)
+    # At 45 degrees the hatching never repeats with the grid: an error naming the periods.
+    with pytest.raises(TexError, match=r"MapToFaces.*every 7 .*not periodic"):
+        MapToFaces(lambda f: StripesPartition(StripesProperties(pi / 4, 7), CROP)(f), grid)
+
+
+def test_face_labels_at_a_point_of_a_mapped_map():
+    from rockhatch.tex import MapToEdges, Point, ToCurve
+    grid = labelled_grid(Tiled())
+    # The grid's edges as curves (with their side labels): the faces of the mapped map are
+    # the cells again, found by point location in its block, labels included.
+    edges = MapToEdges(lambda e: ToCurve(e), grid)
+    points = [Point(3.7 + 13.1 * k, -250.3 + 29.9 * k) for k in range(40)]
+    assert [edges.FaceLabelsAt(p) for p in points] == [grid.FaceLabelsAt(p) for p in points]
+    assert {tuple(edges.FaceLabelsAt(p)) for p in points} == {("a",), ("b",)}

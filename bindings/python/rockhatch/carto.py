@@ -174,14 +174,18 @@ def hatch(prepared, progress=None, **kwargs):
     return _carto.hatch(prepared, make_options(**kwargs), progress)
 
 
-def partition_from_dem(dem, output=None, progress=None, overwrite=False, png=None, png_pixels=1600, **options):
+def partition_from_dem(dem, output=None, progress=None, overwrite=False, png=None, png_pixels=1600,
+                       fixed_controls=False, **options):
     """The partition of the rock areas from the DEM alone (``rockhatch partition``).
 
     dem: a path or a Raster. options: the fields of ExtractOptions (min_slope in percent,
     min_roughness, min_area_mm2 and scale, thalweg_area and ridge_area in m2, smooth and
     max_fill in m, converge, extend_ridges, simplify in cells, mask: a polygon layer path).
     Writes the GeoPackage `output` (layers faces, lines, mask, network) that ``run`` reads,
-    and a PNG preview when `png` is given; returns the ExtractResult."""
+    and a PNG preview when `png` is given; returns the ExtractResult. The faces carry their
+    fall line and shade as `fall_line` and `shade` (derived: hatching follows the terrain, as
+    with ``partition="auto"``), or as `orientation` and `density` with `fixed_controls`
+    (read as given: one hatch direction per face)."""
     o = ExtractOptions()  # noqa: F405
     if isinstance(dem, Raster):  # noqa: F405
         o.raster = dem
@@ -194,7 +198,8 @@ def partition_from_dem(dem, output=None, progress=None, overwrite=False, png=Non
     check_extract_files(o, os.fspath(output or ""), os.fspath(png or ""), overwrite)  # noqa: F405
     result = _carto.extract_partition(o, progress)
     if output is not None:
-        write_partition_gpkg(result.partition, os.fspath(output), overwrite, result.network)  # noqa: F405
+        write_partition_gpkg(result.partition, os.fspath(output), overwrite, result.network,  # noqa: F405
+                             fixed_controls)
     if png is not None:
         write_partition_png(result, os.fspath(png), png_pixels)  # noqa: F405
     return result

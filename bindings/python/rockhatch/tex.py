@@ -22,4 +22,27 @@ from ._rockhatch import tex as _tex
 _MATH_NAMES = ["cos", "sin", "tan", "acos", "asin", "atan", "atan2", "sqrt", "hypot", "exp", "log", "pow",
                "fabs", "floor", "ceil"]
 
-__all__ = [n for n in dir(_tex) if not n.startswith("_")] + _MATH_NAMES + ["Points", "Lines", "TexError"]
+
+
+def WriteImage(image, path):
+    """Write a grey image (a 2-D uint8 array, as ``Rasterize`` returns) to a file through
+    OpenImageIO; the extension of ``path`` chooses the format (``.png``, ``.tif``, ``.exr``...).
+
+    OpenImageIO is loaded on the first call only (it lives in the separate compiled module
+    ``rockhatch._rockhatch_image``), so scripts that write no image do not pay its start-up.
+
+    Raises
+    ------
+    TexError
+        When the array is not a 2-D uint8 image, or the file cannot be written (the message
+        names it), or this build has no OpenImageIO.
+    """
+    try:
+        from ._rockhatch_image import WriteImage as write
+    except ImportError as e:
+        raise TexError("WriteImage: this build of rockhatch has no OpenImageIO (" + str(e) + ")") from None
+    write(image, str(path))
+
+
+__all__ = ([n for n in dir(_tex) if not n.startswith("_")] + _MATH_NAMES +
+           ["Points", "Lines", "TexError", "WriteImage"])

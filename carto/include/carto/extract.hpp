@@ -83,13 +83,18 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
 // (the DEM path, the mask): check_outputs, before any work.
 void check_extract_files(const ExtractOptions& o, const std::string& out, const std::string& png, bool overwrite);
 
-// Writes layers `faces` (polygons: id, orientation = azimuth of the fall line in degrees,
-// density, area in m2), `lines` (kind = ridge / valley / other) and `mask` (the union of the
-// faces) to a GeoPackage, atomically (temporary file renamed at the end) and with a
-// fixed timestamp, so the same partition gives the same bytes.
+// Writes layers `faces` (polygons: id, fall_line = azimuth of the face's mean fall line in
+// degrees, shade = 1 - its mean hillshade, area in m2), `lines` (kind = ridge / valley /
+// other) and `mask` (the union of the faces) to a GeoPackage, atomically (temporary file
+// renamed at the end) and with a fixed timestamp, so the same partition gives the same bytes.
+// fall_line and shade are what the faces were derived with, for reading: rockhatch does not
+// take them as given, so hatching the file follows the terrain exactly as `--partition auto`
+// does (the print style's strokes follow the local fall line, not one direction per face).
+// With `fixed_controls` they are written as `orientation` and `density` instead, the
+// attributes rockhatch reads as given: each face is then hatched in its one direction.
 // With `network`, also a layer `network` (kind = ridge / valley) of the traced lines.
 void write_partition_gpkg(const Partition& p, const std::string& path, bool overwrite,
-                          const std::vector<LabelledLine>* network = nullptr);
+                          const std::vector<LabelledLine>* network = nullptr, bool fixed_controls = false);
 
 // A PNG preview `pixels` wide: the hillshade, each face tinted, its borders drawn in red
 // (ridge), blue (valley) or grey (other). Written atomically.

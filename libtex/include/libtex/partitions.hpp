@@ -80,4 +80,30 @@ std::vector<Point> PoissonSites(double density, const BBox& box, std::uint64_t s
 // Minimum distance between Poisson-disk sites for a density.
 double PoissonDiskRadius(double density);
 
+namespace detail {
+// While alive on this thread, every family of lines that StripesPartition or GridPartition
+// lays over a region is recorded: its unit normal and the distance across which its widths
+// and label cycles repeat. Such lines are anchored to the plane, so a tiled map's mapper
+// (tiled.hpp) runs in a probe to learn whether the partitions it builds inside a cell
+// repeat with the lattice (thesis 4.2.2 assumes mappers commute with the periods).
+class StripesProbe {
+public:
+    struct Family {
+        Point normal;
+        double period = 0;
+    };
+    StripesProbe();
+    ~StripesProbe();
+    StripesProbe(const StripesProbe&) = delete;
+    StripesProbe& operator=(const StripesProbe&) = delete;
+    const std::vector<Family>& families() const { return families_; }
+    // Records a family in this thread's innermost probe, if there is one.
+    static void record(const Point& normal, double period);
+
+private:
+    std::vector<Family> families_;
+    StripesProbe* saved_;
+};
+}  // namespace detail
+
 }  // namespace tex

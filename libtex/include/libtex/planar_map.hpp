@@ -20,6 +20,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -108,6 +109,32 @@ private:
     std::vector<EdgeRec> edges_;
     std::vector<FaceRec> faces_;
     int unbounded_ = -1;
+};
+
+// Point location in a frozen planar map: the face containing a point, by testing the
+// bounded faces whose box holds it (outer ring in, no hole ring in) through a uniform grid
+// of face boxes over `area`. A point outside every bounded face is in the unbounded face. A
+// point exactly on an edge may be given either side. The cost of a query depends on the
+// faces near the point, not on the size of the map.
+class FaceLocator {
+public:
+    // Faces whose box misses `area` are not indexed (default: the whole map's box); a query
+    // outside `area` is answered as if in the unbounded face.
+    explicit FaceLocator(MapPtr map, std::optional<BBox> area = std::nullopt);
+    int face_at(const Point& p) const;
+    const PlanarMap& map() const { return *map_; }
+
+private:
+    struct Candidate {
+        int face;
+        BBox box;
+        std::vector<std::vector<Point>> rings;  // outer ring, then holes
+    };
+    MapPtr map_;
+    BBox area_;
+    int nx_ = 1, ny_ = 1;
+    std::vector<Candidate> faces_;
+    std::vector<std::vector<int>> cells_;  // indices in faces_, per grid cell
 };
 
 }  // namespace tex

@@ -68,6 +68,10 @@ public:
         // For the edges of a tiled partition: the cells on the left and right of the
         // element's single curve (used by the KEEP_* modes, which keep whole cells).
         CellRef left, right;
+        // A piece of a longer line cut at the period: the element's single open curve ends
+        // where its copy shifted by +period2 starts. A conversion joins the consecutive
+        // copies it keeps into one curve, so a line is drawn whole, as by the engine.
+        bool continues = false;
     };
     struct CellRing {
         std::vector<Point> ring;  // counter-clockwise
@@ -77,6 +81,9 @@ public:
 
     TiledMap(Point period1, Point period2, std::vector<Element> elements, Border border,
              std::vector<CellRing> cells = {}, bool bounded_faces = true);
+    // A tiled StripesPartition: its faces are infinite bands, so KEEP_INSIDE / KEEP_OUTSIDE
+    // (which keep whole faces) are realised as the engine's StripesPartition does it.
+    TiledMap(Point period1, Point period2, std::vector<Element> elements, Border border, Stripes stripes);
 
     const Point& period1() const { return d_->p1; }
     const Point& period2() const { return d_->p2; }
@@ -85,6 +92,8 @@ public:
     Border border() const { return d_->border; }
     bool has_ghost() const { return static_cast<bool>(d_->ghost); }
     bool bounded_faces() const { return d_->bounded_faces; }
+    // The stripes this map is the tiled partition of (none for any other map).
+    const std::optional<Stripes>& stripes() const { return d_->stripes; }
 
     // The arrangement over region r with border mode b (thesis 4.2.5). Each copy of each
     // element is classified by its box: wholly inside (kept as is), outside (dropped) or
@@ -92,8 +101,11 @@ public:
     // (CROP_ADD_BOUNDARY adds the outline, its inner side labelled with the face it bounds);
     // KEEP_OUTSIDE keeps a copy whole when one of its curves meets the region, KEEP_INSIDE
     // when all of them lie inside (for a tiled partition: the edges of the cells that meet /
-    // lie inside the region, as the engine's partitions). The result over a window depends
-    // on nothing outside the window; copies are made on the worker threads and concatenated
+    // lie inside the region, as the engine's partitions). Pieces of a line (Element::
+    // continues) are joined first, so a line comes out whole. A tiled StripesPartition in a
+    // KEEP mode gives exactly the engine's stripes (whole bands, so whole lines across the
+    // region's box and beyond: not local). Otherwise the result over a window depends on
+    // nothing outside the window; copies are made on the worker threads and concatenated
     // in a fixed order (same bytes at any thread count).
     Curves Convert(const Region& r, Border b) const;
     Curves operator()(const Region& r) const { return Convert(r, border()); }
@@ -113,7 +125,11 @@ public:
     // ---- Point queries (cost independent of the window) ----
     // Distance from p to the nearest curve of the infinite arrangement (ghost ignored).
     double DistanceToCurves(const Point& p) const;
-    // Labels of the face containing p, read from the side labels of the nearest curve.
+    // Labels of the face of the infinite arrangement containing p: for a tiled partition,
+    // of the cell containing p; for a map with bounded faces, of the face of the NIZ block's
+    // planar map (built once, on the first query) containing p moved into the central tile,
+    // found through a FaceLocator; for a map with unbounded faces (stripes), the side labels
+    // of the nearest curve on p's side.
     Labels FaceLabelsAt(const Point& p) const;
 
     // Lattice coordinates of p (p = a * period1 + b * period2).
@@ -131,7 +147,10 @@ private:
         std::vector<CellRing> cells;
         Border border;
         bool bounded_faces;
+        std::optional<Stripes> stripes;
         GhostMapper ghost;
+        struct Locator;  // the block's planar map and its FaceLocator, made on first use
+        std::shared_ptr<Locator> locator;
     };
     explicit TiledMap(std::shared_ptr<const Data> d) : d_(std::move(d)) {}
     std::shared_ptr<const Data> d_;

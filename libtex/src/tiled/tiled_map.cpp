@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <sstream>
 
 #include "../segment_index.hpp"
@@ -110,6 +111,11 @@ std::string period_text(const Point& p) {
 
 }  // namespace
 
+struct TiledMap::Data::Locator {
+    std::once_flag once;
+    std::optional<FaceLocator> faces;
+};
+
 double Random(const TiledElement& e, double min, double max, double n) {
     const std::uint64_t h = hash_double(hash_combine(mix64(GetSeed() ^ 0x54494c45ULL), e.key), n);
     return min + (max - min) * unit_from_hash(h);
@@ -137,6 +143,14 @@ TiledMap::TiledMap(Point p1, Point p2, std::vector<Element> elements, Border bor
     d->cells = std::move(cells);
     d->border = border;
     d->bounded_faces = bounded_faces;
+    d->locator = std::make_shared<Data::Locator>();
+    d_ = std::move(d);
+}
+
+TiledMap::TiledMap(Point p1, Point p2, std::vector<Element> elements, Border border, Stripes stripes)
+    : TiledMap(p1, p2, std::move(elements), border, {}, false) {
+    auto d = std::make_shared<Data>(*d_);
+    d->stripes = std::move(stripes);
     d_ = std::move(d);
 }
 
@@ -171,9 +185,13 @@ int TiledMap::block_reach() const {
 Curves TiledMap::Convert(const Region& r, Border b) const {
     Curves out;
     if (r.empty()) return out;
+    const bool ghost = static_cast<bool>(d_->ghost);
+    // Stripes' faces are infinite bands: a KEEP mode keeps whole bands, which no copy of a
+    // finite element can stand for. They are the engine's, cut where the engine cuts them.
+    if (d_->stripes && !ghost && (b == Border::KEEP_INSIDE || b == Border::KEEP_OUTSIDE))
+        return StripesPartition(*d_->stripes, b)(r);
     const BBox& rb = r.bbox();
     const bool rect = is_axis_rectangle(r);
-    const bool ghost = static_cast<bool>(d_->ghost);
     const bool keep_cells = !ghost && !d_->cells.empty() && (b == Border::KEEP_INSIDE || b == Border::KEEP_OUTSIDE);
     const bool crop = b == Border::CROP || b == Border::CROP_ADD_BOUNDARY;
 
@@ -248,6 +266,69 @@ Curves TiledMap::Convert(const Region& r, Border b) const {
             else if (ghost) res.kept.push_back(std::move(c));
             ++n;
         };
+        // The curves kept from one copy (or one joined line) that was not wholly inside.
+        auto keep_partial = [&](Curves& copy) {
+            if (crop) {
+                // Curves inside stay whole; the others are cut below, all at once.
+                for (auto& c : copy.curves) {
+                    const Overlap o = classify_box(curve_box(c), r, rect);
+                    if (o == Overlap::Inside) keep(std::move(c));
+                    else if (o == Overlap::Partial && first) res.partial.push_back(std::move(c));
+                }
+            } else {
+                // KEEP_* keep or drop a copy whole, as the engine keeps or drops whole cells:
+                // KEEP_OUTSIDE when one of its curves meets the region, KEEP_INSIDE when all
+                // lie inside.
+                bool any = false, all = true;
+                for (const auto& c : copy.curves) {
+                    const Overlap o = classify_box(curve_box(c), r, rect);
+                    const bool meets = o == Overlap::Inside || (o == Overlap::Partial && curve_meets(c, r));
+                    const bool inside = o == Overlap::Inside || (o == Overlap::Partial && curve_inside(c, r));
+                    any = any || meets;
+                    all = all && inside;
+                }
+                if (b == Border::KEEP_OUTSIDE ? any : all)
+                    for (auto& c : copy.curves) keep(std::move(c));
+            }
+            if (first)
+                for (auto& p : copy.points)
+                    if (r.contains(p.point)) res.points.push_back(std::move(p));
+        };
+        if (el.continues && !ghost && !keep_cells) {
+            // A line cut at the period: each run of consecutive copies whose boxes meet the
+            // region's box becomes one curve, from the first copy's start to the last one's
+            // end, then kept, cut or dropped as one copy.
+            const Curve& piece = el.curves.curves.front();
+            long long j = it.j0;
+            while (j <= it.j1) {
+                auto meets_box = [&](long long jj) {
+                    BBox cb = el.box;
+                    const Point s = shift(it.i, jj);
+                    cb.xmin += s.x; cb.xmax += s.x; cb.ymin += s.y; cb.ymax += s.y;
+                    return cb.intersects(rb);
+                };
+                if (!meets_box(j)) {
+                    ++j;
+                    continue;
+                }
+                long long last = j;
+                while (last + 1 <= it.j1 && meets_box(last + 1)) ++last;
+                Curves line;
+                Curve c = piece;
+                const Point s0 = shift(it.i, j), s1 = shift(it.i, last);
+                c.points.assign(1, piece.points.front() + s0);
+                for (long long jj = j; jj <= last; ++jj)  // the inner points of every piece
+                    for (std::size_t k = 1; k + 1 < piece.points.size(); ++k)
+                        c.points.push_back(piece.points[k] + shift(it.i, jj));
+                c.points.push_back(piece.points.back() + s1);
+                line.curves.push_back(std::move(c));
+                if (classify_box(curve_box(line.curves.front()), r, rect) == Overlap::Inside) keep(std::move(line.curves.front()));
+                else keep_partial(line);
+                j = last + 1;
+            }
+            if (first) res.count = n;
+            return;
+        }
         for (long long j = it.j0; j <= it.j1; ++j) {
             const Point s = shift(it.i, j);
             if (keep_cells) {
@@ -304,31 +385,7 @@ Curves TiledMap::Convert(const Region& r, Border b) const {
                     for (auto& p : c.points) p += s;
                 for (auto& p : copy.points) p.point += s;
             }
-            if (crop) {
-                // Curves inside stay whole; the others are cut below, all at once.
-                for (auto& c : copy.curves) {
-                    const Overlap o = classify_box(curve_box(c), r, rect);
-                    if (o == Overlap::Inside) keep(std::move(c));
-                    else if (o == Overlap::Partial && first) res.partial.push_back(std::move(c));
-                }
-            } else {
-                // KEEP_* keep or drop a copy whole, as the engine keeps or drops whole cells:
-                // KEEP_OUTSIDE when one of its curves meets the region, KEEP_INSIDE when all
-                // lie inside.
-                bool any = false, all = true;
-                for (const auto& c : copy.curves) {
-                    const Overlap o = classify_box(curve_box(c), r, rect);
-                    const bool meets = o == Overlap::Inside || (o == Overlap::Partial && curve_meets(c, r));
-                    const bool inside = o == Overlap::Inside || (o == Overlap::Partial && curve_inside(c, r));
-                    any = any || meets;
-                    all = all && inside;
-                }
-                if (b == Border::KEEP_OUTSIDE ? any : all)
-                    for (auto& c : copy.curves) keep(std::move(c));
-            }
-            if (first)
-                for (auto& p : copy.points)
-                    if (r.contains(p.point)) res.points.push_back(std::move(p));
+            keep_partial(copy);
         }
         if (first) res.count = n;
     };
@@ -398,7 +455,19 @@ Labels TiledMap::FaceLabelsAt(const Point& p) const {
             for (const auto& c : d_->cells)
                 if (c.box.contains(q) && point_in_ring(q, c.ring)) return c.labels;
         }
-    // Otherwise the side labels of the nearest curve, on p's side of it.
+    // Bounded faces: the face of the block's planar map containing p moved into the central
+    // tile (the block holds every curve that can bound a face meeting that tile).
+    if (d_->bounded_faces) {
+        Data::Locator& loc = *d_->locator;
+        std::call_once(loc.once, [&] {
+            BBox tile;
+            for (const Point& c : {Point{0, 0}, d_->p1, d_->p2, d_->p1 + d_->p2}) tile.add(c);
+            loc.faces.emplace(block().map, tile.expanded(1e-9 * (1 + tile.width() + tile.height())));
+        });
+        const Point q = p - shift(ti, tj);
+        return loc.faces->map().faces()[std::size_t(loc.faces->face_at(q))].labels;
+    }
+    // Otherwise (stripes: infinite bands) the side labels of the nearest curve, on p's side.
     double best = std::numeric_limits<double>::infinity();
     Labels labels;
     for (long long i = ti - reach; i <= ti + reach; ++i)

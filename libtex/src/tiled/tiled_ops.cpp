@@ -2,6 +2,7 @@
 // Zone rule (thesis 4.2.2), ghost mapping (4.2.4) and the union on commensurable periods.
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numeric>
 #include <sstream>
 
@@ -92,21 +93,122 @@ bool in_central_tile(const TiledMap& a, const Point& p) {
     return std::floor(l.x + kTileOffset) == 0 && std::floor(l.y + kTileOffset) == 0;
 }
 
+std::vector<TiledMap::Element> repeat(const TiledMap& a, int m1, int m2);
+
+// The copies of one vertex made by two different translations (a + s, b + t with a + s = b +
+// t on paper) may differ in their last bits when the periods are not exact in binary (a
+// lattice turned 45 degrees); the exact planar map of a block would then hold two vertices and
+// a sliver edge between them. The welder moves every point within `tolerance` of a point met
+// before onto that point (cells of 4 * tolerance, the 3 x 3 cells around a point searched).
+class Welder {
+public:
+    explicit Welder(double tolerance) : tol_(tolerance), cell_(4 * tolerance) {}
+    Point operator()(const Point& p) {
+        const long long cx = (long long)std::floor(p.x / cell_), cy = (long long)std::floor(p.y / cell_);
+        for (long long dx = -1; dx <= 1; ++dx)
+            for (long long dy = -1; dy <= 1; ++dy) {
+                const auto it = seen_.find({cx + dx, cy + dy});
+                if (it == seen_.end()) continue;
+                for (const Point& q : it->second)
+                    if (std::abs(q.x - p.x) <= tol_ && std::abs(q.y - p.y) <= tol_) return q;
+            }
+        seen_[{cx, cy}].push_back(p);
+        return p;
+    }
+    void weld(Curves& c) {
+        for (auto& cv : c.curves)
+            for (auto& p : cv.points) p = (*this)(p);
+        for (auto& p : c.points) p.point = (*this)(p.point);
+    }
+
+private:
+    double tol_, cell_;
+    std::map<std::pair<long long, long long>, std::vector<Point>> seen_;
+};
+
+// A welding tolerance for a block of curves: far above the rounding of a translation, far
+// below any feature a texture draws.
+double weld_tolerance(const Curves& c) {
+    const BBox b = c.bbox();
+    return 1e-9 * std::max({1.0, std::abs(b.xmin), std::abs(b.xmax), std::abs(b.ymin), std::abs(b.ymax)});
+}
+
+std::string point_text(const Point& p) {
+    std::ostringstream s;
+    s << "(" << p.x << ", " << p.y << ")";
+    return s.str();
+}
+
+// The smallest k in 1..64 with k * ratio a whole number, or 0.
+int denominator(double ratio) {
+    for (int k = 1; k <= 64; ++k) {
+        const double v = k * ratio;
+        if (std::abs(v - std::round(v)) <= 1e-9 * std::max(1.0, std::abs(v))) return k;
+    }
+    return 0;
+}
+
+// A partition built inside a mapper lays lines anchored to the plane. The mapper's output for
+// a copy of a cell is its output for the central cell moved by the copy's shift only when
+// every such family of lines is invariant by the shift: the projection of each period on the
+// family's normal a whole number of the family's periods. When both projections are
+// rational (denominators k1, k2), the lattice of k1 * period1 and k2 * period2 is; otherwise
+// no lattice is and the arrangement is not periodic.
+std::pair<int, int> lattice_multiples(const TiledMap& a, const std::vector<detail::StripesProbe::Family>& families,
+                                      const char* op) {
+    long long k1 = 1, k2 = 1;
+    for (const auto& f : families) {
+        const int d1 = denominator(dot(f.normal, a.period1()) / f.period);
+        const int d2 = denominator(dot(f.normal, a.period2()) / f.period);
+        if (d1 == 0 || d2 == 0 || std::lcm(k1, (long long)d1) > 64 || std::lcm(k2, (long long)d2) > 64) {
+            std::ostringstream m;
+            m << "a partition built inside the mapper has lines repeating every " << f.period << " across the normal "
+              << point_text(f.normal) << ", which do not repeat with the tiled map's periods "
+              << point_text(a.period1()) << " and " << point_text(a.period2())
+              << " (their projections on that normal are " << dot(f.normal, a.period1()) << " and "
+              << dot(f.normal, a.period2())
+              << ", not rational multiples of it within 64 periods): the mapped arrangement is not periodic; "
+                 "evaluate it with the planar-map engine, or choose periods that are commensurable";
+            throw Error(op, m.str());
+        }
+        k1 = std::lcm(k1, (long long)d1);
+        k2 = std::lcm(k2, (long long)d2);
+    }
+    return {int(k1), int(k2)};
+}
+
+// The mapper run on the cells of the central tile of a's block (NIZ rule), each call in a
+// probe of the partitions it builds. When those partitions repeat only on a multiple of a's
+// lattice, the mapping is done again on that coarser lattice, so that the result is exact.
 template <class CellT, class Mapper, class RefOf>
-TiledMap map_block(const TiledMap& a, const Mapper& m, const std::vector<int>& ids, const MapPtr& map, RefOf ref_of,
-                   MapperThreads t, const char* op) {
+TiledMap map_block(const TiledMap& a, const Mapper& m, const std::vector<int> TiledMap::Block::*ids_of, RefOf ref_of,
+                   MapperThreads t, const char* op, bool coarsened = false) {
+    const TiledMap::Block b = a.block();
+    const std::vector<int>& ids = b.*ids_of;
     std::vector<TiledMap::Element> out(ids.size());
+    std::vector<std::vector<detail::StripesProbe::Family>> families(ids.size());
     auto visit = [&](std::size_t k) {
-        CellT cell(map, ids[k]);
+        CellT cell(b.map, ids[k]);
         detail::NoRandomScope regular(op);
+        detail::StripesProbe probe;
         out[k].curves = m(cell);
-        out[k].anchor = ref_of(ids[k]);
+        out[k].anchor = ref_of(b.map, ids[k]);
         out[k].key = anchor_key(out[k].anchor);
+        families[k] = probe.families();
     };
     if (t == MapperThreads::Serial) {
         for (std::size_t k = 0; k < ids.size(); ++k) visit(k);
     } else {
         parallel_for(ids.size(), visit);
+    }
+    std::vector<detail::StripesProbe::Family> all;
+    for (auto& f : families) all.insert(all.end(), f.begin(), f.end());
+    const auto [k1, k2] = lattice_multiples(a, all, op);
+    if (k1 > 1 || k2 > 1) {
+        if (coarsened) throw Error(op, "the partitions built inside the mapper do not repeat on the coarser lattice");
+        const TiledMap coarse(a.period1() * double(k1), a.period2() * double(k2), repeat(a, k1, k2), a.border(), {},
+                              a.bounded_faces());
+        return map_block<CellT>(coarse, m, ids_of, ref_of, t, op, true);
     }
     std::vector<TiledMap::Element> kept;
     for (auto& e : out) {
@@ -189,9 +291,10 @@ TiledMap StripesPartition(const Stripes& s, Tiled t) {
         e.curves.curves.push_back(segment(a, a + along, f.edge_label(i), f.face_label(i), f.face_label(i - 1)));
         e.anchor = a + along / 2;
         e.key = anchor_key(e.anchor);
+        e.continues = true;
         elements.push_back(std::move(e));
     }
-    return TiledMap(across, along, std::move(elements), t.border, {}, false);
+    return TiledMap(across, along, std::move(elements), t.border, s);
 }
 
 TiledMap::Block TiledMap::block() const {
@@ -211,6 +314,7 @@ TiledMap::Block TiledMap::block() const {
         }
     Block b;
     const BBox box = all.bbox();
+    Welder(weld_tolerance(all)).weld(all);
     b.map = PlanarMap::induce(all);
     const PlanarMap& m = *b.map;
     for (std::size_t v = 0; v < m.vertices().size(); ++v)
@@ -233,22 +337,23 @@ TiledMap::Block TiledMap::block() const {
 
 TiledMap MapToVertices(VertexMapper m, const TiledMap& a, MapperThreads t) {
     check_regular(a, "MapToVertices");
-    const TiledMap::Block b = a.block();
-    return map_block<Vertex>(a, m, b.vertices, b.map, [&](int v) { return b.map->vertices()[v].point; }, t,
-                             "MapToVertices");
+    return map_block<Vertex>(
+        a, m, &TiledMap::Block::vertices, [](const MapPtr& map, int v) { return map->vertices()[v].point; }, t,
+        "MapToVertices");
 }
 
 TiledMap MapToEdges(EdgeMapper m, const TiledMap& a, MapperThreads t) {
     check_regular(a, "MapToEdges");
-    const TiledMap::Block b = a.block();
-    return map_block<Edge>(a, m, b.edges, b.map, [&](int e) { return LocationAt(Edge(b.map, e), 0.5); }, t,
-                           "MapToEdges");
+    return map_block<Edge>(
+        a, m, &TiledMap::Block::edges, [](const MapPtr& map, int e) { return LocationAt(Edge(map, e), 0.5); }, t,
+        "MapToEdges");
 }
 
 TiledMap MapToFaces(FaceMapper m, const TiledMap& a, MapperThreads t) {
     check_regular(a, "MapToFaces");
-    const TiledMap::Block b = a.block();
-    return map_block<Face>(a, m, b.faces, b.map, [&](int f) { return Centroid(Face(b.map, f)); }, t, "MapToFaces");
+    return map_block<Face>(
+        a, m, &TiledMap::Block::faces, [](const MapPtr& map, int f) { return Centroid(Face(map, f)); }, t,
+        "MapToFaces");
 }
 
 TiledMap GhostMap(GhostMapper g, const TiledMap& a) {
@@ -279,13 +384,32 @@ std::string periods_text(const TiledMap& a) {
     return s.str();
 }
 
-// The elements of a repeated m1 x m2 times, as the elements of a coarser lattice.
+// The elements of a repeated m1 x m2 times, as the elements of a coarser lattice. A piece of
+// a line (continues along period2) becomes one piece m2 times as long, which continues along
+// the coarser period2.
 std::vector<TiledMap::Element> repeat(const TiledMap& a, int m1, int m2) {
     std::vector<TiledMap::Element> out;
+    for (int i = 0; i < m1; ++i)
+        for (const auto& e : a.elements()) {
+            if (!e.continues) continue;
+            TiledMap::Element c;
+            const Curve& piece = e.curves.curves.front();
+            Curve line = piece;
+            line.points.assign(1, piece.points.front() + a.shift(i, 0));
+            for (int j = 0; j < m2; ++j)  // the inner points of every piece
+                for (std::size_t k = 1; k + 1 < piece.points.size(); ++k) line.points.push_back(piece.points[k] + a.shift(i, j));
+            line.points.push_back(piece.points.back() + a.shift(i, m2 - 1));
+            c.curves.curves.push_back(std::move(line));
+            c.anchor = e.anchor + a.shift(i, 0);
+            c.key = anchor_key(c.anchor);
+            c.continues = true;
+            out.push_back(std::move(c));
+        }
     for (int i = 0; i < m1; ++i)
         for (int j = 0; j < m2; ++j) {
             const Point s = a.shift(i, j);
             for (const auto& e : a.elements()) {
+                if (e.continues) continue;
                 TiledMap::Element c;
                 c.curves = e.curves;
                 c.curves.transform(Affine::translation(s));
@@ -340,6 +464,7 @@ TiledMap mask(const TiledMap& a1, const TiledMap& a2, Border b, MaskSide side, c
                 copy.transform(Affine::translation(masks.shift(i, j)));
                 block.append(std::move(copy));
             }
+    Welder(weld_tolerance(block)).weld(block);
     const MapPtr mask_map = PlanarMap::induce(block);
     // One mask over all of a1's elements at once (KEEP_* then see a1's own edges, as in the
     // engine); every curve it keeps becomes an element of its own.

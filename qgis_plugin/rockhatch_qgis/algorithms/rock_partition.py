@@ -82,7 +82,7 @@ class RockPartition(RockhatchAlgorithm):
         number(self.SMOOTH, "Smoothing (m)", 10.0, 0.0,
                "Smoothing of the DEM before flow routing, metres (0: none). Default: 10.", advanced=True)
         self.add(QgsProcessingParameterFileDestination(self.OUTPUT, "Partition (GeoPackage)", "GeoPackage (*.gpkg)"),
-            "GeoPackage with the layers faces (id, orientation = azimuth in degrees, density 0..1, area), lines "
+            "GeoPackage with the layers faces (id, fall_line = azimuth in degrees, shade 0..1, area), lines "
             "(kind = ridge / valley / other), mask and network (every traced ridge and thalweg), ready for "
             "Rock hatching. An existing file is replaced.")
         self.add(QgsProcessingParameterFileDestination(self.PREVIEW, "Preview (PNG)", "PNG files (*.png)", optional=True,
@@ -97,8 +97,10 @@ class RockPartition(RockhatchAlgorithm):
         return ("Builds the partition Rock hatching needs from a DEM alone (the rockhatch partition command): "
                 "the rock mask (steep and rough terrain, optionally inside mask polygons), ridges and thalwegs "
                 "by flow accumulation on the inverted and on the plain DEM, the faces between them with borders "
-                "labelled ridge / valley / other, and per face a hatching orientation (mean fall line, azimuth "
-                "in degrees) and density (1 - mean hillshade). Thresholds: slope in percent (default 70), "
+                "labelled ridge / valley / other, and per face its mean fall line (fall_line, azimuth in "
+                "degrees) and shade (1 - mean hillshade), derived attributes that Rock hatching does not take "
+                "as given: hatching the partition follows the terrain as with an automatic partition. "
+                "Thresholds: slope in percent (default 70), "
                 "roughness 0..1 (default 0.001), minimum area in mm2 on paper at the map scale (default 16 at "
                 "1:10000). The faces and lines are loaded with ridges in red and valleys in blue; check and "
                 "edit them before hatching, as a cartographer would.")
