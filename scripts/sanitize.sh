@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The test suite under AddressSanitizer + UndefinedBehaviorSanitizer (GCC's), in a second
-# build folder: the C++ tests (ctest; the gallery's only on request), then the Python tests
-# of the bindings with the instrumented module loaded into Debian's interpreter.
-# scripts/test.sh runs it after the normal tests.
+# build folder: the C++ tests (ctest; the gallery's on request), then the Python tests of the
+# bindings with the instrumented module loaded into Debian's interpreter (every Python test
+# on request). scripts/test.sh runs it after the normal tests.
 #
 #   scripts/sanitize.sh                   configure + build build-asan, run the tests
 #   RH_ASAN_BUILD_DIR=dir scripts/sanitize.sh
@@ -20,9 +20,10 @@ JOBS="${RH_JOBS:-$(nproc)}"
 [ "$JOBS" -gt 2 ] && JOBS=2
 start=$(date +%s)
 
-# Debug with -O1 -g (CMakeLists.txt adds them with the sanitizers); no benchmarks, and no
-# gallery unless its tests are asked for: its tests take over half an hour under ASan on
-# two cores, and they run libtex code that libtex's own tests cover.
+# Debug (assertions on), optimised at -O2 with line tables (RH_SAN_OPT in CMakeLists.txt);
+# no benchmarks, and no gallery unless its tests are asked for: building it and running its
+# 112 tests under ASan adds about 6 minutes on two cores, over CI's budget, and they run
+# libtex code that libtex's own tests cover (run on request, they were clean).
 EXAMPLES=OFF
 { [ "${RH_SANITIZE_GALLERY:-0}" != 0 ] || [ "${RH_SANITIZE_PYTEST:-1}" = all ]; } && EXAMPLES=ON
 mkdir -p "$BUILD_DIR"
@@ -37,33 +38,38 @@ export ASAN_OPTIONS="detect_leaks=1:strict_string_checks=1:detect_stack_use_afte
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:suppressions=$SUPP/ubsan.supp"
 export LSAN_OPTIONS="suppressions=$SUPP/lsan.supp:print_suppressions=0"
 
-# The gallery's tests carry the label gallery (with RH_SANITIZE_PYTEST=all the gallery is
-# built for the Python tests, its C++ tests still left out).
+# The gallery's tests carry the label gallery.
 EXCLUDE=(-LE gallery)
 [ "${RH_SANITIZE_GALLERY:-0}" != 0 ] && EXCLUDE=()
 ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$JOBS" "${EXCLUDE[@]}"
 ctest_rc=$?
 ctested=$(date +%s)
 
-# The Python tests that run the instrumented module in the interpreter's own process: the
-# bindings, Python mappers called from the engine's threads, fields, carto from Python.
-# The others mostly start the rockhatch command, which ctest's pipeline tests cover; the
-# whole Python suite under ASan takes over half an hour on two cores (RH_SANITIZE_PYTEST=all).
+# The Python tests that run the instrumented module in the interpreter's own process (the
+# bindings, Python mappers called from the engine's threads, fields, carto, tiled maps and
+# their images, the discrete and synthesis operators, reliability), JOBS at a time
+# (pytest-xdist). The others mostly start the rockhatch command, whose code ctest's pipeline
+# and command tests run under the sanitizers; all of them under ASan take about 20 minutes on
+# two cores (RH_SANITIZE_PYTEST=all), which does not fit CI's budget.
 PYTESTS=(tests/python/test_module.py tests/python/test_stock_mappers.py tests/python/test_fields.py
-         tests/python/test_python_carto.py)
+         tests/python/test_python_carto.py tests/python/test_tiled.py tests/python/test_tiled_image.py
+         tests/python/test_discrete.py tests/python/test_synthesis.py tests/python/test_reliability.py
+         tests/python/test_python_partition.py tests/python/test_script_style.py)
 [ "${RH_SANITIZE_PYTEST:-1}" = all ] && PYTESTS=(tests/python)
 pytest_rc=0
 if [ "${RH_SANITIZE_PYTEST:-1}" != 0 ]; then
   # Debian's interpreter is not instrumented: the ASan runtime must be loaded first
   # (LD_PRELOAD), and leaks are not checked (CPython keeps its objects at exit by design).
-  # Child processes (the rockhatch command, python3 -m rockhatch) inherit the settings.
+  # Child processes (the rockhatch commands, python3 -m rockhatch, Dask's workers, QGIS's
+  # qgis_process) inherit the settings; RH_SANITIZED tells the tests (test_bad_inputs.py
+  # limits memory through ASan, not with an address-space limit).
   LIBASAN="$(g++ -print-file-name=libasan.so)"
   LIBUBSAN="$(g++ -print-file-name=libubsan.so)"
-  RH_BUILD_DIR="$ROOT/$BUILD_DIR" \
+  RH_BUILD_DIR="$ROOT/$BUILD_DIR" RH_SANITIZED=1 \
   LD_PRELOAD="$LIBASAN $LIBUBSAN" \
   ASAN_OPTIONS="detect_leaks=0:suppressions=$SUPP/asan.supp" \
   QT_QPA_PLATFORM=offscreen \
-    /usr/bin/python3 -m pytest -q -p no:cacheprovider "${PYTESTS[@]}"
+    /usr/bin/python3 -m pytest -q -p no:cacheprovider -n "$JOBS" "${PYTESTS[@]}"
   pytest_rc=$?
 fi
 end=$(date +%s)

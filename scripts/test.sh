@@ -11,8 +11,9 @@ export RH_BUILD_DIR="$(cd "$BUILD_DIR" && pwd)"
 ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$(nproc)"
 ctest_rc=$?
 
-# Debian's interpreter: the first python3 on PATH may not see Debian's modules.
-/usr/bin/python3 -m pytest -q tests/python
+# Debian's interpreter: the first python3 on PATH may not see Debian's modules. One pytest
+# worker per core (pytest-xdist): most tests wait on a child process.
+/usr/bin/python3 -m pytest -q -n "$(nproc)" tests/python
 pytest_rc=$?
 if [ "$pytest_rc" -eq 5 ]; then
   echo "test: pytest collected no test: the test setup is broken" >&2

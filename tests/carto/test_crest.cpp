@@ -11,12 +11,13 @@
 #include <fstream>
 #include <map>
 #include <sstream>
-#include <unistd.h>
 
 #include "carto/crest.hpp"
 #include "carto/error.hpp"
 #include "carto/pipeline.hpp"
 #include "libtex/parallel.hpp"
+
+#include "scratch.hpp"
 
 using namespace carto;
 namespace fs = std::filesystem;
@@ -39,9 +40,7 @@ const Prepared& sample() {
 }
 
 std::string temp_path(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / ("rh_test_crest_" + std::to_string(::getpid()));
-    fs::create_directories(dir);
-    return (dir / name).string();
+    return rh_test::scratch(name);
 }
 
 std::string read_bytes(const std::string& path) {

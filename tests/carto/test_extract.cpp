@@ -15,6 +15,8 @@
 #include "carto/extract.hpp"
 #include "carto/pipeline.hpp"
 
+#include "scratch.hpp"
+
 using namespace carto;
 namespace fs = std::filesystem;
 
@@ -58,9 +60,7 @@ std::string bytes(const std::string& path) {
 }
 
 std::string temp(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / "rh_test_extract";
-    fs::create_directories(dir);
-    return (dir / name).string();
+    return rh_test::scratch(name);
 }
 
 Raster tilted_plane(double slope_pct, bool with_crs) {

@@ -11,11 +11,12 @@
 #include <fstream>
 #include <optional>
 #include <sstream>
-#include <unistd.h>
 
 #include "carto/error.hpp"
 #include "carto/output.hpp"
 #include "carto/raster.hpp"
+
+#include "scratch.hpp"
 
 using namespace carto;
 namespace fs = std::filesystem;
@@ -23,7 +24,7 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path fresh_dir(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / ("rh_test_output_" + std::to_string(::getpid())) / name;
+    const fs::path dir = rh_test::scratch_dir() / name;
     fs::remove_all(dir);
     fs::create_directories(dir / "sub");
     return dir;

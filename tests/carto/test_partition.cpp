@@ -15,6 +15,8 @@
 #include "carto/partition.hpp"
 #include "carto/pipeline.hpp"
 
+#include "scratch.hpp"
+
 using namespace carto;
 namespace fs = std::filesystem;
 
@@ -43,9 +45,7 @@ OGRLineString line_string(const std::vector<Point>& pts) {
 std::string write_partition(const std::string& name, const std::vector<HandFace>& faces,
                             const std::vector<HandLine>& lines) {
     GDALAllRegister();
-    const fs::path dir = fs::temp_directory_path() / "rh_test_partition";
-    fs::create_directories(dir);
-    const std::string path = (dir / (name + ".gpkg")).string();
+    const std::string path = rh_test::scratch(name + ".gpkg");
     fs::remove(path);
     GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GPKG");
     std::unique_ptr<GDALDataset> ds(drv->Create(path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unistd.h>
 
 #include <filesystem>
 #include <numeric>
@@ -13,6 +12,8 @@
 #include "carto/pipeline.hpp"
 #include "carto/raster.hpp"
 #include "libtex/tex.hpp"
+
+#include "scratch.hpp"
 
 using namespace carto;
 
@@ -241,8 +242,7 @@ TEST(Pipeline, EditingElevationInAWindowChangesOnlyNearby) {
     for (int y = 0; y < dem.height; ++y)
         for (int x = 0; x < dem.width; ++x)
             if (win.contains(dem.to_world(x + 0.5, y + 0.5))) dem.at(x, y) += 150.0f;
-    const std::string edited_dem =
-        (std::filesystem::temp_directory_path() / ("rh_edited_dem_" + std::to_string(::getpid()) + ".tif")).string();
+    const std::string edited_dem = rh_test::scratch("edited_dem.tif");
     write_geotiff(dem, edited_dem);
     auto changed_faces = [&](double radius, const char* style) {  // faces whose hatches changed
         Options o = sample_options(style);

@@ -14,6 +14,8 @@
 #include "carto/raster.hpp"
 #include "carto/terrain.hpp"
 
+#include "scratch.hpp"
+
 using namespace carto;
 
 namespace {
@@ -34,7 +36,7 @@ Raster plane(int w, int h, double cell, double a, double b, double c) {
 }
 
 std::string tmp(const std::string& name) {
-    return (std::filesystem::temp_directory_path() / ("carto_test_" + name)).string();
+    return rh_test::scratch(name);
 }
 
 }  // namespace

@@ -3,8 +3,6 @@
 // hatches, feature for feature and bit for bit.
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <filesystem>
 #include <map>
 #include <tuple>
@@ -15,6 +13,8 @@
 #include "carto/raster.hpp"
 #include "carto/tiles.hpp"
 #include "libtex/random.hpp"
+
+#include "scratch.hpp"
 
 using namespace carto;
 namespace fs = std::filesystem;
@@ -35,7 +35,7 @@ Options sample_options() {
 struct TempDir {
     fs::path path;
     TempDir() {
-        path = fs::temp_directory_path() / ("rh_tiles_" + std::to_string(::getpid()));
+        path = rh_test::scratch_dir() / "tiles";
         fs::remove_all(path);
         fs::create_directories(path);
     }

@@ -8,6 +8,8 @@
 
 #include "helpers.hpp"
 
+#include "scratch.hpp"
+
 using namespace tex;
 
 TEST(ImportSVG, ElementsAndLabelledPoints) {
@@ -67,9 +69,7 @@ TEST(ImportSVG, ErrorsNameTheFile) {
 }
 
 TEST(ExportSVG, DeterministicAtomicOutput) {
-    const auto dir = std::filesystem::temp_directory_path() / "libtex_svg_test";
-    std::filesystem::create_directories(dir);
-    const std::string path = (dir / "grid.svg").string();
+    const std::string path = rh_test::scratch("grid.svg");
     const Arrangement a = GridPartition(StripesProperties(0.1, 33), StripesProperties(1.7, 41), CROP_ADD_BOUNDARY);
     ExportSVG(a, 500, path);
     std::ifstream in(path);
@@ -80,8 +80,8 @@ TEST(ExportSVG, DeterministicAtomicOutput) {
     EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
     // The exported file imports back to the same number of curves.
     EXPECT_EQ(ImportSVG(path).curves.size(), a(Region::rectangle(0, 0, 500, 500)).curves.size());
-    EXPECT_TEX_ERROR(ExportSVG(a, 500, (dir / "missing_dir" / "x.svg").string()), "ExportSVG", "cannot write");
-    std::filesystem::remove_all(dir);
+    EXPECT_TEX_ERROR(ExportSVG(a, 500, (rh_test::scratch_dir() / "missing_dir" / "x.svg").string()), "ExportSVG",
+                     "cannot write");
 }
 
 namespace {
@@ -165,9 +165,7 @@ TEST(ExportSVGinDomain, InDomainIgnoresTheWindowAndMergeIsUnion) {
 }
 
 TEST(ExportSVGinDomain, WritesTheFilledFrameWithAViewBoxAroundIt) {
-    const auto dir = std::filesystem::temp_directory_path() / "libtex_svg_domain_test";
-    std::filesystem::create_directories(dir);
-    const std::string path = (dir / "filled.svg").string();
+    const std::string path = rh_test::scratch("filled.svg");
     const Curves frame = square_frame_with_hole();
     const Arrangement a = GridPartition(StripesProperties(0.3, 17), StripesProperties(1.9, 23), KEEP_OUTSIDE);
     const Curves written = ExportSVGinDomain(a, frame, path, 10);
@@ -181,7 +179,6 @@ TEST(ExportSVGinDomain, WritesTheFilledFrameWithAViewBoxAroundIt) {
     EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
     EXPECT_EQ(ToSVG(written, 500), ToSVG(EvaluateInDomain(a, frame), 500));
     EXPECT_TEX_ERROR(ExportSVGinDomain(a, frame, path, -1), "ExportSVGinDomain", "margin");
-    std::filesystem::remove_all(dir);
 }
 
 TEST(ExportSVGinDomain, AFrameWithoutAClosedCurveIsAnError) {

@@ -9,6 +9,8 @@
 #include "helpers.hpp"
 #include "libtex/tiled_image.hpp"
 
+#include "scratch.hpp"
+
 using namespace tex;
 
 TEST(TiledImage, WritesWhatItRasterised) {
@@ -16,7 +18,7 @@ TEST(TiledImage, WritesWhatItRasterised) {
     const Raster r = Rasterize(t, Region::rectangle(0, 0, 90, 70).bbox(), 0.5, 1.0);
     for (const char* ext : {".png", ".tif"}) {
         const std::string path =
-            (std::filesystem::temp_directory_path() / ("rh_tiled_image_test" + std::string(ext))).string();
+            rh_test::scratch("tiled_image" + std::string(ext));
         WriteImage(r, path);
         auto in = OIIO::ImageInput::open(path);
         ASSERT_TRUE(in) << path;

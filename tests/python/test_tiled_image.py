@@ -9,6 +9,7 @@ import textwrap
 import numpy as np
 import pytest
 
+from conftest import python_env
 from rockhatch.tex import (GridPartition, Rasterize, Region, StripesProperties, TexError, Tiled, WriteImage,
                            pi)
 
@@ -63,7 +64,7 @@ def test_bad_input_is_a_clear_error(tmp_path):
 def run_python(code):
     """Run code in a fresh interpreter (this one may have loaded OpenImageIO already)."""
     out = subprocess.run([sys.executable, "-c", textwrap.dedent(code)], capture_output=True, text=True,
-                         env=dict(os.environ), check=True)
+                         env=python_env(), check=True)
     return out.stdout.strip()
 
 
