@@ -24,7 +24,7 @@ import tempfile
 from PIL import Image, ImageDraw, ImageOps
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "bindings" / "examples"))
-import gallery  # noqa: E402  (the gallery's Python twins: stroke_along, shrink, load)
+import gallery  # noqa: E402  (the gallery's Python twins: stroke_along, shrink, load, chevron_rule)
 from rockhatch.tex import *  # noqa: E402,F401,F403
 
 SIZE, PX, LABEL = 2000.0, 600, 18
@@ -37,22 +37,11 @@ def chevron_lines(angle, name):
     return s
 
 
-def chevron_rule(e):
-    around = IncidentEdges(TargetVertex(e))
-    for i in range(4):
-        h, v, v2 = "h%d" % (i + 1), "v%d" % (i + 1), "v%d" % ((i + 2) % 4 + 1)
-        if HasLabel(e, v) and HasLabel(around, h):
-            return Nothing()
-        if HasLabel(e, h) and HasLabel(around, v2):
-            return Nothing()
-    return ToCurve(e)
-
-
 def regular_b_on(border, spacing):
     """Regular result (b) over a grid asked with `border` (a border mode, or Tiled())."""
     wobble = gallery.load(ELEMENTS, "wobble.svg")
     grid = GridPartition(chevron_lines(pi / 4, "h"), chevron_lines(-pi / 4, "v"), border)
-    tiles = MapToFaces(lambda f: gallery.shrink(f, 0.8), MapToEdges(chevron_rule, grid))
+    tiles = MapToFaces(lambda f: gallery.shrink(f, 0.8), MapToEdges(gallery.chevron_rule, grid))
     hatched = MapToFaces(lambda f: StripesPartition(StripesProperties(0, spacing))(f), tiles)
     return MapToEdges(lambda e: Nothing() if IsBoundary(e) else gallery.stroke_along(wobble, e), hatched)
 

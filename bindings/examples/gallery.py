@@ -531,24 +531,24 @@ def regular_a(elements):
     return Outside(StripesPartition(StripesProperties(0, 15)), tilted_tiles(), CROP)
 
 
+def chevron_rule(e):
+    # "vi" edges ending on an "hi" line go, and "hi" edges ending on a "v(i+2)" line.
+    around = IncidentEdges(TargetVertex(e))
+    for i in range(4):
+        h, v, v2 = "h%d" % (i + 1), "v%d" % (i + 1), "v%d" % ((i + 2) % 4 + 1)
+        if HasLabel(e, v) and HasLabel(around, h):
+            return Nothing()
+        if HasLabel(e, h) and HasLabel(around, v2):
+            return Nothing()
+    return ToCurve(e)
+
+
 def chevron_grid():
     rising = StripesProperties(pi / 4, 200)
     falling = StripesProperties(-pi / 4, 200)
     SetEdgeLabels(rising, "h1", "h2", "h3", "h4")
     SetEdgeLabels(falling, "v1", "v2", "v3", "v4")
-
-    def rules(e):
-        # "vi" edges ending on an "hi" line go, and "hi" edges ending on a "v(i+2)" line.
-        around = IncidentEdges(TargetVertex(e))
-        for i in range(4):
-            h, v, v2 = "h%d" % (i + 1), "v%d" % (i + 1), "v%d" % ((i + 2) % 4 + 1)
-            if HasLabel(e, v) and HasLabel(around, h):
-                return Nothing()
-            if HasLabel(e, h) and HasLabel(around, v2):
-                return Nothing()
-        return ToCurve(e)
-
-    return MapToEdges(rules, GridPartition(rising, falling, KEEP_OUTSIDE))
+    return MapToEdges(chevron_rule, GridPartition(rising, falling, KEEP_OUTSIDE))
 
 
 def chevron_tiles():
