@@ -1,36 +1,65 @@
-// The start of every GeoPackage the project writes (the hatch writer in output.cpp, the
-// partition writer in extract/write.cpp): a new dataset on the temporary file that will be
-// renamed onto the output, and the working CRS its layers carry. The caller holds a
-// ReproducibleGpkg (gdal_scope.hpp) while writing, so the same data gives the same bytes.
+// Every GeoPackage the project writes (the hatches: output.cpp; an extracted partition:
+// extract/write.cpp) goes through one writer: a new file at a temporary name renamed onto the
+// output at the end (nothing half-written is ever left under the output's name), the same
+// bytes for the same data (a fixed timestamp), no SQLite journal or sync while writing (the
+// file is not the output until it is renamed), GDAL's messages kept quiet, and one R-tree per
+// layer bulk-loaded once the data is written. The GDAL settings this needs are set on the
+// writing thread only, for the writer's lifetime (gdal_scope.hpp): use it on one thread.
 #pragma once
 
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
+#include <ogrsf_frmts.h>
 
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
-#include "carto/error.hpp"
+#include "gdal_scope.hpp"
+#include "gpkg_rtree.hpp"
+#include "temp_file.hpp"
 
 namespace carto {
 
-// `tmp` is created; `path` (the output the user named with -o) names it in the error.
-inline std::unique_ptr<GDALDataset> create_gpkg(const std::string& tmp, const std::string& path) {
-    GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GPKG");
-    if (!drv) throw Error(Code::Failure, "GDAL has no GeoPackage driver");
-    std::unique_ptr<GDALDataset> ds(drv->Create(tmp.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
-    if (!ds)
-        throw Error(Code::OutputExists,
-                    "-o '" + path + "': cannot create (" + CPLGetLastErrorMsg() + ")");
-    return ds;
-}
+class GpkgWriter {
+public:
+    // `path`: the output the user named with -o (messages name it); `crs_wkt`: the CRS of every
+    // layer; `spatial_index`: an R-tree per layer.
+    GpkgWriter(const std::string& path, const std::string& crs_wkt, bool spatial_index);
+    ~GpkgWriter();
+    GpkgWriter(const GpkgWriter&) = delete;
+    GpkgWriter& operator=(const GpkgWriter&) = delete;
 
-// The CRS of a layer from its WKT, axes in x = easting / longitude order.
-inline OGRSpatialReference layer_srs(const std::string& wkt) {
-    OGRSpatialReference srs;
-    srs.importFromWkt(wkt.c_str());
-    srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-    return srs;
-}
+    // A new layer (fid, geom, then the fields in order); returns its number. Features of a
+    // layer are put one after the other, between begin() and end() of its transaction.
+    int add_layer(const std::string& name, OGRwkbGeometryType type,
+                  const std::vector<std::pair<const char*, OGRFieldType>>& fields);
+    OGRFeatureDefn* definition(int layer) const;
+    void begin();
+    void end();
+    // Writes the feature (a new fid); the R-tree gets `box`, or the geometry's envelope.
+    void put(int layer, OGRFeature& f, const BoxD& box);
+    void put(int layer, OGRFeature& f);
+    // Closes the file, loads the R-trees and renames it onto the output. Without commit, the
+    // temporary file is removed.
+    void commit();
+
+private:
+    struct Layer {
+        OGRLayer* ogr;
+        std::string name;
+        std::vector<BoxD> boxes;
+    };
+    std::string path_;
+    bool spatial_index_;
+    TempFile tmp_;
+    ReproducibleGpkg reproducible_;
+    ConfigScope sync_{"OGR_SQLITE_SYNCHRONOUS", "OFF"}, journal_{"OGR_SQLITE_JOURNAL", "OFF"};
+    QuietGdal quiet_;
+    OGRSpatialReference srs_;
+    std::unique_ptr<GDALDataset> ds_;
+    std::vector<Layer> layers_;
+};
 
 }  // namespace carto

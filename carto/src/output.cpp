@@ -12,12 +12,14 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <optional>
 
 #include "carto/error.hpp"
 #include "libtex/region.hpp"
 #include "gdal_scope.hpp"
 #include "gpkg_file.hpp"
 #include "gpkg_rtree.hpp"
+#include "preview.hpp"
 #include "temp_file.hpp"
 
 namespace fs = std::filesystem;
@@ -162,106 +164,61 @@ void write_hatch_gpkg(const std::string& path, const std::string& crs_wkt, bool 
             !keep_going(std::min(1.0, double(written) / double(std::max<std::size_t>(1, total)))))
             throw Error(Code::Cancelled, "cancelled while writing '" + path + "'");
     };
-    register_gdal();
-    TempFile tmp(path, ".gpkg");
-    std::vector<std::vector<BoxD>> boxes(kFamilies);
-    {
-        // Set on this thread, which writes the file, for this call only (gdal_scope.hpp).
-        const ReproducibleGpkg reproducible;
-        // The file is a temporary one renamed at the end, so SQLite need not journal or sync.
-        const ConfigScope sync("OGR_SQLITE_SYNCHRONOUS", "OFF"), journal("OGR_SQLITE_JOURNAL", "OFF");
-        const QuietGdal quiet;
-        const std::unique_ptr<GDALDataset> ds = create_gpkg(tmp.path, path);
-        OGRSpatialReference srs = layer_srs(crs_wkt);
-        for (int fam = 0; fam < kFamilies; ++fam) {
-            const Family f = Family(fam);
-            if (!present(f)) continue;
-            const std::string name = std::string("hatch_") + family_name(f);
-            // GDAL 3.6 would fill the R-tree row by row, most of the time spent writing a large
-            // drawing: the index is bulk-loaded once the file is closed (gpkg_rtree.cpp).
-            const char* lco[] = {"SPATIAL_INDEX=NO", "FID=fid", "GEOMETRY_NAME=geom", nullptr};
-            // Stones and hachures are filled shapes: polygons; hatches are lines.
-            OGRLayer* layer = ds->CreateLayer(name.c_str(), &srs, family_filled(f) ? wkbPolygon : wkbLineString,
-                                              const_cast<char**>(lco));
-            if (!layer) throw Error(Code::OutputExists, "-o '" + path + "': cannot create layer " + name);
-            OGRFieldDefn fid("face_id", OFTInteger64), ffam("family", OFTString), fsty("style", OFTString),
-                fw("width_mm", OFTReal);
-            layer->CreateField(&fid);
-            layer->CreateField(&ffam);
-            layer->CreateField(&fsty);
-            layer->CreateField(&fw);
-            ds->StartTransaction();
-            OGRFeature feat(layer->GetLayerDefn());
-            feat.SetField(1, family_name(f));
-            feat.SetField(3, family_width_mm(f));
-            source(f, [&](std::int64_t face_id, const char* style, const std::vector<Point>& pts) {
-                if (pts.size() < 2) return;
-                check();
-                feat.SetFID(OGRNullFID);
-                feat.SetField(0, GIntBig(face_id));
-                feat.SetField(2, style);
-                // Stones and hachures are filled shapes (closed: the first point repeated).
-                auto* ls = family_filled(f) ? new OGRLinearRing() : new OGRLineString();
-                ls->setNumPoints(int(pts.size()), FALSE);
-                for (std::size_t i = 0; i < pts.size(); ++i) ls->setPoint(int(i), pts[i].x, pts[i].y);
-                if (family_filled(f)) {
-                    auto* poly = new OGRPolygon();
-                    poly->addRingDirectly(static_cast<OGRLinearRing*>(ls));
-                    feat.SetGeometryDirectly(poly);
-                } else {
-                    feat.SetGeometryDirectly(ls);
-                }
-                if (layer->CreateFeature(&feat) != OGRERR_NONE)
-                    throw Error(Code::OutputExists, "-o '" + path + "': write failed (" + CPLGetLastErrorMsg() + ")");
-                if (spatial_index) boxes[std::size_t(fam)].push_back(box_of(pts));
-            });
-            ds->CommitTransaction();
-        }
-        if (crests) {
-            const char* lco[] = {"SPATIAL_INDEX=NO", "FID=fid", "GEOMETRY_NAME=geom", nullptr};
-            OGRLayer* layer = ds->CreateLayer("crest", &srs, wkbPolygon, const_cast<char**>(lco));
-            if (!layer) throw Error(Code::OutputExists, "-o '" + path + "': cannot create layer crest");
-            OGRFieldDefn rid("ridge_id", OFTInteger64), fsty("style", OFTString);
-            layer->CreateField(&rid);
-            layer->CreateField(&fsty);
-            ds->StartTransaction();
-            OGRFeature feat(layer->GetLayerDefn());
-            feat.SetField(1, crest_style.c_str());
-            for (const auto& c : *crests)
-                for (const auto& poly : crest_polygons(c)) {
-                    feat.SetFID(OGRNullFID);
-                    feat.SetField(0, GIntBig(c.ridge));
-                    auto* pg = new OGRPolygon();
-                    for (std::size_t r : poly) {
-                        OGRLinearRing ring;
-                        const auto& pts = c.rings[r];
-                        ring.setNumPoints(int(pts.size() + 1), FALSE);
-                        for (std::size_t i = 0; i <= pts.size(); ++i)
-                            ring.setPoint(int(i), pts[i % pts.size()].x, pts[i % pts.size()].y);
-                        pg->addRing(&ring);
-                    }
-                    feat.SetGeometryDirectly(pg);
-                    if (layer->CreateFeature(&feat) != OGRERR_NONE)
-                        throw Error(Code::OutputExists, "-o '" + path + "': write failed (" + CPLGetLastErrorMsg() + ")");
-                }
-            ds->CommitTransaction();
-        }
-        // Closing the dataset flushes it; the index is added after, then the file is renamed.
+    GpkgWriter out(path, crs_wkt, spatial_index);
+    for (int fam = 0; fam < kFamilies; ++fam) {
+        const Family f = Family(fam);
+        if (!present(f)) continue;
+        // Stones and hachures are filled shapes: polygons; hatches are lines.
+        const int layer = out.add_layer(std::string("hatch_") + family_name(f), family_filled(f) ? wkbPolygon : wkbLineString,
+                                        {{"face_id", OFTInteger64}, {"family", OFTString}, {"style", OFTString},
+                                         {"width_mm", OFTReal}});
+        out.begin();
+        OGRFeature feat(out.definition(layer));
+        feat.SetField(1, family_name(f));
+        feat.SetField(3, family_width_mm(f));
+        source(f, [&](std::int64_t face_id, const char* style, const std::vector<Point>& pts) {
+            if (pts.size() < 2) return;
+            check();
+            feat.SetField(0, GIntBig(face_id));
+            feat.SetField(2, style);
+            // Stones and hachures are filled shapes (closed: the first point repeated).
+            auto* ls = family_filled(f) ? new OGRLinearRing() : new OGRLineString();
+            ls->setNumPoints(int(pts.size()), FALSE);
+            for (std::size_t i = 0; i < pts.size(); ++i) ls->setPoint(int(i), pts[i].x, pts[i].y);
+            if (family_filled(f)) {
+                auto* poly = new OGRPolygon();
+                poly->addRingDirectly(static_cast<OGRLinearRing*>(ls));
+                feat.SetGeometryDirectly(poly);
+            } else {
+                feat.SetGeometryDirectly(ls);
+            }
+            out.put(layer, feat, box_of(pts));
+        });
+        out.end();
     }
-    if (spatial_index)
-        for (int fam = 0; fam < kFamilies; ++fam) {
-            if (!present(Family(fam))) continue;
-            bulk_load_rtree(tmp.path, std::string("hatch_") + family_name(Family(fam)), "geom", "fid",
-                            boxes[std::size_t(fam)]);
-            std::vector<BoxD>().swap(boxes[std::size_t(fam)]);
-        }
-    if (spatial_index && crests) {
-        std::vector<BoxD> crest_boxes;
+    if (crests) {
+        const int layer = out.add_layer("crest", wkbPolygon, {{"ridge_id", OFTInteger64}, {"style", OFTString}});
+        out.begin();
+        OGRFeature feat(out.definition(layer));
+        feat.SetField(1, crest_style.c_str());
         for (const auto& c : *crests)
-            for (const auto& poly : crest_polygons(c)) crest_boxes.push_back(box_of(c.rings[poly[0]]));
-        bulk_load_rtree(tmp.path, "crest", "geom", "fid", crest_boxes);
+            for (const auto& poly : crest_polygons(c)) {
+                feat.SetField(0, GIntBig(c.ridge));
+                auto* pg = new OGRPolygon();
+                for (std::size_t r : poly) {
+                    OGRLinearRing ring;
+                    const auto& pts = c.rings[r];
+                    ring.setNumPoints(int(pts.size() + 1), FALSE);
+                    for (std::size_t i = 0; i <= pts.size(); ++i)
+                        ring.setPoint(int(i), pts[i % pts.size()].x, pts[i % pts.size()].y);
+                    pg->addRing(&ring);
+                }
+                feat.SetGeometryDirectly(pg);
+                out.put(layer, feat, box_of(c.rings[poly[0]]));
+            }
+        out.end();
     }
-    tmp.commit(path);
+    out.commit();
 }
 
 struct DatasetCloser {
@@ -451,102 +408,31 @@ void write_svg(const Drawing& d, const std::string& path) {
 }
 
 void write_png(const Drawing& d, const std::string& path, int pixels, const Raster* hillshade) {
-    const tex::BBox b = d.bounds.empty() ? tex::BBox{0, 0, 1, 1} : d.bounds;
-    const double upp = std::max(b.width(), b.height()) / pixels;  // ground units per pixel
-    const int w = std::max(1, int(std::ceil(b.width() / upp))), h = std::max(1, int(std::ceil(b.height() / upp)));
-    std::vector<float> img(std::size_t(w) * h, 1.0f);
-    if (hillshade) {
-        for (int r = 0; r < h; ++r)
-            for (int c = 0; c < w; ++c) {
-                const double v = hillshade->sample({b.xmin + (c + 0.5) * upp, b.ymax - (r + 0.5) * upp});
-                if (!std::isnan(v)) img[std::size_t(r) * w + c] = float(0.82 + 0.18 * v);
+    Preview pv(d.bounds, pixels, 1, "-o '" + path + "'");
+    const tex::PixelGrid& g = pv.grid();
+    if (hillshade)
+        for (int r = 0; r < g.height; ++r)
+            for (int c = 0; c < g.width; ++c) {
+                const double v = hillshade->sample(g.Centre(c, r));
+                if (!std::isnan(v)) *pv.at(c, r) = float(0.82 + 0.18 * v);
             }
-    }
-    // Strokes: darken pixels by coverage of a line of the family's width (at least one pixel).
-    auto stamp = [&](double x, double y, double radius, float ink) {
-        const int c0 = int(std::floor(x - radius - 1)), c1 = int(std::ceil(x + radius + 1));
-        const int r0 = int(std::floor(y - radius - 1)), r1 = int(std::ceil(y + radius + 1));
-        for (int r = std::max(0, r0); r <= std::min(h - 1, r1); ++r)
-            for (int c = std::max(0, c0); c <= std::min(w - 1, c1); ++c) {
-                const double dist = std::hypot(c + 0.5 - x, r + 0.5 - y);
-                const double cover = std::clamp(radius + 0.5 - dist, 0.0, 1.0);
-                float& px = img[std::size_t(r) * w + c];
-                px = std::min(px, float(1.0 - ink * cover));
-            }
-    };
-    // A filled ring (stone, hachure): the pixels whose centre it holds (even-odd scan lines),
-    // its outline stamped below as a half-pixel stroke for the edge.
-    auto fill = [&](const std::vector<Point>& ring, float ink) {
-        std::vector<std::pair<double, double>> px;
-        double ymin = INFINITY, ymax = -INFINITY;
-        for (const Point& q : ring) {
-            px.push_back({(q.x - b.xmin) / upp, (b.ymax - q.y) / upp});
-            ymin = std::min(ymin, px.back().second), ymax = std::max(ymax, px.back().second);
-        }
-        std::vector<double> xs;
-        for (int r = std::max(0, int(std::floor(ymin))); r <= std::min(h - 1, int(std::ceil(ymax))); ++r) {
-            const double y = r + 0.5;
-            xs.clear();
-            for (std::size_t i = 0; i < px.size(); ++i) {
-                const auto& [x0, y0] = px[i];
-                const auto& [x1, y1] = px[(i + 1) % px.size()];
-                if ((y0 <= y) != (y1 <= y)) xs.push_back(x0 + (y - y0) / (y1 - y0) * (x1 - x0));
-            }
-            std::sort(xs.begin(), xs.end());
-            for (std::size_t i = 0; i + 1 < xs.size(); i += 2)
-                for (int c = std::max(0, int(std::ceil(xs[i] - 0.5))); c <= std::min(w - 1, int(std::floor(xs[i + 1] - 0.5))); ++c) {
-                    float& v = img[std::size_t(r) * w + c];
-                    v = std::min(v, 1.0f - ink);
-                }
-        }
-    };
+    // Every stroke and filled shape in one ink (90 %): lines of the family's width on paper,
+    // at least a pixel wide; stones, hachures and crest ornaments filled.
+    std::vector<float> cover = pv.blank();
+    std::vector<std::optional<tex::StrokeCoverage>> strokes(kFamilies);
     for (const auto& face : d.faces)
         for (const auto& hh : face.hatches) {
-            if (family_filled(hh.family) && hh.closed) fill(hh.points, 0.9f);
-            const double radius = std::max(0.5, family_width_mm(hh.family) * d.scale / 1000.0 / upp / 2);
-            const std::size_t n = hh.points.size();
-            const std::size_t segs = hh.closed ? n : n - 1;
-            for (std::size_t i = 0; i < segs && n > 1; ++i) {
-                const Point a = hh.points[i], q = hh.points[(i + 1) % n];
-                const double ax = (a.x - b.xmin) / upp, ay = (b.ymax - a.y) / upp;
-                const double bx = (q.x - b.xmin) / upp, by = (b.ymax - q.y) / upp;
-                const int steps = std::max(1, int(std::ceil(std::hypot(bx - ax, by - ay) * 2)));
-                for (int k = 0; k <= steps; ++k) {
-                    const double t = double(k) / steps;
-                    stamp(ax + (bx - ax) * t, ay + (by - ay) * t, radius, 0.9f);
-                }
-            }
+            auto& s = strokes[std::size_t(hh.family)];
+            if (!s) s.emplace(g, std::max(g.pixel, family_width_mm(hh.family) * d.scale / 1000.0));
+            s->Add(hh.points, hh.closed);
+            if (family_filled(hh.family) && hh.closed) tex::CoverFill(g, {hh.points}, cover);
         }
-    if (d.crests) {
-        // Filled by even-odd at the pixel centres, row by row (crossings of each ring's edges).
-        std::vector<double> xs;
-        for (const auto& c : *d.crests) {
-            tex::BBox cb;
-            for (const auto& ring : c.rings)
-                for (const Point& q : ring) cb.add(q);
-            if (cb.empty()) continue;
-            const int r0 = std::max(0, int(std::floor((b.ymax - cb.ymax) / upp)));
-            const int r1 = std::min(h - 1, int(std::ceil((b.ymax - cb.ymin) / upp)));
-            for (int r = r0; r <= r1; ++r) {
-                const double y = b.ymax - (r + 0.5) * upp;
-                xs.clear();
-                for (const auto& ring : c.rings)
-                    for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
-                        const Point &p = ring[i], &q = ring[j];
-                        if ((p.y > y) != (q.y > y)) xs.push_back(p.x + (y - p.y) * (q.x - p.x) / (q.y - p.y));
-                    }
-                std::sort(xs.begin(), xs.end());
-                for (std::size_t k = 0; k + 1 < xs.size(); k += 2) {
-                    const int c0 = std::max(0, int(std::ceil((xs[k] - b.xmin) / upp - 0.5)));
-                    const int c1 = std::min(w - 1, int(std::floor((xs[k + 1] - b.xmin) / upp - 0.5)));
-                    for (int col = c0; col <= c1; ++col) img[std::size_t(r) * w + col] = std::min(img[std::size_t(r) * w + col], 0.1f);
-                }
-            }
-        }
-    }
-    std::vector<unsigned char> bytes(img.size());
-    for (std::size_t i = 0; i < img.size(); ++i) bytes[i] = (unsigned char)std::lround(std::clamp(img[i], 0.0f, 1.0f) * 255);
-    write_png_pixels(bytes, w, h, 1, path, "-o");
+    for (const auto& s : strokes)
+        if (s) s->Render(cover);
+    if (d.crests)
+        for (const auto& c : *d.crests) tex::CoverFill(g, c.rings, cover);
+    pv.darken(cover, {0.1f, 0.1f, 0.1f});
+    pv.write_png(path, "-o");
 }
 
 void write_png_pixels(const std::vector<unsigned char>& pixels, int w, int h, int bands, const std::string& path,

@@ -303,6 +303,23 @@ def test_rock_partition_equals_the_command(qgis, rockhatch_exe, sample_dir, tmp_
     assert hatched["FACES_HATCHED"] == counts["faces"] and hatched["HATCHES"] > 10000
 
 
+def test_rock_partition_fixed_controls_equals_the_command(qgis, rockhatch_exe, sample_dir, tmp_path):
+    """FIXED_CONTROLS writes what `rockhatch partition --fixed-controls` writes: the faces carry
+    orientation and density (taken as given by the hatching) instead of fall_line and shade."""
+    cli = tmp_path / "cli.gpkg"
+    subprocess.run([str(rockhatch_exe), "partition", "-q", "--dem", str(sample_dir / "dem.tif"), "-o", str(cli),
+                    "--fixed-controls"], check=True)
+    out = tmp_path / "p.gpkg"
+    run("rockhatch:rockpartition", {"DEM": str(sample_dir / "dem.tif"), "OUTPUT": str(out), "FIXED_CONTROLS": True})
+    assert out.read_bytes() == cli.read_bytes()
+    layer = QgsVectorLayer(f"{out}|layername=faces", "faces", "ogr")
+    names = set(layer.fields().names())
+    assert {"orientation", "density"} <= names and not {"fall_line", "shade"} & names
+    derived = tmp_path / "d.gpkg"
+    run("rockhatch:rockpartition", {"DEM": str(sample_dir / "dem.tif"), "OUTPUT": str(derived)})
+    assert {"fall_line", "shade"} <= set(QgsVectorLayer(f"{derived}|layername=faces", "f", "ogr").fields().names())
+
+
 def test_a_graphical_model_from_dem_to_hatching(qgis, rockhatch_exe, sample_dir, tmp_path):
     """The algorithms chain in a Processing model: DEM -> Rock partition -> Rock hatching,
     with the partition in a temporary file of the model; same hatches as the two commands."""

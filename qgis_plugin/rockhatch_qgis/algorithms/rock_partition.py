@@ -41,8 +41,8 @@ _STYLERS = {}
 class RockPartition(RockhatchAlgorithm):
     DEM, MASK, MIN_SLOPE, MIN_ROUGHNESS, MIN_AREA, SCALE = (
         "DEM", "MASK", "MIN_SLOPE", "MIN_ROUGHNESS", "MIN_AREA", "SCALE")
-    THALWEG_AREA, RIDGE_AREA, SMOOTH, OUTPUT, PREVIEW, NETWORK = (
-        "THALWEG_AREA", "RIDGE_AREA", "SMOOTH", "OUTPUT", "PREVIEW", "NETWORK")
+    THALWEG_AREA, RIDGE_AREA, SMOOTH, OUTPUT, PREVIEW, NETWORK, FIXED_CONTROLS = (
+        "THALWEG_AREA", "RIDGE_AREA", "SMOOTH", "OUTPUT", "PREVIEW", "NETWORK", "FIXED_CONTROLS")
 
     def name(self):
         return "rockpartition"
@@ -91,6 +91,11 @@ class RockPartition(RockhatchAlgorithm):
         self.add(QgsProcessingParameterBoolean(self.NETWORK, "Load the traced network too", False),
             "Also load the network layer (every traced ridge and thalweg, including those that end inside a "
             "face). Default: no.", advanced=True)
+        self.add(QgsProcessingParameterBoolean(self.FIXED_CONTROLS, "Fixed direction and density per face", False),
+            "Write each face's mean fall line and shade as orientation and density, the attributes Rock hatching "
+            "takes as given: each face is then hatched in one direction with one density (the thesis's "
+            "hand-made partitions), and editing them changes the drawing. Default: no (fall_line and shade, "
+            "derived: hatching follows the terrain inside each face).", advanced=True)
         self.addOutput(QgsProcessingOutputNumber("FACES_COUNT", "Faces"))
 
     def shortHelpString(self):  # noqa: N802
@@ -99,7 +104,9 @@ class RockPartition(RockhatchAlgorithm):
                 "by flow accumulation on the inverted and on the plain DEM, the faces between them with borders "
                 "labelled ridge / valley / other, and per face its mean fall line (fall_line, azimuth in "
                 "degrees) and shade (1 - mean hillshade), derived attributes that Rock hatching does not take "
-                "as given: hatching the partition follows the terrain as with an automatic partition. "
+                "as given: hatching the partition follows the terrain as with an automatic partition (with "
+                "'Fixed direction and density per face' they are written as orientation and density, which it "
+                "takes as given). "
                 "Thresholds: slope in percent (default 70), "
                 "roughness 0..1 (default 0.001), minimum area in mm2 on paper at the map scale (default 16 at "
                 "1:10000). The faces and lines are loaded with ridges in red and valleys in blue; check and "
@@ -127,7 +134,8 @@ class RockPartition(RockhatchAlgorithm):
         output = self.parameterAsFileOutput(parameters, self.OUTPUT, context)
         preview = self.parameterAsFileOutput(parameters, self.PREVIEW, context)
         result = self.call(carto.partition_from_dem, dem, output, progress=Progress(feedback), overwrite=True,
-                           png=preview or None, **options)
+                           png=preview or None,
+                           fixed_controls=self.parameterAsBool(parameters, self.FIXED_CONTROLS, context), **options)
         for note in result.notes:
             feedback.pushInfo(note)
         faces = len(result.partition.faces)
