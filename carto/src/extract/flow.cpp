@@ -9,6 +9,14 @@
 
 namespace carto::extraction {
 
+namespace {
+// Multiple flow directions (Freeman 1991): each lower neighbour gets a share of the area in
+// proportion to slope^1.1 (dimensionless exponent).
+constexpr double kFreemanExponent = 1.1;
+// Cells between diagonal neighbours, in units of the cell size (the walks' steepness).
+constexpr double kDiagonalCells = 1.4142135623730951;
+}  // namespace
+
 Flow flow(const Grid& g, const std::vector<float>& z, double dx, double dy, double max_fill) {
     const std::size_t n = g.size();
     std::vector<float> filled(z);
@@ -84,7 +92,7 @@ Flow flow(const Grid& g, const std::vector<float>& z, double dx, double dy, doub
             if (std::isnan(z[j]) || !(s[j] < s[i])) continue;
             const double dist = (kDc[k] && kDr[k]) ? diag : (kDc[k] ? dx : dy);
             const double slope = (double(s[i]) - s[j]) / dist;
-            w[k] = std::pow(slope, 1.1);
+            w[k] = std::pow(slope, kFreemanExponent);
             wsum += w[k];
             if (slope > best) {
                 best = slope;
@@ -256,7 +264,7 @@ void extend_heads(const Grid& g, std::vector<int>& down, std::vector<char>& ch,
                 if (!(z[j] > z[i]) || std::isnan(conc[j])) continue;
                 // Along the floor: the most concave; finishing: the steepest.
                 const double v =
-                    finishing < 0 ? conc[j] : -(z[j] - z[i]) / ((kDc[k] && kDr[k]) ? 1.4142 : 1.0);
+                    finishing < 0 ? conc[j] : -(z[j] - z[i]) / ((kDc[k] && kDr[k]) ? kDiagonalCells : 1.0);
                 if (best < 0 || v < key) best = int(j), key = v;
             }
             if (in_rock && edge >= 0 &&

@@ -22,6 +22,7 @@ constexpr double kMaxFinishM = 150.0;         // the steepest finish of a walk: 
 constexpr int kMinFinishCells = 4;            //   (at least 4 cells)
 constexpr double kConcavityDistanceM = 20.0;  // cross-profile concavity read 20 m (2 cells at least) away
 constexpr double kFloorDepthRatio = 0.05;     // a floor is 5 % of that distance below both sides
+constexpr double kTraceToleranceCells = 1.0;  // the traced lines simplified within one cell
 
 }  // namespace
 
@@ -83,8 +84,8 @@ Network find_network(const Grid& g, const Raster& dem, const std::vector<char>& 
     for (std::size_t i = 0; i < g.size(); ++i) stop[i] = ridge[i];
     extend_heads(g, valley_down, valley, steep_valley, z, conc, kFloorDepthRatio * across, stop, rock, open, reach,
                  finish);
-    net.lines = trace_network(g, ridge_down, ridge, rock, LineKind::Ridge, dem, 1.0);
-    for (auto& l : trace_network(g, valley_down, valley, rock, LineKind::Valley, dem, 1.0))
+    net.lines = trace_network(g, ridge_down, ridge, rock, LineKind::Ridge, dem, kTraceToleranceCells);
+    for (auto& l : trace_network(g, valley_down, valley, rock, LineKind::Valley, dem, kTraceToleranceCells))
         net.lines.push_back(std::move(l));
     net.ridge = std::move(ridge);
     net.valley = std::move(valley);
