@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
 """Crops of the drawing at true print scale, for docs/print.md: the sample and
-../shared/data/montblanc/Chamonix.tif at 1:10000 and 1:25000, each a square of SIZE mm on
+../shared/data/montblanc/Chamonix.tif at 1:10000, 1:25000 and 1:50000, each a square of SIZE mm on
 paper around the same ground point, rendered at 300 dpi (rsvg-convert) so that one pixel
 is 1/300 inch on paper when the PNG is printed at 300 dpi.
 
-    /usr/bin/python3 bench/print_crops.py BUILD_DIR OUT_DIR [--style print] [--size 60]
+    /usr/bin/python3 bench/print_crops.py BUILD_DIR OUT_DIR [--style print] [--size 60] [--scales 10000 25000 50000]
 
 Only the faces centred near the crop are hatched (--window), so a large DEM stays quick.
 """
@@ -14,7 +14,7 @@ import re
 import subprocess
 import sys
 
-from PIL import Image
+from PIL import Image, ImageOps
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 SAMPLE = ROOT / "data" / "sample_montblanc"
@@ -49,7 +49,10 @@ def crop(exe, case, scale, style, size_mm, out_png, tmp):
     top = (ymax - (cy + half)) * px_per_ground
     side = 2 * half * px_per_ground
     # One bit per pixel, as a printer lays ink (rsvg-convert's anti-aliasing thresholded at half grey).
-    im = im.crop((round(left), round(top), round(left + side), round(top + side))).convert("L")
+    # Paper beyond the drawing's extent is white (a crop larger than the DEM, e.g. at 1:50000).
+    pad = round(side) + 1
+    im = ImageOps.expand(im.convert("L"), border=pad, fill=255)
+    im = im.crop((round(left) + pad, round(top) + pad, round(left + side) + pad, round(top + side) + pad))
     im.point(lambda v: 255 if v >= 128 else 0).convert("1").save(out_png, optimize=True)
     print(f"{out_png}: 1:{scale} {case}, {size_mm} mm square at {DPI} dpi")
 
@@ -61,13 +64,15 @@ def main():
     ap.add_argument("--style", default="print")
     ap.add_argument("--size", type=float, default=60.0)
     ap.add_argument("--tmp", type=pathlib.Path, default=pathlib.Path("/tmp"))
+    ap.add_argument("--scales", type=int, nargs="+", default=[10000, 25000, 50000],
+                    help="scale denominators (default: 10000 25000 50000)")
     args = ap.parse_args()
     exe = args.build / "carto" / "rockhatch"
     for case in CASES:
         if not CASES[case][0].exists():
             print(f"print_crops: {CASES[case][0]} absent, {case} skipped")
             continue
-        for scale in (10000, 25000):
+        for scale in args.scales:
             crop(exe, case, scale, args.style, args.size, args.out / f"print-{case}-{scale}-{args.style}.png", args.tmp)
 
 

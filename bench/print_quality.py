@@ -2,7 +2,7 @@
 """How the drawing reads in print: the measures of issue 16, on the sample and on
 ../shared/data/montblanc/Chamonix.tif, at several scales.
 
-    /usr/bin/python3 bench/print_quality.py [--markdown FILE] [--scales 10000,25000]
+    /usr/bin/python3 bench/print_quality.py [--markdown FILE] [--scales 10000,25000,50000]
 
 Per case and scale:
   - axis share: the share of face-border length running exactly along a grid axis of the
@@ -151,7 +151,7 @@ def measure(dem, partition, scale):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--markdown", type=pathlib.Path)
-    ap.add_argument("--scales", default="10000,25000")
+    ap.add_argument("--scales", default="10000,25000,50000")
     args = ap.parse_args()
     scales = [float(s) for s in args.scales.split(",")]
     cases = [("sample, hand-drawn partition", SAMPLE / "dem.tif", SAMPLE / "partition.gpkg"),
