@@ -111,6 +111,7 @@ struct Entry {
     int piece = 0, first = 0, parent = -1;
     Descriptor desc;
     std::vector<float> lags;          // autocorrelation sums per lag (3.7), when beta > 0
+    float max_lag = 0;                // the largest of them
     std::vector<std::uint16_t> seq;   // the pieces so far, when beta > 0
 };
 
@@ -162,6 +163,9 @@ public:
         mean_join_ = n > 0 && sum > 0 ? sum / n : 1.0;
         // exp(-|i - j| / sigma), sigma = 0.5 (3.7), by index distance.
         for (std::size_t d = 0; d < P_.size(); ++d) similarity_.push_back(float(std::exp(-double(d) / 0.5)));
+        for (std::size_t i = 0; i < P_.size(); ++i)
+            for (std::size_t j = 0; j < P_.size(); ++j)
+                similarity_to_.push_back(similarity_[i > j ? i - j : j - i]);
         for (std::size_t i = 0; i < P_.size(); ++i) {
             succ_.emplace_back();
             for (std::size_t j = 0; j < P_.size(); ++j)
@@ -215,32 +219,40 @@ public:
                     key_into(key, j, e.first, desc);
                     const auto it = index.find(key);
                     // The penalty is never negative: the joins alone may already lose.
-                    if (it != index.end() && !(joins < next[std::size_t(it->second)].cost)) continue;
+                    Entry* held = it != index.end() ? &next[std::size_t(it->second)] : nullptr;
+                    // Lags only grow when a piece is appended, so the penalty is at least
+                    // beta x the largest lag so far: a lower bound that may already lose.
+                    if (held && !(joins + o.autocorrelation * double(e.max_lag) < held->cost)) continue;
                     double cost = joins;
+                    float max_lag = 0;
                     if (o.autocorrelation > 0) {
-                        lags_after(e, j, lags);
-                        cost += o.autocorrelation * double(*std::max_element(lags.begin(), lags.end()));
+                        max_lag = lags_after(e, j, lags);
+                        cost += o.autocorrelation * double(max_lag);
                     }
-                    if (it != index.end() && !(cost < next[std::size_t(it->second)].cost)) continue;
-                    Entry n;
+                    if (held && !(cost < held->cost)) continue;
+                    if (!held) {
+                        index.emplace(key, int(next.size()));
+                        held = &next.emplace_back();
+                    }
+                    // A replaced entry's vectors are reused (assign keeps their capacity).
+                    Entry& n = *held;
                     n.length = length;
                     n.offset = offset;
-                    n.desc = desc;
+                    n.desc.left.assign(desc.left.begin(), desc.left.end());
+                    n.desc.right.assign(desc.right.begin(), desc.right.end());
+                    n.desc.closed = desc.closed;
+                    n.desc.holes = desc.holes;
                     n.piece = j;
                     n.first = e.first;
                     n.parent = int(ei);
                     n.joins = joins;
                     n.cost = cost;
                     if (o.autocorrelation > 0) {
-                        n.lags = lags;
+                        n.lags.assign(lags.begin(), lags.end());
+                        n.max_lag = max_lag;
                         n.seq.reserve(e.seq.size() + 1);
-                        n.seq = e.seq;
+                        n.seq.assign(e.seq.begin(), e.seq.end());
                         n.seq.push_back(std::uint16_t(j));
-                    }
-                    if (it != index.end()) next[std::size_t(it->second)] = std::move(n);
-                    else {
-                        index.emplace(key, int(next.size()));
-                        next.push_back(std::move(n));
                     }
                 }
             }
@@ -287,12 +299,21 @@ private:
 
     // Autocorrelation sums after appending piece j to entry (k, ei): for each lag, the pairs
     // of pieces that far apart, weighted by how close their indices are (sigma = 0.5).
-    void lags_after(const Entry& e, int j, std::vector<float>& lags) const {
-        lags.assign(e.lags.begin(), e.lags.end());
-        lags.push_back(0.f);
+    // Returns the largest sum.
+    float lags_after(const Entry& e, int j, std::vector<float>& lags) const {
+        // One lag more than the entry has (e.lags holds lags 1 .. K - 1 of its K pieces).
         const std::size_t K = e.seq.size();
-        for (std::size_t lag = 1; lag <= K; ++lag)
-            lags[lag - 1] += similarity_[std::size_t(std::abs(int(e.seq[K - lag]) - j))];
+        lags.resize(K);
+        const float* sim = &similarity_to_[std::size_t(j) * P_.size()];  // by piece index
+        const std::uint16_t* last = e.seq.data() + K - 1;               // lag 1: the last piece
+        float top = 0.f;
+        for (std::size_t lag = 1; lag < K; ++lag) {
+            const float v = e.lags[lag - 1] + sim[*(last - (lag - 1))];
+            lags[lag - 1] = v;
+            top = std::max(top, v);
+        }
+        lags[K - 1] = 0.f + sim[e.seq[0]];
+        return std::max(top, lags[K - 1]);
     }
 
     void key_into(std::string& key, int piece, int first, const Descriptor& d) const {
@@ -344,6 +365,7 @@ private:
     const std::vector<std::vector<Join>>& J_;
     std::vector<std::vector<int>> succ_;
     std::vector<float> similarity_;
+    std::vector<float> similarity_to_;  // [j * pieces + i]: similarity of pieces i and j
     double mean_join_ = 1;
     std::vector<std::vector<Back>> back_;
     std::vector<Candidate> candidates_;
