@@ -111,6 +111,67 @@ double smoothstep(double t) {
     return t * t * (3 - 2 * t);
 }
 
+// How far from a seam its chains turn (times the band height), and by how much at most.
+constexpr double kSeamReach = 1.0 / 6.0;
+constexpr double kMaxSeamTurn = 0.8;  // radians (46 degrees) each side
+
+// The direction of a polyline at one end, over `reach` of its length (towards the end).
+Point end_direction(const std::vector<Point>& pts, bool at_end, double reach) {
+    const std::size_t n = pts.size();
+    const Point tip = at_end ? pts[n - 1] : pts[0];
+    Point other = tip;
+    double walked = 0;
+    for (std::size_t k = 1; k < n; ++k) {
+        const Point a = at_end ? pts[n - k] : pts[k - 1], b = at_end ? pts[n - 1 - k] : pts[k];
+        walked += distance(a, b);
+        other = b;
+        if (walked > reach) break;  // past zero-length steps at least
+    }
+    const Point d = at_end ? tip - other : other - tip;
+    const double l = norm(d);
+    return l > 0 ? d / l : Point{0, 0};
+}
+
+// Turns the points of `pts` within `reach` (along the line) of one end about that end, by
+// `angle` at the end fading to 0 at `reach`.
+void turn_near_end(std::vector<Point>& pts, bool at_end, double angle, double reach) {
+    const std::size_t n = pts.size();
+    const Point centre = at_end ? pts[n - 1] : pts[0];
+    double walked = 0;
+    for (std::size_t k = 1; k < n; ++k) {
+        const std::size_t i = at_end ? n - 1 - k : k, prev = at_end ? i + 1 : i - 1;
+        walked += distance(pts[prev], pts[i]);
+        if (walked >= reach) break;
+        const double w = (1 - smoothstep(walked / reach)) * angle;
+        const double c = std::cos(w), s = std::sin(w);
+        const Point d = pts[i] - centre;
+        pts[i] = centre + Point{c * d.x - s * d.y, s * d.x + c * d.y};
+    }
+}
+
+// The seam where chain `a` ends and chain `b` starts (the same point): both turn onto the
+// average of their directions there. Each turns over at most a third of its own length, so
+// the two ends of a short chain do not meet.
+void smooth_seam(std::vector<Point>& a, std::vector<Point>& b, double reach) {
+    auto length = [](const std::vector<Point>& p) {
+        double l = 0;
+        for (std::size_t i = 1; i < p.size(); ++i) l += distance(p[i - 1], p[i]);
+        return l;
+    };
+    if (a.size() < 3 || b.size() < 3) return;
+    const double ra = std::min(reach, length(a) / 3), rb = std::min(reach, length(b) / 3);
+    // The directions of the two segments meeting at the seam.
+    const Point ta = end_direction(a, true, 0), tb = end_direction(b, false, 0);
+    const Point sum = ta + tb;
+    if (norm(sum) < 1e-9 || norm(ta) == 0 || norm(tb) == 0) return;  // a cusp: left as it is
+    const Point avg = sum / norm(sum);
+    const double turn_a = std::atan2(cross(ta, avg), dot(ta, avg)), turn_b = std::atan2(cross(tb, avg), dot(tb, avg));
+    if (std::abs(turn_a) > kMaxSeamTurn || std::abs(turn_b) > kMaxSeamTurn) return;  // a corner meant to be there
+    if (std::abs(turn_a) < 1e-9 && std::abs(turn_b) < 1e-9) return;  // already smooth: left bit for bit
+    turn_near_end(a, true, turn_a, ra);
+    turn_near_end(b, false, turn_b, rb);
+}
+
 // Places, stitches and links the pieces of `seq` in the (U, V) plane of the band: U from 0 to
 // `length`, V around 0. Returns closed contours, inside on the left.
 std::vector<std::vector<Point>> lay_out(const std::vector<Piece>& P, const std::vector<std::vector<Join>>& J,
@@ -186,6 +247,15 @@ std::vector<std::vector<Point>> lay_out(const std::vector<Piece>& P, const std::
             leaving[{ch.start_side == kLeft ? ls : rs, ch.start_k}] = placed.size();
             placed.push_back(std::move(pl));
         }
+    }
+    // Tangents (4.2): the chain arriving at a seam point and the chain leaving it agree on the
+    // point already; each now turns, over a short stretch next to it, onto the average of the
+    // two directions, so the contour has no kink at the seam. The turn fades out smoothly away
+    // from the seam and is at most kMaxSeamTurn; the piece keeps its shape elsewhere.
+    for (std::size_t c = 0; c < placed.size(); ++c) {
+        const auto it = leaving.find({placed[c].end_seam, placed[c].end_k});
+        if (it == leaving.end()) continue;  // reported below
+        smooth_seam(placed[c].pts, placed[it->second].pts, kSeamReach * H);
     }
     // Contours (4.3): follow each chain into the one leaving where it ends.
     std::vector<char> used(placed.size(), 0);
