@@ -74,6 +74,77 @@ double length(const std::vector<Point>& pts) {
     return l;
 }
 
+// The part of a polyline between arc lengths `from` and `to` (0 <= from < to <= length).
+std::vector<Point> between(const std::vector<Point>& pts, double from, double to) {
+    std::vector<Point> out;
+    double at = 0;
+    for (std::size_t i = 1; i < pts.size(); ++i) {
+        const double l = tex::distance(pts[i - 1], pts[i]);
+        const double a = at, b = at + l;
+        at = b;
+        if (b <= from || l == 0) continue;
+        const auto point = [&](double s) { return pts[i - 1] + (pts[i] - pts[i - 1]) * ((s - a) / l); };
+        if (out.empty()) out.push_back(a >= from ? pts[i - 1] : point(from));
+        if (b >= to) {
+            out.push_back(point(to));
+            break;
+        }
+        out.push_back(pts[i]);
+    }
+    return out;
+}
+
+// Where ridge lines meet, their ornaments would overlap. At a node (ends within
+// kNodeTolerance x the band of each other), an end that continues another ridge almost
+// straight (kContinuation or more between the two directions leaving the node) is kept; the
+// others are cut back along the line, far enough that their band clears the band of the
+// nearest other ridge there: band / sin(angle) for an angle under 90 degrees, one band
+// beyond, at most kMaxTrim bands. Every ridge line of the partition counts (not only those
+// drawn), so windows agree. Returns, per line, the length cut from its start and its end.
+constexpr double kNodeTolerance = 0.01;
+constexpr double kContinuation = 150.0 * tex::pi / 180.0;
+constexpr double kMaxTrim = 3.0;
+
+std::vector<std::pair<double, double>> junction_trims(const Partition& p, double band) {
+    struct End {
+        std::size_t line;
+        bool at_start;
+        Point node, out;  // the node and the unit direction leaving it along the line
+    };
+    std::vector<End> ends;
+    for (std::size_t i = 0; i < p.lines.size(); ++i) {
+        const LabelledLine& l = p.lines[i];
+        if (l.kind != LineKind::Ridge || l.points.size() < 2) continue;
+        const double len = length(l.points);
+        if (!(len > 0)) continue;
+        const double reach = std::min(band, len / 2);  // the direction over one band of line
+        for (bool at_start : {true, false}) {
+            std::vector<Point> pts = l.points;
+            if (!at_start) std::reverse(pts.begin(), pts.end());
+            const std::vector<Point> head = between(pts, 0, reach);
+            const Point d = head.back() - head.front();
+            const double n = tex::norm(d);
+            if (n > 0) ends.push_back({i, at_start, pts.front(), d / n});
+        }
+    }
+    std::vector<std::pair<double, double>> trims(p.lines.size(), {0.0, 0.0});
+    const double tol = kNodeTolerance * band;
+    for (std::size_t a = 0; a < ends.size(); ++a) {
+        double nearest = tex::pi;  // smallest angle to another ridge leaving the same node
+        bool continued = false;
+        for (std::size_t b = 0; b < ends.size(); ++b) {
+            if (a == b || tex::distance(ends[a].node, ends[b].node) > tol) continue;
+            const double angle = std::acos(std::clamp(tex::dot(ends[a].out, ends[b].out), -1.0, 1.0));
+            if (angle >= kContinuation) continued = true;
+            nearest = std::min(nearest, angle);
+        }
+        if (continued || nearest == tex::pi) continue;
+        const double trim = nearest >= tex::pi / 2 ? band : std::min(kMaxTrim * band, band / std::sin(nearest));
+        (ends[a].at_start ? trims[ends[a].line].first : trims[ends[a].line].second) = trim;
+    }
+    return trims;
+}
+
 }  // namespace
 
 const std::string& default_crest_svg() {
@@ -127,19 +198,23 @@ CrestResult draw_crests(const Partition& p, const CrestExemplar& exemplar, doubl
         }
         ridges.push_back(i);
     }
+    const std::vector<std::pair<double, double>> trims = junction_trims(p, band_height);
     enum class Outcome { Drawn, Short, Refused };
     std::vector<Outcome> outcome(ridges.size(), Outcome::Drawn);
     std::vector<CrestOrnament> drawn(ridges.size());
     tex::parallel_for(ridges.size(), [&](std::size_t k) {
-        const std::vector<Point>& pts = p.lines[ridges[k]].points;
-        if (length(pts) < band_height) {
+        const std::vector<Point>& line = p.lines[ridges[k]].points;
+        const auto [cut_start, cut_end] = trims[ridges[k]];
+        const double len = length(line);
+        if (len - cut_start - cut_end < band_height) {
             outcome[k] = Outcome::Short;
             return;
         }
-        // Keyed by the ridge itself: the same ridge gets the same ornament whatever else the
-        // partition holds, in whatever order, on any number of threads.
+        const std::vector<Point> pts = cut_start > 0 || cut_end > 0 ? between(line, cut_start, len - cut_end) : line;
+        // Keyed by the ridge line itself: the same ridge gets the same ornament whatever
+        // order the partition holds its lines in, on any number of threads.
         std::uint64_t key = tex::hash_combine(seed, kCrestStream);
-        for (const Point& q : pts) key = tex::hash_point(key, q);
+        for (const Point& q : line) key = tex::hash_point(key, q);
         tex::SynthesisOptions o = exemplar.synthesis;
         o.seed = key;
         for (int passes : kSmoothingPasses) {
@@ -165,7 +240,9 @@ CrestResult draw_crests(const Partition& p, const CrestExemplar& exemplar, doubl
     }
     std::ostringstream n;
     n << "crest ornaments on " << r.ornaments.size() << " of " << ridges.size() << " ridge line(s)";
-    if (too_short) n << "; " << too_short << " shorter than the band height (" << band_height << ") skipped";
+    if (too_short)
+        n << "; " << too_short << " shorter than the band height (" << band_height
+          << ", once cut back where ridges meet) skipped";
     if (refused)
         n << "; " << refused << " skipped: no pattern fits them (too short for the exemplar's pieces, or turning too "
                                 "tightly for the band even when smoothed)";

@@ -226,6 +226,66 @@ TEST(Crest, EachRidgeIsKeyedByItselfNotByItsOrder) {
     EXPECT_EQ(body(r.ornaments[0]), by_ridge.at(key(alone, r.ornaments[0])));
 }
 
+// Where ridges meet, ornaments do not overlap: at a junction where two ridges continue each
+// other and a third leaves at 60 degrees, the straight pair runs on to the node and the
+// branch stops short of it; at a Y of three ridges 70, 145 and 145 degrees apart, all three
+// stop short. Checked on the rings: no edge of one ornament meets
+// an edge of another, and no ornament holds a vertex of another.
+TEST(Crest, RidgesMeetingAtANodeDoNotOverlap) {
+    auto ridge = [](Point a, Point b) {
+        LabelledLine l;
+        l.kind = LineKind::Ridge;
+        for (int i = 0; i <= 40; ++i) l.points.push_back(a + (b - a) * (i / 40.0));
+        return l;
+    };
+    const Point t{0, 0}, y{3000, 0};
+    auto at = [](Point c, double deg, double r) {
+        return c + Point{r * std::cos(deg * tex::pi / 180), r * std::sin(deg * tex::pi / 180)};
+    };
+    const Partition part = lines_only({ridge(t, at(t, 180, 600)), ridge(t, at(t, 0, 600)), ridge(t, at(t, 60, 600)),
+                                       ridge(y, at(y, 90, 600)), ridge(y, at(y, 160, 600)), ridge(y, at(y, 305, 600))});
+    const double band = 20;
+    const CrestResult r = draw_crests(part, load_crest_exemplar(kDefaultCrest), band, 5);
+    ASSERT_EQ(r.ornaments.size(), 6u);
+    auto segments_meet = [](Point a, Point b, Point c, Point d) {
+        const double d1 = tex::cross(b - a, c - a), d2 = tex::cross(b - a, d - a), d3 = tex::cross(d - c, a - c),
+                     d4 = tex::cross(d - c, b - c);
+        return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0));
+    };
+    auto inside = [](const std::vector<Point>& ring, Point q) {
+        bool in = false;
+        for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++)
+            if ((ring[i].y > q.y) != (ring[j].y > q.y) &&
+                q.x < ring[i].x + (q.y - ring[i].y) * (ring[j].x - ring[i].x) / (ring[j].y - ring[i].y))
+                in = !in;
+        return in;
+    };
+    for (std::size_t i = 0; i < r.ornaments.size(); ++i)
+        for (std::size_t j = i + 1; j < r.ornaments.size(); ++j) {
+            int meets = 0;
+            for (const auto& ra : r.ornaments[i].rings)
+                for (const auto& rb : r.ornaments[j].rings) {
+                    for (std::size_t a = 0; a < ra.size(); ++a)
+                        for (std::size_t b = 0; b < rb.size(); ++b)
+                            meets += segments_meet(ra[a], ra[(a + 1) % ra.size()], rb[b], rb[(b + 1) % rb.size()]);
+                    meets += inside(ra, rb[0]) + inside(rb, ra[0]);
+                }
+            EXPECT_EQ(meets, 0) << "ridges " << r.ornaments[i].ridge << " and " << r.ornaments[j].ridge;
+        }
+    auto nearest = [&](std::size_t ridge_index, Point node) {
+        double best = INFINITY;
+        for (const auto& c : r.ornaments)
+            if (c.ridge == ridge_index)
+                for (const auto& ring : c.rings)
+                    for (const Point& q : ring) best = std::min(best, tex::distance(q, node));
+        return best;
+    };
+    EXPECT_LT(nearest(0, t), 0.5 * band);  // the straight pair runs on to the node
+    EXPECT_LT(nearest(1, t), 0.5 * band);
+    EXPECT_GT(nearest(2, t), 0.45 * band);  // the branch starts a band away (its barbs reach half a band)
+    for (std::size_t k = 3; k < 6; ++k) EXPECT_GT(nearest(k, y), 0.45 * band);
+}
+
 // A ridge shorter than the band is skipped and counted in a note; a ridge long enough for
 // the band but with a hairpin it cannot follow is skipped too; neither stops the others.
 TEST(Crest, ShortAndHairpinRidgesAreSkippedWithANote) {

@@ -1,6 +1,7 @@
 """Crest ornaments from Python: the pipeline's crest_ornament / crest_height_mm options, the
 Python command line (same option table, same bytes as the C++ program), draw_crests on a
 partition, and errors with the command's exit codes."""
+import re
 import subprocess
 import sys
 
@@ -88,14 +89,19 @@ def test_an_exemplar_that_cannot_make_one_band_is_refused(rockhatch_exe, sample_
 
 @pytest.mark.skipif(not SHARED_DEM.exists(), reason=f"{SHARED_DEM} absent (real DEM kept outside the project)")
 def test_every_ridge_of_the_real_dem_is_one_valid_polygon():
-    """The automatic partition of Chamonix.tif (599 ridge lines, jagged from 31 m cells): each
-    ornament drawn is one polygon GEOS finds valid (its outer ring and the holes inside it),
-    and the ridges skipped are few and counted in the note."""
+    """The automatic partition of Chamonix.tif (599 ridge lines): each ornament drawn is one
+    polygon GEOS finds valid (its outer ring and the holes inside it); the ridges skipped
+    because no pattern fits them are few, and short branches cut back where ridges meet are
+    counted apart, all in the note; ornaments of different ridges seldom meet (118 of 596
+    pairs did before the ends were cut back at nodes, 5 of 518 since)."""
     part = carto.prepare(str(SHARED_DEM), "auto").partition
     ridges = sum(1 for line in part.lines if line.kind == carto.LineKind.RIDGE)
     r = carto.draw_crests(part, "default", 20.0)
-    assert len(r.ornaments) >= 0.98 * ridges
     assert f"on {len(r.ornaments)} of {ridges} ridge line(s)" in r.notes[0]
+    refused = re.search(r"(\d+) skipped: no pattern fits", r.notes[0])
+    assert refused is None or int(refused.group(1)) <= 0.02 * ridges, r.notes[0]
+    assert len(r.ornaments) >= 0.8 * ridges, r.notes[0]
+    polygons = []
     for o in r.ornaments:
         outer = [ring for ring in o.rings if _area([(p.x, p.y) for p in ring]) > 0]
         assert len(outer) == 1, f"ridge {o.ridge}"
@@ -106,3 +112,11 @@ def test_every_ridge_of_the_real_dem_is_one_valid_polygon():
                 lr.AddPoint_2D(p.x, p.y)
             poly.AddGeometry(lr)
         assert poly.IsValid(), f"ridge {o.ridge}"
+        polygons.append((o.ridge, poly, poly.GetEnvelope()))
+    meeting = 0
+    for i, (_, a, ea) in enumerate(polygons):
+        for _, b, eb in polygons[i + 1:]:
+            if ea[1] < eb[0] or eb[1] < ea[0] or ea[3] < eb[2] or eb[3] < ea[2]:
+                continue
+            meeting += a.Intersects(b)
+    assert meeting <= 0.02 * len(polygons), f"{meeting} pairs of ornaments meet"
