@@ -2,6 +2,7 @@
 from qgis.core import QgsProcessingProvider
 
 from .algorithms.rock_hatching import RockHatching
+from .algorithms.rock_hatching_tiled import RockHatchingTiled
 from .algorithms.rock_partition import RockPartition
 from .algorithms.terrain_fields import TerrainFields
 from .icon import WithIcon
@@ -27,3 +28,4 @@ class RockhatchProvider(WithIcon, QgsProcessingProvider):
         self.addAlgorithm(RockHatching())
         self.addAlgorithm(TerrainFields())
         self.addAlgorithm(RockPartition())
+        self.addAlgorithm(RockHatchingTiled())

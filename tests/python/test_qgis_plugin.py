@@ -100,7 +100,8 @@ def test_plugin_loads_and_registers_provider(qgis):
     provider = registry.providerById("rockhatch")
     assert provider is not None and provider.name() == "Rock hatching"
     assert os.path.isfile(provider.svgIconPath()) and provider.svgIconPath().endswith("icon.svg")
-    ids = ["rockhatch:rockhatching", "rockhatch:rockpartition", "rockhatch:terrainfields"]
+    ids = ["rockhatch:rockhatching", "rockhatch:rockhatchingtiled", "rockhatch:rockpartition",
+           "rockhatch:terrainfields"]
     assert sorted(a.id() for a in provider.algorithms()) == ids
     for alg_id in ids:
         alg = registry.algorithmById(alg_id)
@@ -267,6 +268,84 @@ def test_crest_ornaments_through_the_algorithm(qgis, rockhatch_exe, sample_dir, 
     with pytest.raises(QgsProcessingException, match="--crest-ornament .*junk.svg"):
         run("rockhatch:rockhatching", sample_params(sample_dir, tmp_path / "b.gpkg",
                                                     CREST_EXEMPLAR=str(tmp_path / "junk.svg")))
+
+
+# ---- tiled runs (Dask, in a child process)
+
+
+def test_tiled_algorithm_writes_what_the_tiles_command_writes(qgis, sample_dir, tmp_path):
+    """rockhatch:rockhatchingtiled runs `rockhatch tiles` in a child Python (Dask starts
+    worker processes there, not inside QGIS): the same GeoPackage bytes as the command, the
+    tile count and hatches reported, the hatch layers loaded, progress moving to 100%."""
+    import processing
+    cli = tmp_path / "cli.gpkg"
+    subprocess.run([sys.executable, "-m", "rockhatch", "tiles", "-q", "--dem", str(sample_dir / "dem.tif"),
+                    "--partition", str(sample_dir / "partition.gpkg"), "--tile-size", "1200", "--workers", "1",
+                    "--seed", "2", "-o", str(cli)], check=True, env=python_env())
+    project = QgsProject.instance()
+    before = set(project.mapLayers())
+    out = tmp_path / "q.gpkg"
+    steps = []
+
+    class Feedback(QgsProcessingFeedback):
+        def setProgress(self, value):  # noqa: N802 (QGIS's name)
+            steps.append(value)
+            super().setProgress(value)
+
+    result = processing.runAndLoadResults("rockhatch:rockhatchingtiled", {
+        "DEM": str(sample_dir / "dem.tif"), "PARTITION": str(sample_dir / "partition.gpkg"), "TILE_SIZE": 1200,
+        "WORKERS": 1, "SEED": 2, "OUTPUT": str(out)}, feedback=Feedback())
+    loaded = {project.mapLayer(i).name() for i in set(project.mapLayers()) - before}
+    try:
+        assert out.read_bytes() == cli.read_bytes()
+        assert result["TILES"] == 4
+        assert result["HATCHES"] == sum(layer_counts(out).values()) > 10000
+        assert {"hatch_fill", "hatch_ridge", "hatch_valley"} <= loaded
+        assert steps and max(steps) == 100
+        assert not (tmp_path / "q.gpkg.tiles").exists()  # the work folder goes after the merge
+    finally:
+        project.removeMapLayers([i for i in set(project.mapLayers()) - before])
+
+
+def test_tiled_algorithm_cancelled_then_resumed(qgis, sample_dir, tmp_path):
+    """Cancelling after the first tile stops the child run and keeps the finished tiles; the
+    same job run again resumes from them and writes what an uninterrupted run writes."""
+    params = {"DEM": str(sample_dir / "dem.tif"), "PARTITION": str(sample_dir / "partition.gpkg"),
+              "TILE_SIZE": 800, "WORKERS": 1, "SEED": 4, "OUTPUT": str(tmp_path / "q.gpkg")}
+    info = []
+
+    class Feedback(QgsProcessingFeedback):
+        def setProgressText(self, text):  # noqa: N802 (QGIS's name)
+            if text.startswith("tiles ") and not text.startswith("tiles 0/"):
+                self.cancel()
+            super().setProgressText(text)
+
+    with pytest.raises(QgsProcessingException, match="cancelled"):
+        run("rockhatch:rockhatchingtiled", params, Feedback())
+    kept = list((tmp_path / "q.gpkg.tiles").glob("tile_*.gpkg"))
+    assert 1 <= len(kept) < 9 and not (tmp_path / "q.gpkg").exists()
+
+    class Log(QgsProcessingFeedback):
+        def pushInfo(self, text):  # noqa: N802
+            info.append(text)
+            super().pushInfo(text)
+
+    result = run("rockhatch:rockhatchingtiled", params, Log())
+    assert result["TILES"] == 9
+    assert any(f"({len(kept)} done before)" in line for line in info), info
+    whole = tmp_path / "whole.gpkg"
+    run("rockhatch:rockhatchingtiled", {**params, "OUTPUT": str(whole)})
+    assert (tmp_path / "q.gpkg").read_bytes() == whole.read_bytes()
+
+
+def test_tiled_algorithm_reports_the_commands_error(qgis, sample_dir, tmp_path):
+    """A bad input gets the command's one-line message as the algorithm's error, and no output."""
+    out = tmp_path / "q.gpkg"
+    with pytest.raises(QgsProcessingException, match="nonsense"):
+        run("rockhatch:rockhatchingtiled", {
+            "DEM": str(sample_dir / "dem.tif"), "PARTITION": str(sample_dir / "partition.gpkg"),
+            "TILE_SIZE": 1200, "PARAMS": "nonsense=1", "OUTPUT": str(out)})
+    assert not out.exists()
 
 
 # ---- partition from the DEM

@@ -75,6 +75,29 @@ def gpkg_layers(path):
     return {ds.GetLayer(i).GetName(): ds.GetLayer(i).GetFeatureCount() for i in range(ds.GetLayerCount())}
 
 
+def load_hatch_layers(output, context, output_name):
+    """Loads the hatch layers of a written GeoPackage when the algorithm completes, each with
+    its style (empty ones are not loaded); returns the URIs of all of them."""
+    uris = []
+    for family, count in gpkg_layers(output).items():
+        if family not in FAMILIES and family != CREST_LAYER and family not in FILLED:
+            continue
+        uri = f"{output}|layername={family}"
+        uris.append(uri)
+        if count:
+            details = QgsProcessingContext.LayerDetails(family, context.project(), output_name)
+            details.setPostProcessor(styler(uri, family))
+            context.addLayerToLoadOnCompletion(uri, details)
+    return uris
+
+
+def style_parameter(alg, name, names, default, help_text):
+    """The style list (static strings: a model or qgis_process names the style itself)."""
+    style = QgsProcessingParameterEnum(name, "Style", names, defaultValue=default)
+    style.setUsesStaticStrings(True)
+    alg.add(style, help_text)
+
+
 def parse_params(text):
     """'spacing_min=0.3; length=2' -> {'spacing_min': 0.3, 'length': 2.0}."""
     params = {}
@@ -160,9 +183,7 @@ class RockHatching(RockhatchAlgorithm):
             "Roughness 0..1 replacing the one computed from the DEM (vector ruggedness). "
             "Default: computed from the DEM.", advanced=True)
         names, default = self.style_names()
-        style = QgsProcessingParameterEnum(self.STYLE, "Style", names, defaultValue=default)
-        style.setUsesStaticStrings(True)
-        self.add(style, f"Built-in style (thesis Fig. 5.4 a to g), or a terrain style drawn around the rock faces "
+        style_parameter(self, self.STYLE, names, default, f"Built-in style (thesis Fig. 5.4 a to g), or a terrain style drawn around the rock faces "
                    f"(scree: stones below the rock; slope-hachures: Lehmann hachures on the other slopes). "
                    f"Default: {default}. See the algorithm's help for each style's parameters.")
         self.add(QgsProcessingParameterFile(self.STYLE_SCRIPT, "Style script (Python)", extension="py", optional=True),
@@ -313,15 +334,6 @@ class RockHatching(RockhatchAlgorithm):
             feedback.pushInfo(note)
         feedback.pushInfo(f"{stats.faces} faces, {stats.hatches} hatches in {stats.seconds:.1f} s ({stats.crs})")
 
-        uris = []
-        for family, count in gpkg_layers(output).items():
-            if family not in FAMILIES and family != CREST_LAYER and family not in FILLED:
-                continue
-            uri = f"{output}|layername={family}"
-            uris.append(uri)
-            if count:
-                details = QgsProcessingContext.LayerDetails(family, context.project(), self.OUTPUT)
-                details.setPostProcessor(styler(uri, family))
-                context.addLayerToLoadOnCompletion(uri, details)
+        uris = load_hatch_layers(output, context, self.OUTPUT)
         return {self.OUTPUT: output, self.SVG: svg or None, "LAYERS": uris,
                 "FACES_HATCHED": stats.faces, "HATCHES": stats.hatches}
