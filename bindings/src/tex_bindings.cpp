@@ -282,6 +282,17 @@ void bind_tex(py::module_& m) {
         })
         .def("unbounded_face", [](const std::shared_ptr<PlanarMap>& m) { return Face(m, m->unbounded_face()); })
         .def("edge_curves", &PlanarMap::edge_curves);
+    py::class_<FaceLocator>(m, "FaceLocator",
+                            "Point location in a planar map: FaceLocator(map[, area]).face_at(p) is the face holding p "
+                            "(the unbounded face outside every bounded one); built once, each query costs what the "
+                            "faces near p cost")
+        .def(py::init([](const std::shared_ptr<PlanarMap>& map, std::optional<BBox> area) {
+                 return FaceLocator(map, area);
+             }),
+             py::arg("map"), py::arg("area") = std::nullopt, py::call_guard<py::gil_scoped_release>())
+        .def("face_at", [](const FaceLocator& l, const Point& p) {
+            return Face(l.shared_map(), l.face_at(p));
+        }, py::arg("p"));
 
     // Table 3.4 built-ins: incidence, adjacency, geometry, labels, random.
     m.def("IncidentFaces", &IncidentFaces);

@@ -79,41 +79,18 @@ private:
 class RegionImpl : public FieldImpl {
 public:
     RegionImpl(std::vector<Region> regions, std::vector<double> values, const char* kind)
-        : regions_(std::move(regions)), values_(std::move(values)), kind_(kind) {
-        for (const auto& r : regions_) box_.add(r.bbox());
-        if (box_.empty()) return;
-        const double side = std::sqrt(std::max(1.0, double(regions_.size())));
-        cell_ = std::max(box_.width(), box_.height()) / side + 1e-9;
-        nx_ = std::max(1, int(std::ceil(box_.width() / cell_)));
-        ny_ = std::max(1, int(std::ceil(box_.height() / cell_)));
-        cells_.resize(std::size_t(nx_) * ny_);
-        for (std::size_t i = 0; i < regions_.size(); ++i) {
-            const BBox& b = regions_[i].bbox();
-            if (b.empty()) continue;
-            for (int y = row(b.ymin); y <= row(b.ymax); ++y)
-                for (int x = col(b.xmin); x <= col(b.xmax); ++x) cells_[std::size_t(y) * nx_ + x].push_back(int(i));
-        }
-    }
+        : locator_(std::move(regions)), values_(std::move(values)), kind_(kind) {}
     double eval(const Point& q) const override {
-        if (!box_.contains(q)) return kNaN;
-        for (int i : cells_[std::size_t(row(q.y)) * nx_ + col(q.x)])
-            if (regions_[i].contains(q)) return values_[i];
-        return kNaN;
+        const int k = locator_.find(q);
+        return k >= 0 ? values_[std::size_t(k)] : kNaN;
     }
-    std::optional<BBox> domain() const override { return box_; }
+    std::optional<BBox> domain() const override { return locator_.area(); }
     const char* kind() const override { return kind_; }
 
 private:
-    int col(double x) const { return std::clamp(int((x - box_.xmin) / cell_), 0, nx_ - 1); }
-    int row(double y) const { return std::clamp(int((y - box_.ymin) / cell_), 0, ny_ - 1); }
-
-    std::vector<Region> regions_;
+    RegionLocator locator_;  // every region kept (no area given), so indices are the values'
     std::vector<double> values_;
     const char* kind_;
-    BBox box_;
-    double cell_ = 1;
-    int nx_ = 1, ny_ = 1;
-    std::vector<std::vector<int>> cells_;
 };
 
 // A field of the values of other fields.

@@ -389,3 +389,28 @@ def test_faces_know_whether_they_are_bounded():
     assert not m.unbounded_face().is_bounded_face()
     e = m.edges()[0]
     assert {LeftFace(e).is_bounded_face(), RightFace(e).is_bounded_face()} == {True, False}
+
+
+def test_face_locator_finds_the_face_holding_a_point():
+    """FaceLocator(map).face_at(p): on a 10 x 10 grid of unit squares with a square hole cut
+    in one of them, every random point is in the face whose outline holds it (checked against
+    a plain scan of the faces), a point in the hole is in the hole's face, and a point
+    outside is in the unbounded face."""
+    import random
+    grid = Arrangement(GridPartition(StripesProperties(0, 1), StripesProperties(math.pi / 2, 1), CROP_ADD_BOUNDARY))
+    curves = grid(Region.rectangle(0, 0, 10, 10))
+    curves.append(Polyline([Point(3.3, 3.3), Point(3.6, 3.3), Point(3.6, 3.6), Point(3.3, 3.6)], True))
+    m = PlanarMap.induce(curves)
+    locator = FaceLocator(m)
+    rng = random.Random(1)
+    regions = [(f, ToRegion(f)) for f in m.faces()]
+    for _ in range(300):
+        p = Point(rng.uniform(0.01, 9.99), rng.uniform(0.01, 9.99))
+        found = locator.face_at(p)
+        assert found.is_bounded_face()
+        holding = [f for f, r in regions if r.contains(p)]
+        assert holding == [found]
+    hole = locator.face_at(Point(3.45, 3.45))
+    assert ToRegion(hole).area() == pytest.approx(0.09)
+    assert not locator.face_at(Point(-5, 5)).is_bounded_face()
+    assert locator.face_at(Point(-5, 5)) == m.unbounded_face()

@@ -111,11 +111,13 @@ private:
     int unbounded_ = -1;
 };
 
-// Point location in a frozen planar map: the face containing a point, by testing the
-// bounded faces whose box holds it (outer ring in, no hole ring in) through a uniform grid
-// of face boxes over `area`. A point outside every bounded face is in the unbounded face. A
-// point exactly on an edge may be given either side. The cost of a query depends on the
-// faces near the point, not on the size of the map.
+class RegionLocator;  // region.hpp
+
+// Point location in a frozen planar map: the face containing a point, its bounded faces
+// (those with area) located by a RegionLocator (region.hpp: a uniform grid of face boxes over
+// `area`). A point outside every bounded face is in the unbounded face. A point exactly on an
+// edge may be given either side. The cost of a query depends on the faces near the point,
+// not on the size of the map.
 class FaceLocator {
 public:
     // Faces whose box misses `area` are not indexed (default: the whole map's box); a query
@@ -123,18 +125,12 @@ public:
     explicit FaceLocator(MapPtr map, std::optional<BBox> area = std::nullopt);
     int face_at(const Point& p) const;
     const PlanarMap& map() const { return *map_; }
+    const MapPtr& shared_map() const { return map_; }
 
 private:
-    struct Candidate {
-        int face;
-        BBox box;
-        std::vector<std::vector<Point>> rings;  // outer ring, then holes
-    };
     MapPtr map_;
-    BBox area_;
-    int nx_ = 1, ny_ = 1;
-    std::vector<Candidate> faces_;
-    std::vector<std::vector<int>> cells_;  // indices in faces_, per grid cell
+    std::shared_ptr<const RegionLocator> locator_;  // over the bounded faces with area
+    std::vector<int> ids_;                          // face id of each of its regions
 };
 
 }  // namespace tex

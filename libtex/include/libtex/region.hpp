@@ -2,6 +2,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -54,5 +55,27 @@ Overlap classify_polygon(const std::vector<Point>& poly, const BBox& poly_box, c
 
 // True when the point lies inside the (closed) polygon ring.
 bool point_in_ring(const Point& p, const std::vector<Point>& ring);
+
+// Which of a set of regions holds a point: the regions whose box holds it are tested through a
+// uniform grid of boxes (about one region per cell) over `area`, in the order given, and the
+// first that contains the point (Region::contains: its border counts) answers. The cost of a
+// query depends on the regions near the point, not on how many there are. Used by the
+// face-wise fields (fields.hpp) and by the point location in planar maps (FaceLocator).
+class RegionLocator {
+public:
+    // Regions whose box misses `area` are not indexed (default: the union of their boxes);
+    // a point outside `area` is in none.
+    explicit RegionLocator(std::vector<Region> regions, std::optional<BBox> area = std::nullopt);
+    // The index of the first region holding p, or -1.
+    int find(const Point& p) const;
+    const BBox& area() const { return area_; }
+    const std::vector<Region>& regions() const { return regions_; }
+
+private:
+    std::vector<Region> regions_;
+    BBox area_;
+    int nx_ = 1, ny_ = 1;
+    std::vector<std::vector<int>> cells_;  // region indices per grid cell, ascending
+};
 
 }  // namespace tex
