@@ -285,6 +285,25 @@ TEST(SlopeHachures, StrokesNeverTouchAndAvoidRockAndNoData) {
     EXPECT_GT(closest, 0.0) << "two hachures touch";
 }
 
+TEST(SlopeHachures, StrokesOfNeighbouringBandsKeepTheContourGap) {
+    // The bands are thrown in parallel and the contour gap (0.12 mm, 1.2 m at 1:10000) is
+    // enforced afterwards, band after band: strokes of two bands never come nearer than it.
+    const Split s = split(hachure_drawing(), Family::Hachure);
+    const Raster& dem = synthetic().terrain.elevation;
+    const double interval = 20, gap = 0.12 * 10;
+    std::vector<long long> band;
+    for (const auto& r : s.elements) band.push_back((long long)std::floor(dem.sample(tex::disc::Centroid(r)) / interval));
+    double closest = INFINITY;
+    std::size_t pairs = 0;
+    near_pairs(s.elements, 3 * gap, [&](std::size_t i, std::size_t j) {
+        if (band[i] == band[j]) return;
+        ++pairs;
+        closest = std::min(closest, tex::disc::Distance(s.elements[i], s.elements[j]));
+    });
+    EXPECT_GT(pairs, 50u) << "few strokes of two bands near each other: the test would see little";
+    EXPECT_GE(closest, gap * (1 - 1e-9));
+}
+
 TEST(SlopeHachures, FollowTheFallLine) {
     const Split s = split(hachure_drawing(), Family::Hachure);
     // Each stroke's long axis (its two farthest points) against the fall line at its centre.

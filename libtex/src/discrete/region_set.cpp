@@ -129,7 +129,10 @@ void RegionSet::add(std::vector<Region> rs) {
         if (r.empty()) throw Error("RegionSet", "an empty region cannot join a set");
     Impl& m = *impl_;
     const std::size_t first = m.regions.size();
-    m.regions.reserve(first + rs.size());
+    // Geometric growth: a set filled by many bulk adds (a band of strokes at a time) would
+    // otherwise move all its members at every add.
+    if (m.regions.capacity() < first + rs.size())
+        m.regions.reserve(std::max(first + rs.size(), 2 * m.regions.capacity()));
     for (auto& r : rs) m.regions.push_back(std::move(r));
     // The views of the members already there point into the vector, which may have moved.
     for (std::size_t i = 0; i < first; ++i) m.views[i].solid = &m.regions[i];
