@@ -23,6 +23,8 @@ constexpr double kDartsPerStone = 3.0;
 // reach): large enough that few stones lie near a tile's border, small enough to give
 // every thread many tiles.
 constexpr double kTileInStones = 16.0;
+// At most this many tiles along a side of the area.
+constexpr double kMaxTilesPerSide = 256.0;
 // Sides of the stone polygon: angular enough to read as a stone, round at print size.
 constexpr int kStoneSides = 6;
 
@@ -59,12 +61,14 @@ std::vector<Hatch> draw_scree(const TerrainInput& in, const ParamValues& p) {
     // reaches, so their stones cannot meet and each tile only has to see its own stones and
     // those of the phases before. Each tile draws from a stream keyed by its place, and the
     // stones are joined in the order of the tiles: the same bytes at any thread count.
-    const double tile = kTileInStones * (size_max + gap_max);
     tex::BBox box;
     for (int r = 0; r < area->height; ++r)
         for (int c = 0; c < area->width; ++c)
             if (area->at(c, r) == 1) box.add(area->to_world(c, r)), box.add(area->to_world(c + 1, r + 1));
     if (box.empty()) return {};
+    // Larger tiles are always safe (only a smaller one could let two tiles of a phase meet):
+    // tiny stones get larger tiles than kTileInStones of them, not millions of tiles.
+    const double tile = std::max(kTileInStones * (size_max + gap_max), std::max(box.width(), box.height()) / kMaxTilesPerSide);
     const int nx = std::max(1, int(std::ceil(box.width() / tile))), ny = std::max(1, int(std::ceil(box.height() / tile)));
     // The pieces of each tile to pin in: the area's cells cut to the tile (squares or smaller
     // rectangles).
