@@ -19,6 +19,8 @@ import tempfile
 
 from osgeo import ogr
 
+ogr.UseExceptions()
+
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 DEM = ROOT.parent / "shared" / "data" / "montblanc" / "Chamonix.tif"
 LAYERS = {"scree": "hatch_stone", "slope-hachures": "hatch_hachure"}
@@ -32,7 +34,8 @@ def one_run(exe, style, threads, out):
     if r.returncode != 0:
         sys.exit(f"bench_terrain: {' '.join(cmd)} failed:\n{r.stderr}")
     wall, user, system = map(float, re.search(r"RH_TIME ([\d.]+) ([\d.]+) ([\d.]+)", r.stderr).groups())
-    count = ogr.Open(str(out)).GetLayerByName(LAYERS[style]).GetFeatureCount()
+    ds = ogr.Open(str(out))  # kept alive while its layer is read
+    count = ds.GetLayerByName(LAYERS[style]).GetFeatureCount()
     return wall, user + system, count
 
 
