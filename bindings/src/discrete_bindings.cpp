@@ -62,7 +62,7 @@ void bind_discrete(py::module_& m) {
         "on it see it grow)")
         .def(py::init<>())
         .def(py::init<const std::vector<Region>&>(), py::arg("regions"))
-        .def("add", &RegionSet::add, py::arg("region"))
+        .def("add", py::overload_cast<Region>(&RegionSet::add), py::arg("region"))
         .def("clear", &RegionSet::clear)
         .def("__len__", &RegionSet::size)
         .def("__getitem__", [](const RegionSet& s, std::size_t i) { return s[i]; })

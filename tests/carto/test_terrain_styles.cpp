@@ -224,6 +224,27 @@ TEST(Scree, StonesLieBelowTheRockAndOverlapNothing) {
     EXPECT_GT(checked, 0u) << "no stone near a rock hatch: the test would not see an overlap";
 }
 
+TEST(Scree, StonesKeepTheGapAcrossTheParallelTiles) {
+    // The scree is thrown tile by tile, in phases, tiles of a phase in parallel: stones of
+    // neighbouring tiles must keep the gap as stones of one tile do. gap_min (0.1 mm at
+    // 1:10000) is the smallest gap anywhere; the stones span several tiles (16 stones plus
+    // gaps, 152 m here).
+    const Split s = split(scree_drawing(), Family::Stone);
+    tex::BBox extent;
+    for (const auto& r : s.elements) extent.add(tex::disc::Centroid(r));
+    ASSERT_GT(extent.width(), 4 * 152.0) << "the stones should span several tiles";
+    const double gap_min = 0.10 * 10;
+    double closest = INFINITY;
+    std::size_t pairs = 0;
+    // Neighbours: boxes within three gaps (the test sees many pairs near the gap).
+    near_pairs(s.elements, 3 * gap_min, [&](std::size_t i, std::size_t j) {
+        ++pairs;
+        closest = std::min(closest, tex::disc::Distance(s.elements[i], s.elements[j]));
+    });
+    EXPECT_GT(pairs, 100u);
+    EXPECT_GE(closest, gap_min * (1 - 1e-9));
+}
+
 TEST(Scree, DenserAndLargerOnSteeperGround) {
     const Split s = split(scree_drawing(), Family::Stone);
     double n_gentle = 0, n_steep = 0;
@@ -262,6 +283,25 @@ TEST(SlopeHachures, StrokesNeverTouchAndAvoidRockAndNoData) {
         closest = std::min(closest, tex::disc::Distance(s.elements[i], s.elements[j]));
     });
     EXPECT_GT(closest, 0.0) << "two hachures touch";
+}
+
+TEST(SlopeHachures, StrokesOfNeighbouringBandsKeepTheContourGap) {
+    // The bands are thrown in parallel and the contour gap (0.12 mm, 1.2 m at 1:10000) is
+    // enforced afterwards, band after band: strokes of two bands never come nearer than it.
+    const Split s = split(hachure_drawing(), Family::Hachure);
+    const Raster& dem = synthetic().terrain.elevation;
+    const double interval = 20, gap = 0.12 * 10;
+    std::vector<long long> band;
+    for (const auto& r : s.elements) band.push_back((long long)std::floor(dem.sample(tex::disc::Centroid(r)) / interval));
+    double closest = INFINITY;
+    std::size_t pairs = 0;
+    near_pairs(s.elements, 3 * gap, [&](std::size_t i, std::size_t j) {
+        if (band[i] == band[j]) return;
+        ++pairs;
+        closest = std::min(closest, tex::disc::Distance(s.elements[i], s.elements[j]));
+    });
+    EXPECT_GT(pairs, 50u) << "few strokes of two bands near each other: the test would see little";
+    EXPECT_GE(closest, gap * (1 - 1e-9));
 }
 
 TEST(SlopeHachures, FollowTheFallLine) {

@@ -11,6 +11,7 @@
 
 #include "helpers.hpp"
 #include "libtex/discrete.hpp"
+#include "libtex/random.hpp"
 
 #ifdef RH_DISCRETE_FIGURES
 #include "gallery.hpp"
@@ -128,6 +129,67 @@ TEST(DiscreteOperators, RandomPinningStaysInTheRegionAndFollowsTheDensity) {
         ASSERT_TRUE(ring.contains(q));
         ASSERT_LT(q.x, 50);
     }
+}
+
+TEST(DiscreteOperators, RandomPinningInPiecesStaysInThemAndWeighsThemByArea) {
+    // Two far apart squares, the second with four times the area of the first, and a density
+    // that empties the right half of the big one.
+    const std::vector<Region> pieces = {square(0, 0, 10), square(1000, 1000, 20)};
+    const Pinning p = RandomPinning(
+        pieces, tex::Field([](const Point& q) { return q.x > 1010 ? 0.0 : 1.0; }));
+    int small = 0, big = 0;
+    for (int i = 0; i < 4000; ++i) {
+        const Point q = p();
+        const bool in_small = pieces[0].contains(q), in_big = pieces[1].contains(q);
+        ASSERT_TRUE(in_small || in_big) << q.x << "," << q.y;
+        ASSERT_LE(q.x, 1010);
+        (in_small ? small : big)++;
+    }
+    // Half of the big square is left, twice the small one's area: about 2 points in it for 1.
+    EXPECT_NEAR(double(big) / small, 2.0, 0.25);
+    // Same streams, same points.
+    auto draw = [&] {
+        tex::StreamScope fresh(0);
+        const Pinning q = RandomPinning(pieces, tex::Field(1.0));
+        return std::vector<Point>{q(), q(), q()};
+    };
+    EXPECT_EQ(draw(), draw());
+}
+
+TEST(DiscreteOperators, RegionSetIndexFindsWhatAScanFinds) {
+    // Members of very different sizes (the grid keeps the common ones, the tree the long
+    // ones), added one by one, in bulk and past the extent of the last rebuild: every query
+    // must find exactly the members whose boxes meet its box.
+    tex::KeyedRng rng(42);
+    std::vector<Region> all;
+    RegionSet set;
+    auto some = [&](int n, double spread, double size) {
+        std::vector<Region> v;
+        for (int i = 0; i < n; ++i) {
+            const double x = rng.uniform(-spread, spread), y = rng.uniform(-spread, spread);
+            const double w = size * rng.uniform(0.2, 1.0), h = size * rng.uniform(0.2, 1.0);
+            v.push_back(Region::rectangle(x, y, x + w, y + h));
+        }
+        return v;
+    };
+    for (const Region& r : some(50, 100, 2)) set.add(r), all.push_back(r);  // below the grid
+    std::vector<Region> bulk = some(500, 100, 2);
+    for (const Region& r : some(20, 100, 150)) bulk.push_back(r);  // long members
+    all.insert(all.end(), bulk.begin(), bulk.end());
+    set.add(bulk);
+    for (const Region& r : some(700, 400, 3)) set.add(r), all.push_back(r);  // grows past the extent
+    ASSERT_EQ(set.size(), all.size());
+    for (int q = 0; q < 300; ++q) {
+        const double x = rng.uniform(-450, 450), y = rng.uniform(-450, 450), s = rng.uniform(0, 30);
+        const BBox box{x, y, x + s, y + s};
+        std::vector<std::size_t> scan;
+        for (std::size_t i = 0; i < all.size(); ++i)
+            if (all[i].bbox().intersects(box)) scan.push_back(i);
+        ASSERT_EQ(set.near(box), scan) << "query " << q;
+        EXPECT_EQ(set.any_near(box, [](std::size_t) { return true; }), !scan.empty());
+    }
+    // A box over everything finds everything.
+    EXPECT_EQ(set.near(BBox{-1e6, -1e6, 1e6, 1e6}).size(), all.size());
 }
 
 TEST(DiscreteOperators, RegularPinningCountsAndPositions) {
@@ -383,6 +445,10 @@ TEST(DiscretePrograms, StreamLinesDoNotCrossEachOther) {
 
 TEST(DiscreteErrors, BadInputNamesTheOperator) {
     EXPECT_TEX_ERROR(RandomPinning(Region()), "RandomPinning", "empty");
+    EXPECT_TEX_ERROR(RandomPinning(std::vector<Region>{}, tex::Field(1.0)), "RandomPinning", "no piece");
+    EXPECT_TEX_ERROR(RandomPinning(std::vector<Region>{square(0, 0, 1), Region()}, tex::Field(1.0)),
+                     "RandomPinning", "empty");
+    EXPECT_TEX_ERROR(RegionSet().add(std::vector<Region>{square(0, 0, 1), Region()}), "RegionSet", "empty");
     EXPECT_TEX_ERROR(RegularPinning(Image(10, 10), 0, 3), "RegularPinning", "nx, ny");
     EXPECT_TEX_ERROR(RegularPinning1D(Polyline{{{0, 0}, {1, 0}}, false}, -1), "RegularPinning1D",
                      "density");

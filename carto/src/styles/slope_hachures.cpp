@@ -5,13 +5,16 @@
 // darts being stream lines (section 3.3) along the fall-line field: a pin climbs to the
 // upper contour of its band, a stream line follows the fall line down to the lower one and
 // is thickened (tapered downhill); the check keeps it clear of the strokes of its band by
-// the local spacing, of the neighbouring bands by the contour gap, and of the rock hatches.
+// the local spacing and of the rock hatches. The bands run in parallel (a band's program
+// draws nothing at random); then, from the highest band down, a stroke nearer than the
+// contour gap to the strokes kept above it is dropped.
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
 
 #include "libtex/error.hpp"
+#include "libtex/parallel.hpp"
 #include "libtex/random.hpp"
 #include "terrain.hpp"
 
@@ -75,23 +78,31 @@ std::vector<Hatch> draw_hachures(const TerrainInput& in, const ParamValues& p) {
     const int nx = std::max(1, int(domain.bbox().width() / spacing_min));
     const int ny = std::max(1, int(domain.bbox().height() / spacing_min));
     const RealGen jitter = RandomR(-0.5 * spacing_min, 0.5 * spacing_min);
+    // Only the pins on hachured ground are shuffled (the order among them is the same as when
+    // all were: each keeps its key).
     std::vector<std::pair<std::uint64_t, Point>> shuffled;
     std::uint64_t k = 0;
     for (const Point& q : RegularPinning(domain, nx, ny)) {
         const Point j = q + Point{jitter(), jitter()};
-        shuffled.push_back({tex::hash_combine(in.seed, k++), j});
+        const std::uint64_t key = tex::hash_combine(in.seed, k++);
+        if (in_mask(*ground, j)) shuffled.push_back({key, j});
     }
     std::sort(shuffled.begin(), shuffled.end(),
               [](const auto& a, const auto& b) { return a.first < b.first; });
     std::map<long long, std::vector<Point>, std::greater<>> bands;  // highest band first
-    for (const auto& [key, q] : shuffled)
-        if (in_mask(*ground, q)) bands[band_of(q)].push_back(q);
+    for (const auto& [key, q] : shuffled) bands[band_of(q)].push_back(q);
 
     const RegionSet rock = hatch_obstacles(in.rock, in.scale, clearance, domain.bbox());
-    RegionSet drawn;  // the strokes of the bands done
-    std::vector<Hatch> out;
-    for (const auto& [band, pins] : bands) {
-        const long long b = band;
+    // The bands are thrown in parallel, each on its own: its pins are fixed above and its
+    // program draws nothing at random, so a band's strokes do not depend on the thread that
+    // runs it. Then, band after band from the highest, a stroke that comes within the contour
+    // gap of the strokes kept in the bands above is dropped (the white step along each
+    // contour; few strokes, where bands meet).
+    const std::vector<std::pair<long long, std::vector<Point>>> band_list(bands.begin(), bands.end());
+    std::vector<std::vector<Region>> thrown(band_list.size());
+    tex::parallel_for(band_list.size(), [&](std::size_t i) {
+        const long long b = band_list[i].first;
+        const std::vector<Point>& pins = band_list[i].second;
         const PointCheck in_band = [ground, band_of, b](const Point& q) {
             return in_mask(*ground, q) && band_of(q) == b;
         };
@@ -129,12 +140,21 @@ std::vector<Hatch> draw_hachures(const TerrainInput& in, const ParamValues& p) {
         const Check spaced = [strokes, spacing_at](const Region& r) {
             return !MinimalDistance(strokes, r, spacing_at(Centroid(r)));
         };
-        const Check check = And(inside, And(spaced, And(Not(MinimalDistance(drawn, gap)), Not(Overlap(rock)))));
+        const Check check = And(inside, And(spaced, Not(Overlap(rock))));
         greedy_distribution(strokes, CountUpTo((long long)pins.size()), Sequence(pins), shaping, check);
-        for (const Region& r : strokes.regions()) {
-            out.push_back(ring_hatch(r, Family::Hachure));
-            drawn.add(r);
-        }
+        thrown[i] = strokes.regions();
+    });
+    RegionSet drawn;  // the strokes kept in the bands done
+    std::vector<Hatch> out;
+    for (const std::vector<Region>& band : thrown) {
+        // The strokes of one band are tested against the bands above only: in parallel.
+        std::vector<char> clear(band.size());
+        tex::parallel_for(band.size(), [&](std::size_t k) { clear[k] = !MinimalDistance(drawn, band[k], gap); });
+        std::vector<Region> kept;
+        for (std::size_t k = 0; k < band.size(); ++k)
+            if (clear[k]) kept.push_back(band[k]);
+        for (const Region& r : kept) out.push_back(ring_hatch(r, Family::Hachure));
+        drawn.add(std::move(kept));
     }
     return out;
 }

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "carto/error.hpp"
+#include "libtex/parallel.hpp"
 
 namespace carto::terrain {
 
@@ -87,27 +88,37 @@ tex::disc::FlowField fall_line(std::shared_ptr<const Raster> elevation, double s
 
 tex::disc::RegionSet hatch_obstacles(const std::vector<Hatch>& rock, double scale, double clearance,
                                      const tex::BBox& near) {
-    tex::disc::RegionSet set;
-    for (const auto& h : rock) {
+    // Each hatch's pieces are made on their own (in parallel, stored by index) and joined in
+    // the order of the hatches, so the set is the same at any thread count; the index is
+    // then bulk-loaded in one go.
+    std::vector<std::vector<tex::Region>> pieces(rock.size());
+    tex::parallel_for(rock.size(), [&](std::size_t k) {
+        const Hatch& h = rock[k];
         // Segment by segment: a stroke that folds back on itself has no area as one ring.
         const double w = family_width_mm(h.family) * scale / 1000.0 + 2 * clearance;
         tex::BBox b;
         for (const auto& q : h.points) b.add(q);
-        if (!tex::BBox{b.xmin - w, b.ymin - w, b.xmax + w, b.ymax + w}.intersects(near)) continue;
+        if (!tex::BBox{b.xmin - w, b.ymin - w, b.xmax + w, b.ymax + w}.intersects(near)) return;
         const std::size_t n = h.points.size(), segs = h.closed ? n : n - 1;
         for (std::size_t i = 0; n > 1 && i < segs; ++i) {
             const Point a = h.points[i], z = h.points[(i + 1) % n];
             // A speck of a hatch still inks a dot (round caps): a disc, whose polygon
             // circumscribes the circle of the ink.
             if (tex::distance(a, z) < 1e-6 * w)
-                set.add(tex::disc::Translation(tex::disc::BuiltinCircle(w / 2 / std::cos(M_PI / kDiscSides), kDiscSides), a));
+                pieces[k].push_back(tex::disc::Translation(
+                    tex::disc::BuiltinCircle(w / 2 / std::cos(M_PI / kDiscSides), kDiscSides), a));
             else {
                 // Square caps half the width long cover the round caps of the drawn stroke.
                 const Point u = (z - a) / tex::distance(a, z) * (w / 2);
-                set.add(tex::disc::ApplyThickness({{a - u, z + u}, false}, [w](double) { return w; }));
+                pieces[k].push_back(tex::disc::ApplyThickness({{a - u, z + u}, false}, [w](double) { return w; }));
             }
         }
-    }
+    });
+    std::vector<tex::Region> all;
+    for (auto& v : pieces)
+        for (auto& r : v) all.push_back(std::move(r));
+    tex::disc::RegionSet set;
+    set.add(std::move(all));
     return set;
 }
 

@@ -1,8 +1,10 @@
 // The terrain styles drawn around the rock faces (issue 13, "cartography built from these
 // operators"): scree and slope hachures, each a program of tex::disc operators (seed 004),
 // and the grid helpers they share. Everything here reads the DEM's own grid (north-up, in
-// the working CRS) and is sequential: the programs are dart throwing, where each dart
-// depends on the darts kept before it, so the output does not depend on the thread count.
+// the working CRS). The programs are dart throwing, where each dart depends on the darts
+// kept before it: the slope hachures run band after band; the scree runs tiles that cannot
+// reach each other in parallel, each from a stream of its own, joined in a fixed order. The
+// output does not depend on the thread count.
 #pragma once
 
 #include <memory>

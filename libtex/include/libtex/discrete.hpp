@@ -46,7 +46,8 @@ struct Polyline {
     bool closed = false;
 };
 
-// A set of regions with a spatial index over their bounding boxes (an R-tree). Copies share
+// A set of regions with a spatial index over their bounding boxes (a hash grid for
+// the members of common size, an R-tree for the larger ones). Copies share
 // the same set (a handle, as in the seed's programs where the predicates built on a set see
 // it grow).
 class RegionSet {
@@ -55,6 +56,9 @@ public:
     explicit RegionSet(const std::vector<Region>& regions);
 
     void add(Region r);  // throws tex::Error on an empty region
+    // Many members at once, in order (into an empty set the index is bulk-loaded); throws
+    // tex::Error on an empty region, before adding any.
+    void add(std::vector<Region> rs);
     void clear();
     std::size_t size() const;
     bool empty() const { return size() == 0; }
@@ -62,6 +66,9 @@ public:
     const std::vector<Region>& regions() const;
     // Indices of the members whose bounding box meets `box` (ascending).
     std::vector<std::size_t> near(const BBox& box) const;
+    // Whether hit(i) holds for a member i whose bounding box meets `box`; stops at the first
+    // such member (members are visited in no particular order).
+    bool any_near(const BBox& box, const std::function<bool(std::size_t)>& hit) const;
     // The segments of member i (internal: what Overlap and MinimalDistance test).
     const detail::ElementView& view(std::size_t i) const;
 
@@ -116,6 +123,12 @@ Pinning Sequence(std::vector<Point> points);
 // empty region, or when a point cannot be found after many tries (the density is ~0).
 Pinning RandomPinning(const Region& region);
 Pinning RandomPinning(const Region& region, Field density);
+// The same in the union of pieces that do not overlap (a point of a shared part would be
+// drawn twice as often): a piece is chosen with probability proportional to its area, a
+// point in it by rejection in its box. The cost per point does not grow with the empty
+// space between scattered pieces, as it does with one region around them all. Throws
+// tex::Error on no piece or an empty one.
+Pinning RandomPinning(const std::vector<Region>& pieces, Field density);
 // The centres of an nx x ny grid over the region's bounding box, those inside the region.
 std::vector<Point> RegularPinning(const Region& region, int nx, int ny);
 // Points along the curve every 1/density units of length, starting at its first point.

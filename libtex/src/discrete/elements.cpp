@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "../segment_index.hpp"
 #include "element_view.hpp"
@@ -43,14 +44,6 @@ double segment_segment(const std::pair<Point, Point>& s, const std::pair<Point, 
                              point_segment(t.second, s.first, s.second)));
 }
 
-// Segments of `v` whose box meets `box`.
-std::vector<const std::pair<Point, Point>*> segments_near(const ElementView& v, const BBox& box) {
-    std::vector<const std::pair<Point, Point>*> out;
-    for (const auto& s : v.segs)
-        if (seg_box(s).intersects(box)) out.push_back(&s);
-    return out;
-}
-
 bool contains(const ElementView& v, const Point& p) {
     return v.solid && v.solid->contains(p);
 }
@@ -84,18 +77,21 @@ ElementView view_of(const Region& r) {
     return v;
 }
 
+// The two tests below visit the segments of `a` whose box meets the other element's box,
+// and for each the segments of `b` that meet `a`'s box, in the order of the segments, without
+// collecting them first: the elements of a dart throwing have a handful of segments and
+// millions of tests run, so a list per test cost more than the tests.
 bool overlap(const ElementView& a, const ElementView& b) {
     if (!a.box.intersects(b.box)) return false;
     // Boundary contacts, decided exactly; only the segments inside the other's box can meet.
-    const auto sa = segments_near(a, b.box);
-    if (!sa.empty()) {
-        const auto sb = segments_near(b, a.box);
-        for (const auto* s : sa) {
-            const BBox bs = seg_box(*s);
-            for (const auto* t : sb)
-                if (bs.intersects(seg_box(*t)) &&
-                    tex::detail::segments_touch(s->first, s->second, t->first, t->second))
-                    return true;
+    for (const auto& s : a.segs) {
+        const BBox bs = seg_box(s);
+        if (!bs.intersects(b.box)) continue;
+        for (const auto& t : b.segs) {
+            const BBox bt = seg_box(t);
+            if (bt.intersects(a.box) && bs.intersects(bt) &&
+                tex::detail::segments_touch(s.first, s.second, t.first, t.second))
+                return true;
         }
     }
     // No contact: one lies wholly inside the other or they are apart.
@@ -107,19 +103,20 @@ double distance(const ElementView& a, const ElementView& b, double stop) {
     double best = std::numeric_limits<double>::infinity();
     // With a stop distance only the segments within it of the other element can matter.
     const double reach = stop > 0 ? stop : best;
-    const auto sa = segments_near(a, b.box.expanded(reach));
-    const auto sb = segments_near(b, a.box.expanded(reach));
-    for (const auto* s : sa) {
-        const BBox bs = seg_box(*s);
-        for (const auto* t : sb) {
-            const BBox bt = seg_box(*t);
+    const BBox near_a = b.box.expanded(reach), near_b = a.box.expanded(reach);
+    for (const auto& s : a.segs) {
+        const BBox bs = seg_box(s);
+        if (!bs.intersects(near_a)) continue;
+        for (const auto& t : b.segs) {
+            const BBox bt = seg_box(t);
+            if (!bt.intersects(near_b)) continue;
             // The gap between the boxes bounds the distance from below.
             const double gx = std::max({0.0, bt.xmin - bs.xmax, bs.xmin - bt.xmax});
             const double gy = std::max({0.0, bt.ymin - bs.ymax, bs.ymin - bt.ymax});
             // Squared: this test runs for every pair of nearby segments, hypot per pair cost
             // a fifth of a slope-hachure run.
             if (gx * gx + gy * gy >= best * best) continue;
-            best = std::min(best, segment_segment(*s, *t));
+            best = std::min(best, segment_segment(s, t));
             if (best < stop) return best;
         }
     }
@@ -164,20 +161,56 @@ Pinning RandomPinning(const Region& region) {
     return RandomPinning(region, Field(1.0));
 }
 
+namespace {
+// One try of the rejection sampling: a point of r's box, kept when it lies in r and passes
+// the density (a uniform draw below it).
+std::optional<Point> try_point(KeyedRng& rng, const Region& r, const Field& density) {
+    const BBox& b = r.bbox();
+    const Point p{rng.uniform(b.xmin, b.xmax), rng.uniform(b.ymin, b.ymax)};
+    const double keep = rng.uniform();
+    if (!r.contains(p)) return std::nullopt;
+    const double d = density(p);
+    if (std::isfinite(d) && keep < std::clamp(d, 0.0, 1.0)) return p;
+    return std::nullopt;
+}
+
+Error no_point_found(const char* what) {
+    return Error("RandomPinning", "no point found in " + std::to_string(kMaxTries) + " tries (" +
+                                      what + " nearly empty)");
+}
+}  // namespace
+
 Pinning RandomPinning(const Region& region, Field density) {
     check_region(region, "RandomPinning");
     auto rng = new_rng();
     return [region, density, rng]() -> Point {
-        const BBox& b = region.bbox();
+        for (int i = 0; i < kMaxTries; ++i)
+            if (const auto p = try_point(*rng, region, density)) return *p;
+        throw no_point_found("the region or its density is");
+    };
+}
+
+Pinning RandomPinning(const std::vector<Region>& pieces, Field density) {
+    if (pieces.empty()) throw Error("RandomPinning", "no piece to pin in");
+    // Cumulative areas: a piece is drawn with probability proportional to its area, then a
+    // point by rejection in its box, so a program pinning in scattered patches (the cells of
+    // a mask) does not throw most of its points into the space between them.
+    auto cumulative = std::make_shared<std::vector<double>>();
+    for (const Region& r : pieces) {
+        check_region(r, "RandomPinning");
+        cumulative->push_back((cumulative->empty() ? 0.0 : cumulative->back()) + r.area());
+    }
+    auto shared = std::make_shared<const std::vector<Region>>(pieces);
+    auto rng = new_rng();
+    return [shared, cumulative, density, rng]() -> Point {
+        const std::vector<double>& c = *cumulative;
         for (int i = 0; i < kMaxTries; ++i) {
-            const Point p{rng->uniform(b.xmin, b.xmax), rng->uniform(b.ymin, b.ymax)};
-            const double keep = rng->uniform();
-            if (!region.contains(p)) continue;
-            const double d = density(p);
-            if (std::isfinite(d) && keep < std::clamp(d, 0.0, 1.0)) return p;
+            const double at = rng->uniform(0.0, c.back());
+            const std::size_t k = std::min<std::size_t>(
+                std::upper_bound(c.begin(), c.end(), at) - c.begin(), c.size() - 1);
+            if (const auto p = try_point(*rng, (*shared)[k], density)) return *p;
         }
-        throw Error("RandomPinning", "no point found in " + std::to_string(kMaxTries) +
-                                         " tries (the region or its density is nearly empty)");
+        throw no_point_found("the pieces or their density are");
     };
 }
 
