@@ -15,6 +15,7 @@
 
 #include "carto/error.hpp"
 #include "libtex/region.hpp"
+#include "libtex/svg.hpp"
 #include "gdal_scope.hpp"
 #include "gpkg_file.hpp"
 #include "gpkg_rtree.hpp"
@@ -25,15 +26,7 @@ namespace fs = std::filesystem;
 namespace carto {
 namespace {
 
-void num(std::string& s, double v) {
-    char buf[64];
-    if (std::abs(v) < 5e-4 || !std::isfinite(v)) v = 0;
-    auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, 3);
-    std::size_t n = std::size_t(r.ptr - buf);
-    while (n > 0 && buf[n - 1] == '0') --n;
-    if (n > 0 && buf[n - 1] == '.') --n;
-    s.append(buf, n);
-}
+void num(std::string& s, double v) { tex::append_svg_number(s, v); }
 
 std::string xml_escape(const std::string& in) {
     std::string out;
