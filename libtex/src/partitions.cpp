@@ -90,6 +90,7 @@ Curves realize(const Complex& cx, const Region& r, Border b) {
                           ? classify_polygon(cx.cells[i].ring, cx.cells[i].box, r) == Overlap::Inside
                           : polygon_meets_region(cx.cells[i].ring, cx.cells[i].box, r);
         }
+        out.curves.reserve(cx.edges.size());
         for (const auto& e : cx.edges) {
             const bool l = e.left >= 0 && kept[e.left];
             const bool rr = e.right >= 0 && kept[e.right];
@@ -266,6 +267,8 @@ Complex grid_complex(const Stripes& s1, const Stripes& s2, const Region& r) {
     }
     // Cells (i, j) for i in [i0, i1), j in [j0, j1), skipping those far from the region.
     std::vector<int> cell_id(std::size_t((ni - 1) * (nj - 1)), -1);
+    cx.cells.reserve(cell_id.size());
+    cx.edges.reserve(std::size_t(ni * (nj - 1) + nj * (ni - 1)));
     auto cid = [&](long long i, long long j) -> int {
         if (i < i0 || i >= i1 || j < j0 || j >= j1) return -1;
         return cell_id[std::size_t((i - i0) * (nj - 1) + (j - j0))];

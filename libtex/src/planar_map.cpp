@@ -572,6 +572,7 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way) {
         auto& src = chain_sources[k];
         g.for_data(h0, [&](std::uint32_t d) { src.push_back({d >> 1, ((d & 1u) != 0) == h0_l2r}); });
         std::sort(src.begin(), src.end(), by_curve);
+        ch.points.reserve(ch.hs.size() + 1);
         for (int h : ch.hs) ch.points.push_back(g.vpt[g.he[h].source]);
         ch.points.push_back(g.vpt[g.he[ch.hs.back()].target]);
         bool flip = !src.front().forward;
@@ -646,6 +647,7 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way) {
     // 6. Faces: boundary cycles as sides of edges, ordered by their smallest side.
     auto cycle_of = [&](int start) {
         std::vector<Side> cycle;
+        cycle.reserve(8);  // most faces have a few sides: one allocation, not four
         int best = INT_MAX;
         std::size_t best_at = 0;
         int cur = start;
