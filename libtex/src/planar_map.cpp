@@ -31,6 +31,7 @@
 #include <functional>
 #include <numeric>
 #include <optional>
+#include <tuple>
 #include <unordered_map>
 
 #include "libtex/random.hpp"
@@ -667,8 +668,12 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way) {
     };
     const std::size_t nf = g.faces.size();
     std::vector<std::pair<int, int>> fs(nf);  // (key, raw face)
-    for (std::size_t f = 0; f < nf; ++f)
-        fs[f] = {g.faces[f].unbounded ? -1 : cycle_of(g.faces[f].outer).first, int(f)};
+    std::vector<std::vector<Side>> outer_cycle(nf);  // kept for the face records (step 8)
+    for (std::size_t f = 0; f < nf; ++f) {
+        int key = -1;
+        if (!g.faces[f].unbounded) std::tie(key, outer_cycle[f]) = cycle_of(g.faces[f].outer);
+        fs[f] = {key, int(f)};
+    }
     std::sort(fs.begin(), fs.end());
     std::vector<int> fid(nf);
     for (std::size_t i = 0; i < nf; ++i) fid[fs[i].second] = int(i);
@@ -732,7 +737,7 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way) {
         rec.unbounded = rf.unbounded;
         if (rec.unbounded) pm.unbounded_ = f;
         rec.cycles.reserve(rf.inner.size() + (rf.unbounded ? 0 : 1));
-        if (!rf.unbounded) rec.cycles.push_back(cycle_of(rf.outer).second);
+        if (!rf.unbounded) rec.cycles.push_back(std::move(outer_cycle[std::size_t(fs[i].second)]));
         std::vector<std::pair<int, std::vector<Side>>> holes;
         for (int h : rf.inner) holes.push_back(cycle_of(h));
         std::sort(holes.begin(), holes.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
