@@ -403,19 +403,19 @@ void append_svg_number(std::string& s, double v) {
     if (std::abs(v) < 5e-4 || !std::isfinite(v)) v = 0;
     char buf[400];  // DBL_MAX has 309 digits before the point
     char* end = nullptr;
-    // |v| = mant x 2^(e - 53) with a 53-bit integer mant: v x 1000 is mant x 1000 (below
-    // 2^63) shifted right by 53 - e bits, so the thousandths are an integer division whose
-    // remainder decides the rounding exactly (half to even, as std::to_chars does). Out of
-    // that range (|v| >= 2^52), std::to_chars itself.
-    int e = 0;
-    const double m = std::frexp(std::abs(v), &e);
-    const int shift = 53 - e;
-    if (v != 0 && shift >= 2 && shift <= 100) {
-        const auto mant = static_cast<std::uint64_t>(std::ldexp(m, 53));
-        const unsigned __int128 scaled = static_cast<unsigned __int128>(mant) * 1000u;
-        const unsigned __int128 one = 1;
-        const unsigned __int128 rest = scaled & ((one << shift) - 1), half = one << (shift - 1);
-        std::uint64_t q = static_cast<std::uint64_t>(scaled >> shift);
+    // |v| = mant x 2^(exp - 1075) with the 53-bit integer mant of its bits: v x 1000 is
+    // mant x 1000 (below 2^63) shifted right by 1075 - exp bits, so the thousandths are an
+    // integer division whose remainder decides the rounding exactly (half to even, as
+    // std::to_chars does). Out of that range (|v| >= 2^52), std::to_chars itself.
+    std::uint64_t bits = 0;
+    std::memcpy(&bits, &v, sizeof bits);
+    const int exp = int((bits >> 52) & 0x7ff);
+    const int shift = 1075 - exp;
+    if (v != 0 && shift >= 1 && shift <= 63) {
+        const std::uint64_t mant = (bits & ((std::uint64_t(1) << 52) - 1)) | (std::uint64_t(1) << 52);
+        const std::uint64_t scaled = mant * 1000u;
+        const std::uint64_t rest = scaled & ((std::uint64_t(1) << shift) - 1), half = std::uint64_t(1) << (shift - 1);
+        std::uint64_t q = scaled >> shift;
         if (rest > half || (rest == half && (q & 1u))) ++q;
         char* p = buf;
         if (v < 0) *p++ = '-';
