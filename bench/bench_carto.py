@@ -5,12 +5,14 @@ wall time, peak memory (GNU time) and hatches per second, and writes a Markdown 
 Then times `rockhatch partition` (the partition from the DEM alone) on the sample and the
 real DEM, with the precision and recall of its lines against the sample's true lines.
 
-    bench/bench_carto.py BUILD_DIR [--runs N] [--markdown FILE] [--only partition|styles] [--baseline EXE]
+    bench/bench_carto.py BUILD_DIR [--runs N] [--markdown FILE] [--only partition|styles]
+                         [--baseline EXE --baseline-label TEXT]...
 
 With --only, only that section of the Markdown file is rewritten. The styles section times
 the built-in styles against their Python scripts (styles/*.py) and the whole runs the
-style rewrite was budgeted on; --baseline adds the times of another rockhatch executable
-(the version before a change) to the latter.
+style rewrite was budgeted on (`--style bidirectional`, and the default `print`); each
+--baseline adds a column of another rockhatch executable's times (a version before a
+change; `-` where it does not know the style).
 """
 import argparse
 import pathlib
@@ -50,28 +52,46 @@ PARTITION_MARK = "<!-- partition: written by bench/bench_carto.py -->"
 STYLES_MARK = "<!-- styles: written by bench/bench_carto.py -->"
 
 
-def styles_section(build_dir, runs, tmp, baseline=None, baseline_label=None):
+def knows_style(exe, style):
+    """Whether exe lists the style (a baseline may not know a newer one)."""
+    r = subprocess.run([str(exe), "--list-styles"], capture_output=True, text=True)
+    return r.returncode == 0 and re.search(rf"^\s*{re.escape(style)}\b", r.stdout, re.M) is not None
+
+
+# The style the speed budget of issue 11 was set on (the default until `print`), then the
+# default style.
+BUDGET_STYLES = ["bidirectional", "print"]
+
+
+def styles_section(build_dir, runs, tmp, baselines=()):
     """Markdown of the style programs' costs: the budgeted whole runs (Chamonix.tif with
-    --partition auto, the sample), then each built-in style against its Python script."""
+    --partition auto, the sample) for the budget's style and the default one, beside each
+    baseline executable (label, path), then each built-in style against its Python script."""
     exe = build_dir / "carto" / "rockhatch"
     env = dict(__import__("os").environ, PYTHONPATH=str(build_dir / "python"))
+    load = pathlib.Path("/proc/loadavg").read_text().split()[:3] if pathlib.Path("/proc/loadavg").exists() else []
     lines = [STYLES_MARK, "", "### Style programs", "",
-             f"Whole command runs, bidirectional style, 1:10000, 2 threads, median of {runs} runs"
-             + (f"; `before`: {baseline_label or baseline}" if baseline else "") + ".", "",
-             "| case | output | wall time (median) | " + ("before | " if baseline else "") + "hatches |",
-             "|---|---|---:|" + ("---:|" if baseline else "") + "---:|"]
+             f"Whole command runs, `--style` as given, 1:10000, 2 threads, median of {runs} runs"
+             + "".join(f"; `{label}`: {path}" for label, path in baselines)
+             + (f"; load average {' / '.join(load)} when the section started" if load else "") + ".", "",
+             "| case | style | output | wall time (median) | " + "".join(f"{label} | " for label, _ in baselines)
+             + "hatches |",
+             "|---|---|---|---:|" + "---:|" * len(baselines) + "---:|"]
     cases = [("sample (20 faces)", ["--dem", SAMPLE / "dem.tif", "--partition", SAMPLE / "partition.gpkg"])]
     if SHARED_DEM.exists():
         cases.append(("Chamonix.tif, --partition auto", ["--dem", SHARED_DEM, "--partition", "auto"]))
     else:
         print(f"bench_carto: {SHARED_DEM} absent, real-DEM style rows skipped")
-    for label, inputs in cases:
-        for ext in (".gpkg", ".svg"):
-            cmd = ["-q", "--overwrite", "--threads", "2", *inputs, "-o", tmp / f"style{ext}"]
-            wall, _, hatches = median_run([exe, *cmd], runs)
-            before = f" {median_run([baseline, *cmd], runs)[0]:.2f} s |" if baseline else ""
-            print(f"styles {label:45s} {ext} {wall:6.2f} s{before} {hatches} hatches", flush=True)
-            lines.append(f"| {label} | {ext[1:]} | {wall:.2f} s |{before} {hatches} |")
+    for style in BUDGET_STYLES:
+        for label, inputs in cases:
+            for ext in (".gpkg", ".svg"):
+                cmd = ["-q", "--overwrite", "--threads", "2", "--style", style, *inputs, "-o", tmp / f"style{ext}"]
+                wall, _, hatches = median_run([exe, *cmd], runs)
+                before = ""
+                for _, path in baselines:
+                    before += f" {median_run([path, *cmd], runs)[0]:.2f} s |" if knows_style(path, style) else " - |"
+                print(f"styles {label:35s} {style:14s} {ext} {wall:6.2f} s{before} {hatches} hatches", flush=True)
+                lines.append(f"| {label} | {style} | {ext[1:]} | {wall:.2f} s |{before} {hatches} |")
     lines += ["", f"Each built-in style (C++) against its script in styles/ (Python, same bytes), on the sample, "
               f"GeoPackage, 2 threads, median of {runs} runs (the script's time includes starting Python):", "",
               "| style | C++ built-in | Python script | ratio |", "|---|---:|---:|---:|"]
@@ -157,16 +177,19 @@ def main():
     ap.add_argument("--markdown", type=pathlib.Path)
     ap.add_argument("--only", choices=["partition", "styles"],
                     help="run only this section (the rest of the report is kept)")
-    ap.add_argument("--baseline", type=pathlib.Path, help="another rockhatch executable to compare in the styles section")
-    ap.add_argument("--baseline-label", help="what the baseline executable is (for the report)")
+    ap.add_argument("--baseline", type=pathlib.Path, action="append", default=[],
+                    help="another rockhatch executable to compare in the styles section (repeatable)")
+    ap.add_argument("--baseline-label", action="append", default=[],
+                    help="what each baseline executable is, in the order of --baseline (column titles)")
     args = ap.parse_args()
+    labels = args.baseline_label + [f"baseline {k + 1}" for k in range(len(args.baseline_label), len(args.baseline))]
+    baselines = list(zip(labels, args.baseline))
     if args.only:
         with tempfile.TemporaryDirectory() as tmp:
             if args.only == "partition":
                 mark, section = PARTITION_MARK, partition_section(args.build_dir, max(args.runs, 5), pathlib.Path(tmp))
             else:
-                mark, section = STYLES_MARK, styles_section(args.build_dir, args.runs, pathlib.Path(tmp), args.baseline,
-                                                             args.baseline_label)
+                mark, section = STYLES_MARK, styles_section(args.build_dir, args.runs, pathlib.Path(tmp), baselines)
         if args.markdown:
             rewrite_section(args.markdown, mark, section)
             print(f"report written to {args.markdown}")
@@ -193,9 +216,10 @@ def main():
         big = tmp / "big"
         subprocess.run([args.build_dir / "carto" / "rh_make_sample", "-o", big, "--size", "4800"], check=True,
                        capture_output=True)
-        base = case("sample 2.4 km (20 faces), bidirectional, GeoPackage", dem, part, [], 2)
+        bidir = ["--style", "bidirectional"]
+        base = case("sample 2.4 km (20 faces), bidirectional, GeoPackage", dem, part, bidir, 2)
         four = case("sample x4 4.8 km (80 faces), bidirectional, GeoPackage", big / "dem.tif",
-                    big / "partition.gpkg", [], 2)
+                    big / "partition.gpkg", bidir, 2)
         print(f"4x area costs {four / base:.2f}x the time")
         rows.append(("4x area / 1x area time ratio", 2, four / base, 0, 0, 0))
         if SHARED_DEM.exists():
@@ -206,11 +230,12 @@ def main():
                 for t in (1, 2):
                     case(f"{label}, {style}, GeoPackage", SHARED_DEM, grid, ["--style", style], t)
             for t in (1, 2):
-                case(f"{label}, bidirectional, GeoPackage without R-tree", SHARED_DEM, grid, ["--no-spatial-index"], t)
-                case(f"{label}, bidirectional, SVG", SHARED_DEM, grid, [], t, ".svg")
+                case(f"{label}, bidirectional, GeoPackage without R-tree", SHARED_DEM, grid,
+                     [*bidir, "--no-spatial-index"], t)
+                case(f"{label}, bidirectional, SVG", SHARED_DEM, grid, bidir, t, ".svg")
         else:
             print(f"bench_carto: {SHARED_DEM} absent, real-DEM rows skipped")
-        styles = styles_section(args.build_dir, args.runs, tmp, args.baseline, args.baseline_label)
+        styles = styles_section(args.build_dir, args.runs, tmp, baselines)
         partition = partition_section(args.build_dir, max(args.runs, 5), tmp)
     if args.markdown:
         with open(args.markdown, "w") as f:

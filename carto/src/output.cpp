@@ -16,6 +16,7 @@
 
 #include "carto/error.hpp"
 #include "libtex/region.hpp"
+#include "libtex/svg.hpp"
 #include "gdal_scope.hpp"
 #include "gpkg_file.hpp"
 #include "gpkg_rtree.hpp"
@@ -27,15 +28,7 @@ namespace fs = std::filesystem;
 namespace carto {
 namespace {
 
-void num(std::string& s, double v) {
-    char buf[64];
-    if (std::abs(v) < 5e-4 || !std::isfinite(v)) v = 0;
-    auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, 3);
-    std::size_t n = std::size_t(r.ptr - buf);
-    while (n > 0 && buf[n - 1] == '0') --n;
-    if (n > 0 && buf[n - 1] == '.') --n;
-    s.append(buf, n);
-}
+void num(std::string& s, double v) { tex::append_svg_number(s, v); }
 
 std::string xml_escape(const std::string& in) {
     std::string out;
@@ -331,6 +324,14 @@ void write_svg(const Drawing& d, const std::string& path) {
     const tex::BBox b = d.bounds.empty() ? tex::BBox{0, 0, 1, 1} : d.bounds;
     const double mm_per_unit = 1000.0 / d.scale;
     std::string s;
+    {
+        // About 15 bytes a point and 30 a stroke: one allocation instead of a doubling
+        // string copied again and again (the text of a large area is tens of megabytes).
+        std::size_t bytes = 4096 + d.crs_wkt.size();
+        for (const auto& face : d.faces)
+            for (const auto& h : face.hatches) bytes += 30 + 15 * h.points.size();
+        s.reserve(bytes);
+    }
     s += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
     s += "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:rh=\"https://rockhatch.invalid/ns\" width=\"";
     num(s, b.width() * mm_per_unit);

@@ -34,9 +34,10 @@ ThreadsScope::~ThreadsScope() {
 }
 
 unsigned GetThreads() {
-    unsigned n = t_threads_set ? t_threads : g_threads.load();
-    if (n == 0) n = std::max(1u, std::thread::hardware_concurrency());
-    return n;
+    // glibc answers hardware_concurrency by reading /sys on every call: ask once.
+    static const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
+    const unsigned n = t_threads_set ? t_threads : g_threads.load();
+    return n == 0 ? hardware : n;
 }
 
 void parallel_for(std::size_t n, const std::function<void(std::size_t)>& body) {
@@ -54,8 +55,9 @@ void parallel_for(std::size_t n, const std::function<void(std::size_t)>& body) {
         } restore{saved};
         body(i);
     };
-    const unsigned threads = unsigned(std::min<std::size_t>(GetThreads(), n));
-    if (threads <= 1 || t_in_worker) {
+    // A nested call runs serially in its worker: no need to ask for a thread count.
+    const unsigned threads = t_in_worker ? 1u : unsigned(std::min<std::size_t>(GetThreads(), n));
+    if (threads <= 1) {
         for (std::size_t i = 0; i < n; ++i) item(i);
         return;
     }

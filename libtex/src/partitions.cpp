@@ -86,9 +86,11 @@ Curves realize(const Complex& cx, const Region& r, Border b) {
     if (b == Border::KEEP_INSIDE || b == Border::KEEP_OUTSIDE) {
         std::vector<char> kept(cx.cells.size(), 0);
         for (std::size_t i = 0; i < cx.cells.size(); ++i) {
-            const Overlap o = classify_polygon(cx.cells[i].ring, cx.cells[i].box, r);
-            kept[i] = b == Border::KEEP_INSIDE ? o == Overlap::Inside : o != Overlap::Disjoint;
+            kept[i] = b == Border::KEEP_INSIDE
+                          ? classify_polygon(cx.cells[i].ring, cx.cells[i].box, r) == Overlap::Inside
+                          : polygon_meets_region(cx.cells[i].ring, cx.cells[i].box, r);
         }
+        out.curves.reserve(cx.edges.size());
         for (const auto& e : cx.edges) {
             const bool l = e.left >= 0 && kept[e.left];
             const bool rr = e.right >= 0 && kept[e.right];
@@ -139,8 +141,12 @@ struct StripeFamily {
     std::vector<double> prefix;  // prefix[k] = w0 + ... + w_{k-1}, prefix.size() = m + 1
     double period = 0;
     const Stripes* p = nullptr;
+    // The label cycles, interned once (a partition asks for a label per line and band).
+    std::vector<LabelId> edge_ids, face_ids;
 
     explicit StripeFamily(const Stripes& s) : p(&s) {
+        for (const auto& l : s.edge_labels) edge_ids.push_back(intern_label(l));
+        for (const auto& l : s.face_labels) face_ids.push_back(intern_label(l));
         d = {std::cos(s.angle), std::sin(s.angle)};
         // cos(pi/2) is 6e-17, not 0: snap axis-aligned directions so that lines meant to be
         // vertical or horizontal are exactly so (no sliver faces along a region's sides).
@@ -173,12 +179,12 @@ struct StripeFamily {
     }
     Labels edge_label(long long i) const {
         Labels l;
-        if (!p->edge_labels.empty()) l.add(p->edge_labels[pos_mod(i, (long long)p->edge_labels.size())]);
+        if (!edge_ids.empty()) l.add(edge_ids[std::size_t(pos_mod(i, (long long)edge_ids.size()))]);
         return l;
     }
     Labels face_label(long long i) const {
         Labels l;
-        if (!p->face_labels.empty()) l.add(p->face_labels[pos_mod(i, (long long)p->face_labels.size())]);
+        if (!face_ids.empty()) l.add(face_ids[std::size_t(pos_mod(i, (long long)face_ids.size()))]);
         return l;
     }
 };
@@ -261,6 +267,8 @@ Complex grid_complex(const Stripes& s1, const Stripes& s2, const Region& r) {
     }
     // Cells (i, j) for i in [i0, i1), j in [j0, j1), skipping those far from the region.
     std::vector<int> cell_id(std::size_t((ni - 1) * (nj - 1)), -1);
+    cx.cells.reserve(cell_id.size());
+    cx.edges.reserve(std::size_t(ni * (nj - 1) + nj * (ni - 1)));
     auto cid = [&](long long i, long long j) -> int {
         if (i < i0 || i >= i1 || j < j0 || j >= j1) return -1;
         return cell_id[std::size_t((i - i0) * (nj - 1) + (j - j0))];

@@ -31,6 +31,7 @@
 #include <functional>
 #include <numeric>
 #include <optional>
+#include <tuple>
 #include <unordered_map>
 
 #include "libtex/random.hpp"
@@ -223,18 +224,21 @@ bool build_directly(const Curves& input, RawGraph& g, bool& many_crossings) {
     {
         const std::size_t enough = segs.size() / 10 + 1;
         std::size_t crossings = 0;
+        // Each segment's box once: most pairs are told apart by their boxes alone.
+        std::vector<BBox> boxes(segs.size());
+        for (std::size_t i = 0; i < segs.size(); ++i) {
+            boxes[i].add(segs[i].a);
+            boxes[i].add(segs[i].b);
+        }
         for (std::uint32_t i = 0; i < segs.size(); ++i) {
             const detail::Seg& s = segs[i];
-            BBox b;
-            b.add(s.a);
-            b.add(s.b);
+            const BBox& b = boxes[i];
             bool crossing = false;
             auto visit = [&](std::uint32_t j) {
                 if (crossing || j <= i) return;
                 const detail::Seg& t = segs[j];
-                if (std::max(t.a.x, t.b.x) < b.xmin || std::min(t.a.x, t.b.x) > b.xmax ||
-                    std::max(t.a.y, t.b.y) < b.ymin || std::min(t.a.y, t.b.y) > b.ymax)
-                    return;
+                const BBox& tb = boxes[j];
+                if (tb.xmax < b.xmin || tb.xmin > b.xmax || tb.ymax < b.ymin || tb.ymin > b.ymax) return;
                 const bool sa = s.a == t.a || s.a == t.b, sb = s.b == t.a || s.b == t.b;
                 if (sa && sb) {
                     clean = false;  // the same segment twice
@@ -265,22 +269,25 @@ bool build_directly(const Curves& input, RawGraph& g, bool& many_crossings) {
     // Vertices (numbered in the order their points first appear), segments.
     const std::size_t ns = segs.size();
     {
-        std::vector<std::uint32_t> ends(2 * ns);
-        std::iota(ends.begin(), ends.end(), 0u);
         auto end_point = [&](std::uint32_t k) -> const Point& { return (k & 1u) ? segs[k >> 1].b : segs[k >> 1].a; };
-        std::sort(ends.begin(), ends.end(), [&](std::uint32_t x, std::uint32_t y) {
-            const Point& p = end_point(x);
-            const Point& q = end_point(y);
-            if (p != q) return p < q;
-            return x < y;
-        });
+        // The ends sorted by point, then by index (the points copied in: no indirection
+        // while sorting).
+        struct End {
+            Point p;
+            std::uint32_t k;
+            bool operator<(const End& o) const { return p != o.p ? p < o.p : k < o.k; }
+        };
+        std::vector<End> ends(2 * ns);
+        for (std::uint32_t k = 0; k < 2 * ns; ++k) ends[k] = {end_point(k), k};
+        std::sort(ends.begin(), ends.end());
         std::vector<std::uint32_t> first(2 * ns);  // the first end at the same point
         for (std::size_t i = 0; i < ends.size(); ++i)
-            first[ends[i]] = (i > 0 && end_point(ends[i]) == end_point(ends[i - 1])) ? first[ends[i - 1]] : ends[i];
+            first[ends[i].k] = (i > 0 && ends[i].p == ends[i - 1].p) ? first[ends[i - 1].k] : ends[i].k;
         std::vector<int> id(2 * ns, -1);
         g.he.resize(2 * ns);
         g.data_start.resize(ns + 1);
         g.data.resize(ns);
+        g.vpt.reserve(2 * ns);
         for (std::size_t k = 0; k < ns; ++k) {
             int uv[2];
             for (std::uint32_t e = 0; e < 2; ++e) {
@@ -566,6 +573,7 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way) {
         auto& src = chain_sources[k];
         g.for_data(h0, [&](std::uint32_t d) { src.push_back({d >> 1, ((d & 1u) != 0) == h0_l2r}); });
         std::sort(src.begin(), src.end(), by_curve);
+        ch.points.reserve(ch.hs.size() + 1);
         for (int h : ch.hs) ch.points.push_back(g.vpt[g.he[h].source]);
         ch.points.push_back(g.vpt[g.he[ch.hs.back()].target]);
         bool flip = !src.front().forward;
@@ -640,6 +648,7 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way) {
     // 6. Faces: boundary cycles as sides of edges, ordered by their smallest side.
     auto cycle_of = [&](int start) {
         std::vector<Side> cycle;
+        cycle.reserve(8);  // most faces have a few sides: one allocation, not four
         int best = INT_MAX;
         std::size_t best_at = 0;
         int cur = start;
@@ -659,8 +668,12 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way) {
     };
     const std::size_t nf = g.faces.size();
     std::vector<std::pair<int, int>> fs(nf);  // (key, raw face)
-    for (std::size_t f = 0; f < nf; ++f)
-        fs[f] = {g.faces[f].unbounded ? -1 : cycle_of(g.faces[f].outer).first, int(f)};
+    std::vector<std::vector<Side>> outer_cycle(nf);  // kept for the face records (step 8)
+    for (std::size_t f = 0; f < nf; ++f) {
+        int key = -1;
+        if (!g.faces[f].unbounded) std::tie(key, outer_cycle[f]) = cycle_of(g.faces[f].outer);
+        fs[f] = {key, int(f)};
+    }
     std::sort(fs.begin(), fs.end());
     std::vector<int> fid(nf);
     for (std::size_t i = 0; i < nf; ++i) fid[fs[i].second] = int(i);
@@ -701,6 +714,8 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way) {
             continue;
         }
         const int s = g.vout_start[v], n = g.vout_start[v + 1] - s;
+        rec.edges.reserve(std::size_t(n));
+        rec.faces.reserve(std::size_t(n));
         int start = 0;
         for (int k = 1; k < n; ++k)
             if (side_of[g.vout[s + k]] / 2 < side_of[g.vout[s + start]] / 2) start = k;
@@ -721,11 +736,16 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way) {
         FaceRec& rec = pm.faces_[i];
         rec.unbounded = rf.unbounded;
         if (rec.unbounded) pm.unbounded_ = f;
-        if (!rf.unbounded) rec.cycles.push_back(cycle_of(rf.outer).second);
+        rec.cycles.reserve(rf.inner.size() + (rf.unbounded ? 0 : 1));
+        if (!rf.unbounded) rec.cycles.push_back(std::move(outer_cycle[std::size_t(fs[i].second)]));
         std::vector<std::pair<int, std::vector<Side>>> holes;
         for (int h : rf.inner) holes.push_back(cycle_of(h));
         std::sort(holes.begin(), holes.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
         for (auto& h : holes) rec.cycles.push_back(std::move(h.second));
+        std::size_t sides = 0;
+        for (const auto& cyc : rec.cycles) sides += cyc.size();
+        rec.edges.reserve(sides);
+        rec.vertices.reserve(sides + rf.isolated.size());
         for (const auto& cyc : rec.cycles)
             for (const Side& sd : cyc) {
                 const EdgeRec& er = pm.edges_[sd.edge];
@@ -747,13 +767,33 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way) {
 
         // Key: the outer ring read from its lexicographically smallest point, so that the
         // same face gets the same key in any map and whatever its numbering.
+        // (The ring is walked in place: cycle_points would copy it first.)
         std::uint64_t key = 0x46414345ULL;
         if (!rec.unbounded && !rec.cycles.empty()) {
-            const std::vector<Point> ring = pm.cycle_points(f, 0);
-            std::size_t start = 0;
-            for (std::size_t j = 1; j < ring.size(); ++j)
-                if (ring[j] < ring[start]) start = j;
-            for (std::size_t j = 0; j < ring.size(); ++j) key = hash_point(key, ring[(start + j) % ring.size()]);
+            const std::vector<Side>& outer = rec.cycles[0];
+            // Point k of side i (its polyline without its last point, in the side's direction).
+            auto side_len = [&](const Side& sd) { return pm.edges_[sd.edge].points.size() - 1; };
+            auto side_point = [&](const Side& sd, std::size_t k) -> const Point& {
+                const std::vector<Point>& p = pm.edges_[sd.edge].points;
+                return sd.left ? p[k] : p[p.size() - 1 - k];
+            };
+            std::size_t best_side = 0, best_k = 0;
+            for (std::size_t i = 0; i < outer.size(); ++i)
+                for (std::size_t k = 0, n = side_len(outer[i]); k < n; ++k)
+                    if (side_point(outer[i], k) < side_point(outer[best_side], best_k)) {
+                        best_side = i;
+                        best_k = k;
+                    }
+            std::size_t i = best_side, k = best_k;
+            for (std::size_t done = 0; done < outer.size() + 1; ++done) {
+                const std::size_t n = side_len(outer[i]);
+                // The first side is read from best_k, and read again up to best_k at the end.
+                const std::size_t stop = (done == outer.size()) ? best_k : n;
+                for (; k < stop; ++k) key = hash_point(key, side_point(outer[i], k));
+                if (done == outer.size()) break;
+                i = (i + 1) % outer.size();
+                k = 0;
+            }
         }
         rec.key = key;
     }

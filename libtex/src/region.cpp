@@ -61,6 +61,10 @@ bool point_in_ring(const Point& p, const std::vector<Point>& ring) {
     for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
         const Point& a = ring[i];
         const Point& b = ring[j];
+        // Both ends above p, or both below it: the segment neither holds p nor crosses its
+        // horizontal (the common case, decided without arithmetic).
+        const bool a_above = a.y > p.y;
+        if (a_above == (b.y > p.y) && (a_above || (a.y < p.y && b.y < p.y))) continue;
         // On the segment: inside.
         if (cross(b - a, p - a) == 0.0 && std::min(a.x, b.x) <= p.x && p.x <= std::max(a.x, b.x) &&
             std::min(a.y, b.y) <= p.y && p.y <= std::max(a.y, b.y))
@@ -113,7 +117,11 @@ Curves Region::boundary() const {
     return out;
 }
 
-Overlap classify_polygon(const std::vector<Point>& poly, const BBox& box, const Region& r) {
+namespace {
+// classify_polygon, or with `only_disjoint` just whether the polygon is Disjoint (then
+// Partial stands for any other answer: KEEP_OUTSIDE asks no more, so the tests can stop at
+// the first that finds the polygon meeting the region).
+Overlap classify(const std::vector<Point>& poly, const BBox& box, const Region& r, bool only_disjoint) {
     if (!box.intersects(r.bbox())) return Overlap::Disjoint;
     // Any proper crossing between the polygon and a region ring: partial.
     auto crosses_ring = [&](const std::vector<Point>& ring) {
@@ -128,15 +136,18 @@ Overlap classify_polygon(const std::vector<Point>& poly, const BBox& box, const 
         }
         return false;
     };
+    Point c{0, 0};
+    for (const auto& p : poly) c += p;
+    c = c / double(poly.size());
+    // Not Disjoint as soon as one of the three tests below says so: the centre first, the
+    // cheapest test and the one that settles the cells inside.
+    if (only_disjoint && r.contains(c)) return Overlap::Partial;
     if (crosses_ring(r.outer())) return Overlap::Partial;
     for (const auto& h : r.holes())
         if (crosses_ring(h)) return Overlap::Partial;
     // No crossing: the polygon is inside, outside, or contains parts of the region. Test
     // its centre (inside a convex polygon) and whether a region vertex lies inside it.
-    Point c{0, 0};
-    for (const auto& p : poly) c += p;
-    c = c / double(poly.size());
-    const bool centre_in = r.contains(c);
+    const bool centre_in = !only_disjoint && r.contains(c);
     auto ring_vertex_inside = [&](const std::vector<Point>& ring) {
         for (const auto& p : ring)
             if (box.contains(p) && point_in_ring(p, poly)) {
@@ -156,6 +167,15 @@ Overlap classify_polygon(const std::vector<Point>& poly, const BBox& box, const 
         std::any_of(r.holes().begin(), r.holes().end(), ring_vertex_inside);
     if (centre_in) return region_vertex_in ? Overlap::Partial : Overlap::Inside;
     return region_vertex_in ? Overlap::Partial : Overlap::Disjoint;
+}
+}  // namespace
+
+Overlap classify_polygon(const std::vector<Point>& poly, const BBox& box, const Region& r) {
+    return classify(poly, box, r, false);
+}
+
+bool polygon_meets_region(const std::vector<Point>& poly, const BBox& box, const Region& r) {
+    return classify(poly, box, r, true) != Overlap::Disjoint;
 }
 
 }  // namespace tex

@@ -208,6 +208,9 @@ SegmentGrid::Where SegmentGrid::locate(const Point& p) const {
 
 std::vector<Seg> curve_segments(const Curves& c) {
     std::vector<Seg> out;
+    std::size_t most = 0;
+    for (const Curve& cv : c.curves) most += cv.points.size();
+    out.reserve(most);
     for (std::uint32_t ci = 0; ci < c.curves.size(); ++ci) {
         const Curve& cv = c.curves[ci];
         const std::size_t n = cv.points.size();

@@ -8,6 +8,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -396,20 +397,45 @@ double coarse_extent(const tinyxml2::XMLElement* root, const std::string& origin
     return std::hypot(b.width(), b.height());
 }
 
-// Number formatting for export: fixed three decimals, trailing zeros trimmed, no "-0".
-// std::to_chars is exact like printf's %.3f but several times faster (the SVG text is a
-// large part of a gallery example's time).
-void append_number(std::string& s, double v) {
-    char buf[64];
-    if (std::abs(v) < 5e-4 || !std::isfinite(v)) v = 0;
-    const auto res = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, 3);
-    std::size_t n = std::size_t(res.ptr - buf);
-    while (n > 0 && buf[n - 1] == '0') --n;
-    if (n > 0 && buf[n - 1] == '.') --n;
-    s.append(buf, n);
-}
-
 }  // namespace
+
+void append_svg_number(std::string& s, double v) {
+    if (std::abs(v) < 5e-4 || !std::isfinite(v)) v = 0;
+    char buf[400];  // DBL_MAX has 309 digits before the point
+    char* end = nullptr;
+    // |v| = mant x 2^(exp - 1075) with the 53-bit integer mant of its bits: v x 1000 is
+    // mant x 1000 (below 2^63) shifted right by 1075 - exp bits, so the thousandths are an
+    // integer division whose remainder decides the rounding exactly (half to even, as
+    // std::to_chars does). Out of that range (|v| >= 2^52), std::to_chars itself.
+    std::uint64_t bits = 0;
+    std::memcpy(&bits, &v, sizeof bits);
+    const int exp = int((bits >> 52) & 0x7ff);
+    const int shift = 1075 - exp;
+    if (v != 0 && shift >= 1 && shift <= 63) {
+        const std::uint64_t mant = (bits & ((std::uint64_t(1) << 52) - 1)) | (std::uint64_t(1) << 52);
+        const std::uint64_t scaled = mant * 1000u;
+        const std::uint64_t rest = scaled & ((std::uint64_t(1) << shift) - 1), half = std::uint64_t(1) << (shift - 1);
+        std::uint64_t q = scaled >> shift;
+        if (rest > half || (rest == half && (q & 1u))) ++q;
+        char* p = buf;
+        if (v < 0) *p++ = '-';
+        p = std::to_chars(p, buf + sizeof buf, q / 1000).ptr;
+        const unsigned frac = unsigned(q % 1000);
+        if (frac) {
+            *p++ = '.';
+            *p++ = char('0' + frac / 100);
+            *p++ = char('0' + frac / 10 % 10);
+            *p++ = char('0' + frac % 10);
+            while (p[-1] == '0') --p;
+        }
+        end = p;
+    } else {
+        end = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, 3).ptr;
+        while (end > buf && end[-1] == '0') --end;
+        if (end > buf && end[-1] == '.') --end;
+    }
+    s.append(buf, end);
+}
 
 Curves ParseSVG(const std::string& text, const std::string& origin) {
     tinyxml2::XMLDocument doc;
@@ -447,21 +473,21 @@ std::string ToSVG(const Curves& c, const BBox& view, const SvgStyle& style) {
     s.reserve(64 + c.curves.size() * 64);
     s += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
     s += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"";
-    append_number(s, view.width());
+    append_svg_number(s, view.width());
     s += "\" height=\"";
-    append_number(s, view.height());
+    append_svg_number(s, view.height());
     s += "\" viewBox=\"";
-    append_number(s, view.xmin);
+    append_svg_number(s, view.xmin);
     s += " ";
-    append_number(s, view.ymin);
+    append_svg_number(s, view.ymin);
     s += " ";
-    append_number(s, view.width());
+    append_svg_number(s, view.width());
     s += " ";
-    append_number(s, view.height());
+    append_svg_number(s, view.height());
     s += "\">\n";
     if (style.background) s += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
     s += "<g fill=\"none\" stroke=\"black\" stroke-width=\"";
-    append_number(s, style.stroke_width);
+    append_svg_number(s, style.stroke_width);
     s += "\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
     for (const auto& cv : c.curves) {
         if (cv.points.size() < 2) continue;
@@ -470,9 +496,9 @@ std::string ToSVG(const Curves& c, const BBox& view, const SvgStyle& style) {
         for (const auto& p : cv.points) {
             if (!first) s += ' ';
             first = false;
-            append_number(s, p.x);
+            append_svg_number(s, p.x);
             s += ',';
-            append_number(s, p.y);
+            append_svg_number(s, p.y);
         }
         s += "\"/>\n";
     }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <mutex>
+#include <random>
 #include <set>
 #include <thread>
 
@@ -462,4 +463,57 @@ TEST(SavedSeed, SetSeedInsideDoesNotLeak) {
     NextStream();
     EXPECT_EQ(NextStream(), expected);  // the second stream, as if the scope had not been
     SetSeed(before);
+}
+
+namespace {
+// point_in_ring as it was written before its early exit (every segment tested in full).
+bool point_in_ring_reference(const Point& p, const std::vector<Point>& ring) {
+    bool in = false;
+    for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+        const Point& a = ring[i];
+        const Point& b = ring[j];
+        if (cross(b - a, p - a) == 0.0 && std::min(a.x, b.x) <= p.x && p.x <= std::max(a.x, b.x) &&
+            std::min(a.y, b.y) <= p.y && p.y <= std::max(a.y, b.y))
+            return true;
+        if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y)) in = !in;
+    }
+    return in;
+}
+}  // namespace
+
+// The KEEP_OUTSIDE test of a partition's cells (polygon_meets_region) answers what
+// classify_polygon answers, and point_in_ring what its plain form does, on points and cells
+// that sit on the region's vertices, edges and horizontals (a lattice) as well as anywhere.
+TEST(RegionTests, FastAnswersEqualTheFullOnes) {
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> u(0, 1);
+    std::uniform_int_distribution<int> lattice(0, 20);
+    std::size_t meets = 0, cells = 0;
+    for (int trial = 0; trial < 60; ++trial) {
+        // A star-shaped outer ring (concave) with a square hole, vertices on a lattice.
+        std::vector<Point> outer;
+        for (int k = 0; k < 12; ++k) {
+            const double rad = (k % 2 ? 4 : 8) + lattice(rng) % 3, a = k * pi / 6;
+            outer.push_back({std::round(10 + rad * std::cos(a)), std::round(10 + rad * std::sin(a))});
+        }
+        const Region r(outer, {{{9, 9}, {9, 11}, {11, 11}, {11, 9}}});
+        for (int q = 0; q < 400; ++q) {
+            const Point p = q % 2 ? Point{double(lattice(rng)), double(lattice(rng))} : Point{20 * u(rng), 20 * u(rng)};
+            ASSERT_EQ(point_in_ring(p, r.outer()), point_in_ring_reference(p, r.outer())) << p.x << " " << p.y;
+            ASSERT_EQ(point_in_ring(p, r.holes()[0]), point_in_ring_reference(p, r.holes()[0]));
+            // A cell: a small quadrilateral near p, sometimes with corners on the lattice.
+            const double w = 0.5 + 3 * u(rng);
+            std::vector<Point> cell = {p, p + Point{w, 0.3 * u(rng)}, p + Point{w, w}, p + Point{-0.2 * u(rng), w}};
+            if (q % 3 == 0) cell = {p, p + Point{w, 0}, p + Point{w, w}, p + Point{0, w}};
+            BBox box;
+            for (const Point& c : cell) box.add(c);
+            const bool fast = polygon_meets_region(cell, box, r);
+            ASSERT_EQ(fast, classify_polygon(cell, box, r) != Overlap::Disjoint) << p.x << " " << p.y << " " << w;
+            meets += fast;
+            ++cells;
+        }
+    }
+    // Both answers occur often.
+    EXPECT_GT(meets, cells / 5);
+    EXPECT_LT(meets, cells - cells / 5);
 }

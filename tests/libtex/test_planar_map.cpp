@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <random>
 #include <cmath>
 #include <cstdio>
 
@@ -516,5 +517,42 @@ TEST(PlanarMapWays, BothCgalTraitsGiveTheSameCells) {
     for (std::size_t i = 0; i < a->edges().size(); ++i) {
         EXPECT_EQ(a->edges()[i].sources.size(), b->edges()[i].sources.size());
         EXPECT_EQ(a->edges()[i].points.size(), b->edges()[i].points.size());
+    }
+}
+
+// A face's key is the hash of its outer ring read from its smallest point: the builder
+// walks the ring in place, this test reads it through cycle_points, on maps whose rings
+// start anywhere and run through edges of many points.
+TEST(PlanarMapKeys, FaceKeyIsTheOuterRingFromItsSmallestPoint) {
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(-1, 1);
+    for (int trial = 0; trial < 40; ++trial) {
+        Curves c;
+        // A jittered grid of polylines (many bends per edge), plus a closed curve.
+        for (int k = 0; k <= 4; ++k) {
+            Curve h, v;
+            for (int s = -1; s <= 13; ++s) {
+                h.points.push_back({s * 1.0 + 0.01 * u(rng), k * 3.0 + 0.3 * u(rng)});
+                v.points.push_back({k * 3.0 + 0.3 * u(rng), s * 1.0 + 0.01 * u(rng)});
+            }
+            c.curves.push_back(h);
+            c.curves.push_back(v);
+        }
+        Curve loop;
+        for (int s = 0; s < 9; ++s)
+            loop.points.push_back({20 + std::cos(s * 0.7) * (3 + u(rng)), 5 + std::sin(s * 0.7) * (3 + u(rng))});
+        loop.closed = true;
+        c.curves.push_back(loop);
+        const MapPtr m = PlanarMap::induce(c);
+        ASSERT_GT(m->faces().size(), 10u);
+        for (std::size_t f = 0; f < m->faces().size(); ++f) {
+            std::uint64_t key = 0x46414345ULL;
+            if (!m->faces()[f].unbounded) {
+                const std::vector<Point> ring = m->cycle_points(int(f), 0);
+                const std::size_t start = std::size_t(std::min_element(ring.begin(), ring.end()) - ring.begin());
+                for (std::size_t j = 0; j < ring.size(); ++j) key = hash_point(key, ring[(start + j) % ring.size()]);
+            }
+            EXPECT_EQ(m->faces()[f].key, key) << "face " << f;
+        }
     }
 }

@@ -2,6 +2,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <random>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -252,4 +256,58 @@ TEST(ImportSVG, CoordinatesThatAreNotFiniteAreRefused) {
     EXPECT_TEX_ERROR(ParseSVG("<svg><circle cx='1e308' cy='0' r='1' data-label='start' transform='scale(10)'/></svg>",
                               "p.svg"),
                      "p.svg", "out of range once transformed");
+}
+
+// The export's number formatting must write the bytes std::to_chars (fixed, three decimals)
+// writes, trimmed: SVG outputs are compared byte for byte across versions.
+namespace {
+std::string reference_number(double v) {
+    char buf[400];
+    if (std::abs(v) < 5e-4 || !std::isfinite(v)) v = 0;
+    const auto res = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, 3);
+    std::size_t n = std::size_t(res.ptr - buf);
+    while (n > 0 && buf[n - 1] == '0') --n;
+    if (n > 0 && buf[n - 1] == '.') --n;
+    return std::string(buf, n);
+}
+std::string fast_number(double v) {
+    std::string s;
+    append_svg_number(s, v);
+    return s;
+}
+}  // namespace
+
+TEST(SvgNumber, SameTextAsToCharsEverywhere) {
+    std::mt19937_64 rng(42);
+    std::uniform_real_distribution<double> expo(-5, 17), unit(0, 1);
+    std::size_t checked = 0;
+    for (int i = 0; i < 2'000'000; ++i) {
+        const double mag = std::pow(10.0, expo(rng));
+        const double v = (unit(rng) < 0.5 ? -1 : 1) * mag * unit(rng);
+        ASSERT_EQ(fast_number(v), reference_number(v)) << std::hexfloat << v;
+        ++checked;
+    }
+    // Exact ties at the fourth decimal (k / 16, k / 2048), their neighbours, the 5e-4 cut,
+    // powers of two around the fallback, special values.
+    for (long k = -40000; k <= 40000; ++k)
+        for (double v : {k / 16.0, k / 2048.0, 1e6 + k / 16.0, k * 0.0005, k * 0.001}) {
+            for (double w : {v, std::nextafter(v, -1e300), std::nextafter(v, 1e300)})
+                ASSERT_EQ(fast_number(w), reference_number(w)) << std::hexfloat << w;
+            checked += 3;
+        }
+    for (int e = -12; e <= 70; ++e)
+        for (double f : {1.0, 1.5, 0.9999999999, 1.0000000001}) {
+            const double v = std::ldexp(f, e);
+            ASSERT_EQ(fast_number(v), reference_number(v)) << std::hexfloat << v;
+            ASSERT_EQ(fast_number(-v), reference_number(-v)) << std::hexfloat << -v;
+        }
+    for (double v : {0.0, -0.0, 5e-4, -5e-4, 4.9999e-4, 1e300, -1e300, std::numeric_limits<double>::infinity(),
+                     std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::denorm_min()})
+        EXPECT_EQ(fast_number(v), reference_number(v)) << v;
+    EXPECT_EQ(fast_number(1e300).size(), 301u);
+    EXPECT_EQ(fast_number(0.0625), reference_number(0.0625));  // a tie: half to even
+    EXPECT_EQ(fast_number(12.3456), "12.346");
+    EXPECT_EQ(fast_number(-2.5), "-2.5");
+    EXPECT_EQ(fast_number(7.0), "7");
+    EXPECT_GT(checked, 2'000'000u);
 }

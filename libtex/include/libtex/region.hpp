@@ -52,6 +52,9 @@ private:
 // KEEP_OUTSIDE border modes, which keep or drop whole cells).
 enum class Overlap { Disjoint, Partial, Inside };
 Overlap classify_polygon(const std::vector<Point>& poly, const BBox& poly_box, const Region& r);
+// classify_polygon(...) != Overlap::Disjoint, without the work that only tells Inside from
+// Partial.
+bool polygon_meets_region(const std::vector<Point>& poly, const BBox& poly_box, const Region& r);
 
 // True when the point lies inside the (closed) polygon ring.
 bool point_in_ring(const Point& p, const std::vector<Point>& ring);

@@ -20,6 +20,12 @@ Curves ImportSVG(const std::string& filename);
 // Same, from SVG text (origin names the source in messages).
 Curves ParseSVG(const std::string& text, const std::string& origin = "<svg text>");
 
+// Appends v to s as SVG exports write coordinates: fixed three decimals (rounded exactly,
+// like std::to_chars with precision 3), trailing zeros and a bare point dropped, |v| below
+// 0.0005 and non-finite values written as 0. Several times faster than std::to_chars with
+// a precision (drawings of millions of points spend much of their export time here).
+void append_svg_number(std::string& s, double v);
+
 struct SvgStyle {
     double stroke_width = 2.0;
     bool background = true;  // white background rectangle
