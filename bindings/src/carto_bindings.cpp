@@ -337,17 +337,23 @@ void bind_carto(py::module_& m) {
         .def_readonly("unit", &StyleParam::unit)
         .def_readonly("help", &StyleParam::help);
     py::class_<StyleInfo>(m, "StyleInfo")
-        .def(py::init([](std::string n, std::string f, std::string t, std::vector<StyleParam> p) {
-                 return StyleInfo{n, f, t, p};
+        .def(py::init([](std::string n, std::string f, std::string t, std::vector<StyleParam> p, bool crest) {
+                 StyleInfo s{n, f, t, p};
+                 s.crest_ornament = crest;
+                 return s;
              }),
-             py::arg("name"), py::arg("figure") = "", py::arg("title") = "", py::arg("params") = std::vector<StyleParam>{})
+             py::arg("name"), py::arg("figure") = "", py::arg("title") = "", py::arg("params") = std::vector<StyleParam>{},
+             py::arg("crest_ornament") = false)
         .def_readonly("name", &StyleInfo::name)
         .def_readonly("figure", &StyleInfo::figure)
         .def_readonly("title", &StyleInfo::title)
         .def_readonly("params", &StyleInfo::params)
         .def_readonly("terrain", &StyleInfo::terrain,
                       "True for a terrain style (scree, slope-hachures): it draws around the rock faces, over "
-                      "the whole DEM, after the faces are hatched with the default rock style.");
+                      "the whole DEM, after the faces are hatched with the default rock style.")
+        .def_readonly("crest_ornament", &StyleInfo::crest_ornament,
+                      "True when the style draws every ridge line as a crest ornament, its band from its "
+                      "parameter crest_band (a script sets CREST_ORNAMENT = True)");
     m.def("styles", &styles, "the built-in styles: Fig. 5.4 (a) to (g), print (the default), then the terrain styles");
     m.def("default_style", &default_style);
     m.def("find_style", &find_style, py::arg("name"));

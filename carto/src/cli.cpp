@@ -132,7 +132,7 @@ std::string styles_text() {
     std::ostringstream os;
     for (const auto& s : carto::styles()) {
         os << "  " << s.name << (s.terrain ? std::string(" (terrain, around the rock)") : " (Fig. " + s.figure + ")")
-           << (s.name == carto::default_style() ? " [default]" : "")
+           << (s.name == carto::default_style() ? " [default]" : "") << (s.crest_ornament ? " [crest ornaments]" : "")
            << ": " << s.title << "\n";
         for (const auto& p : s.params) {
             std::ostringstream v;

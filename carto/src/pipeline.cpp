@@ -265,10 +265,14 @@ Drawing hatch(const Prepared& p, const Options& o, const std::vector<int>& selec
     }
     if (cancelled) throw Error(Code::Cancelled, "cancelled during hatching");
     for (std::size_t k = 0; k < selected.size(); ++k) d.bounds.add(part.faces[selected[k]].region.bbox());
-    if (o.crest_ornament) {
+    if (o.crest_ornament || style.info.crest_ornament) {
         tick(progress, 0.9, "crest ornaments");
-        const double height = o.crest_height_mm.value_or(kDefaultCrestHeightMm) * o.scale / 1000;
-        CrestResult crests = draw_crests(part, load_crest_exemplar(*o.crest_ornament), height, o.seed, o.window);
+        // --crest-height, else the style's crest_band, else the option's default.
+        const double height = o.crest_height_mm              ? *o.crest_height_mm * o.scale / 1000
+                              : style.info.crest_ornament ? params.at("crest_band")
+                                                          : kDefaultCrestHeightMm * o.scale / 1000;
+        CrestResult crests = draw_crests(part, load_crest_exemplar(o.crest_ornament.value_or(kDefaultCrest)), height,
+                                         o.seed, o.window);
         for (const auto& c : crests.ornaments)
             for (const auto& ring : c.rings)
                 for (const Point& q : ring) d.bounds.add(q);

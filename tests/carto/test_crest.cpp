@@ -129,6 +129,31 @@ TEST(Crest, OneValidPolygonPerRidgeInTheGeoPackage) {
     }
 }
 
+// The style table's form of the option: --style aretes draws the crest ornaments without
+// --crest-ornament, its band from its parameter crest_band (mm on paper); the same fill as
+// noisy; noisy itself draws none.
+TEST(Crest, TheAretesStyleDrawsThemWithItsBand) {
+    Options o = sample_options();
+    o.crest_ornament.reset();
+    o.style = "noisy";
+    const Drawing plain = hatch(sample(), o);
+    EXPECT_FALSE(plain.crests.has_value());
+    o.style = "aretes";
+    o.params["crest_band"] = 3;  // 30 m at 1:10000
+    const Drawing d = hatch(sample(), o);
+    ASSERT_TRUE(d.crests.has_value());
+    EXPECT_EQ(d.crests->size(), ridges_of(sample().partition));
+    double farthest = 0;
+    for (const auto& c : *d.crests)
+        for (const auto& ring : c.rings)
+            for (const Point& q : ring)
+                farthest = std::max(farthest, distance_to_polyline(q, sample().partition.lines[c.ridge].points));
+    EXPECT_LE(farthest, 0.75 * 30);
+    EXPECT_GT(farthest, 0.4 * 30);  // the 3 mm band: a 2 mm one reaches 10 m at most
+    ASSERT_EQ(d.faces.size(), plain.faces.size());
+    for (std::size_t k = 0; k < d.faces.size(); ++k) EXPECT_EQ(d.faces[k].hatches.size(), plain.faces[k].hatches.size());
+}
+
 // The independent count on the rings themselves: each ornament has exactly one ring that
 // no other ring encloses (its outer boundary) and it winds counter-clockwise; every other
 // ring lies inside it and winds clockwise (a hole), with no island inside a hole.

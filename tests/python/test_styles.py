@@ -27,7 +27,7 @@ def load(name):
 def test_one_script_per_iteration():
     # One script per built-in style; what they share lives in modules named _*.py, which
     # are not styles (they define no style()).
-    assert len(SCRIPTS) == 8
+    assert len(SCRIPTS) == 9
     assert sorted(p.name for p in STYLES.glob("*.py") if not p.name.startswith("_")) == sorted(SCRIPTS.values())
     for shared in STYLES.glob("_*.py"):
         assert not re.search(r"^def style\(", shared.read_text(), re.M), shared.name
@@ -38,6 +38,7 @@ def test_header_and_parameters_match_the_builtin(name):
     module = load(name)
     builtin = carto.find_style(name)
     assert module.NAME == name and module.FIGURE == builtin.figure
+    assert getattr(module, "CREST_ORNAMENT", False) == builtin.crest_ornament
     assert [(p[0], p[1], p[2]) for p in module.PARAMS] == [(p.name, p.value, p.unit) for p in builtin.params]
     header = module.__doc__
     for pname, value, unit, _ in module.PARAMS:
@@ -60,6 +61,14 @@ def test_the_script_draws_what_the_builtin_draws(rockhatch_exe, sample_dir, tmp_
     assert re.search(r"20 faces, [1-9]\d* hatches", p.stderr)
     assert (tmp_path / "p.svg").read_bytes() == (tmp_path / "c.svg").read_bytes()
     assert (tmp_path / "p.gpkg").read_bytes() == (tmp_path / "c.gpkg").read_bytes()
+    # A style of the table that asks for crest ornaments (aretes) gets the crest layer.
+    assert ("crest" in layer_names(tmp_path / "c.gpkg")) == carto.find_style(name).crest_ornament
+
+
+def layer_names(gpkg):
+    from osgeo import ogr
+    ds = ogr.Open(str(gpkg))
+    return {ds.GetLayer(i).GetName() for i in range(ds.GetLayerCount())}
 
 
 def test_rockhatch_script_runs_a_style_script(rockhatch_exe, sample_dir, tmp_path):

@@ -81,7 +81,8 @@ def style_of_module(module, where=None):
         else:
             params.append(StyleParam(*p))  # noqa: F405
     info = StyleInfo(getattr(module, "NAME", os.path.splitext(os.path.basename(str(where)))[0]),  # noqa: F405
-                     getattr(module, "FIGURE", ""), getattr(module, "TITLE", ""), params)
+                     getattr(module, "FIGURE", ""), getattr(module, "TITLE", ""), params,
+                     bool(getattr(module, "CREST_ORNAMENT", False)))
     return python_style(info, fn)  # noqa: F405
 
 

@@ -60,6 +60,10 @@ struct StyleInfo {
     // A terrain style (scree, slope-hachures) draws around the rock faces, over the whole
     // DEM, after the faces are hatched with the default rock style.
     bool terrain = false;
+    // The style draws the partition's ridge lines as crest ornaments (carto/crest.hpp, the
+    // project's exemplar unless --crest-ornament names another), in a band as high as its
+    // parameter crest_band (mm on paper), as --crest-ornament does for any style.
+    bool crest_ornament = false;
 };
 
 // The control fields f1..fn a style reads (thesis 5.3.1).

@@ -105,6 +105,7 @@ Builtin fine_ridges();
 Builtin balanced();
 Builtin high_ridges();
 Builtin bidirectional();
+Builtin aretes();
 Builtin print();
 
 }  // namespace carto::blocks
