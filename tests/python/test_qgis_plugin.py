@@ -620,7 +620,11 @@ def test_cancel_stops_quickly_and_leaves_no_output(qgis, sample_dir, tmp_path, p
         run("rockhatch:rockhatching", params, feedback)
     stopped = time.perf_counter() - feedback.cancelled_at
     print(f"run cancelled at {percent}% stopped {stopped:.2f} s after the cancel")
-    assert stopped < 1.5
+    # The pipeline stops at its next progress report: while hatching, when a face is done,
+    # so the faces in flight finish first. At 1:5000 with 0.15 mm spacing one sample face
+    # took up to 1.65 s under a loaded CI run (pytest -n 2); an uncancelled run takes
+    # several seconds.
+    assert stopped < 3.0
     assert not list(tmp_path.iterdir())
 
 
