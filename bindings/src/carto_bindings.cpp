@@ -354,7 +354,7 @@ void bind_carto(py::module_& m) {
         .def_readonly("crest_ornament", &StyleInfo::crest_ornament,
                       "True when the style draws every ridge line as a crest ornament, its band from its "
                       "parameter crest_band (a script sets CREST_ORNAMENT = True)");
-    m.def("styles", &styles, "the built-in styles: Fig. 5.4 (a) to (g), print (the default), then the terrain styles");
+    m.def("styles", &styles, "the built-in styles: Fig. 5.4 (a) to (g), print (the default), aretes, then the terrain styles");
     m.def("default_style", &default_style);
     m.def("find_style", &find_style, py::arg("name"));
     m.def("resolve_params", &resolve_params, py::arg("style"), py::arg("overrides"), py::arg("scale"),

@@ -551,8 +551,10 @@ TEST(Pipeline, PrintRefusesAToneCurveAboveItself) {
 }
 
 TEST(Pipeline, StylesAndParameters) {
-    // The seven rock styles of Fig. 5.4, print (the default), then the two terrain styles.
-    EXPECT_EQ(styles().size(), 10u);
+    // The seven rock styles of Fig. 5.4, print (the default), aretes (crest ornaments), then
+    // the two terrain styles.
+    EXPECT_EQ(styles().size(), 11u);
+    EXPECT_EQ(std::count_if(styles().begin(), styles().end(), [](const StyleInfo& s) { return s.crest_ornament; }), 1);
     EXPECT_EQ(std::count_if(styles().begin(), styles().end(), [](const StyleInfo& s) { return s.terrain; }), 2);
     EXPECT_EQ(default_style(), "print");
     EXPECT_EQ(find_style("5.4a").name, "noisy");
