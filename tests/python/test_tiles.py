@@ -203,6 +203,31 @@ def test_an_interrupted_job_resumes(tmp_path, sample_whole):
     assert features(out) == sample_whole
 
 
+def test_a_terminated_command_stops_its_workers_and_resumes(tmp_path, sample_whole):
+    """SIGTERM (QGIS's Cancel, a batch scheduler) stops `rockhatch tiles` in order: it exits
+    with code 10 and one line, after closing its cluster, so no worker writes a tile later."""
+    out, work = tmp_path / "tiled.gpkg", tmp_path / "work"
+    proc = subprocess.Popen([sys.executable, "-m", "rockhatch", "tiles", "--dem", DEM, "--partition", FACES,
+                             "--tile-size", "500", "--seed", "3", "--workers", "2", "--workdir", str(work),
+                             "-o", str(out)], stderr=subprocess.PIPE, env=python_env(), start_new_session=True)
+    seen = b""
+    while b"tiles 2/" not in seen:
+        chunk = proc.stderr.read1(256)
+        assert chunk, seen.decode(errors="replace")  # it ended before two tiles
+        seen += chunk
+    proc.send_signal(signal.SIGTERM)
+    rest = proc.stderr.read().decode()
+    assert proc.wait(timeout=60) == 10
+    assert rest.strip().splitlines()[-1].startswith("rockhatch tiles: terminated:"), rest
+    done = sorted(p.name for p in work.glob("tile_*.gpkg"))
+    time.sleep(3)  # nothing of the run is left to write a tile
+    assert sorted(p.name for p in work.glob("tile_*.gpkg")) == done and 2 <= len(done) < 9 * 9
+    assert not out.exists()
+    s = tiles.run(DEM, FACES, 500, [out], seed=3, workers=1, workdir=work)
+    assert s.done_before == len(done)
+    assert features(out) == sample_whole
+
+
 def test_partial_tile_files_are_never_merged(tmp_path, sample_whole):
     out = tmp_path / "tiled.gpkg"
     work = tmp_path / "work"

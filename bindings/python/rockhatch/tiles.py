@@ -22,7 +22,9 @@ import hashlib
 import json
 import os
 import shutil
+import signal
 import sys
+import threading
 import time
 
 from . import carto
@@ -371,6 +373,10 @@ def main(argv=None):
         return 0
     quiet = "-q" in argv
     bar = _Bar(not quiet)
+    # A terminate request (QGIS's Cancel, a job scheduler) stops the run in order: the local
+    # cluster is closed, so no worker goes on computing, or writing a tile, after the command
+    # has exited. Only the command's own process is affected; run() installs nothing.
+    previous = signal.signal(signal.SIGTERM, _terminated) if _main_thread() else None
     try:
         s = run_args(argv, bar)
         bar.finish()
@@ -379,8 +385,26 @@ def main(argv=None):
         return 0
     except (RockhatchError, TexError, OSError) as e:
         return fail(e, bar, "rockhatch tiles")
+    except _Terminate:
+        return fail(carto.error(10, "terminated: the finished tiles are kept (run again to resume)"), bar,
+                    "rockhatch tiles")
     except Exception as e:  # the cluster's own failures (a task lost on every retry, a timeout)
         return fail(f"the Dask cluster failed: {type(e).__name__}: {e}", bar, "rockhatch tiles")
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)
+
+
+class _Terminate(BaseException):
+    """Raised in the main thread by SIGTERM; a BaseException so no `except Exception` swallows it."""
+
+
+def _terminated(signum, frame):
+    raise _Terminate()
+
+
+def _main_thread():
+    return threading.current_thread() is threading.main_thread()
 
 
 if __name__ == "__main__":

@@ -10,6 +10,7 @@ the work folder, so running again with the same inputs resumes.
 import os
 import queue
 import re
+import signal
 import subprocess
 import sys
 import threading
@@ -35,6 +36,22 @@ def system_python():
         if os.access(candidate, os.X_OK):
             return candidate
     raise QgsProcessingException("no python3 next to QGIS's Python to run the Dask workers")
+
+
+def stop(proc, grace=30.0):
+    """Stops a child run and every process of its group. SIGTERM first: the command closes its
+    Dask cluster, so no worker writes a tile after it has exited. A run that does not stop
+    within `grace` seconds, and any worker left behind, is killed."""
+    proc.terminate()
+    try:
+        proc.wait(timeout=grace)
+    except subprocess.TimeoutExpired:
+        pass
+    try:
+        os.killpg(proc.pid, signal.SIGKILL)
+    except (ProcessLookupError, PermissionError):
+        pass  # the group is empty: everything has exited
+    proc.wait()
 
 
 class RockHatchingTiled(RockhatchAlgorithm):
@@ -147,8 +164,9 @@ class RockHatchingTiled(RockhatchAlgorithm):
         env["PYTHONPATH"] = os.pathsep.join([package] + [p for p in env.get("PYTHONPATH", "").split(os.pathsep) if p])
         cmd = [system_python(), "-m", "rockhatch", "tiles", *argv]
         feedback.pushInfo("running: " + " ".join(cmd))
+        # Its own process group, so that a cancel reaches the Dask workers it starts too.
         proc = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                                env=env)
+                                env=env, start_new_session=True)
         lines = []  # what the run wrote, the bar's redraws apart
         chunks = queue.Queue()
 
@@ -175,7 +193,7 @@ class RockHatchingTiled(RockhatchAlgorithm):
             except queue.Empty:
                 chunk = b""
             if feedback.isCanceled():
-                proc.terminate()
+                stop(proc)
                 close()
                 raise QgsProcessingException("cancelled: the finished tiles are kept in the work folder; run the "
                                              "same job again to resume")
