@@ -202,6 +202,8 @@ void bind_fields(py::module_& m) {
         py::arg("f"), py::arg("g"), py::arg("fn"), "fn(f, g) where both have a value, NaN elsewhere");
     m.def("Clamp", [](const py::object& f, double lo, double hi) { return Clamp(to_field(f), lo, hi); }, py::arg("f"),
           py::arg("lo"), py::arg("hi"));
+    m.def("Pow", [](const py::object& f, double e) { return Pow(to_field(f), e); }, py::arg("f"), py::arg("exponent"),
+          "value to the power exponent (NaN stays NaN)");
     m.def("Restrict", [](const py::object& f, const BBox& b) { return Restrict(to_field(f), b); }, py::arg("f"),
           py::arg("box"), "f inside the box, NaN outside");
     m.def("Restrict", [](const py::object& f, const Region& r) { return Restrict(to_field(f), r); }, py::arg("f"),

@@ -457,6 +457,18 @@ void bind_tex(py::module_& m) {
         "along it, then scaled by gap about its middle when gap < 1; other edges give nothing, and so do edges "
         "whose middle reads below gate_min (or NaN) in the gate field when gate_min > 0");
     m.def(
+        "ThinLines",
+        [](const NativeMapper<Edge>& inner, double theta, double spacing, const py::object& keep,
+           const std::optional<Region>& owner) {
+            return NativeMapper<Edge>{ThinLines(inner.fn, theta, spacing, to_field(keep), owner.value_or(Region())),
+                                      "ThinLines(" + inner.name + ")"};
+        },
+        py::arg("inner"), py::arg("theta"), py::arg("spacing"), py::arg("keep"), py::arg("owner") = py::none(),
+        "thins the lines of StripesProperties(theta, spacing): an edge on line k is handed to `inner` where "
+        "ThinRank(k) < keep(its middle), else nothing (golden-ratio ranks: the kept lines are evenly spread at any "
+        "fraction, and a smaller fraction keeps a subset); with `owner`, only edges whose middle lies in it");
+    m.def("ThinRank", &ThinRank, py::arg("k"), "the rank of line k in ThinLines's order, in [0, 1)");
+    m.def(
         "MapToEdges", [](const NativeMapper<Edge>& f, Arrangement a) { return MapToEdges(f.fn, a); },
         py::arg("mapper"), py::arg("arrangement"));
     m.def(

@@ -321,6 +321,17 @@ Field operator-(const Field& a) {
     return composed({a}, [](const std::vector<Field>& in, const Point& p) { return -at(in, 0, p); }, a.domain());
 }
 
+Field Pow(Field f, double exponent) {
+    if (!std::isfinite(exponent)) throw Error("Pow", "the exponent must be finite");
+    const auto dom = f.domain();
+    return composed({std::move(f)},
+                    [exponent](const std::vector<Field>& in, const Point& p) {
+                        const double v = at(in, 0, p);
+                        return std::isnan(v) ? v : std::pow(v, exponent);
+                    },
+                    dom);
+}
+
 Field Clamp(Field f, double lo, double hi) {
     if (!(lo <= hi)) throw Error("Clamp", "lo must not exceed hi");
     const auto dom = f.domain();

@@ -5,6 +5,7 @@
 
 #include "libtex/cells.hpp"
 #include "libtex/curves.hpp"
+#include "libtex/error.hpp"
 #include "libtex/labels.hpp"
 #include "libtex/random.hpp"
 
@@ -25,6 +26,29 @@ EdgeMapper JitterEdges(const std::string& label, double theta, double across, do
         const Vertex s = SourceVertex(e), t = TargetVertex(e);
         Curves c = MatchPoints(ToCurve(e), Location(s), Location(t), moved(s), moved(t));
         return gap < 1 ? Scale(c, gap) : c;
+    };
+}
+
+double ThinRank(long long k) {
+    constexpr double phi = 0.6180339887498948482;  // (sqrt(5) - 1) / 2
+    const double x = double(k) * phi;
+    return x - std::floor(x);
+}
+
+EdgeMapper ThinLines(EdgeMapper inner, double theta, double spacing, Field keep, Region owner) {
+    if (!inner) throw Error("ThinLines", "no inner mapper");
+    if (!(spacing > 0) || !std::isfinite(spacing)) throw Error("ThinLines", "the spacing must be positive and finite");
+    if (!std::isfinite(theta)) throw Error("ThinLines", "theta must be finite");
+    const Point n{-std::sin(theta), std::cos(theta)};
+    const bool owned = !owner.empty();
+    return [=, inner = std::move(inner), keep = std::move(keep), owner = std::move(owner)](const Edge& e) -> Curves {
+        const Point mid = LocationAt(e, 0.5);
+        if (owned && !owner.contains(mid)) return Nothing();
+        const double t = (mid.x * n.x + mid.y * n.y) / spacing;
+        if (!(std::abs(t) < 1e15)) return Nothing();  // beyond exact integers: no line index
+        const double k = keep(mid);
+        if (!(ThinRank(std::llround(t)) < k)) return Nothing();
+        return inner(e);
     };
 }
 

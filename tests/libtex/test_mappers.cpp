@@ -3,7 +3,10 @@
 // lets the gate drop the edges on flat ground.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <set>
 #include <vector>
 
 #include "helpers.hpp"
@@ -144,4 +147,120 @@ TEST(JitterEdges, TheGateDropsFlatEdges) {
     for (const auto& c : map_each(JitterEdges("hatch", kTheta, 10, 20, 1.0, 1.0, Field(), 10.0), map))
         EXPECT_TRUE(c.empty());
     EXPECT_EQ(points_of(map_each(JitterEdges("hatch", kTheta, 10, 20, 1.0, 1.0, Field(), 0.0), map)), points_of(all));
+}
+
+// ---- ThinLines: continuous thinning of a family of lines (issue 16) ----
+
+namespace {
+
+// The index of the line of StripesProperties(kTheta, 10) that edge e lies on.
+long long line_of(const Edge& e) {
+    const Point m = LocationAt(e, 0.5);
+    return std::llround((-std::sin(kTheta) * m.x + std::cos(kTheta) * m.y) / 10);
+}
+
+// The lines that keep at least one edge when `keep` thins them.
+std::set<long long> kept_lines(const MapPtr& map, const Field& keep, const Region& owner = Region()) {
+    const EdgeMapper m = ThinLines(JitterEdges("hatch", kTheta, 10, 20, 0.0), kTheta, 10, keep, owner);
+    std::set<long long> out;
+    for (std::size_t i = 0; i < map->edges().size(); ++i) {
+        const Edge e(map, int(i));
+        if (!m(e).empty()) out.insert(line_of(e));
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST(ThinLines, KeepsTheAskedShareOfLinesEvenlySpread) {
+    // Lines 0..999: at every fraction the kept ones number 1000 * keep within 2, in every
+    // window of 50 consecutive lines within 2 too (low discrepancy: no clumps, no holes).
+    for (double keep : {0.1, 0.25, 0.38, 0.5, 0.73, 0.9}) {
+        int total = 0;
+        std::vector<int> kept;
+        for (long long k = 0; k < 1000; ++k) {
+            const bool in = ThinRank(k) < keep;
+            total += in;
+            if (in) kept.push_back(int(k));
+        }
+        EXPECT_NEAR(total, 1000 * keep, 2.0) << keep;
+        for (int w = 0; w + 50 <= 1000; w += 10) {
+            int n = 0;
+            for (int k : kept) n += (k >= w && k < w + 50);
+            EXPECT_NEAR(n, 50 * keep, 2.0) << "keep " << keep << ", lines " << w << "..";
+        }
+        // At most three distinct gaps between consecutive kept lines, and the largest is
+        // less than twice the mean plus one line.
+        std::set<int> gaps;
+        for (std::size_t i = 1; i < kept.size(); ++i) gaps.insert(kept[i] - kept[i - 1]);
+        EXPECT_LE(gaps.size(), 3u) << keep;
+        EXPECT_LT(*gaps.rbegin(), 2.0 / keep + 1) << keep;
+    }
+    for (long long k : {-5000000LL, -1LL, 0LL, 7LL, 123456789LL}) {
+        EXPECT_GE(ThinRank(k), 0.0);
+        EXPECT_LT(ThinRank(k), 1.0);
+    }
+}
+
+TEST(ThinLines, ASmallerFractionKeepsASubsetAndTheEndsFollowTheField) {
+    const MapPtr map = hatch_grid();
+    const auto all = kept_lines(map, Field(1.0));
+    const auto none = kept_lines(map, Field(0.0));
+    const auto half = kept_lines(map, Field(0.5));
+    const auto third = kept_lines(map, Field(0.3));
+    EXPECT_GT(all.size(), 10u);
+    EXPECT_TRUE(none.empty());
+    EXPECT_TRUE(std::includes(half.begin(), half.end(), third.begin(), third.end()));
+    EXPECT_TRUE(std::includes(all.begin(), all.end(), half.begin(), half.end()));
+    EXPECT_LT(third.size(), half.size());
+    EXPECT_LT(half.size(), all.size());
+    // A field growing from 0 on the left to 1 on the right: an edge is kept exactly where its
+    // line's rank is below the field at its middle, so each line starts at one place and runs
+    // on to the right (no line stops and restarts), and a NaN field keeps nothing.
+    const Field ramp = [](const Point& p) { return p.x / 100.0; };
+    const EdgeMapper m = ThinLines(JitterEdges("hatch", kTheta, 10, 20, 0.0), kTheta, 10, ramp);
+    std::map<long long, std::vector<std::pair<double, bool>>> along;
+    for (std::size_t i = 0; i < map->edges().size(); ++i) {
+        const Edge e(map, int(i));
+        if (!HasLabel(e, "hatch")) continue;
+        const bool in = !m(e).empty();
+        EXPECT_EQ(in, ThinRank(line_of(e)) < LocationAt(e, 0.5).x / 100.0);
+        along[line_of(e)].push_back({LocationAt(e, 0.5).x, in});
+    }
+    for (auto& [k, v] : along) {
+        std::sort(v.begin(), v.end());
+        for (std::size_t i = 1; i < v.size(); ++i) EXPECT_FALSE(v[i - 1].second && !v[i].second) << "line " << k;
+    }
+    EXPECT_TRUE(kept_lines(map, Field()).empty());
+}
+
+TEST(ThinLines, AnOwnerTakesTheWholeEdgesCentredInIt) {
+    const MapPtr map = hatch_grid();
+    const Region left = Region::rectangle(-50, -50, 50, 130), right = Region::rectangle(50, -50, 150, 130);
+    const EdgeMapper all = ThinLines(JitterEdges("hatch", kTheta, 10, 20, 0.0), kTheta, 10, Field(1.0));
+    const EdgeMapper l = ThinLines(JitterEdges("hatch", kTheta, 10, 20, 0.0), kTheta, 10, Field(1.0), left);
+    const EdgeMapper r = ThinLines(JitterEdges("hatch", kTheta, 10, 20, 0.0), kTheta, 10, Field(1.0), right);
+    int crossing = 0;
+    for (std::size_t i = 0; i < map->edges().size(); ++i) {
+        const Edge e(map, int(i));
+        const Curves a = all(e), b = l(e), c = r(e);
+        // Each edge goes whole to exactly one side (none lies with its middle on x = 50).
+        EXPECT_EQ(b.empty() + c.empty(), a.empty() ? 2 : 1);
+        const Curves& got = b.empty() ? c : b;
+        if (!a.empty()) EXPECT_EQ(got.curves[0].points, a.curves[0].points);
+        const Point s = Location(SourceVertex(e)), t = Location(TargetVertex(e));
+        crossing += !a.empty() && (s.x - 50) * (t.x - 50) < 0;
+    }
+    EXPECT_GT(crossing, 0);  // edges across the border were kept whole on one side
+}
+
+TEST(ThinLines, BadArgumentsAreRefused) {
+    const EdgeMapper j = JitterEdges("hatch", kTheta, 10, 20, 0.0);
+    EXPECT_THROW(ThinLines(j, kTheta, 0, Field(1.0)), Error);
+    EXPECT_THROW(ThinLines(j, kTheta, -1, Field(1.0)), Error);
+    EXPECT_THROW(ThinLines(j, std::nan(""), 10, Field(1.0)), Error);
+    EXPECT_THROW(ThinLines(EdgeMapper(), kTheta, 10, Field(1.0)), Error);
+    EXPECT_THROW(Pow(Field(2.0), INFINITY), Error);
+    EXPECT_DOUBLE_EQ(Pow(Field(2.0), 3.0)(Point{0, 0}), 8.0);
+    EXPECT_TRUE(std::isnan(Pow(Field(), 3.0)(Point{0, 0})));
 }

@@ -116,3 +116,40 @@ def test_stream_scope_restarts_the_numbering_of_streams():
             return points(PlanarMap.induce(UniformPartition(p, KEEP_OUTSIDE)(BOX)).edge_curves())
 
     assert sites() == sites()
+
+
+def test_thin_lines_keeps_an_even_share_that_grows_with_the_field():
+    """ThinLines as a native mapper: the kept lines are a subset at a smaller share, their
+    count follows the share, a field growing to the right keeps more lines there, and an
+    owner region takes only the edges centred in it."""
+    from rockhatch.tex import Field, Pow, ThinLines, ThinRank, LocationAt
+
+    def lines(keep, owner=None):
+        got = MapToEdges(ThinLines(JitterEdges("fill", THETA, 8, 20, 0.0), THETA, 8, keep, owner), grid())(BOX)
+        n = Point(-math.sin(THETA), math.cos(THETA))
+        out = set()
+        for c in got.curves:
+            a, b = c.points[0], c.points[-1]
+            out.add(round(((a.x + b.x) / 2 * n.x + (a.y + b.y) / 2 * n.y) / 8))
+        return out, got
+
+    every, _ = lines(1.0)
+    half, _ = lines(0.5)
+    third, _ = lines(0.3)
+    assert third < half < every and len(every) > 12
+    assert all(ThinRank(k) < 0.5 for k in half) and all(ThinRank(k) >= 0.5 for k in every - half)
+    assert lines(0.0)[1].empty()
+    # keep = x / 100: more curves on the right half than on the left
+    _, ramp = lines(Field(lambda p: p.x / 100.0))
+    right = sum(1 for c in ramp.curves if c.points[0].x > 50)
+    assert right > 1.5 * (len(ramp.curves) - right)
+    # an owner: the curves whose middle lies in it, whole (not cut at its border)
+    left = Region.rectangle(-100, -100, 50, 200)
+    _, owned = lines(1.0, left)
+    _, everything = lines(1.0)
+    assert 0 < len(owned.curves) < len(everything.curves)
+    assert all((c.points[0].x + c.points[-1].x) / 2 <= 50 for c in owned.curves)
+    assert any(max(c.points[0].x, c.points[-1].x) > 50 for c in owned.curves)
+    assert Pow(Field(3.0), 2.0)(Point(0, 0)) == 9.0
+    with pytest.raises(Exception, match="spacing"):
+        ThinLines(JitterEdges("fill", THETA, 8, 20, 0.0), THETA, 0.0, 1.0)

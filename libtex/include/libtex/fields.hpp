@@ -129,6 +129,8 @@ Field operator*(const Field& a, const Field& b);
 Field operator/(const Field& a, const Field& b);
 Field operator-(const Field& a);
 Field Clamp(Field f, double lo, double hi);
+// std::pow(value, exponent) (a tone curve, a gamma).
+Field Pow(Field f, double exponent);
 // f inside the box (or region, borders included), NaN outside.
 Field Restrict(Field f, const BBox& box);
 Field Restrict(Field f, Region region);

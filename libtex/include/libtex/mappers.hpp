@@ -8,6 +8,7 @@
 
 #include "libtex/fields.hpp"
 #include "libtex/mapping.hpp"
+#include "libtex/region.hpp"
 
 namespace tex {
 
@@ -20,5 +21,23 @@ namespace tex {
 // reads below gate_min in `gate`, or NaN, gives Nothing() too (e.g. no hatch on flat ground).
 EdgeMapper JitterEdges(const std::string& label, double theta, double across, double along, double r,
                        double gap = 1.0, Field gate = Field(), double gate_min = 0);
+
+// Thinning of a family of parallel lines to a density that varies over the plane, with no
+// seam where it changes (issue 16: hatching whose tone follows the shade continuously).
+// The lines are those of StripesProperties(theta, spacing): line k at the signed distance
+// k * spacing from the origin along the normal (-sin theta, cos theta). An edge lying on
+// line k (read at its middle, LocationAt(e, 0.5)) is handed to `inner` when
+//     frac(k * (sqrt(5) - 1) / 2) < keep(middle),
+// and gives Nothing() otherwise (or where keep is NaN). The golden-ratio sequence spreads
+// the kept lines evenly at any fraction: among any n consecutive lines, the kept ones number
+// n * keep within about 2 (three-distance theorem), and the lines kept at a fraction are
+// among those kept at any larger one, so where keep grows lines are added and none move:
+// a line ends where the tone at it falls below its rank, not at a cell border.
+// With an `owner` region (one that is not empty), only edges whose middle lies in it
+// (Region::contains) are handed on: the cells of a partition that each own the whole edges
+// centred in them, so that no stroke is cut where cells meet.
+EdgeMapper ThinLines(EdgeMapper inner, double theta, double spacing, Field keep, Region owner = Region());
+// The rank of line k in the thinning order of ThinLines, in [0, 1).
+double ThinRank(long long k);
 
 }  // namespace tex
