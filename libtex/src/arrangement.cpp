@@ -6,11 +6,17 @@ Arrangement::Arrangement() : Arrangement(Fn([](const Region&) { return Curves{};
 
 Arrangement::Arrangement(Fn fn) : fn_(std::make_shared<const Fn>(std::move(fn))) {}
 
+Arrangement::Arrangement(Fn fn, MapFn map)
+    : fn_(std::make_shared<const Fn>(std::move(fn))), map_(std::make_shared<const MapFn>(std::move(map))) {}
+
 Curves Arrangement::operator()(const Region& r) const { return (*fn_)(r); }
 
 Curves Arrangement::operator()(const Face& f) const { return (*fn_)(ToRegion(f)); }
 
-MapPtr Arrangement::induce(const Region& r) const { return PlanarMap::induce((*fn_)(r)); }
+MapPtr Arrangement::induce(const Region& r) const {
+    if (map_) return (*map_)(r);
+    return PlanarMap::induce((*fn_)(r));
+}
 
 Arrangement Constant(Curves c) {
     auto shared = std::make_shared<const Curves>(std::move(c));

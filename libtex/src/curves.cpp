@@ -70,6 +70,8 @@ Curves Scale(const Curves& c, double sx, double sy) {
     return transformed(c, Affine::scaling(sx, sy, BBoxCenter(c)));
 }
 
+void detail::scale_in_place(Curves& c, double s) { c.transform(Affine::scaling(s, s, BBoxCenter(c))); }
+
 Curves Rotate(const Curves& c, double a) {
     return transformed(c, Affine::rotation(a, BBoxCenter(c)));
 }
@@ -80,28 +82,27 @@ Curves Translate(const Curves& c, const Point& v) {
 
 // Applies m, sending the points equal to a source exactly onto its target (rounding would
 // leave them a few ulps away, and a curve meant to end on a vertex would then miss it).
-static Curves transformed_onto(const Curves& c, const Affine& m, const Point* s, const Point* t, std::size_t n) {
-    Curves out = c;
+static void transform_onto(Curves& c, const Affine& m, const Point* s, const Point* t, std::size_t n) {
     const bool mirror = m.determinant() < 0;
     auto map = [&](const Point& p) {
         for (std::size_t k = 0; k < n; ++k)
             if (p == s[k]) return t[k];
         return m(p);
     };
-    for (auto& cv : out.curves) {
+    for (auto& cv : c.curves) {
         for (auto& p : cv.points) p = map(p);
         if (mirror) std::swap(cv.left, cv.right);
     }
-    for (auto& lp : out.points) lp.point = map(lp.point);
-    return out;
+    for (auto& lp : c.points) lp.point = map(lp.point);
 }
 
 Curves MatchPoint(const Curves& c, const Point& s, const Point& t) {
-    return transformed_onto(c, Affine::translation(t - s), &s, &t, 1);
+    Curves out = c;
+    transform_onto(out, Affine::translation(t - s), &s, &t, 1);
+    return out;
 }
 
-Curves MatchPoints(const Curves& c, const Point& s1, const Point& s2, const Point& t1,
-                   const Point& t2) {
+void detail::match_points_in_place(Curves& c, const Point& s1, const Point& s2, const Point& t1, const Point& t2) {
     const Point ds = s2 - s1, dt = t2 - t1;
     const double ls = dot(ds, ds);
     if (ls == 0.0) throw Error("MatchPoints", "the two source points coincide");
@@ -112,7 +113,14 @@ Curves MatchPoints(const Curves& c, const Point& s1, const Point& s2, const Poin
     m.c = t1.x - (ra * s1.x - rb * s1.y);
     m.f = t1.y - (rb * s1.x + ra * s1.y);
     const Point src[2] = {s1, s2}, dst[2] = {t1, t2};
-    return transformed_onto(c, m, src, dst, 2);
+    transform_onto(c, m, src, dst, 2);
+}
+
+Curves MatchPoints(const Curves& c, const Point& s1, const Point& s2, const Point& t1,
+                   const Point& t2) {
+    Curves out = c;
+    detail::match_points_in_place(out, s1, s2, t1, t2);
+    return out;
 }
 
 static std::string origin_of(const Curves& c) {

@@ -23,9 +23,13 @@ EdgeMapper JitterEdges(const std::string& label, double theta, double across, do
             return Location(v) + n * Random(v, -half_across, half_across, 0) +
                    d * Random(v, -half_along, half_along, 1);
         };
+        // One curve, moved and shortened where it lies (MatchPoints then Scale, without the
+        // copy each of them makes).
         const Vertex s = SourceVertex(e), t = TargetVertex(e);
-        Curves c = MatchPoints(ToCurve(e), Location(s), Location(t), moved(s), moved(t));
-        return gap < 1 ? Scale(c, gap) : c;
+        Curves c = ToCurve(e);
+        detail::match_points_in_place(c, Location(s), Location(t), moved(s), moved(t));
+        if (gap < 1) detail::scale_in_place(c, gap);
+        return c;
     };
 }
 

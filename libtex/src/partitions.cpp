@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <optional>
@@ -47,6 +48,9 @@ struct Complex {
     std::vector<CEdge> edges;
     std::vector<CCell> cells;
     std::vector<LabeledPoint> vertex_labels;
+    // Proved clean (see "Clean complexes" below): its edges meet only at shared vertices,
+    // and different vertices have different points, in doubles as well as in exact values.
+    bool clean = false;
 
     int add_cell(std::vector<Point> ring, Labels labels) {
         if (signed_area(ring) < 0) std::reverse(ring.begin(), ring.end());
@@ -80,8 +84,9 @@ Curve complex_edge_curve(const Complex& cx, const Complex::CEdge& e, const std::
     return c;
 }
 
-// Turns a complex into the curves of a partition of region r with border mode b.
-Curves realize(const Complex& cx, const Region& r, Border b) {
+// Turns a complex into the curves of a partition of region r with border mode b. For the
+// KEEP modes, `ends` (when given) receives the complex's vertex ids of each curve's two ends.
+Curves realize(const Complex& cx, const Region& r, Border b, detail::KnownVertices* ends = nullptr) {
     Curves out;
     if (b == Border::KEEP_INSIDE || b == Border::KEEP_OUTSIDE) {
         std::vector<char> kept(cx.cells.size(), 0);
@@ -94,8 +99,12 @@ Curves realize(const Complex& cx, const Region& r, Border b) {
         for (const auto& e : cx.edges) {
             const bool l = e.left >= 0 && kept[e.left];
             const bool rr = e.right >= 0 && kept[e.right];
-            if (l || rr) out.curves.push_back(complex_edge_curve(cx, e, &kept));
+            if (l || rr) {
+                out.curves.push_back(complex_edge_curve(cx, e, &kept));
+                if (ends) ends->ends.push_back({e.a, e.b});
+            }
         }
+        if (ends) ends->count = cx.verts.size();
         for (const auto& lp : cx.vertex_labels)
             out.points.push_back(lp);  // labels only attach to vertices that exist
         return out;
@@ -124,6 +133,39 @@ Curves realize(const Complex& cx, const Region& r, Border b) {
         });
     }
     return out;
+}
+
+// The planar map of realize(cx, r, b). A KEEP mode keeps whole cells, so when the complex is
+// clean its kept edges are a clean drawing whose vertices the complex already names: the map
+// is traced without the exact check of every pair of segments and without sorting their end
+// points (detail::induce_clean_complex). Otherwise (CROP modes, or a complex that rounding
+// may have made unclean) the map is induced from the curves.
+MapPtr realize_map(const Complex& cx, const Region& r, Border b) {
+    if (cx.clean && (b == Border::KEEP_INSIDE || b == Border::KEEP_OUTSIDE)) {
+        detail::KnownVertices ends;
+        const Curves curves = realize(cx, r, b, &ends);
+        return detail::induce_clean_complex(curves, ends);
+    }
+    return PlanarMap::induce(realize(cx, r, b));
+}
+
+// ---------------------------------------------------------------------------------------
+// Clean complexes
+//
+// A stripes or grid complex is a set of lines with offsets a_i (doubles, so exact values):
+// the exact complex of those lines is clean, and any two of its segments that share no
+// vertex are at least the smallest gap between two neighbouring lines apart (the segments
+// of one line are one gap of the other family long; sin <= 1). Its vertices are computed in
+// doubles, each within `err` of its exact position. Moving every vertex by less than half
+// the smallest gap keeps segments without a common vertex apart, keeps the far end of a
+// segment off its neighbours (so no overlap), and keeps different vertices at different
+// points: the drawing in doubles is clean, with the complex's own vertices. The bound on
+// `err` is the usual one for a 2 x 2 solve, |offsets| u / det^2 with a few units to spare,
+// and the test asks for the gap to exceed it 64 times over.
+bool rounding_keeps_clean(double min_gap, double magnitude, double det) {
+    constexpr double u = std::numeric_limits<double>::epsilon();
+    const double err = 8 * u * magnitude / (det * det);
+    return std::isfinite(min_gap) && std::isfinite(err) && min_gap > 64 * err;
 }
 
 // ---------------------------------------------------------------------------------------
@@ -236,6 +278,11 @@ Complex stripes_complex(const Stripes& s, const Region& r) {
         cx.edges.push_back({int(cx.verts.size()) - 2, int(cx.verts.size()) - 1, cell_left,
                             cell_left - 1, f.edge_label(i)});
     }
+    double gap = std::numeric_limits<double>::infinity();
+    for (long long i = i0; i < i1; ++i) gap = std::min(gap, f.offset(i + 1) - f.offset(i));
+    const double mag = std::max(std::abs(f.offset(i0)), std::abs(f.offset(i1))) +
+                       std::max(std::abs(slo), std::abs(shi));
+    cx.clean = rounding_keeps_clean(gap, mag, 1.0);
     return cx;
 }
 
@@ -304,6 +351,12 @@ Complex grid_complex(const Stripes& s1, const Stripes& s2, const Region& r) {
             if (!i_along_d2) std::swap(a, b);
             cx.edges.push_back({a, b, left, right, f2.edge_label(j)});
         }
+    double gap = std::numeric_limits<double>::infinity();
+    for (long long i = i0; i < i1; ++i) gap = std::min(gap, f1.offset(i + 1) - f1.offset(i));
+    for (long long j = j0; j < j1; ++j) gap = std::min(gap, f2.offset(j + 1) - f2.offset(j));
+    const double mag = std::max(std::abs(f1.offset(i0)), std::abs(f1.offset(i1))) +
+                       std::max(std::abs(f2.offset(j0)), std::abs(f2.offset(j1)));
+    cx.clean = rounding_keeps_clean(gap, mag, std::abs(det));
     return cx;
 }
 
@@ -614,13 +667,15 @@ void detail::StripesProbe::record(const Point& normal, double period) {
 
 Arrangement StripesPartition(const Stripes& p, Border b) {
     check_stripes(p, "StripesPartition");
-    return Arrangement([p, b](const Region& r) { return realize(stripes_complex(p, r), r, b); });
+    return Arrangement([p, b](const Region& r) { return realize(stripes_complex(p, r), r, b); },
+                       [p, b](const Region& r) { return realize_map(stripes_complex(p, r), r, b); });
 }
 
 Arrangement GridPartition(const Stripes& s1, const Stripes& s2, Border b) {
     check_stripes(s1, "GridPartition");
     check_stripes(s2, "GridPartition");
-    return Arrangement([s1, s2, b](const Region& r) { return realize(grid_complex(s1, s2, r), r, b); });
+    return Arrangement([s1, s2, b](const Region& r) { return realize(grid_complex(s1, s2, r), r, b); },
+                       [s1, s2, b](const Region& r) { return realize_map(grid_complex(s1, s2, r), r, b); });
 }
 
 Arrangement UniformPartition(const Irregular& p, Border b, std::optional<std::uint64_t> seed) {

@@ -206,9 +206,16 @@ bool ccw_before(const Point& p, const Point& a, const Point& b) {
 
 // Returns false when the drawing is not clean; `many_crossings` then tells whether at least
 // a tenth of the segments cross another one, to choose the CGAL traits.
-bool build_directly(const Curves& input, RawGraph& g, bool& many_crossings) {
+//
+// With `known` (detail::induce_clean_complex), the caller vouches that the drawing is clean
+// and names the vertex of each segment end: the exact check and the sort of the ends that
+// finds equal points are skipped, and the vertices are numbered in the same order (first
+// appearance), so the graph is the one the check and the sort would have produced.
+bool build_directly(const Curves& input, RawGraph& g, bool& many_crossings,
+                    const detail::KnownVertices* known = nullptr) {
     std::vector<detail::Seg> segs = detail::curve_segments(input);
     if (segs.empty()) return false;
+    if (known && known->ends.size() != segs.size()) return false;  // a segment left out
     // The grid index pays off from a few dozen segments on; the maps of small cells (a
     // polygon and a few chords) compare every pair directly, and build the grid only if
     // they need it to place their pieces.
@@ -221,7 +228,7 @@ bool build_directly(const Curves& input, RawGraph& g, bool& many_crossings) {
     // Clean: two segments meet only at a common end point, without overlapping. Otherwise,
     // count the segments that cross another one (not overlaps) to choose the CGAL traits.
     bool clean = true;
-    {
+    if (!known) {
         const std::size_t enough = segs.size() / 10 + 1;
         std::size_t crossings = 0;
         // Each segment's box once: most pairs are told apart by their boxes alone.
@@ -266,9 +273,36 @@ bool build_directly(const Curves& input, RawGraph& g, bool& many_crossings) {
         }
     }
     if (!clean) return false;
-    // Vertices (numbered in the order their points first appear), segments.
+    // Vertices (numbered in the order their points first appear), segments. `slot(k, e)` is
+    // where the vertex id of end e of segment k is kept, shared by every end at that vertex.
     const std::size_t ns = segs.size();
-    {
+    auto number = [&](auto&& slot) {
+        g.he.resize(2 * ns);
+        g.data_start.resize(ns + 1);
+        g.data.resize(ns);
+        g.vpt.reserve(2 * ns);
+        for (std::size_t k = 0; k < ns; ++k) {
+            int uv[2];
+            for (std::uint32_t e = 0; e < 2; ++e) {
+                int& v = slot(k, e);
+                if (v < 0) {
+                    v = int(g.vpt.size());
+                    g.vpt.push_back(e ? segs[k].b : segs[k].a);
+                }
+                uv[e] = v;
+            }
+            const bool l2r = left_to_right(segs[k].a, segs[k].b);
+            g.he[2 * k] = {uv[0], uv[1], -1, -1, l2r};
+            g.he[2 * k + 1] = {uv[1], uv[0], -1, -1, !l2r};
+            g.data_start[k] = std::uint32_t(k);
+            g.data[k] = (segs[k].owner << 1) | (l2r ? 1u : 0u);
+        }
+    };
+    if (known) {
+        // Vertices named by the caller.
+        std::vector<int> id(known->count, -1);
+        number([&](std::size_t k, std::uint32_t e) -> int& { return id[std::size_t(known->ends[k][e])]; });
+    } else {
         auto end_point = [&](std::uint32_t k) -> const Point& { return (k & 1u) ? segs[k >> 1].b : segs[k >> 1].a; };
         // The ends sorted by point, then by index (the points copied in: no indirection
         // while sorting).
@@ -284,28 +318,7 @@ bool build_directly(const Curves& input, RawGraph& g, bool& many_crossings) {
         for (std::size_t i = 0; i < ends.size(); ++i)
             first[ends[i].k] = (i > 0 && ends[i].p == ends[i - 1].p) ? first[ends[i - 1].k] : ends[i].k;
         std::vector<int> id(2 * ns, -1);
-        g.he.resize(2 * ns);
-        g.data_start.resize(ns + 1);
-        g.data.resize(ns);
-        g.vpt.reserve(2 * ns);
-        for (std::size_t k = 0; k < ns; ++k) {
-            int uv[2];
-            for (std::uint32_t e = 0; e < 2; ++e) {
-                int& v = id[first[2 * k + e]];
-                if (v < 0) {
-                    v = int(g.vpt.size());
-                    g.vpt.push_back(end_point(std::uint32_t(2 * k + e)));
-                }
-                uv[e] = v;
-            }
-            const Point& a = segs[k].a;
-            const Point& b = segs[k].b;
-            const bool l2r = left_to_right(a, b);
-            g.he[2 * k] = {uv[0], uv[1], -1, -1, l2r};
-            g.he[2 * k + 1] = {uv[1], uv[0], -1, -1, !l2r};
-            g.data_start[k] = std::uint32_t(k);
-            g.data[k] = (segs[k].owner << 1) | (l2r ? 1u : 0u);
-        }
+        number([&](std::size_t k, std::uint32_t e) -> int& { return id[first[2 * k + e]]; });
     }
     g.data_start[ns] = std::uint32_t(ns);
     const std::size_t nv = g.vpt.size();
@@ -439,7 +452,7 @@ bool build_directly(const Curves& input, RawGraph& g, bool& many_crossings) {
 enum class Way { Any, CgalCaching, CgalNonCaching };
 
 struct PlanarMapBuilder {
-    static MapPtr build(const Curves& curves, Way way);
+    static MapPtr build(const Curves& curves, Way way, const detail::KnownVertices* known = nullptr);
 };
 
 MapPtr PlanarMap::induce(const Curves& curves) { return PlanarMapBuilder::build(curves, Way::Any); }
@@ -449,10 +462,15 @@ MapPtr induce_with_cgal(const Curves& curves, bool caching) {
     return PlanarMapBuilder::build(curves, caching ? Way::CgalCaching : Way::CgalNonCaching);
 }
 thread_local std::uint64_t t_direct = 0;
+thread_local std::uint64_t t_complex = 0;
 std::uint64_t direct_inductions() { return t_direct; }
+std::uint64_t complex_inductions() { return t_complex; }
+MapPtr induce_clean_complex(const Curves& curves, const KnownVertices& known) {
+    return PlanarMapBuilder::build(curves, Way::Any, &known);
+}
 }  // namespace detail
 
-MapPtr PlanarMapBuilder::build(const Curves& input, Way way) {
+MapPtr PlanarMapBuilder::build(const Curves& input, Way way, const detail::KnownVertices* known) {
     auto map = std::make_shared<PlanarMap>();
     PlanarMap& pm = *map;
 
@@ -461,7 +479,10 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way) {
 
     RawGraph g;
     bool many_crossings = false;
-    if (way == Way::Any && build_directly(input, g, many_crossings)) {
+    if (known && build_directly(input, g, many_crossings, known)) {
+        ++detail::t_direct;
+        ++detail::t_complex;
+    } else if (way == Way::Any && build_directly(input, g, many_crossings)) {
         ++detail::t_direct;
     } else {
         g = RawGraph{};

@@ -6,6 +6,7 @@
 // predicates of the Epick kernel); the grid only narrows the candidates, conservatively.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -101,6 +102,21 @@ namespace tex::detail {
 MapPtr induce_with_cgal(const Curves& curves, bool caching = true);
 // How many planar maps this thread traced directly (for the tests).
 std::uint64_t direct_inductions();
+
+// The vertices of a drawing known to be clean, as a partition's cell complex knows them:
+// for the k-th segment of curve_segments(curves), the ids (below `count`) of its two ends.
+// Equal ids mean the same point and different ids different points.
+struct KnownVertices {
+    std::vector<std::array<int, 2>> ends;
+    std::size_t count = 0;
+};
+// The planar map of curves whose drawing the caller has proved clean (segments meet only at
+// shared end points, without overlapping; see partitions.cpp, "clean complexes"): the same
+// map as PlanarMap::induce(curves), without the exact check or the sort of the end points.
+// Falls back to PlanarMap::induce when `known` does not match the curves' segments.
+MapPtr induce_clean_complex(const Curves& curves, const KnownVertices& known);
+// How many planar maps this thread built through induce_clean_complex (for the tests).
+std::uint64_t complex_inductions();
 }  // namespace tex::detail
 
 namespace tex::detail {

@@ -1,4 +1,5 @@
 // Curves utilities and the adjacency built-ins on curves (tables 3.4 and 3.6).
+#include <random>
 #include <set>
 #include <gtest/gtest.h>
 
@@ -141,4 +142,38 @@ TEST(Labels, SetSemanticsAcrossInlineAndHeapStorage) {
     EXPECT_EQ(four.names(), (std::vector<std::string>{"w", "x", "y", "z"}));
     four.remove(intern_label("w"));
     EXPECT_EQ(four, three);
+}
+
+TEST(CurvesInPlace, SameBytesAsTheCopyingOperators) {
+    // The jitter mapper moves its curve in place; the points must be those MatchPoints and
+    // Scale give, bit for bit, with the labels and labelled points along.
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-1e5, 1e5), small(-3, 3);
+    for (int k = 0; k < 200; ++k) {
+        Curves c;
+        Curve cv;
+        const int n = 2 + k % 5;
+        for (int i = 0; i < n; ++i) cv.points.push_back({u(rng), u(rng)});
+        cv.closed = k % 3 == 0;
+        cv.labels.add("edge");
+        cv.left.add("l");
+        cv.right.add("r");
+        c.curves.push_back(cv);
+        c.points.push_back({cv.points[0], Labels{}});
+        const Point s1 = cv.points.front(), s2 = cv.points.back();
+        const Point t1 = s1 + Point{small(rng), small(rng)}, t2 = s2 + Point{small(rng), small(rng)};
+        Curves moved = c;
+        detail::match_points_in_place(moved, s1, s2, t1, t2);
+        const Curves copied = MatchPoints(c, s1, s2, t1, t2);
+        ASSERT_EQ(moved.curves[0].points, copied.curves[0].points);
+        EXPECT_EQ(moved.curves[0].points.front(), t1);
+        EXPECT_EQ(moved.points[0].point, copied.points[0].point);
+        EXPECT_EQ(moved.curves[0].left, copied.curves[0].left);
+        const double gap = 0.5 + 0.4 * (k % 4) / 3.0;
+        Curves shortened = moved;
+        detail::scale_in_place(shortened, gap);
+        EXPECT_EQ(shortened.curves[0].points, Scale(copied, gap).curves[0].points);
+    }
+    Curves c = Polyline({{0, 0}, {1, 1}});
+    EXPECT_THROW(detail::match_points_in_place(c, {2, 2}, {2, 2}, {0, 0}, {1, 0}), Error);
 }

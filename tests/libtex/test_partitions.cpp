@@ -517,3 +517,137 @@ TEST(RegionTests, FastAnswersEqualTheFullOnes) {
     EXPECT_GT(meets, cells / 5);
     EXPECT_LT(meets, cells - cells / 5);
 }
+
+// ---- A KEEP partition's planar map, built from its cell complex ----
+//
+// Arrangement::induce of a stripes or grid partition in a KEEP mode traces the map from the
+// cell complex (no exact check of the segments, no sort of their ends). It must be the map
+// PlanarMap::induce gives for the partition's curves, record for record, and fall back to
+// that induction when rounding may have made the complex unclean.
+
+namespace tex::detail {
+std::uint64_t complex_inductions();
+}
+
+namespace {
+
+// A jittered, rotated polygon around c (convex or not), sometimes with a hole.
+Region jittered_region(std::mt19937& rng, const Point& c, double radius) {
+    std::uniform_real_distribution<double> u(0, 1);
+    const int n = 3 + int(u(rng) * 7);
+    const double turn = u(rng) * 6.283185307179586;
+    std::vector<Point> outer;
+    for (int k = 0; k < n; ++k) {
+        const double a = turn + 6.283185307179586 * (k + 0.4 * u(rng)) / n;
+        const double r = radius * (0.45 + 0.55 * u(rng));
+        outer.push_back({c.x + r * std::cos(a), c.y + r * std::sin(a)});
+    }
+    std::vector<std::vector<Point>> holes;
+    if (u(rng) < 0.3) {
+        const double h = 0.08 * radius;
+        holes.push_back({{c.x - h, c.y - h}, {c.x - h, c.y + h}, {c.x + h, c.y + h}, {c.x + h, c.y - h}});
+    }
+    return Region(std::move(outer), std::move(holes));
+}
+
+Stripes random_stripes(std::mt19937& rng, double angle, const char* tag) {
+    std::uniform_real_distribution<double> u(0, 1);
+    std::vector<double> widths;
+    for (int k = 0, n = 1 + int(u(rng) * 3); k < n; ++k) widths.push_back(0.5 + 6 * u(rng));
+    Stripes s = StripesProperties(angle, widths);
+    if (u(rng) < 0.6) SetEdgeLabels(s, {std::string(tag) + "a", std::string(tag) + "b"});
+    if (u(rng) < 0.6) SetFaceLabels(s, {std::string(tag) + "x", std::string(tag) + "y", std::string(tag) + "z"});
+    return s;
+}
+
+}  // namespace
+
+TEST(PartitionMaps, CellComplexMapIsTheInducedMap) {
+    std::mt19937 rng(20261202);
+    std::uniform_real_distribution<double> u(0, 1);
+    int cases = 0;
+    const std::uint64_t before = detail::complex_inductions();
+    for (int k = 0; k < 160; ++k) {
+        const Point c{(u(rng) - 0.5) * 2e5, (u(rng) - 0.5) * 2e5};
+        const Region r = jittered_region(rng, c, 5 + 40 * u(rng));
+        // Axis-aligned angles now and then (exactly vertical or horizontal lines).
+        const double a1 = k % 7 == 0 ? 0.0 : u(rng) * 6.283185307179586;
+        const double a2 = k % 11 == 0 ? a1 + 1.5707963267948966 : a1 + 0.2 + u(rng) * 2.7;
+        const Stripes s1 = random_stripes(rng, a1, "h"), s2 = random_stripes(rng, a2, "v");
+        for (Border b : {KEEP_OUTSIDE, KEEP_INSIDE}) {
+            const std::string what = "case " + std::to_string(k) + " " + border_name(b);
+            const Arrangement grid = GridPartition(s1, s2, b);
+            const Curves grid_curves = grid(r);
+            th::expect_same_map(*grid.induce(r), *PlanarMap::induce(grid_curves), (what + " grid").c_str());
+            const Arrangement stripes = StripesPartition(s1, b);
+            const Curves stripes_curves = stripes(r);
+            th::expect_same_map(*stripes.induce(r), *PlanarMap::induce(stripes_curves), (what + " stripes").c_str());
+            // An empty partition (KEEP_INSIDE of whole bands) is the empty map either way.
+            cases += !grid_curves.curves.empty();
+            cases += !stripes_curves.curves.empty();
+            if (HasFailure()) return;
+        }
+    }
+    // Every non-empty one took the way through the complex (nothing was close to unclean).
+    EXPECT_GT(cases, 400);
+    EXPECT_EQ(detail::complex_inductions() - before, std::uint64_t(cases));
+}
+
+TEST(PartitionMaps, CropModesAndVoronoiInduceFromTheirCurves) {
+    // CROP modes cut cells, and Voronoi complexes carry no proof of cleanness: both induce
+    // their map from the curves (the same map, by definition), never through the complex.
+    const Region r({{0, 0}, {90, 10}, {70, 80}, {10, 60}});
+    const std::uint64_t before = detail::complex_inductions();
+    const Stripes s1 = StripesProperties(0.4, 7), s2 = StripesProperties(2.0, 5);
+    for (Border b : {CROP, CROP_ADD_BOUNDARY}) {
+        const Arrangement grid = GridPartition(s1, s2, b);
+        th::expect_same_map(*grid.induce(r), *PlanarMap::induce(grid(r)), border_name(b));
+    }
+    const Arrangement voronoi = UniformPartition(IrregularProperties(0.01), KEEP_OUTSIDE, 3);
+    th::expect_same_map(*voronoi.induce(r), *PlanarMap::induce(voronoi(r)), "voronoi");
+    EXPECT_EQ(detail::complex_inductions(), before);
+}
+
+TEST(PartitionMaps, UncleanComplexesFallBackToTheGeneralInduction) {
+    const std::uint64_t before = detail::complex_inductions();
+    // Nearly parallel families: the vertices of the grid are computed with an error that
+    // is no longer small against the widths.
+    {
+        const Region r = Region::rectangle(0, 0, 30, 30);
+        const Arrangement grid =
+            GridPartition(StripesProperties(0.7, 3), StripesProperties(0.7 + 2e-9, 4), KEEP_OUTSIDE);
+        const MapPtr m = grid.induce(r);
+        th::expect_same_map(*m, *PlanarMap::induce(grid(r)), "nearly parallel");
+    }
+    // Huge coordinates: a metre is a few units in the last place of 1e14.
+    for (Border b : {KEEP_OUTSIDE, KEEP_INSIDE}) {
+        const Region r = Region::rectangle(1e14, 1e14, 1e14 + 20, 1e14 + 20);
+        const Arrangement grid = GridPartition(StripesProperties(0.3, 1), StripesProperties(1.8, 1.5), b);
+        th::expect_same_map(*grid.induce(r), *PlanarMap::induce(grid(r)), "huge grid");
+        const Arrangement stripes = StripesPartition(StripesProperties(0.3, 1), b);
+        th::expect_same_map(*stripes.induce(r), *PlanarMap::induce(stripes(r)), "huge stripes");
+    }
+    EXPECT_EQ(detail::complex_inductions(), before) << "an unclean complex was traced without the check";
+    // The same partitions at ordinary coordinates do take the complex's way.
+    const Region r = Region::rectangle(0, 0, 20, 20);
+    GridPartition(StripesProperties(0.3, 1), StripesProperties(1.8, 1.5), KEEP_OUTSIDE).induce(r);
+    EXPECT_EQ(detail::complex_inductions(), before + 1);
+}
+
+TEST(PartitionMaps, MappingOverTheComplexMapIsThreadIndependent) {
+    // MapToEdges over a KEEP grid (the maps the styles' noisy lines come from), nested in a
+    // MapToFaces as the styles do: same bytes at 1 and 2 threads.
+    const Stripes s1 = StripesProperties(0.35, 4, 2), s2 = StripesProperties(0.35 + 1.5707963267948966, 9);
+    const Arrangement inner = MapToEdges([](const Edge& e) { return ToCurve(e); }, GridPartition(s1, s2, KEEP_OUTSIDE));
+    const Arrangement outer = MapToFaces([inner](const Face& f) { return Crop(inner, CROP)(f); },
+                                         GridPartition(StripesProperties(0.35, 40), StripesProperties(1.92, 40), KEEP_OUTSIDE));
+    const Region r({{0, 0}, {200, 20}, {180, 170}, {30, 150}});
+    const unsigned saved = GetThreads();
+    SetThreads(1);
+    const std::string one = ToSVG(outer(r), 400);
+    SetThreads(2);
+    const std::string two = ToSVG(outer(r), 400);
+    SetThreads(saved);
+    EXPECT_GT(one.size(), 1000u);
+    EXPECT_EQ(one, two);
+}

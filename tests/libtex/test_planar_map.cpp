@@ -310,56 +310,6 @@ MapPtr induce_with_cgal(const Curves& curves, bool caching = true);
 std::uint64_t direct_inductions();
 }
 
-namespace {
-
-void expect_same_map(const PlanarMap& a, const PlanarMap& b, const char* what) {
-    ASSERT_EQ(a.vertices().size(), b.vertices().size()) << what;
-    ASSERT_EQ(a.edges().size(), b.edges().size()) << what;
-    ASSERT_EQ(a.faces().size(), b.faces().size()) << what;
-    EXPECT_EQ(a.unbounded_face(), b.unbounded_face()) << what;
-    for (std::size_t i = 0; i < a.vertices().size(); ++i) {
-        const auto &x = a.vertices()[i], &y = b.vertices()[i];
-        EXPECT_EQ(x.point, y.point) << what << " vertex " << i;
-        EXPECT_EQ(x.labels, y.labels) << what;
-        EXPECT_EQ(x.edges, y.edges) << what << " vertex " << i;
-        EXPECT_EQ(x.faces, y.faces) << what << " vertex " << i;
-        EXPECT_EQ(x.key, y.key) << what;
-    }
-    for (std::size_t i = 0; i < a.edges().size(); ++i) {
-        const auto &x = a.edges()[i], &y = b.edges()[i];
-        EXPECT_EQ(x.points, y.points) << what << " edge " << i;
-        EXPECT_EQ(std::make_pair(x.source, x.target), std::make_pair(y.source, y.target)) << what;
-        EXPECT_EQ(std::make_pair(x.left, x.right), std::make_pair(y.left, y.right)) << what << " edge " << i;
-        EXPECT_EQ(x.labels, y.labels) << what;
-        EXPECT_EQ(x.left_labels, y.left_labels) << what;
-        EXPECT_EQ(x.right_labels, y.right_labels) << what;
-        ASSERT_EQ(x.sources.size(), y.sources.size()) << what;
-        for (std::size_t k = 0; k < x.sources.size(); ++k) {
-            EXPECT_EQ(x.sources[k].curve, y.sources[k].curve) << what;
-            EXPECT_EQ(x.sources[k].forward, y.sources[k].forward) << what;
-        }
-        EXPECT_EQ(x.key, y.key) << what;
-    }
-    for (std::size_t i = 0; i < a.faces().size(); ++i) {
-        const auto &x = a.faces()[i], &y = b.faces()[i];
-        EXPECT_EQ(x.unbounded, y.unbounded) << what;
-        EXPECT_EQ(x.labels, y.labels) << what << " face " << i;
-        ASSERT_EQ(x.cycles.size(), y.cycles.size()) << what << " face " << i;
-        for (std::size_t c = 0; c < x.cycles.size(); ++c) {
-            ASSERT_EQ(x.cycles[c].size(), y.cycles[c].size()) << what;
-            for (std::size_t k = 0; k < x.cycles[c].size(); ++k) {
-                EXPECT_EQ(x.cycles[c][k].edge, y.cycles[c][k].edge) << what;
-                EXPECT_EQ(x.cycles[c][k].left, y.cycles[c][k].left) << what;
-            }
-        }
-        EXPECT_EQ(x.vertices, y.vertices) << what;
-        EXPECT_EQ(x.edges, y.edges) << what;
-        EXPECT_EQ(x.key, y.key) << what;
-    }
-}
-
-}  // namespace
-
 TEST(PlanarMapWays, DirectTraceAndExactArrangementAgree) {
     const Region window = Region::rectangle(0, 0, 1000, 1000);
     const Region blob({{100, 100}, {900, 150}, {700, 500}, {950, 900}, {300, 800}, {50, 500}},
@@ -430,7 +380,7 @@ TEST(PlanarMapWays, DirectTraceAndExactArrangementAgree) {
         const MapPtr direct = PlanarMap::induce(curves);
         traced += detail::direct_inductions() - before;
         const MapPtr exact = detail::induce_with_cgal(curves);
-        expect_same_map(*direct, *exact, what);
+        th::expect_same_map(*direct, *exact, what);
     }
     // All but the overlapping squares and the T junction take the direct way; the
     // comparison would be empty otherwise.
@@ -453,7 +403,7 @@ TEST(PlanarMapWays, SmallMapsAndForestsTraceLikeCgal) {
             const std::uint64_t before = detail::direct_inductions();
             const MapPtr direct = PlanarMap::induce(c);
             traced += detail::direct_inductions() - before;
-            expect_same_map(*direct, *detail::induce_with_cgal(c), r == &cell ? "cell" : "big region");
+            th::expect_same_map(*direct, *detail::induce_with_cgal(c), r == &cell ? "cell" : "big region");
             if (b == CROP) {
                 EXPECT_EQ(direct->faces().size(), 1u);
                 for (const auto& cv : c.curves) EXPECT_TRUE(cv.labels.has("fill"));

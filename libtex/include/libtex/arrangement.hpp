@@ -18,10 +18,15 @@ namespace tex {
 class Arrangement {
 public:
     using Fn = std::function<Curves(const Region&)>;
+    using MapFn = std::function<MapPtr(const Region&)>;
 
     // The empty arrangement.
     Arrangement();
     explicit Arrangement(Fn fn);
+    // An arrangement that knows a quicker way to its planar map than inducing it from its
+    // curves (a partition that keeps whole cells: its cell complex already is the map).
+    // `map(r)` must give exactly PlanarMap::induce(fn(r)), record for record.
+    Arrangement(Fn fn, MapFn map);
 
     // Evaluates the arrangement on a region.
     Curves operator()(const Region& r) const;
@@ -32,6 +37,7 @@ public:
 
 private:
     std::shared_ptr<const Fn> fn_;
+    std::shared_ptr<const MapFn> map_;  // null: induce from the curves
 };
 
 // An arrangement that returns fixed curves, whatever the region.
