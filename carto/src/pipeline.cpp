@@ -302,6 +302,7 @@ Stats run(const Options& o, const Progress& progress) {
     Prepared p = prepare(o, progress);
     Drawing d = hatch(p, o, progress);
     tick(progress, 0.92, "writing");
+    const tex::ThreadsScope threads(o.threads);  // the writers' parallel parts too
     for (const auto& out : o.outputs) {
         const std::string e = extension(out);
         if (e == ".gpkg")

@@ -90,10 +90,20 @@ Curves realize(const Complex& cx, const Region& r, Border b, detail::KnownVertic
     Curves out;
     if (b == Border::KEEP_INSIDE || b == Border::KEEP_OUTSIDE) {
         std::vector<char> kept(cx.cells.size(), 0);
+        // Many cells against a region of many vertices (a traced face): index the region
+        // once; the answers are the same.
+        std::size_t ring_points = r.outer().size();
+        for (const auto& h : r.holes()) ring_points += h.size();
+        std::optional<PreparedRegion> prepared;
+        if (ring_points > 32 && cx.cells.size() > 4) prepared.emplace(r);
         for (std::size_t i = 0; i < cx.cells.size(); ++i) {
-            kept[i] = b == Border::KEEP_INSIDE
-                          ? classify_polygon(cx.cells[i].ring, cx.cells[i].box, r) == Overlap::Inside
-                          : polygon_meets_region(cx.cells[i].ring, cx.cells[i].box, r);
+            const auto& c = cx.cells[i];
+            if (prepared)
+                kept[i] = b == Border::KEEP_INSIDE ? prepared->classify_polygon(c.ring, c.box) == Overlap::Inside
+                                                   : prepared->polygon_meets_region(c.ring, c.box);
+            else
+                kept[i] = b == Border::KEEP_INSIDE ? classify_polygon(c.ring, c.box, r) == Overlap::Inside
+                                                   : polygon_meets_region(c.ring, c.box, r);
         }
         out.curves.reserve(cx.edges.size());
         for (const auto& e : cx.edges) {

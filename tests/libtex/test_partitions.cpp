@@ -518,6 +518,63 @@ TEST(RegionTests, FastAnswersEqualTheFullOnes) {
     EXPECT_LT(meets, cells - cells / 5);
 }
 
+// A region prepared for many tests (slabs of its rings' segments) answers exactly as the
+// plain region does: points on rings, on lattice vertices and horizontal segments, cells
+// touching vertices, in holes and outside, rings of a few hundred vertices.
+TEST(RegionTests, PreparedRegionAnswersLikeTheRegion) {
+    std::mt19937_64 rng(29);
+    std::uniform_real_distribution<double> u(0, 1);
+    std::uniform_int_distribution<int> lattice(0, 40);
+    std::size_t inside = 0, partial = 0, disjoint = 0, contained = 0, queries = 0;
+    for (int trial = 0; trial < 40; ++trial) {
+        // A wiggly star on a lattice (many vertices, horizontal and vertical runs) with two
+        // holes, one of them touching the outer ring's lattice.
+        const int n = 40 + 20 * (trial % 10);
+        std::vector<Point> outer;
+        for (int k = 0; k < n; ++k) {
+            const double a = 2 * pi * k / n, rad = 12 + (k % 3) + lattice(rng) % 5;
+            outer.push_back({std::round(20 + rad * std::cos(a)), std::round(20 + rad * std::sin(a))});
+        }
+        std::vector<std::vector<Point>> holes = {{{18, 18}, {18, 22}, {22, 22}, {22, 18}},
+                                                 {{26, 15}, {29, 15}, {29, 17}, {26, 17}}};
+        Region r;
+        try {
+            r = Region(outer, holes);
+        } catch (const Error&) {
+            continue;
+        }
+        const PreparedRegion pr(r);
+        for (int q = 0; q < 600; ++q) {
+            const Point p = q % 2 ? Point{double(lattice(rng)), double(lattice(rng))} : Point{40 * u(rng), 40 * u(rng)};
+            const bool c = r.contains(p);
+            ASSERT_EQ(pr.contains(p), c) << trial << " " << p.x << " " << p.y;
+            contained += c;
+            // Vertices of the ring itself, and points on its segments' midpoints.
+            const Point& v = r.outer()[std::size_t(q) % r.outer().size()];
+            ASSERT_EQ(pr.contains(v), r.contains(v));
+            const Point mid = (v + r.outer()[(std::size_t(q) + 1) % r.outer().size()]) / 2;
+            ASSERT_EQ(pr.contains(mid), r.contains(mid));
+            const double w = q % 5 == 0 ? 1.0 : 0.5 + 4 * u(rng);
+            std::vector<Point> cell = {p, p + Point{w, 0.3 * u(rng)}, p + Point{w, w}, p + Point{-0.2 * u(rng), w}};
+            if (q % 3 == 0) cell = {p, p + Point{w, 0}, p + Point{w, w}, p + Point{0, w}};
+            BBox box;
+            for (const Point& x : cell) box.add(x);
+            const Overlap plain = classify_polygon(cell, box, r);
+            ASSERT_EQ(pr.classify_polygon(cell, box), plain) << trial << " " << p.x << " " << p.y << " " << w;
+            ASSERT_EQ(pr.polygon_meets_region(cell, box), polygon_meets_region(cell, box, r));
+            inside += plain == Overlap::Inside;
+            partial += plain == Overlap::Partial;
+            disjoint += plain == Overlap::Disjoint;
+            ++queries;
+        }
+    }
+    // Every answer occurs often.
+    EXPECT_GT(inside, queries / 10);
+    EXPECT_GT(partial, queries / 10);
+    EXPECT_GT(disjoint, queries / 10);
+    EXPECT_GT(contained, queries / 10);
+}
+
 // ---- A KEEP partition's planar map, built from its cell complex ----
 //
 // Arrangement::induce of a stripes or grid partition in a KEEP mode traces the map from the

@@ -1,6 +1,7 @@
 // Region: the domain an arrangement is evaluated on, a polygon with holes.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -58,6 +59,37 @@ bool polygon_meets_region(const std::vector<Point>& poly, const BBox& poly_box, 
 
 // True when the point lies inside the (closed) polygon ring.
 bool point_in_ring(const Point& p, const std::vector<Point>& ring);
+
+// A region prepared for many tests: the segments and vertices of each ring are sorted into
+// horizontal slabs, so that a point test visits the segments that span the point's height
+// and a polygon test the segments and vertices near the polygon's box, instead of every
+// segment of every ring. The answers are the region's own (Region::contains,
+// classify_polygon, polygon_meets_region), computed by the same arithmetic on the same
+// segments: only the segments the plain tests skip at once are left out. It refers to the
+// region, which must outlive it. Worth building when a region of many vertices is asked
+// about many points or cells (a KEEP partition over a traced face).
+class PreparedRegion {
+public:
+    explicit PreparedRegion(const Region& r);
+    const Region& region() const { return *r_; }
+    bool contains(const Point& p) const;
+    Overlap classify_polygon(const std::vector<Point>& poly, const BBox& poly_box) const;
+    bool polygon_meets_region(const std::vector<Point>& poly, const BBox& poly_box) const;
+
+    // One ring's segments (by the index of their first point) and vertices, per slab.
+    struct Slabs {
+        double y0 = 0, height = 1;
+        int n = 1;
+        std::vector<std::uint32_t> seg_start, segs, vertex_start, vertices;
+        int slab(double y) const;
+    };
+
+private:
+    Overlap classify_as(const std::vector<Point>& poly, const BBox& poly_box, bool only_disjoint) const;
+    const Region* r_;
+    Slabs outer_;
+    std::vector<Slabs> holes_;
+};
 
 // Which of a set of regions holds a point: the regions whose box holds it are tested through a
 // uniform grid of boxes (about one region per cell) over `area`, in the order given, and the
