@@ -9,25 +9,37 @@
 namespace tex {
 
 RegionLocator::RegionLocator(std::vector<Region> regions, std::optional<BBox> area) {
+    auto kept = std::make_shared<std::vector<Region>>();
     if (area) {
         area_ = *area;
         for (auto& r : regions)
-            if (r.bbox().intersects(area_)) regions_.push_back(std::move(r));
+            if (r.bbox().intersects(area_)) kept->push_back(std::move(r));
     } else {
-        regions_ = std::move(regions);
-        for (const auto& r : regions_) area_.add(r.bbox());
+        *kept = std::move(regions);
+        for (const auto& r : *kept) area_.add(r.bbox());
     }
+    // Regions of many vertices (traced faces) are asked through their slabs: same answers.
+    auto prepared = std::make_shared<std::vector<std::optional<PreparedRegion>>>(kept->size());
+    for (std::size_t k = 0; k < kept->size(); ++k) {
+        const Region& r = (*kept)[k];
+        std::size_t points = r.outer().size();
+        for (const auto& h : r.holes()) points += h.size();
+        if (points > 32) (*prepared)[k].emplace(r);
+    }
+    regions_ = std::move(kept);
+    prepared_ = std::move(prepared);
+    const std::vector<Region>& rs = *regions_;
     if (area_.empty()) return;
     // About one region per cell.
-    const double cells = std::clamp(double(regions_.size()), 1.0, 65536.0);
+    const double cells = std::clamp(double(rs.size()), 1.0, 65536.0);
     const double w = std::max(area_.width(), 1e-300), h = std::max(area_.height(), 1e-300);
     nx_ = std::clamp(int(std::ceil(std::sqrt(cells * w / h))), 1, 256);
     ny_ = std::clamp(int(std::ceil(cells / nx_)), 1, 256);
     cells_.assign(std::size_t(nx_) * std::size_t(ny_), {});
     auto col = [&](double x) { return std::clamp(int(std::floor((x - area_.xmin) / w * nx_)), 0, nx_ - 1); };
     auto row = [&](double y) { return std::clamp(int(std::floor((y - area_.ymin) / h * ny_)), 0, ny_ - 1); };
-    for (std::size_t k = 0; k < regions_.size(); ++k) {
-        const BBox& b = regions_[k].bbox();
+    for (std::size_t k = 0; k < rs.size(); ++k) {
+        const BBox& b = rs[k].bbox();
         if (b.empty()) continue;  // an empty region holds no point
         for (int i = col(b.xmin); i <= col(b.xmax); ++i)
             for (int j = row(b.ymin); j <= row(b.ymax); ++j) cells_[std::size_t(j) * nx_ + i].push_back(int(k));
@@ -38,8 +50,10 @@ int RegionLocator::find(const Point& p) const {
     if (area_.empty() || !area_.contains(p)) return -1;
     const int i = std::clamp(int(std::floor((p.x - area_.xmin) / std::max(area_.width(), 1e-300) * nx_)), 0, nx_ - 1);
     const int j = std::clamp(int(std::floor((p.y - area_.ymin) / std::max(area_.height(), 1e-300) * ny_)), 0, ny_ - 1);
-    for (int k : cells_[std::size_t(j) * nx_ + i])
-        if (regions_[std::size_t(k)].contains(p)) return k;
+    for (int k : cells_[std::size_t(j) * nx_ + i]) {
+        const auto& pr = (*prepared_)[std::size_t(k)];
+        if (pr ? pr->contains(p) : (*regions_)[std::size_t(k)].contains(p)) return k;
+    }
     return -1;
 }
 

@@ -568,6 +568,29 @@ TEST(RegionTests, PreparedRegionAnswersLikeTheRegion) {
             ++queries;
         }
     }
+    // A locator over regions of many vertices (prepared inside) and small ones answers as a
+    // scan of the regions in order does.
+    std::vector<Region> regions;
+    for (int k = 0; k < 6; ++k) {
+        std::vector<Point> ring;
+        const int n = k % 2 ? 4 : 90;
+        for (int i = 0; i < n; ++i) {
+            const double a = 2 * pi * i / n, rad = 6 + (i % 2) * (k % 2 ? 0 : 2);
+            ring.push_back({std::round(8 * k + rad * std::cos(a)), std::round(10 + rad * std::sin(a))});
+        }
+        regions.emplace_back(ring, std::vector<std::vector<Point>>{{{8.0 * k - 1, 9}, {8.0 * k - 1, 11}, {8.0 * k + 1, 11}, {8.0 * k + 1, 9}}});
+    }
+    const RegionLocator locator(regions);
+    const RegionLocator copy = RegionLocator(locator);  // copies share the prepared regions
+    for (int q = 0; q < 4000; ++q) {
+        const Point p = q % 2 ? Point{double(lattice(rng)) * 1.2 - 8, double(lattice(rng)) * 0.6}
+                              : Point{56 * u(rng) - 8, 24 * u(rng)};
+        int expected = -1;
+        for (std::size_t k = 0; k < regions.size() && expected < 0; ++k)
+            if (regions[k].contains(p)) expected = int(k);
+        ASSERT_EQ(locator.find(p), expected) << p.x << " " << p.y;
+        ASSERT_EQ(copy.find(p), expected);
+    }
     // Every answer occurs often.
     EXPECT_GT(inside, queries / 10);
     EXPECT_GT(partial, queries / 10);

@@ -104,10 +104,13 @@ public:
     // The index of the first region holding p, or -1.
     int find(const Point& p) const;
     const BBox& area() const { return area_; }
-    const std::vector<Region>& regions() const { return regions_; }
+    const std::vector<Region>& regions() const { return *regions_; }
 
 private:
-    std::vector<Region> regions_;
+    // Shared by copies (they are never changed): the prepared forms of the regions of many
+    // vertices refer to these regions.
+    std::shared_ptr<const std::vector<Region>> regions_;
+    std::shared_ptr<const std::vector<std::optional<PreparedRegion>>> prepared_;
     BBox area_;
     int nx_ = 1, ny_ = 1;
     std::vector<std::vector<int>> cells_;  // region indices per grid cell, ascending
