@@ -514,3 +514,118 @@ TEST(Tiled, FaceLocatorFindsNestedFaces) {
     EXPECT_EQ(labels({5, 5}), "core,");
     EXPECT_EQ(loc.face_at({20, 5}), loc.map().unbounded_face());
 }
+
+namespace {
+
+// Horizontal stripes 120 and 300 wide with three face labels (period 1260 across), and small
+// squares in a grid of 210 x 180 (commensurable: 6 and 7 cells per 1260), their inner side
+// labelled "in" and the cell's labels, their outer side "out". The union has faces of every
+// kind: bands (unbounded), the band around the squares (unbounded, with holes), inside
+// squares, pieces of squares cut by a stripe line.
+Stripes labelled(Stripes s, const std::vector<std::string>& face_labels) {
+    SetFaceLabels(s, face_labels);
+    return s;
+}
+Stripes wide_bands() { return labelled(StripesProperties(0, 120, 300), {"a", "b", "c"}); }
+Stripes square_rows() { return labelled(StripesProperties(0, 210), {"r1", "r2"}); }
+Stripes square_columns() { return StripesProperties(pi / 2, 180); }
+Curves small_square(const Face& f) {
+    Curves c = Scale(Contour(f), 0.3);
+    for (auto& cv : c.curves) {
+        cv.left = record(f).labels;
+        cv.left.add("in");
+        cv.right = Labels{};
+        cv.right.add("out");
+    }
+    return c;
+}
+
+}  // namespace
+
+// FaceLabelsAt where faces are unbounded (bands of stripes, the space around closed shapes):
+// the labels of the engine's face at thousands of random points, many of them far from every
+// curve, and the same labels a whole number of periods away.
+TEST(Tiled, FaceLabelsOnUnboundedFacesAreTheEnginesFaces) {
+    const TiledMap bands = StripesPartition(wide_bands(), Tiled());
+    const TiledMap squares = MapToFaces(small_square, GridPartition(square_rows(), square_columns(), Tiled()));
+    const TiledMap both = Union(bands, squares);
+    EXPECT_FALSE(both.bounded_faces());
+    const Region window = Region::rectangle(-2000, -2000, 4000, 4000);
+    const FaceLocator engine_bands(StripesPartition(wide_bands(), CROP_ADD_BOUNDARY).induce(window));
+    const FaceLocator engine_both(Union(StripesPartition(wide_bands(), CROP_ADD_BOUNDARY),
+                                        MapToFaces(small_square, GridPartition(square_rows(), square_columns(), KEEP_OUTSIDE)))
+                                      .induce(window));
+    std::mt19937_64 rng(31);
+    std::uniform_real_distribution<double> u(-1000, 3000);
+    std::set<std::string> kinds;
+    int far = 0;
+    for (int k = 0; k < 3000; ++k) {
+        const Point p{u(rng), u(rng)};
+        auto labels_of = [&](const FaceLocator& l) {
+            return th::label_text(l.map().faces()[std::size_t(l.face_at(p))].labels);
+        };
+        const std::string want_bands = labels_of(engine_bands), want_both = labels_of(engine_both);
+        ASSERT_EQ(th::label_text(bands.FaceLabelsAt(p)), want_bands) << "stripes at (" << p.x << ", " << p.y << ")";
+        ASSERT_EQ(th::label_text(both.FaceLabelsAt(p)), want_both) << "union at (" << p.x << ", " << p.y << ")";
+        const Point away = p + both.period1() * 4000.0 - both.period2() * 7001.0;
+        ASSERT_EQ(th::label_text(both.FaceLabelsAt(away)), want_both) << "far copy of (" << p.x << ", " << p.y << ")";
+        kinds.insert(want_both);
+        if (both.DistanceToCurves(p) > 40) ++far;
+    }
+    // Bands with and without squares, inside squares, squares cut by a line.
+    EXPECT_TRUE(kinds.count("a,out,")) << kinds.size();
+    EXPECT_TRUE(kinds.count("b,out,") && kinds.count("c,out,"));
+    EXPECT_GE(kinds.size(), 6u);
+    EXPECT_GT(far, 600);  // many points are far from every curve
+}
+
+// DistanceToCurves through its grid gives the linear scan's answer, bit for bit, on maps of
+// every kind, near the origin and far from it, and the brute force over a wider block of
+// copies to 1e-12.
+TEST(Tiled, IndexedDistanceIsTheScansDistance) {
+    auto ring = [](const Face& f) { return Rotate(Scale(Contour(f), 0.7), 0.3); };
+    const std::vector<TiledMap> maps = {
+        GridPartition(rows(), columns(), Tiled()),
+        MapToFaces(ring, GridPartition(rows(), columns(), Tiled())),
+        GridPartition(StripesProperties(pi / 4, 30, 11), StripesProperties(-pi / 3, 17), Tiled()),
+        StripesPartition(StripesProperties(pi / 5, 12, 30), Tiled()),
+        Union(StripesPartition(wide_bands(), Tiled()),
+              MapToFaces(small_square, GridPartition(square_rows(), square_columns(), Tiled()))),
+    };
+    std::mt19937_64 rng(7);
+    for (std::size_t m = 0; m < maps.size(); ++m) {
+        const TiledMap& t = maps[m];
+        BBox tile;
+        for (const Point& c : {Point{0, 0}, t.period1(), t.period2(), t.period1() + t.period2()}) tile.add(c);
+        std::uniform_real_distribution<double> x(tile.xmin - 3 * tile.width(), tile.xmax + 3 * tile.width());
+        std::uniform_real_distribution<double> y(tile.ymin - 3 * tile.height(), tile.ymax + 3 * tile.height());
+        for (int k = 0; k < 2000; ++k) {
+            Point p{x(rng), y(rng)};
+            if (k % 4 == 3) p += t.shift(123456, -654321);
+            const double got = t.DistanceToCurves(p);
+            ASSERT_EQ(got, t.DistanceToCurvesByScan(p)) << "map " << m << " at (" << p.x << ", " << p.y << ")";
+            if (k % 20 != 0 || k % 4 == 3) continue;
+            // Brute force: every segment of every copy within reach + 3 tiles.
+            const Point l = t.lattice(p);
+            const long long ti = (long long)std::floor(l.x), tj = (long long)std::floor(l.y);
+            const int w = t.block_reach() + 3;
+            double best = std::numeric_limits<double>::infinity();
+            for (long long i = ti - w; i <= ti + w; ++i)
+                for (long long j = tj - w; j <= tj + w; ++j)
+                    for (const auto& e : t.elements())
+                        for (Curve c : e.curves.curves) {
+                            for (auto& q : c.points) q += t.shift(i, j);
+                            const std::size_t n = c.points.size(), segs = c.closed ? n : n - 1;
+                            for (std::size_t s = 0; s < segs; ++s) {
+                                const Point a = c.points[s], b = c.points[(s + 1) % n], d = b - a;
+                                const double h = std::clamp(dot(p - a, d) / dot(d, d), 0.0, 1.0);
+                                best = std::min(best, distance(p, a + d * h));
+                            }
+                        }
+            EXPECT_NEAR(got, best, 1e-12 * (1 + norm(p))) << "map " << m;
+        }
+    }
+    // A map with no curve is at an infinite distance.
+    const TiledMap none = MapToFaces([](const Face&) { return Nothing(); }, GridPartition(rows(), columns(), Tiled()));
+    EXPECT_EQ(none.DistanceToCurves({3, 4}), std::numeric_limits<double>::infinity());
+}

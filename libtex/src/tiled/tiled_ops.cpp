@@ -297,7 +297,7 @@ TiledMap StripesPartition(const Stripes& s, Tiled t) {
     return TiledMap(across, along, std::move(elements), t.border, s);
 }
 
-TiledMap::Block TiledMap::block() const {
+Curves TiledMap::block_curves() const {
     const int k = 2 * block_reach() + 2;
     Curves all;
     for (long long i = -k; i <= k; ++i)
@@ -312,9 +312,14 @@ TiledMap::Block TiledMap::block() const {
                 for (const auto& p : e.curves.points) all.points.push_back({p.point + s, p.labels});
             }
         }
+    Welder(weld_tolerance(all)).weld(all);
+    return all;
+}
+
+TiledMap::Block TiledMap::block() const {
+    const Curves all = block_curves();
     Block b;
     const BBox box = all.bbox();
-    Welder(weld_tolerance(all)).weld(all);
     b.map = PlanarMap::induce(all);
     const PlanarMap& m = *b.map;
     for (std::size_t v = 0; v < m.vertices().size(); ++v)
