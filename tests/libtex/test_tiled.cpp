@@ -457,6 +457,28 @@ TEST(Tiled, InsideAndOutsideMatchTheEngine) {
     const Curves engine_out = Outside(StripesPartition(lines, CROP), engine_squares, CROP)(window);
     const Curves tiled_out = Outside(StripesPartition(lines, Tiled()), squares, CROP).Convert(window, KEEP_OUTSIDE);
     EXPECT_SAME_RUNS(cut(tiled_out), cut(engine_out));
+    // As whole curves: the pieces the mask kept are joined where only the period cut them, so
+    // each run between two squares (or a square and the window) is one curve, as in the
+    // engine; converted with CROP, the window cuts them where the engine's window does.
+    const TiledMap out = Outside(StripesPartition(lines, Tiled()), squares, CROP);
+    EXPECT_SAME_CURVES(out.Convert(window, CROP), engine_out);
+    EXPECT_SAME_CURVES(in.Convert(window, CROP), engine_in);
+    // Lines that meet no square stay whole lines of the tiled map (hatching 6 apart, squares
+    // 22 wide in rows 40 apart: the lines at y = 30 + 40 k... miss every square).
+    const std::size_t whole = std::count_if(out.elements().begin(), out.elements().end(),
+                                            [](const TiledMap::Element& e) { return e.continues; });
+    EXPECT_GT(whole, 0u);
+    // Same bytes at 1 and 2 threads.
+    std::string one, two;
+    {
+        ThreadsScope t(1);
+        one = dump(Outside(StripesPartition(lines, Tiled()), squares, CROP).Convert(window, CROP));
+    }
+    {
+        ThreadsScope t(2);
+        two = dump(Outside(StripesPartition(lines, Tiled()), squares, CROP).Convert(window, CROP));
+    }
+    EXPECT_EQ(one, two);
     const TiledMap skew = StripesPartition(StripesProperties(0.3, 6), Tiled());
     EXPECT_TEX_ERROR(Inside(skew, squares, CROP), "Inside", "no common multiple");
 }
@@ -628,4 +650,50 @@ TEST(Tiled, IndexedDistanceIsTheScansDistance) {
     // A map with no curve is at an infinite distance.
     const TiledMap none = MapToFaces([](const Face&) { return Nothing(); }, GridPartition(rows(), columns(), Tiled()));
     EXPECT_EQ(none.DistanceToCurves({3, 4}), std::numeric_limits<double>::infinity());
+}
+
+// A ghost mapper on stripes sees whole lines, as MapToEdges on the engine's stripes does: a
+// ghost that keeps the lines labelled "x" and marks them gives the engine's curves, line for
+// line; a random ghost keeps or drops each line whole, the same line alike in two windows.
+TEST(Tiled, GhostMapperSeesWholeStripeLines) {
+    Stripes s = StripesProperties(pi / 5, 12, 30);
+    SetFaceLabels(s, {"a", "b", "c"});
+    SetEdgeLabels(s, {"x", "y"});
+    auto mark = [](Curves c) {
+        if (c.curves.empty() || !c.curves.front().labels.has("x")) return Nothing();
+        for (auto& cv : c.curves) cv.labels.add("kept");
+        return c;
+    };
+    const TiledMap ghost = GhostMap([&](const TiledElement& e) { return mark(e.curves); }, StripesPartition(s, Tiled()));
+    const Curves engine = MapToEdges([&](const Edge& e) { return mark(ToCurve(e)); }, StripesPartition(s, CROP))(kWindow);
+    EXPECT_GT(engine.curves.size(), 10u);
+    EXPECT_SAME_CURVES(ghost.Convert(kWindow, CROP), engine);
+
+    const TiledMap random = GhostMap(
+        [](const TiledElement& e) { return Random(e, 0, 1, 0) < 0.5 ? Nothing() : e.curves; }, StripesPartition(s, Tiled()));
+    const Curves small = random.Convert(kWindow, CROP);
+    const Curves large = random.Convert(Region::rectangle(-1000, -1200, 1500, 900), CROP);
+    // One curve per line kept (no piece of a line alone), and a line of the small window
+    // kept in the large one (the large one's line covers it).
+    std::set<long long> lines;
+    auto line_of = [](const Curve& c) {
+        const Point d = c.points.back() - c.points.front();
+        return std::llround(cross(d, c.points.front()) / norm(d) * 1e3);
+    };
+    for (const auto& c : small.curves) lines.insert(line_of(c));
+    EXPECT_EQ(lines.size(), small.curves.size());
+    EXPECT_GT(small.curves.size(), 5u);
+    std::set<long long> large_lines;
+    for (const auto& c : large.curves) large_lines.insert(line_of(c));
+    for (long long l : lines) EXPECT_TRUE(large_lines.count(l)) << l;
+    std::string one, two;
+    {
+        ThreadsScope t(1);
+        one = dump(random.Convert(kWindow, CROP));
+    }
+    {
+        ThreadsScope t(2);
+        two = dump(random.Convert(kWindow, CROP));
+    }
+    EXPECT_EQ(one, two);
 }

@@ -42,7 +42,10 @@ struct Tiled {
     explicit Tiled(Border b) : border(b) {}
 };
 
-// One copy of an element met at conversion, as a ghost mapper sees it.
+// One copy of an element met at conversion, as a ghost mapper sees it. A line stored one
+// period at a time (a stripe, Element::continues) is seen whole instead: one curve over the
+// region's box grown by one period, with j = 0 and a key of the line (element and i), so
+// that a line gets the same random numbers in every window.
 struct TiledElement {
     Curves curves;           // the element's curves, translated to this copy
     Point anchor;            // reference point of the cell the element came from, translated

@@ -323,15 +323,18 @@ Curves TiledMap::Convert(const Region& r, Border b) const {
                 for (auto& p : copy.points)
                     if (r.contains(p.point)) res.points.push_back(std::move(p));
         };
-        if (el.continues && !ghost && !keep_cells) {
+        if (el.continues && !keep_cells) {
             // A line cut at the period: each run of consecutive copies whose boxes meet the
             // region's box becomes one curve, from the first copy's start to the last one's
-            // end, then kept, cut or dropped as one copy.
+            // end, then kept, cut or dropped as one copy. A ghost mapper sees that whole line
+            // (over the region's box grown by one piece, the margin it may move it by), keyed
+            // by the line (element and i), not by where the region cuts it.
             const Curve& piece = el.curves.curves.front();
+            const double margin = ghost ? std::max(el.box.width(), el.box.height()) : 0.0;
             long long j = it.j0;
             while (j <= it.j1) {
                 auto meets_box = [&](long long jj) {
-                    BBox cb = el.box;
+                    BBox cb = el.box.expanded(margin);
                     const Point s = shift(it.i, jj);
                     cb.xmin += s.x; cb.xmax += s.x; cb.ymin += s.y; cb.ymax += s.y;
                     return cb.intersects(rb);
@@ -351,8 +354,21 @@ Curves TiledMap::Convert(const Region& r, Border b) const {
                         c.points.push_back(piece.points[k] + shift(it.i, jj));
                 c.points.push_back(piece.points.back() + s1);
                 line.curves.push_back(std::move(c));
-                if (classify_box(curve_box(line.curves.front()), r, rect) == Overlap::Inside) keep(std::move(line.curves.front()));
-                else keep_partial(line);
+                if (ghost) {
+                    TiledElement te;
+                    te.curves = std::move(line);
+                    te.anchor = el.anchor + shift(it.i, 0);
+                    te.i = it.i;
+                    te.j = 0;
+                    te.key = hash_combine(hash_combine(el.key, std::uint64_t(it.i)), 0x4c494e45ULL);
+                    RandomScope scope(te.key);
+                    Curves mapped = d_->ghost(te);
+                    keep_partial(mapped);
+                } else if (classify_box(curve_box(line.curves.front()), r, rect) == Overlap::Inside) {
+                    keep(std::move(line.curves.front()));
+                } else {
+                    keep_partial(line);
+                }
                 j = last + 1;
             }
             if (first) res.count = n;

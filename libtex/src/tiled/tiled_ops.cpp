@@ -2,8 +2,10 @@
 // Zone rule (thesis 4.2.2), ghost mapping (4.2.4) and the union on commensurable periods.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <sstream>
 
 #include "libtex/error.hpp"
@@ -452,6 +454,131 @@ Common common_lattice(const TiledMap& a1, const TiledMap& a2, const char* op) {
     return {a1.period1() * double(k1), a1.period2() * double(k2), repeat(a1, k1, k2), repeat(a2, n1, n2)};
 }
 
+// The pieces of lines that a mask kept, joined again where the line was cut only by the
+// period. A tiled line is stored one period at a time (Element::continues), so the mask sees
+// pieces and keeps cuts where the engine, masking whole lines, has none. Two kept curves are
+// joined at a joint of the stored pieces (the start of a `continues` element, up to the
+// lattice) when exactly one of them ends there and one starts there, both open with equal
+// labels, and nothing else passes there (no other kept curve, no curve of the mask): a
+// vertex of degree 2 in the engine's map too. A piece that the mask kept whole (it starts
+// where its own copy ends) is a whole line again (continues). The joint point itself is left
+// out when the line is straight there, as the engine draws a stripe's line as one segment.
+struct JoinedCurve {
+    Curve curve;
+    bool continues = false;
+};
+
+std::vector<JoinedCurve> join_line_pieces(const TiledMap& lattice, const std::vector<Point>& joints,
+                                          std::vector<Curve> kept, const Curves& mask_block) {
+    std::vector<JoinedCurve> out;
+    const std::size_t n = kept.size();
+    double scale = 1;
+    for (const auto& c : kept)
+        for (const auto& p : c.points) scale = std::max({scale, std::abs(p.x), std::abs(p.y)});
+    const double tol = 1e-9 * scale;
+    // The shift (in periods) taking b onto a, when a - b is a lattice vector.
+    auto lattice_shift = [&](const Point& a, const Point& b) -> std::optional<std::pair<long long, long long>> {
+        const Point l = lattice.lattice(a - b);
+        const long long i = std::llround(l.x), j = std::llround(l.y);
+        if (distance(a, b + lattice.shift(i, j)) > tol) return std::nullopt;
+        return std::pair{i, j};
+    };
+    auto near_segment = [&](const Point& p, const Point& a, const Point& b) {
+        const Point d = b - a;
+        const double l2 = dot(d, d);
+        const double t = l2 > 0 ? std::clamp(dot(p - a, d) / l2, 0.0, 1.0) : 0.0;
+        return distance(p, a + d * t) <= tol;
+    };
+    const int reach = lattice.block_reach() + 1;
+    // next[k]: the curve that continues curve k, and the shift that puts it after k's end.
+    struct Next {
+        std::size_t curve = SIZE_MAX;
+        long long i = 0, j = 0;
+    };
+    std::vector<Next> next(n);
+    std::vector<char> has_prev(n, 0);
+    for (const Point& joint : joints) {
+        std::vector<std::size_t> ends, starts;
+        bool blocked = false;
+        for (std::size_t k = 0; k < n && !blocked; ++k) {
+            const Curve& c = kept[k];
+            if (c.points.size() < 2) continue;
+            const bool e = lattice_shift(c.points.back(), joint).has_value();
+            const bool s = lattice_shift(c.points.front(), joint).has_value();
+            if (c.closed && (e || s)) blocked = true;
+            if (e) ends.push_back(k);
+            if (s) starts.push_back(k);
+            // A curve through a copy of the joint elsewhere than at its ends.
+            for (std::size_t m = 1; m + 1 < c.points.size() && !blocked; ++m)
+                blocked = lattice_shift(c.points[m], joint).has_value();
+            const std::size_t segs = c.closed ? c.points.size() : c.points.size() - 1;
+            for (std::size_t m = 0; m < segs && !blocked; ++m) {
+                const Point& a = c.points[m];
+                const Point& b = c.points[(m + 1) % c.points.size()];
+                for (long long i = -reach; i <= reach && !blocked; ++i)
+                    for (long long j = -reach; j <= reach && !blocked; ++j) {
+                        const Point q = joint + lattice.shift(i, j);
+                        if (near_segment(q, a, b) && distance(q, a) > tol && distance(q, b) > tol) blocked = true;
+                    }
+            }
+        }
+        if (blocked || ends.size() != 1 || starts.size() != 1) continue;
+        const Curve &a = kept[ends[0]], &b = kept[starts[0]];
+        if (!(a.labels == b.labels && a.left == b.left && a.right == b.right)) continue;
+        // No curve of the mask through the joint (the mask's block surrounds the central tile).
+        const Point at = a.points.back();
+        bool on_mask = false;
+        for (const auto& c : mask_block.curves) {
+            const std::size_t segs = c.closed ? c.points.size() : c.points.size() - 1;
+            for (std::size_t m = 0; m < segs && !on_mask; ++m)
+                on_mask = near_segment(at, c.points[m], c.points[(m + 1) % c.points.size()]);
+            if (on_mask) break;
+        }
+        if (on_mask) continue;
+        const auto sh = lattice_shift(a.points.back(), b.points.front());
+        if (!sh) continue;
+        next[ends[0]] = {starts[0], sh->first, sh->second};
+        has_prev[starts[0]] = 1;
+    }
+    auto straight = [&](const Point& p, const Point& q, const Point& r) {
+        return std::abs(cross(q - p, r - q)) <= tol * (norm(q - p) + norm(r - q));
+    };
+    std::vector<char> used(n, 0);
+    // A piece kept whole: its own successor, one period along.
+    for (std::size_t k = 0; k < n; ++k) {
+        if (next[k].curve != k) continue;
+        used[k] = 1;
+        const bool one_period_along = next[k].i == 0 && next[k].j == 1;
+        out.push_back({std::move(kept[k]), one_period_along});
+    }
+    // Chains from a curve with no predecessor; the rest (cycles of several pieces, which a
+    // tiled line does not make) stay as they are.
+    for (std::size_t k = 0; k < n; ++k) {
+        if (used[k] || has_prev[k]) continue;
+        Curve line = kept[k];
+        used[k] = 1;
+        long long si = 0, sj = 0;
+        for (std::size_t c = k; next[c].curve != SIZE_MAX && !used[next[c].curve];) {
+            const Next& nx = next[c];
+            si += nx.i;
+            sj += nx.j;
+            const Point s = lattice.shift(si, sj);
+            const Curve& b = kept[nx.curve];
+            // The joint (the line's last point, b's first): dropped where the line goes
+            // straight through it.
+            if (line.points.size() >= 2 && straight(line.points[line.points.size() - 2], line.points.back(), b.points[1] + s))
+                line.points.pop_back();
+            for (std::size_t m = 1; m < b.points.size(); ++m) line.points.push_back(b.points[m] + s);
+            used[nx.curve] = 1;
+            c = nx.curve;
+        }
+        out.push_back({std::move(line), false});
+    }
+    for (std::size_t k = 0; k < n; ++k)
+        if (!used[k]) out.push_back({std::move(kept[k]), false});
+    return out;
+}
+
 // Inside / Outside: a1's elements cut by (or kept against) the bounded faces of a2. The mask
 // is the planar map of a2 over a block of tiles wide enough to hold every element of a1 with
 // the faces around it, induced once.
@@ -475,13 +602,18 @@ TiledMap mask(const TiledMap& a1, const TiledMap& a2, Border b, MaskSide side, c
     // engine); every curve it keeps becomes an element of its own.
     Curves all;
     for (const auto& e : subject.elements()) all.append(e.curves);
-    const Curves kept = apply_mask(all, *mask_map, side, cut);
+    Curves kept = apply_mask(all, *mask_map, side, cut);
+    std::vector<Point> joints;
+    for (const auto& e : subject.elements())
+        if (e.continues && !e.curves.curves.empty() && !e.curves.curves.front().points.empty())
+            joints.push_back(e.curves.curves.front().points.front());
     std::vector<TiledMap::Element> elements;
-    for (const auto& curve : kept.curves) {
+    for (auto& joined : join_line_pieces(subject, joints, std::move(kept.curves), block)) {
         TiledMap::Element e;
-        e.curves.curves.push_back(curve);
-        e.anchor = curve.points.empty() ? Point{} : curve.points.front();
+        e.anchor = joined.curve.points.empty() ? Point{} : joined.curve.points.front();
         e.key = anchor_key(e.anchor);
+        e.continues = joined.continues;
+        e.curves.curves.push_back(std::move(joined.curve));
         elements.push_back(std::move(e));
     }
     for (const auto& point : kept.points) {
