@@ -697,3 +697,21 @@ TEST(Tiled, GhostMapperSeesWholeStripeLines) {
     }
     EXPECT_EQ(one, two);
 }
+
+// A mapper that reads absolute positions does not repeat with the periods: a tiled map
+// cannot stand for it, and says so instead of copying the central tile's output.
+TEST(Tiled, MapperReadingAbsolutePositionsIsAnError) {
+    const TiledMap grid = GridPartition(rows(), columns(), Tiled());
+    auto right_half = [](const Face& f) { return Centroid(f).x > 0 ? Contour(f) : Nothing(); };
+    EXPECT_TEX_ERROR(MapToFaces(right_half, grid), "MapToFaces", "reads absolute positions");
+    auto field = [](const Face& f) { return Scale(Contour(f), 0.5 + 0.3 * std::sin(Centroid(f).x / 37)); };
+    EXPECT_TEX_ERROR(MapToFaces(field, grid), "MapToFaces", "periods (0, 90) and (-50, 0)");
+    auto upper = [](const Vertex& v) { return Location(v).y > 0 ? Polyline({Location(v), Location(v) + Point{1, 1}}) : Nothing(); };
+    EXPECT_TEX_ERROR(MapToVertices(upper, grid), "MapToVertices", "reads absolute positions");
+    auto long_left = [](const Edge& e) { return LocationAt(e, 0.5).x < 10 ? ToCurve(e) : Nothing(); };
+    EXPECT_TEX_ERROR(MapToEdges(long_left, grid, MapperThreads::Serial), "MapToEdges", "reads absolute positions");
+    // The same mappers reading the cell only are fine, and so is a field with the periods.
+    EXPECT_NO_THROW(MapToFaces([](const Face& f) { return Scale(Contour(f), 0.5); }, grid));
+    auto periodic = [](const Face& f) { return Scale(Contour(f), 0.5 + 0.3 * std::sin(Centroid(f).x * 2 * pi / 50)); };
+    EXPECT_NO_THROW(MapToFaces(periodic, grid));
+}

@@ -7,6 +7,7 @@
 #include <numeric>
 #include <optional>
 #include <sstream>
+#include <type_traits>
 
 #include "libtex/error.hpp"
 #include "libtex/merge.hpp"
@@ -179,6 +180,114 @@ std::pair<int, int> lattice_multiples(const TiledMap& a, const std::vector<detai
     return {int(k1), int(k2)};
 }
 
+// Whether curves b, moved by `back`, are curves a: the same curves in any order, each with
+// the same labels and points within tol (a closed curve from any of its points).
+bool same_moved(const Curves& a, const Curves& b, const Point& back, double tol) {
+    if (a.curves.size() != b.curves.size() || a.points.size() != b.points.size()) return false;
+    auto same_curve = [&](const Curve& x, const Curve& y) {
+        if (x.closed != y.closed || x.points.size() != y.points.size() || !(x.labels == y.labels) ||
+            !(x.left == y.left) || !(x.right == y.right))
+            return false;
+        const std::size_t n = x.points.size();
+        if (n == 0) return true;
+        auto from = [&](std::size_t r) {
+            for (std::size_t k = 0; k < n; ++k)
+                if (distance(x.points[k], y.points[(k + r) % n] + back) > tol) return false;
+            return true;
+        };
+        if (!x.closed) return from(0);
+        for (std::size_t r = 0; r < n; ++r)
+            if (distance(x.points[0], y.points[r] + back) <= tol && from(r)) return true;
+        return false;
+    };
+    std::vector<char> used(b.curves.size(), 0);
+    for (std::size_t k = 0; k < a.curves.size(); ++k) {
+        bool found = false;
+        // The same position first (the usual case), then any.
+        for (std::size_t t = 0; t < b.curves.size() && !found; ++t) {
+            const std::size_t m = (k + t) % b.curves.size();
+            if (!used[m] && same_curve(a.curves[k], b.curves[m])) found = used[m] = 1;
+        }
+        if (!found) return false;
+    }
+    for (std::size_t k = 0; k < a.points.size(); ++k)
+        if (!(a.points[k].labels == b.points[k].labels) || distance(a.points[k].point, b.points[k].point + back) > tol)
+            return false;
+    return true;
+}
+
+// A tiled map copies the mapper's output for each cell of the central tile by the periods,
+// which is right only when the mapper's output for a copy of a cell is its output for the
+// cell, moved. A mapper that reads absolute positions (a closed-form field, a test such as
+// x > 0) breaks that without any Random. Checked on the copies of every cell one period
+// away along -period1 and -period2 (cells of the block, with their whole neighbourhoods):
+// the mapper runs on each and its output, moved back, must be the central cell's.
+template <class CellT, class Mapper, class RefOf>
+void check_translation_invariant(const TiledMap& a, const TiledMap::Block& b, const Mapper& m,
+                                 const std::vector<int>& ids, const std::vector<TiledMap::Element>& out, RefOf ref_of,
+                                 MapperThreads threads, const char* op) {
+    const PlanarMap& map = *b.map;
+    std::size_t count = 0;
+    if constexpr (std::is_same_v<CellT, Vertex>) count = map.vertices().size();
+    else if constexpr (std::is_same_v<CellT, Edge>) count = map.edges().size();
+    else count = map.faces().size();
+    BBox box;
+    for (const auto& v : map.vertices()) box.add(v.point);
+    const double scale = std::max({1.0, std::abs(box.xmin), std::abs(box.xmax), std::abs(box.ymin), std::abs(box.ymax)});
+    const double tol = 1e-7 * scale;
+    // The central cells by their reference point, sorted by x, to find a copy's original.
+    std::vector<std::pair<Point, std::size_t>> central;
+    for (std::size_t k = 0; k < ids.size(); ++k) central.push_back({ref_of(b.map, ids[k]), k});
+    std::sort(central.begin(), central.end(), [](const auto& x, const auto& y) { return x.first.x < y.first.x; });
+    auto original = [&](const Point& p) -> std::optional<std::size_t> {
+        auto it = std::lower_bound(central.begin(), central.end(), p.x - tol,
+                                   [](const auto& c, double x) { return c.first.x < x; });
+        for (; it != central.end() && it->first.x <= p.x + tol; ++it)
+            if (std::abs(it->first.y - p.y) <= tol) return it->second;
+        return std::nullopt;
+    };
+    struct Probe {
+        int copy;
+        std::size_t original;
+        Point back;
+    };
+    std::vector<Probe> probes;
+    for (const Point& back : {a.period1(), a.period2()}) {
+        for (std::size_t c = 0; c < count; ++c) {
+            if constexpr (std::is_same_v<CellT, Face>) {
+                if (map.faces()[c].unbounded) continue;
+            }
+            const Point moved = ref_of(b.map, int(c)) + back;
+            if (!in_central_tile(a, moved)) continue;
+            if (const auto k = original(moved)) probes.push_back({int(c), *k, back});
+        }
+    }
+    std::vector<char> bad(probes.size(), 0);
+    auto visit = [&](std::size_t k) {
+        CellT cell(b.map, probes[k].copy);
+        detail::NoRandomScope regular(op);
+        detail::StripesProbe probe;
+        bad[k] = !same_moved(out[probes[k].original].curves, m(cell), probes[k].back, tol);
+    };
+    if (threads == MapperThreads::Serial) {
+        for (std::size_t k = 0; k < probes.size(); ++k) visit(k);
+    } else {
+        parallel_for(probes.size(), visit);
+    }
+    const auto first = std::find(bad.begin(), bad.end(), 1);
+    if (first == bad.end()) return;
+    const Probe& pr = probes[std::size_t(first - bad.begin())];
+    std::ostringstream msg;
+    msg << "the mapper's output for the cell at " << point_text(out[pr.original].anchor) << " is not its output for "
+        << "the copy of that cell one period " << point_text(Point{0.0 - pr.back.x, 0.0 - pr.back.y})
+        << " away, moved back: the mapper reads absolute positions (a closed-form field, a test on x or y), "
+           "so its output does not repeat with the tiled map's periods "
+        << point_text(a.period1()) << " and " << point_text(a.period2())
+        << " and a tiled map cannot stand for it; make the mapper depend only on the cell (its geometry relative "
+           "to itself, its labels and neighbours), or evaluate the script with the planar-map engine";
+    throw Error(op, msg.str());
+}
+
 // The mapper run on the cells of the central tile of a's block (NIZ rule), each call in a
 // probe of the partitions it builds. When those partitions repeat only on a multiple of a's
 // lattice, the mapping is done again on that coarser lattice, so that the result is exact.
@@ -212,6 +321,7 @@ TiledMap map_block(const TiledMap& a, const Mapper& m, const std::vector<int> Ti
                               a.bounded_faces());
         return map_block<CellT>(coarse, m, ids_of, ref_of, t, op, true);
     }
+    check_translation_invariant<CellT>(a, b, m, ids, out, ref_of, t, op);
     std::vector<TiledMap::Element> kept;
     for (auto& e : out) {
         e.curves.origin.clear();
