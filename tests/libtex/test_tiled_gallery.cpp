@@ -1,8 +1,9 @@
 // The proof that a tiled map is the same arrangement (thesis 4.2): every regular gallery
 // example without Random, written on a tiled partition and converted over the gallery
 // window, gives the same set of whole curves (order and direction aside, labels and side
-// labels included) as the planar-map engine; only regular result (a), a mask of line
-// pieces, is compared as a drawing (straight runs, wherever they are cut).
+// labels included) as the planar-map engine; regular result (a), a mask of hatch lines,
+// after cutting both drawings where a tile's corner touches a line (a split decided by
+// rounding in both engines).
 //
 // The partitions alone match over the whole window (same border modes). A mapped example
 // differs from the engine's only along the window's border, where the engine's finite map
