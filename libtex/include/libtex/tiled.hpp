@@ -138,7 +138,7 @@ public:
     // Labels of the face of the infinite arrangement containing p: for a tiled partition,
     // of the cell containing p; otherwise, of the face containing p moved into the central
     // tile in the planar map of the block's copies closed by an unlabelled frame (built once,
-    // on the first query; located through a FaceLocator). A face that is unbounded in the
+    // on the first query; located through a grid of the faces' regions). A face that is unbounded in the
     // infinite arrangement (a band of stripes, the space around closed shapes) gets the
     // labels of its sides within the block.
     Labels FaceLabelsAt(const Point& p) const;

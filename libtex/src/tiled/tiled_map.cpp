@@ -149,9 +149,25 @@ struct DistanceIndex {
     bool scan = false;  // too many copies to index (a very thin tile): the linear scan answers
 };
 
+// The faces of the framed block for FaceLabelsAt, in two point locators: the faces that do
+// not touch the frame (regions with their holes), tried first, then the faces along the
+// frame by their outer ring alone. A point in a hole of a frame face lies in a face that
+// does not touch the frame, found first; so the frame faces (the space around a whole block
+// of bricks, with hundreds of holes) are never tested hole by hole.
+struct FramedFaces {
+    MapPtr map;
+    std::optional<RegionLocator> inner, frame;
+    std::vector<int> inner_ids, frame_ids;
+    int face_at(const Point& p) const {
+        if (const int k = inner->find(p); k >= 0) return inner_ids[std::size_t(k)];
+        if (const int k = frame->find(p); k >= 0) return frame_ids[std::size_t(k)];
+        return map->unbounded_face();
+    }
+};
+
 struct TiledMap::Data::Locator {
     std::once_flag faces_once, distance_once;
-    std::optional<FaceLocator> faces;
+    FramedFaces faces;
     DistanceIndex distance;
 };
 
@@ -596,10 +612,51 @@ Labels TiledMap::FaceLabelsAt(const Point& p) const {
         outline.points = std::move(frame);
         outline.closed = true;
         all.curves.push_back(std::move(outline));
-        loc.faces.emplace(PlanarMap::induce(all), tile.expanded(1e-9 * (1 + tile.width() + tile.height())));
+        FramedFaces& ff = loc.faces;
+        ff.map = PlanarMap::induce(all);
+        const PlanarMap& m = *ff.map;
+        auto on_frame = [&](const Point& v) {
+            const Point l = lattice(v);
+            const double eps = 1e-9 * (1 + std::abs(lo) + std::abs(hi));
+            return std::abs(l.x - lo) <= eps || std::abs(l.x - hi) <= eps || std::abs(l.y - lo) <= eps ||
+                   std::abs(l.y - hi) <= eps;
+        };
+        std::vector<Region> inner, along;
+        for (std::size_t f = 0; f < m.faces().size(); ++f) {
+            if (m.faces()[f].unbounded || m.faces()[f].cycles.empty()) continue;
+            std::vector<Point> ring = m.cycle_points(int(f), 0);
+            const bool touches = std::any_of(ring.begin(), ring.end(), on_frame);
+            try {  // a face without area holds no point
+                if (touches) {
+                    along.emplace_back(std::move(ring), std::vector<std::vector<Point>>{}, "FaceLabelsAt");
+                    ff.frame_ids.push_back(int(f));
+                } else {
+                    std::vector<std::vector<Point>> holes;
+                    for (std::size_t k = 1; k < m.faces()[f].cycles.size(); ++k) holes.push_back(m.cycle_points(int(f), k));
+                    inner.emplace_back(std::move(ring), std::move(holes), "FaceLabelsAt");
+                    ff.inner_ids.push_back(int(f));
+                }
+            } catch (const Error&) {
+            }
+        }
+        // Only the faces meeting the central tile are kept (the ids follow the regions kept).
+        const BBox area = tile.expanded(1e-9 * (1 + tile.width() + tile.height()));
+        auto keep = [&](std::vector<Region>& regions, std::vector<int>& ids) {
+            std::vector<Region> r;
+            std::vector<int> i;
+            for (std::size_t k = 0; k < regions.size(); ++k)
+                if (regions[k].bbox().intersects(area)) {
+                    r.push_back(std::move(regions[k]));
+                    i.push_back(ids[k]);
+                }
+            ids = std::move(i);
+            return RegionLocator(std::move(r), area);
+        };
+        ff.inner.emplace(keep(inner, ff.inner_ids));
+        ff.frame.emplace(keep(along, ff.frame_ids));
     });
     const Point q = p - shift(ti, tj);
-    return loc.faces->map().faces()[std::size_t(loc.faces->face_at(q))].labels;
+    return loc.faces.map->faces()[std::size_t(loc.faces.face_at(q))].labels;
 }
 
 }  // namespace tex
