@@ -12,6 +12,14 @@
 // times FaceLabelsAt on the wall instead: the first query (which builds the point locator),
 // then the median over R batches of the time per query of 100,000 random points near the
 // origin and 100,000 points a million periods away (it should not depend on where).
+//
+//   bench_tiled --engine distance [--runs R]
+//
+// times DistanceToCurves against the linear scan it replaced (DistanceToCurvesByScan) on
+// the wall (3 elements per period) and on 24-gons in a grid of 20 x 20 cells per period
+// (400 elements, 9,600 segments): the first query (which builds the grid), then the median
+// over R batches of the time per query of 2,000 random points, near the origin and a
+// million periods away.
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -99,6 +107,46 @@ int main(int argc, char** argv) {
         }
         std::printf("first query %.6f s; per query near %.3f us, far %.3f us (%zu)\n", first, per_query[0] * 1e6,
                     per_query[1] * 1e6, sink % 2);
+        return 0;
+    }
+    if (engine == "distance") {
+        auto polygon = [](const Face& f) {
+            std::vector<Point> pts;
+            for (int k = 0; k < 24; ++k) pts.push_back(Centroid(f) + Point{std::cos(k * pi / 12), std::sin(k * pi / 12)} * 3.0);
+            return Polyline(pts, true);
+        };
+        std::vector<double> widths;
+        for (int k = 0; k < 20; ++k) widths.push_back(8 + k % 3);
+        const std::pair<const char*, TiledMap> maps[] = {
+            {"wall", MapToFaces(tz::shrink_brick, MapToEdges(tz::keep_brick_joints,
+                                                             GridPartition(tz::brick_rows(), tz::brick_columns(), Tiled())))},
+            {"24-gons, 20 x 20 per period",
+             MapToFaces(polygon, GridPartition(StripesProperties(0, widths), StripesProperties(pi / 2, widths), Tiled()))},
+        };
+        double sink = 0;
+        for (const auto& [name, map] : maps) {
+            auto t0 = std::chrono::steady_clock::now();
+            sink += map.DistanceToCurves({1, 1});
+            const double first = seconds_since(t0);
+            double per[2][2];  // [far][indexed]
+            for (int far = 0; far < 2; ++far) {
+                const Point base = far ? map.shift(1000000, -1000000) : Point{0, 0};
+                std::vector<Point> pts;
+                std::uint64_t h = 777;
+                for (int k = 0; k < 2000; ++k) {
+                    h = mix64(h + 1);
+                    pts.push_back(base + Point{unit_from_hash(h) * 4000, unit_from_hash(mix64(h ^ 0x55)) * 4000});
+                }
+                per[far][0] = median_time(runs, [&] {
+                    for (const auto& p : pts) sink += map.DistanceToCurvesByScan(p);
+                }) / double(pts.size());
+                per[far][1] = median_time(runs, [&] {
+                    for (const auto& p : pts) sink += map.DistanceToCurves(p);
+                }) / double(pts.size());
+            }
+            std::printf("%s: first query %.6f s; per query near: scan %.3f us, index %.3f us; far: scan %.3f us, index %.3f us (%d)\n",
+                        name, first, per[0][0] * 1e6, per[0][1] * 1e6, per[1][0] * 1e6, per[1][1] * 1e6, int(sink) % 2);
+        }
         return 0;
     }
     TiledMap wall = GridPartition(tz::brick_rows(), tz::brick_columns(), Tiled(CROP));

@@ -6,9 +6,11 @@
 // predicates of the Epick kernel); the grid only narrows the candidates, conservatively.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -55,6 +57,40 @@ public:
                     seen_[i] = stamp_;
                     f(i);
                 }
+    }
+
+    // The least `dist(i)` over the grid's segments i, where dist(i) is the caller's distance
+    // from p to segment i (up to rounding). Cells are visited in square rings around p's cell
+    // until every cell left is further from p than the best distance found (one ring of
+    // slack for rounding), so the answer is the minimum over all segments. A segment may be
+    // seen more than once. Reads no mutable state: queries may run on several threads.
+    // Infinity when the grid is empty.
+    template <class F>
+    double nearest(const Point& p, F&& dist) const {
+        double best = std::numeric_limits<double>::infinity();
+        if (segs_.empty()) return best;
+        const int c = col(p.x), r = row(p.y);
+        const double step = std::min(cw_, ch_);
+        const int last = std::max({c, nx_ - 1 - c, r, ny_ - 1 - r});
+        auto visit = [&](int cc, int rr) {
+            if (cc < 0 || cc >= nx_ || rr < 0 || rr >= ny_) return;
+            for (std::uint32_t k = start_[cell(cc, rr)]; k < start_[cell(cc, rr) + 1]; ++k)
+                best = std::min(best, double(dist(items_[k])));
+        };
+        for (int d = 0; d <= last; ++d) {
+            for (int cc = c - d; cc <= c + d; ++cc) {
+                visit(cc, r - d);
+                if (d > 0) visit(cc, r + d);
+            }
+            for (int rr = r - d + 1; rr <= r + d - 1; ++rr) {
+                visit(c - d, rr);
+                visit(c + d, rr);
+            }
+            // Cells outside rings 0..d lie at least d * step from p (p is in its cell, or
+            // beyond the grid on that side); one step less for the rounding of col / row.
+            if (best <= (d - 1) * step) break;
+        }
+        return best;
     }
 
     // Whether the polyline segment pq shares a point with any segment of the grid

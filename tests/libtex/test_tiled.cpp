@@ -457,6 +457,28 @@ TEST(Tiled, InsideAndOutsideMatchTheEngine) {
     const Curves engine_out = Outside(StripesPartition(lines, CROP), engine_squares, CROP)(window);
     const Curves tiled_out = Outside(StripesPartition(lines, Tiled()), squares, CROP).Convert(window, KEEP_OUTSIDE);
     EXPECT_SAME_RUNS(cut(tiled_out), cut(engine_out));
+    // As whole curves: the pieces the mask kept are joined where only the period cut them, so
+    // each run between two squares (or a square and the window) is one curve, as in the
+    // engine; converted with CROP, the window cuts them where the engine's window does.
+    const TiledMap out = Outside(StripesPartition(lines, Tiled()), squares, CROP);
+    EXPECT_SAME_CURVES(out.Convert(window, CROP), engine_out);
+    EXPECT_SAME_CURVES(in.Convert(window, CROP), engine_in);
+    // Lines that meet no square stay whole lines of the tiled map (hatching 6 apart, squares
+    // 22 wide in rows 40 apart: the lines at y = 30 + 40 k... miss every square).
+    const std::size_t whole = std::count_if(out.elements().begin(), out.elements().end(),
+                                            [](const TiledMap::Element& e) { return e.continues; });
+    EXPECT_GT(whole, 0u);
+    // Same bytes at 1 and 2 threads.
+    std::string one, two;
+    {
+        ThreadsScope t(1);
+        one = dump(Outside(StripesPartition(lines, Tiled()), squares, CROP).Convert(window, CROP));
+    }
+    {
+        ThreadsScope t(2);
+        two = dump(Outside(StripesPartition(lines, Tiled()), squares, CROP).Convert(window, CROP));
+    }
+    EXPECT_EQ(one, two);
     const TiledMap skew = StripesPartition(StripesProperties(0.3, 6), Tiled());
     EXPECT_TEX_ERROR(Inside(skew, squares, CROP), "Inside", "no common multiple");
 }
@@ -513,4 +535,183 @@ TEST(Tiled, FaceLocatorFindsNestedFaces) {
     EXPECT_EQ(labels({1, 1}), "ring,");
     EXPECT_EQ(labels({5, 5}), "core,");
     EXPECT_EQ(loc.face_at({20, 5}), loc.map().unbounded_face());
+}
+
+namespace {
+
+// Horizontal stripes 120 and 300 wide with three face labels (period 1260 across), and small
+// squares in a grid of 210 x 180 (commensurable: 6 and 7 cells per 1260), their inner side
+// labelled "in" and the cell's labels, their outer side "out". The union has faces of every
+// kind: bands (unbounded), the band around the squares (unbounded, with holes), inside
+// squares, pieces of squares cut by a stripe line.
+Stripes labelled(Stripes s, const std::vector<std::string>& face_labels) {
+    SetFaceLabels(s, face_labels);
+    return s;
+}
+Stripes wide_bands() { return labelled(StripesProperties(0, 120, 300), {"a", "b", "c"}); }
+Stripes square_rows() { return labelled(StripesProperties(0, 210), {"r1", "r2"}); }
+Stripes square_columns() { return StripesProperties(pi / 2, 180); }
+Curves small_square(const Face& f) {
+    Curves c = Scale(Contour(f), 0.3);
+    for (auto& cv : c.curves) {
+        cv.left = record(f).labels;
+        cv.left.add("in");
+        cv.right = Labels{};
+        cv.right.add("out");
+    }
+    return c;
+}
+
+}  // namespace
+
+// FaceLabelsAt where faces are unbounded (bands of stripes, the space around closed shapes):
+// the labels of the engine's face at thousands of random points, many of them far from every
+// curve, and the same labels a whole number of periods away.
+TEST(Tiled, FaceLabelsOnUnboundedFacesAreTheEnginesFaces) {
+    const TiledMap bands = StripesPartition(wide_bands(), Tiled());
+    const TiledMap squares = MapToFaces(small_square, GridPartition(square_rows(), square_columns(), Tiled()));
+    const TiledMap both = Union(bands, squares);
+    EXPECT_FALSE(both.bounded_faces());
+    const Region window = Region::rectangle(-2000, -2000, 4000, 4000);
+    const FaceLocator engine_bands(StripesPartition(wide_bands(), CROP_ADD_BOUNDARY).induce(window));
+    const FaceLocator engine_both(Union(StripesPartition(wide_bands(), CROP_ADD_BOUNDARY),
+                                        MapToFaces(small_square, GridPartition(square_rows(), square_columns(), KEEP_OUTSIDE)))
+                                      .induce(window));
+    std::mt19937_64 rng(31);
+    std::uniform_real_distribution<double> u(-1000, 3000);
+    std::set<std::string> kinds;
+    int far = 0;
+    for (int k = 0; k < 3000; ++k) {
+        const Point p{u(rng), u(rng)};
+        auto labels_of = [&](const FaceLocator& l) {
+            return th::label_text(l.map().faces()[std::size_t(l.face_at(p))].labels);
+        };
+        const std::string want_bands = labels_of(engine_bands), want_both = labels_of(engine_both);
+        ASSERT_EQ(th::label_text(bands.FaceLabelsAt(p)), want_bands) << "stripes at (" << p.x << ", " << p.y << ")";
+        ASSERT_EQ(th::label_text(both.FaceLabelsAt(p)), want_both) << "union at (" << p.x << ", " << p.y << ")";
+        const Point away = p + both.period1() * 4000.0 - both.period2() * 7001.0;
+        ASSERT_EQ(th::label_text(both.FaceLabelsAt(away)), want_both) << "far copy of (" << p.x << ", " << p.y << ")";
+        kinds.insert(want_both);
+        if (both.DistanceToCurves(p) > 40) ++far;
+    }
+    // Bands with and without squares, inside squares, squares cut by a line.
+    EXPECT_TRUE(kinds.count("a,out,")) << kinds.size();
+    EXPECT_TRUE(kinds.count("b,out,") && kinds.count("c,out,"));
+    EXPECT_GE(kinds.size(), 6u);
+    EXPECT_GT(far, 600);  // many points are far from every curve
+}
+
+// DistanceToCurves through its grid gives the linear scan's answer, bit for bit, on maps of
+// every kind, near the origin and far from it, and the brute force over a wider block of
+// copies to 1e-12.
+TEST(Tiled, IndexedDistanceIsTheScansDistance) {
+    auto ring = [](const Face& f) { return Rotate(Scale(Contour(f), 0.7), 0.3); };
+    const std::vector<TiledMap> maps = {
+        GridPartition(rows(), columns(), Tiled()),
+        MapToFaces(ring, GridPartition(rows(), columns(), Tiled())),
+        GridPartition(StripesProperties(pi / 4, 30, 11), StripesProperties(-pi / 3, 17), Tiled()),
+        StripesPartition(StripesProperties(pi / 5, 12, 30), Tiled()),
+        Union(StripesPartition(wide_bands(), Tiled()),
+              MapToFaces(small_square, GridPartition(square_rows(), square_columns(), Tiled()))),
+    };
+    std::mt19937_64 rng(7);
+    for (std::size_t m = 0; m < maps.size(); ++m) {
+        const TiledMap& t = maps[m];
+        BBox tile;
+        for (const Point& c : {Point{0, 0}, t.period1(), t.period2(), t.period1() + t.period2()}) tile.add(c);
+        std::uniform_real_distribution<double> x(tile.xmin - 3 * tile.width(), tile.xmax + 3 * tile.width());
+        std::uniform_real_distribution<double> y(tile.ymin - 3 * tile.height(), tile.ymax + 3 * tile.height());
+        for (int k = 0; k < 2000; ++k) {
+            Point p{x(rng), y(rng)};
+            if (k % 4 == 3) p += t.shift(123456, -654321);
+            const double got = t.DistanceToCurves(p);
+            ASSERT_EQ(got, t.DistanceToCurvesByScan(p)) << "map " << m << " at (" << p.x << ", " << p.y << ")";
+            if (k % 20 != 0 || k % 4 == 3) continue;
+            // Brute force: every segment of every copy within reach + 3 tiles.
+            const Point l = t.lattice(p);
+            const long long ti = (long long)std::floor(l.x), tj = (long long)std::floor(l.y);
+            const int w = t.block_reach() + 3;
+            double best = std::numeric_limits<double>::infinity();
+            for (long long i = ti - w; i <= ti + w; ++i)
+                for (long long j = tj - w; j <= tj + w; ++j)
+                    for (const auto& e : t.elements())
+                        for (Curve c : e.curves.curves) {
+                            for (auto& q : c.points) q += t.shift(i, j);
+                            const std::size_t n = c.points.size(), segs = c.closed ? n : n - 1;
+                            for (std::size_t s = 0; s < segs; ++s) {
+                                const Point a = c.points[s], b = c.points[(s + 1) % n], d = b - a;
+                                const double h = std::clamp(dot(p - a, d) / dot(d, d), 0.0, 1.0);
+                                best = std::min(best, distance(p, a + d * h));
+                            }
+                        }
+            EXPECT_NEAR(got, best, 1e-12 * (1 + norm(p))) << "map " << m;
+        }
+    }
+    // A map with no curve is at an infinite distance.
+    const TiledMap none = MapToFaces([](const Face&) { return Nothing(); }, GridPartition(rows(), columns(), Tiled()));
+    EXPECT_EQ(none.DistanceToCurves({3, 4}), std::numeric_limits<double>::infinity());
+}
+
+// A ghost mapper on stripes sees whole lines, as MapToEdges on the engine's stripes does: a
+// ghost that keeps the lines labelled "x" and marks them gives the engine's curves, line for
+// line; a random ghost keeps or drops each line whole, the same line alike in two windows.
+TEST(Tiled, GhostMapperSeesWholeStripeLines) {
+    Stripes s = StripesProperties(pi / 5, 12, 30);
+    SetFaceLabels(s, {"a", "b", "c"});
+    SetEdgeLabels(s, {"x", "y"});
+    auto mark = [](Curves c) {
+        if (c.curves.empty() || !c.curves.front().labels.has("x")) return Nothing();
+        for (auto& cv : c.curves) cv.labels.add("kept");
+        return c;
+    };
+    const TiledMap ghost = GhostMap([&](const TiledElement& e) { return mark(e.curves); }, StripesPartition(s, Tiled()));
+    const Curves engine = MapToEdges([&](const Edge& e) { return mark(ToCurve(e)); }, StripesPartition(s, CROP))(kWindow);
+    EXPECT_GT(engine.curves.size(), 10u);
+    EXPECT_SAME_CURVES(ghost.Convert(kWindow, CROP), engine);
+
+    const TiledMap random = GhostMap(
+        [](const TiledElement& e) { return Random(e, 0, 1, 0) < 0.5 ? Nothing() : e.curves; }, StripesPartition(s, Tiled()));
+    const Curves small = random.Convert(kWindow, CROP);
+    const Curves large = random.Convert(Region::rectangle(-1000, -1200, 1500, 900), CROP);
+    // One curve per line kept (no piece of a line alone), and a line of the small window
+    // kept in the large one (the large one's line covers it).
+    std::set<long long> lines;
+    auto line_of = [](const Curve& c) {
+        const Point d = c.points.back() - c.points.front();
+        return std::llround(cross(d, c.points.front()) / norm(d) * 1e3);
+    };
+    for (const auto& c : small.curves) lines.insert(line_of(c));
+    EXPECT_EQ(lines.size(), small.curves.size());
+    EXPECT_GT(small.curves.size(), 5u);
+    std::set<long long> large_lines;
+    for (const auto& c : large.curves) large_lines.insert(line_of(c));
+    for (long long l : lines) EXPECT_TRUE(large_lines.count(l)) << l;
+    std::string one, two;
+    {
+        ThreadsScope t(1);
+        one = dump(random.Convert(kWindow, CROP));
+    }
+    {
+        ThreadsScope t(2);
+        two = dump(random.Convert(kWindow, CROP));
+    }
+    EXPECT_EQ(one, two);
+}
+
+// A mapper that reads absolute positions does not repeat with the periods: a tiled map
+// cannot stand for it, and says so instead of copying the central tile's output.
+TEST(Tiled, MapperReadingAbsolutePositionsIsAnError) {
+    const TiledMap grid = GridPartition(rows(), columns(), Tiled());
+    auto right_half = [](const Face& f) { return Centroid(f).x > 0 ? Contour(f) : Nothing(); };
+    EXPECT_TEX_ERROR(MapToFaces(right_half, grid), "MapToFaces", "reads absolute positions");
+    auto field = [](const Face& f) { return Scale(Contour(f), 0.5 + 0.3 * std::sin(Centroid(f).x / 37)); };
+    EXPECT_TEX_ERROR(MapToFaces(field, grid), "MapToFaces", "periods (0, 90) and (-50, 0)");
+    auto upper = [](const Vertex& v) { return Location(v).y > 0 ? Polyline({Location(v), Location(v) + Point{1, 1}}) : Nothing(); };
+    EXPECT_TEX_ERROR(MapToVertices(upper, grid), "MapToVertices", "reads absolute positions");
+    auto long_left = [](const Edge& e) { return LocationAt(e, 0.5).x < 10 ? ToCurve(e) : Nothing(); };
+    EXPECT_TEX_ERROR(MapToEdges(long_left, grid, MapperThreads::Serial), "MapToEdges", "reads absolute positions");
+    // The same mappers reading the cell only are fine, and so is a field with the periods.
+    EXPECT_NO_THROW(MapToFaces([](const Face& f) { return Scale(Contour(f), 0.5); }, grid));
+    auto periodic = [](const Face& f) { return Scale(Contour(f), 0.5 + 0.3 * std::sin(Centroid(f).x * 2 * pi / 50)); };
+    EXPECT_NO_THROW(MapToFaces(periodic, grid));
 }

@@ -1,8 +1,9 @@
 // The proof that a tiled map is the same arrangement (thesis 4.2): every regular gallery
 // example without Random, written on a tiled partition and converted over the gallery
 // window, gives the same set of whole curves (order and direction aside, labels and side
-// labels included) as the planar-map engine; only regular result (a), a mask of line
-// pieces, is compared as a drawing (straight runs, wherever they are cut).
+// labels included) as the planar-map engine; regular result (a), a mask of hatch lines,
+// after cutting both drawings where a tile's corner touches a line (a split decided by
+// rounding in both engines).
 //
 // The partitions alone match over the whole window (same border modes). A mapped example
 // differs from the engine's only along the window's border, where the engine's finite map
@@ -150,14 +151,24 @@ TEST(TiledGallery, RegularResultA) {
         reduce, MapToFaces(turn, GridPartition(StripesProperties(0, 200), StripesProperties(pi / 2, 200), Tiled())));
     const TiledMap hatching = Outside(StripesPartition(StripesProperties(0, 15), Tiled()), tiles, CROP);
     EXPECT_NEAR(std::abs(hatching.period1().y), 600, 1e-9);
-    // Both cut to the inner window and compared as drawings (straight runs), not as whole
-    // curves: the mask cuts the hatching's line pieces one common period (600) long and keeps
-    // the cut where a piece ends, and the engine itself splits some lines where a tile's
-    // corner touches them and not others.
-    auto cut = [](const Curves& c) { return th::runs(apply_mask(c, kInnerRegion, CROP)); };
-    const auto tiled = cut(hatching.Convert(kInnerRegion, KEEP_OUTSIDE)), engine = cut(engine_example("regular_a"));
-    EXPECT_GT(tiled.size(), 100u);
-    EXPECT_SAME_RUNS(tiled, engine);
+    // As whole curves, like the other examples: the mask's pieces of hatching lines are
+    // joined again where only the period cut them. One degenerate case is set aside: a
+    // tile's corner lying exactly on a hatch line. Whether the line is split there is decided
+    // by rounding, in the engine as in the mask (the engine splits the line y = 780 at the
+    // corner x = 1133.1371 and not the line y = 1380 at the same corner one period up), so
+    // both drawings are cut at every tile corner that lies on them before they are compared.
+    std::vector<Point> corners;
+    for (const auto& c : tiles.Convert(kWindow, KEEP_OUTSIDE).curves)
+        corners.insert(corners.end(), c.points.begin(), c.points.end());
+    const Curves tiled = th::split_at_points(hatching.Convert(kInnerRegion, KEEP_OUTSIDE), corners);
+    const Curves engine = th::split_at_points(engine_example("regular_a"), corners);
+    expect_same_inside(tiled, engine);
+    // Without that cut, the two differ at those corners only: a handful of curves.
+    const auto a = th::whole_curves(th::inside_box(hatching.Convert(kInnerRegion, KEEP_OUTSIDE), kInner.expanded(-0.01)));
+    const auto b = th::whole_curves(th::inside_box(engine_example("regular_a"), kInner.expanded(-0.01)));
+    std::vector<std::string> only;
+    std::set_symmetric_difference(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(only));
+    EXPECT_LE(only.size(), 20u) << th::curve_diff(a, b);
 }
 
 TEST(TiledGallery, RegularResultBIsNotPeriodicAndSaysSo) {

@@ -170,4 +170,46 @@ inline tex::Curves inside_box(const tex::Curves& c, const tex::BBox& b) {
     return out;
 }
 
+// The open curves cut at every point of `at` that lies on them (within tol) other than at
+// their ends; closed curves as they are. For comparisons where a split at such a point is a
+// degenerate case decided by rounding (a line through a shape's corner).
+inline tex::Curves split_at_points(const tex::Curves& c, const std::vector<tex::Point>& at, double tol = 1e-6) {
+    tex::Curves out;
+    out.points = c.points;
+    for (const auto& cv : c.curves) {
+        if (cv.closed || cv.points.size() < 2) {
+            out.curves.push_back(cv);
+            continue;
+        }
+        tex::Curve piece = cv;
+        piece.points.assign(1, cv.points.front());
+        auto cut = [&](const tex::Point& p) {
+            if (tex::distance(p, piece.points.back()) <= tol) return;  // the same point twice
+            piece.points.push_back(p);
+            out.curves.push_back(piece);
+            piece.points.assign(1, p);
+        };
+        for (std::size_t k = 1; k < cv.points.size(); ++k) {
+            const tex::Point a = cv.points[k - 1], b = cv.points[k], d = b - a;
+            const double l2 = tex::dot(d, d);
+            std::vector<std::pair<double, tex::Point>> on;
+            for (const auto& p : at) {
+                const double t = l2 > 0 ? tex::dot(p - a, d) / l2 : 0.0;
+                if (t <= 0 || t >= 1 || tex::distance(p, a + d * t) > tol) continue;
+                if (tex::distance(p, a) <= tol || tex::distance(p, b) <= tol) continue;
+                on.emplace_back(t, p);
+            }
+            std::sort(on.begin(), on.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+            for (const auto& [t, p] : on) cut(p);
+            const bool last = k + 1 == cv.points.size();
+            bool corner = false;
+            for (const auto& p : at) corner = corner || tex::distance(p, b) <= tol;
+            if (!last && corner) cut(b);
+            else piece.points.push_back(b);
+        }
+        out.curves.push_back(piece);
+    }
+    return out;
+}
+
 }  // namespace th

@@ -124,3 +124,34 @@ def test_face_labels_at_a_point_of_a_mapped_map():
     points = [Point(3.7 + 13.1 * k, -250.3 + 29.9 * k) for k in range(40)]
     assert [edges.FaceLabelsAt(p) for p in points] == [grid.FaceLabelsAt(p) for p in points]
     assert {tuple(edges.FaceLabelsAt(p)) for p in points} == {("a",), ("b",)}
+
+
+def test_face_labels_of_a_band_and_distance_far_from_the_origin():
+    from rockhatch.tex import Point, Union
+    bands = StripesProperties(0, 120, 300)
+    SetFaceLabels(bands, "a", "b", "c")
+    stripes = StripesPartition(bands, Tiled())
+    # The band between y = 0 and y = 120 (its face label, whatever the nearest curve), a
+    # whole number of periods away too.
+    p1, p2 = stripes.period1, stripes.period2
+    for k in (0, 1000, -77777):
+        p = Point(50 + k * (p1.x + p2.x), 60 + k * (p1.y + p2.y))
+        assert len(stripes.FaceLabelsAt(p)) == 1
+        assert stripes.FaceLabelsAt(p) == stripes.FaceLabelsAt(Point(50, 60))
+        assert stripes.DistanceToCurves(p) == pytest.approx(60, abs=1e-6)
+    # With squares in the bands: a band's face also carries what the squares' outer sides carry.
+    rows = StripesProperties(0, 210)
+    SetFaceLabels(rows, "r1", "r2")
+    squares = MapToFaces(lambda f: Scale(Contour(f), 0.3), GridPartition(rows, StripesProperties(pi / 2, 180), Tiled()))
+    both = Union(stripes, squares)
+    inside_square = squares.FaceLabelsAt(Point(90, 105))
+    assert set(both.FaceLabelsAt(Point(5, 60))) >= set(stripes.FaceLabelsAt(Point(5, 60)))
+    assert set(both.FaceLabelsAt(Point(90, 105))) >= set(inside_square)
+
+
+def test_a_mapper_reading_absolute_positions_is_an_error():
+    from rockhatch.tex import Centroid
+    grid = labelled_grid(Tiled())
+    with pytest.raises(TexError, match="reads absolute positions"):
+        MapToFaces(lambda f: Contour(f) if Centroid(f).x > 0 else Nothing(), grid)
+    MapToFaces(lambda f: Scale(Contour(f), 0.5), grid)  # reads the cell only: fine

@@ -42,7 +42,10 @@ struct Tiled {
     explicit Tiled(Border b) : border(b) {}
 };
 
-// One copy of an element met at conversion, as a ghost mapper sees it.
+// One copy of an element met at conversion, as a ghost mapper sees it. A line stored one
+// period at a time (a stripe, Element::continues) is seen whole instead: one curve over the
+// region's box grown by one period, with j = 0 and a key of the line (element and i), so
+// that a line gets the same random numbers in every window.
 struct TiledElement {
     Curves curves;           // the element's curves, translated to this copy
     Point anchor;            // reference point of the cell the element came from, translated
@@ -118,18 +121,26 @@ public:
         std::vector<int> vertices, edges, faces;
     };
     Block block() const;
+    // The copies of the elements over that block, with the copies of a vertex welded.
+    Curves block_curves() const;
     // Smallest k such that the block of (2k+1)^2 tiles holds every cell a mapper of the
     // central tile can reach (its neighbours' neighbours).
     int block_reach() const;
 
     // ---- Point queries (cost independent of the window) ----
-    // Distance from p to the nearest curve of the infinite arrangement (ghost ignored).
+    // Distance from p to the nearest curve of the infinite arrangement (ghost ignored):
+    // p moved into the central tile, then a nearest-segment search in a uniform grid of the
+    // copies of the elements' segments that can be nearest to a point of that tile (built
+    // once, on the first query). The same value, bit for bit, as DistanceToCurvesByScan.
     double DistanceToCurves(const Point& p) const;
+    // The reference: every segment of every copy within block_reach() + 1 tiles of p's tile.
+    double DistanceToCurvesByScan(const Point& p) const;
     // Labels of the face of the infinite arrangement containing p: for a tiled partition,
-    // of the cell containing p; for a map with bounded faces, of the face of the NIZ block's
-    // planar map (built once, on the first query) containing p moved into the central tile,
-    // found through a FaceLocator; for a map with unbounded faces (stripes), the side labels
-    // of the nearest curve on p's side.
+    // of the cell containing p; otherwise, of the face containing p moved into the central
+    // tile in the planar map of the block's copies closed by an unlabelled frame (built once,
+    // on the first query; located through a grid of the faces' regions). A face that is unbounded in the
+    // infinite arrangement (a band of stripes, the space around closed shapes) gets the
+    // labels of its sides within the block.
     Labels FaceLabelsAt(const Point& p) const;
 
     // Lattice coordinates of p (p = a * period1 + b * period2).
@@ -147,6 +158,7 @@ private:
         std::vector<CellRing> cells;
         Border border;
         bool bounded_faces;
+        double reach = 0;  // block_reach() before its check
         std::optional<Stripes> stripes;
         GhostMapper ghost;
         struct Locator;  // the block's planar map and its FaceLocator, made on first use

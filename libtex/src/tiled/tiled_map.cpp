@@ -103,6 +103,28 @@ double point_segment_distance(const Point& p, const Point& a, const Point& b) {
     return distance(p, a + d * t);
 }
 
+// The shifts (i, j), in periods, of the copies of a box `piece` that can meet the box `area`
+// grown by `margin`: the translations t with piece + t meeting it form a box, whose corners in
+// lattice coordinates bound i and j.
+struct ShiftRange {
+    long long i0, i1, j0, j1;
+    double count() const { return double(i1 - i0 + 1) * double(j1 - j0 + 1); }
+};
+ShiftRange shifts_meeting(const TiledMap& m, const BBox& piece, const BBox& area, double margin) {
+    BBox t;
+    t.add(Point{area.xmin - piece.xmax - margin, area.ymin - piece.ymax - margin});
+    t.add(Point{area.xmax - piece.xmin + margin, area.ymax - piece.ymin + margin});
+    double ilo = 1e300, ihi = -1e300, jlo = 1e300, jhi = -1e300;
+    for (const auto& c : box_ring(t)) {
+        const Point l = m.lattice(c);
+        ilo = std::min(ilo, l.x);
+        ihi = std::max(ihi, l.x);
+        jlo = std::min(jlo, l.y);
+        jhi = std::max(jhi, l.y);
+    }
+    return {(long long)std::floor(ilo), (long long)std::ceil(ihi), (long long)std::floor(jlo), (long long)std::ceil(jhi)};
+}
+
 std::string period_text(const Point& p) {
     std::ostringstream s;
     s << "(" << p.x << ", " << p.y << ")";
@@ -111,9 +133,42 @@ std::string period_text(const Point& p) {
 
 }  // namespace
 
+// The segments of every copy of the elements near the central tile, in a uniform grid, for
+// DistanceToCurves. A copy is stored as (segment of the central copy, shift in periods
+// relative to the tile of the query), so that a query computes exactly what the linear scan
+// computes (the point moved by the copy's shift against the central segment): the same
+// bits, found without visiting the other copies.
+struct DistanceIndex {
+    struct Copy {
+        std::uint32_t seg;
+        long long di, dj;
+    };
+    std::vector<std::pair<Point, Point>> base;  // the segments of the elements, as stored
+    std::vector<Copy> copies;                   // the grid's segment k is copies[k]
+    std::optional<detail::SegmentGrid> grid;
+    bool scan = false;  // too many copies to index (a very thin tile): the linear scan answers
+};
+
+// The faces of the framed block for FaceLabelsAt, in two point locators: the faces that do
+// not touch the frame (regions with their holes), tried first, then the faces along the
+// frame by their outer ring alone. A point in a hole of a frame face lies in a face that
+// does not touch the frame, found first; so the frame faces (the space around a whole block
+// of bricks, with hundreds of holes) are never tested hole by hole.
+struct FramedFaces {
+    MapPtr map;
+    std::optional<RegionLocator> inner, frame;
+    std::vector<int> inner_ids, frame_ids;
+    int face_at(const Point& p) const {
+        if (const int k = inner->find(p); k >= 0) return inner_ids[std::size_t(k)];
+        if (const int k = frame->find(p); k >= 0) return frame_ids[std::size_t(k)];
+        return map->unbounded_face();
+    }
+};
+
 struct TiledMap::Data::Locator {
-    std::once_flag once;
-    std::optional<FaceLocator> faces;
+    std::once_flag faces_once, distance_once;
+    FramedFaces faces;
+    DistanceIndex distance;
 };
 
 double Random(const TiledElement& e, double min, double max, double n) {
@@ -140,6 +195,16 @@ TiledMap::TiledMap(Point p1, Point p2, std::vector<Element> elements, Border bor
         for (const auto& p : e.curves.points) e.box.add(p.point);
     }
     d->elements = std::move(elements);
+    // How many tiles away from the central one the elements reach (computed once: the point
+    // queries and the block read it).
+    d->reach = 0;
+    for (const auto& e : d->elements) {
+        if (e.box.empty()) continue;
+        for (const auto& c : box_ring(e.box)) {
+            const Point l{d->inv[0] * c.x + d->inv[1] * c.y, d->inv[2] * c.x + d->inv[3] * c.y};
+            d->reach = std::max({d->reach, -std::floor(l.x), -std::floor(l.y), std::ceil(l.x) - 1, std::ceil(l.y) - 1});
+        }
+    }
     d->cells = std::move(cells);
     d->border = border;
     d->bounded_faces = bounded_faces;
@@ -170,16 +235,8 @@ TiledMap::operator Arrangement() const {
 }
 
 int TiledMap::block_reach() const {
-    double reach = 0;
-    for (const auto& e : d_->elements) {
-        if (e.box.empty()) continue;
-        for (const auto& c : box_ring(e.box)) {
-            const Point l = lattice(c);
-            reach = std::max({reach, -std::floor(l.x), -std::floor(l.y), std::ceil(l.x) - 1, std::ceil(l.y) - 1});
-        }
-    }
-    if (reach > 64) throw Error("TiledMap", "an element reaches more than 64 periods away from its tile");
-    return int(reach);
+    if (d_->reach > 64) throw Error("TiledMap", "an element reaches more than 64 periods away from its tile");
+    return int(d_->reach);
 }
 
 Curves TiledMap::Convert(const Region& r, Border b) const {
@@ -209,22 +266,10 @@ Curves TiledMap::Convert(const Region& r, Border b) const {
         const BBox& eb = d_->elements[e].box;
         if (eb.empty()) continue;
         const double margin = ghost ? std::max(eb.width(), eb.height()) : 0.0;
-        BBox t;
-        t.add(Point{rb.xmin - eb.xmax - margin, rb.ymin - eb.ymax - margin});
-        t.add(Point{rb.xmax - eb.xmin + margin, rb.ymax - eb.ymin + margin});
-        double ilo = 1e300, ihi = -1e300, jlo = 1e300, jhi = -1e300;
-        for (const auto& c : box_ring(t)) {
-            const Point l = lattice(c);
-            ilo = std::min(ilo, l.x);
-            ihi = std::max(ihi, l.x);
-            jlo = std::min(jlo, l.y);
-            jhi = std::max(jhi, l.y);
-        }
-        const long long i0 = (long long)std::floor(ilo), i1 = (long long)std::ceil(ihi);
-        const long long j0 = (long long)std::floor(jlo), j1 = (long long)std::ceil(jhi);
-        copies += double(i1 - i0 + 1) * double(j1 - j0 + 1);
+        const ShiftRange sr = shifts_meeting(*this, eb, rb, margin);
+        copies += sr.count();
         if (copies > kMaxCopies) throw Error("TiledMap", "the region holds too many periods to convert");
-        for (long long i = i0; i <= i1; ++i) items.push_back({e, i, j0, j1});
+        for (long long i = sr.i0; i <= sr.i1; ++i) items.push_back({e, i, sr.j0, sr.j1});
     }
 
     // Two passes, so that the output is allocated once and filled in place (memory bounded
@@ -294,15 +339,18 @@ Curves TiledMap::Convert(const Region& r, Border b) const {
                 for (auto& p : copy.points)
                     if (r.contains(p.point)) res.points.push_back(std::move(p));
         };
-        if (el.continues && !ghost && !keep_cells) {
+        if (el.continues && !keep_cells) {
             // A line cut at the period: each run of consecutive copies whose boxes meet the
             // region's box becomes one curve, from the first copy's start to the last one's
-            // end, then kept, cut or dropped as one copy.
+            // end, then kept, cut or dropped as one copy. A ghost mapper sees that whole line
+            // (over the region's box grown by one piece, the margin it may move it by), keyed
+            // by the line (element and i), not by where the region cuts it.
             const Curve& piece = el.curves.curves.front();
+            const double margin = ghost ? std::max(el.box.width(), el.box.height()) : 0.0;
             long long j = it.j0;
             while (j <= it.j1) {
                 auto meets_box = [&](long long jj) {
-                    BBox cb = el.box;
+                    BBox cb = el.box.expanded(margin);
                     const Point s = shift(it.i, jj);
                     cb.xmin += s.x; cb.xmax += s.x; cb.ymin += s.y; cb.ymax += s.y;
                     return cb.intersects(rb);
@@ -322,8 +370,21 @@ Curves TiledMap::Convert(const Region& r, Border b) const {
                         c.points.push_back(piece.points[k] + shift(it.i, jj));
                 c.points.push_back(piece.points.back() + s1);
                 line.curves.push_back(std::move(c));
-                if (classify_box(curve_box(line.curves.front()), r, rect) == Overlap::Inside) keep(std::move(line.curves.front()));
-                else keep_partial(line);
+                if (ghost) {
+                    TiledElement te;
+                    te.curves = std::move(line);
+                    te.anchor = el.anchor + shift(it.i, 0);
+                    te.i = it.i;
+                    te.j = 0;
+                    te.key = hash_combine(hash_combine(el.key, std::uint64_t(it.i)), 0x4c494e45ULL);
+                    RandomScope scope(te.key);
+                    Curves mapped = d_->ghost(te);
+                    keep_partial(mapped);
+                } else if (classify_box(curve_box(line.curves.front()), r, rect) == Overlap::Inside) {
+                    keep(std::move(line.curves.front()));
+                } else {
+                    keep_partial(line);
+                }
                 j = last + 1;
             }
             if (first) res.count = n;
@@ -428,7 +489,7 @@ Curves TiledMap::Convert(const Region& r, Border b) const {
     return out;
 }
 
-double TiledMap::DistanceToCurves(const Point& p) const {
+double TiledMap::DistanceToCurvesByScan(const Point& p) const {
     const Point l = lattice(p);
     const long long ti = (long long)std::floor(l.x), tj = (long long)std::floor(l.y);
     const int reach = block_reach() + 1;
@@ -444,46 +505,158 @@ double TiledMap::DistanceToCurves(const Point& p) const {
     return best;
 }
 
+namespace {
+
+// Copies of segments beyond this many are not indexed (the linear scan answers instead).
+constexpr double kMaxIndexedCopies = 4.0e6;
+
+}  // namespace
+
+double TiledMap::DistanceToCurves(const Point& p) const {
+    DistanceIndex& index = d_->locator->distance;
+    std::call_once(d_->locator->distance_once, [&] {
+        for (const auto& e : d_->elements)
+            for (const auto& c : e.curves.curves)
+                for (const auto& s : curve_segments_of(c)) index.base.push_back(s);
+        if (index.base.empty()) return;
+        // A query point is moved into the central tile. Every point of the tile lies within D
+        // of a curve: within (distance from the nearest corner to the central copies) +
+        // (the tile's diagonal). So the copies whose box comes within D of the tile's box
+        // hold the nearest curve of any point of the tile.
+        BBox tile;
+        for (const Point& c : {Point{0, 0}, d_->p1, d_->p2, d_->p1 + d_->p2}) tile.add(c);
+        double corner = 0;
+        for (const Point& c : box_ring(tile)) {
+            double best = std::numeric_limits<double>::infinity();
+            for (const auto& [a, b] : index.base) best = std::min(best, point_segment_distance(c, a, b));
+            corner = std::max(corner, best);
+        }
+        const double reach = corner + std::hypot(tile.width(), tile.height());
+        const BBox area = tile.expanded(reach * (1 + 1e-9) + 1e-9 * (1 + tile.width() + tile.height()));
+        std::vector<detail::Seg> segs;
+        for (std::size_t k = 0; k < index.base.size(); ++k) {
+            const auto& [a, b] = index.base[k];
+            BBox sb;
+            sb.add(a);
+            sb.add(b);
+            const ShiftRange sr = shifts_meeting(*this, sb, area, 0.0);
+            if (sr.count() + double(segs.size()) > kMaxIndexedCopies) {
+                index.scan = true;
+                return;
+            }
+            for (long long i = sr.i0; i <= sr.i1; ++i)
+                for (long long j = sr.j0; j <= sr.j1; ++j) {
+                    const Point s = shift(i, j);
+                    BBox cb = sb;
+                    cb.xmin += s.x; cb.xmax += s.x; cb.ymin += s.y; cb.ymax += s.y;
+                    if (!cb.intersects(area)) continue;
+                    detail::Seg sg;
+                    sg.a = a + s;
+                    sg.b = b + s;
+                    sg.owner = std::uint32_t(index.copies.size());
+                    index.copies.push_back({std::uint32_t(k), i, j});
+                    segs.push_back(sg);
+                }
+        }
+        index.grid.emplace(std::move(segs));
+    });
+    if (index.scan) return DistanceToCurvesByScan(p);
+    if (!index.grid) return std::numeric_limits<double>::infinity();
+    const Point l = lattice(p);
+    const long long ti = (long long)std::floor(l.x), tj = (long long)std::floor(l.y);
+    const Point q0 = p - shift(ti, tj);
+    const auto& segs = index.grid->segments();
+    return index.grid->nearest(q0, [&](std::uint32_t k) {
+        const DistanceIndex::Copy& c = index.copies[segs[k].owner];
+        const auto& [a, b] = index.base[c.seg];
+        return point_segment_distance(p - shift(ti + c.di, tj + c.dj), a, b);
+    });
+}
+
 Labels TiledMap::FaceLabelsAt(const Point& p) const {
     const Point l = lattice(p);
     const long long ti = (long long)std::floor(l.x), tj = (long long)std::floor(l.y);
-    const int reach = block_reach() + 1;
     // A tiled partition knows its cells: the one containing p.
-    for (long long i = ti - reach; !d_->cells.empty() && i <= ti + reach; ++i)
-        for (long long j = tj - reach; j <= tj + reach; ++j) {
-            const Point q = p - shift(i, j);
-            for (const auto& c : d_->cells)
-                if (c.box.contains(q) && point_in_ring(q, c.ring)) return c.labels;
-        }
-    // Bounded faces: the face of the block's planar map containing p moved into the central
-    // tile (the block holds every curve that can bound a face meeting that tile).
-    if (d_->bounded_faces) {
-        Data::Locator& loc = *d_->locator;
-        std::call_once(loc.once, [&] {
-            BBox tile;
-            for (const Point& c : {Point{0, 0}, d_->p1, d_->p2, d_->p1 + d_->p2}) tile.add(c);
-            loc.faces.emplace(block().map, tile.expanded(1e-9 * (1 + tile.width() + tile.height())));
-        });
-        const Point q = p - shift(ti, tj);
-        return loc.faces->map().faces()[std::size_t(loc.faces->face_at(q))].labels;
+    if (!d_->cells.empty()) {
+        const int reach = block_reach() + 1;
+        for (long long i = ti - reach; i <= ti + reach; ++i)
+            for (long long j = tj - reach; j <= tj + reach; ++j) {
+                const Point q = p - shift(i, j);
+                for (const auto& c : d_->cells)
+                    if (c.box.contains(q) && point_in_ring(q, c.ring)) return c.labels;
+            }
     }
-    // Otherwise (stripes: infinite bands) the side labels of the nearest curve, on p's side.
-    double best = std::numeric_limits<double>::infinity();
-    Labels labels;
-    for (long long i = ti - reach; i <= ti + reach; ++i)
-        for (long long j = tj - reach; j <= tj + reach; ++j) {
-            const Point q = p - shift(i, j);
-            for (const auto& e : d_->elements)
-                for (const auto& c : e.curves.curves)
-                    for (const auto& [a, b] : curve_segments_of(c)) {
-                        const double dd = point_segment_distance(q, a, b);
-                        if (dd < best) {
-                            best = dd;
-                            labels = cross(b - a, q - a) >= 0 ? c.left : c.right;
-                        }
-                    }
+    // Otherwise the face containing p moved into the central tile, in a closed block: the
+    // copies of the elements over the block of tiles around the central one, and a frame
+    // (a parallelogram of the lattice, r + 1 tiles beyond the central one on each side, where
+    // r = block_reach(): every curve of the infinite arrangement that passes inside it has a
+    // copy in the block) added as an unlabelled closed curve. A face that is
+    // unbounded in the infinite arrangement (a band of stripes, the space around closed
+    // shapes) is closed by the frame; its labels are those of its sides inside the frame,
+    // merged as the planar map merges them (the frame adds none).
+    Data::Locator& loc = *d_->locator;
+    std::call_once(loc.faces_once, [&] {
+        BBox tile;
+        for (const Point& c : {Point{0, 0}, d_->p1, d_->p2, d_->p1 + d_->p2}) tile.add(c);
+        // Off the lattice by an irrational fraction of a period, so that no line of a regular
+        // texture runs along the frame.
+        const double lo = -(block_reach() + 1) + 0.1415926535897932, hi = block_reach() + 2 - 0.1415926535897932;
+        std::vector<Point> frame;
+        for (const auto& [a, b] : {std::pair{lo, lo}, {hi, lo}, {hi, hi}, {lo, hi}})
+            frame.push_back(d_->p1 * a + d_->p2 * b);
+        if (signed_area(frame) < 0) std::reverse(frame.begin(), frame.end());
+        // The copies are not cut to the frame (cut ends, rounded, would miss it): the
+        // planar map cuts them exactly; what lies outside belongs to faces never queried.
+        Curves all = block_curves();
+        Curve outline;
+        outline.points = std::move(frame);
+        outline.closed = true;
+        all.curves.push_back(std::move(outline));
+        FramedFaces& ff = loc.faces;
+        ff.map = PlanarMap::induce(all);
+        const PlanarMap& m = *ff.map;
+        auto on_frame = [&](const Point& v) {
+            const Point l = lattice(v);
+            const double eps = 1e-9 * (1 + std::abs(lo) + std::abs(hi));
+            return std::abs(l.x - lo) <= eps || std::abs(l.x - hi) <= eps || std::abs(l.y - lo) <= eps ||
+                   std::abs(l.y - hi) <= eps;
+        };
+        std::vector<Region> inner, along;
+        for (std::size_t f = 0; f < m.faces().size(); ++f) {
+            if (m.faces()[f].unbounded || m.faces()[f].cycles.empty()) continue;
+            std::vector<Point> ring = m.cycle_points(int(f), 0);
+            const bool touches = std::any_of(ring.begin(), ring.end(), on_frame);
+            try {  // a face without area holds no point
+                if (touches) {
+                    along.emplace_back(std::move(ring), std::vector<std::vector<Point>>{}, "FaceLabelsAt");
+                    ff.frame_ids.push_back(int(f));
+                } else {
+                    std::vector<std::vector<Point>> holes;
+                    for (std::size_t k = 1; k < m.faces()[f].cycles.size(); ++k) holes.push_back(m.cycle_points(int(f), k));
+                    inner.emplace_back(std::move(ring), std::move(holes), "FaceLabelsAt");
+                    ff.inner_ids.push_back(int(f));
+                }
+            } catch (const Error&) {
+            }
         }
-    return labels;
+        // Only the faces meeting the central tile are kept (the ids follow the regions kept).
+        const BBox area = tile.expanded(1e-9 * (1 + tile.width() + tile.height()));
+        auto keep = [&](std::vector<Region>& regions, std::vector<int>& ids) {
+            std::vector<Region> r;
+            std::vector<int> i;
+            for (std::size_t k = 0; k < regions.size(); ++k)
+                if (regions[k].bbox().intersects(area)) {
+                    r.push_back(std::move(regions[k]));
+                    i.push_back(ids[k]);
+                }
+            ids = std::move(i);
+            return RegionLocator(std::move(r), area);
+        };
+        ff.inner.emplace(keep(inner, ff.inner_ids));
+        ff.frame.emplace(keep(along, ff.frame_ids));
+    });
+    const Point q = p - shift(ti, tj);
+    return loc.faces.map->faces()[std::size_t(loc.faces.face_at(q))].labels;
 }
 
 }  // namespace tex

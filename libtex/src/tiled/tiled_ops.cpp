@@ -2,9 +2,12 @@
 // Zone rule (thesis 4.2.2), ghost mapping (4.2.4) and the union on commensurable periods.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <sstream>
+#include <type_traits>
 
 #include "libtex/error.hpp"
 #include "libtex/merge.hpp"
@@ -177,6 +180,114 @@ std::pair<int, int> lattice_multiples(const TiledMap& a, const std::vector<detai
     return {int(k1), int(k2)};
 }
 
+// Whether curves b, moved by `back`, are curves a: the same curves in any order, each with
+// the same labels and points within tol (a closed curve from any of its points).
+bool same_moved(const Curves& a, const Curves& b, const Point& back, double tol) {
+    if (a.curves.size() != b.curves.size() || a.points.size() != b.points.size()) return false;
+    auto same_curve = [&](const Curve& x, const Curve& y) {
+        if (x.closed != y.closed || x.points.size() != y.points.size() || !(x.labels == y.labels) ||
+            !(x.left == y.left) || !(x.right == y.right))
+            return false;
+        const std::size_t n = x.points.size();
+        if (n == 0) return true;
+        auto from = [&](std::size_t r) {
+            for (std::size_t k = 0; k < n; ++k)
+                if (distance(x.points[k], y.points[(k + r) % n] + back) > tol) return false;
+            return true;
+        };
+        if (!x.closed) return from(0);
+        for (std::size_t r = 0; r < n; ++r)
+            if (distance(x.points[0], y.points[r] + back) <= tol && from(r)) return true;
+        return false;
+    };
+    std::vector<char> used(b.curves.size(), 0);
+    for (std::size_t k = 0; k < a.curves.size(); ++k) {
+        bool found = false;
+        // The same position first (the usual case), then any.
+        for (std::size_t t = 0; t < b.curves.size() && !found; ++t) {
+            const std::size_t m = (k + t) % b.curves.size();
+            if (!used[m] && same_curve(a.curves[k], b.curves[m])) found = used[m] = 1;
+        }
+        if (!found) return false;
+    }
+    for (std::size_t k = 0; k < a.points.size(); ++k)
+        if (!(a.points[k].labels == b.points[k].labels) || distance(a.points[k].point, b.points[k].point + back) > tol)
+            return false;
+    return true;
+}
+
+// A tiled map copies the mapper's output for each cell of the central tile by the periods,
+// which is right only when the mapper's output for a copy of a cell is its output for the
+// cell, moved. A mapper that reads absolute positions (a closed-form field, a test such as
+// x > 0) breaks that without any Random. Checked on the copies of every cell one period
+// away along -period1 and -period2 (cells of the block, with their whole neighbourhoods):
+// the mapper runs on each and its output, moved back, must be the central cell's.
+template <class CellT, class Mapper, class RefOf>
+void check_translation_invariant(const TiledMap& a, const TiledMap::Block& b, const Mapper& m,
+                                 const std::vector<int>& ids, const std::vector<TiledMap::Element>& out, RefOf ref_of,
+                                 MapperThreads threads, const char* op) {
+    const PlanarMap& map = *b.map;
+    std::size_t count = 0;
+    if constexpr (std::is_same_v<CellT, Vertex>) count = map.vertices().size();
+    else if constexpr (std::is_same_v<CellT, Edge>) count = map.edges().size();
+    else count = map.faces().size();
+    BBox box;
+    for (const auto& v : map.vertices()) box.add(v.point);
+    const double scale = std::max({1.0, std::abs(box.xmin), std::abs(box.xmax), std::abs(box.ymin), std::abs(box.ymax)});
+    const double tol = 1e-7 * scale;
+    // The central cells by their reference point, sorted by x, to find a copy's original.
+    std::vector<std::pair<Point, std::size_t>> central;
+    for (std::size_t k = 0; k < ids.size(); ++k) central.push_back({ref_of(b.map, ids[k]), k});
+    std::sort(central.begin(), central.end(), [](const auto& x, const auto& y) { return x.first.x < y.first.x; });
+    auto original = [&](const Point& p) -> std::optional<std::size_t> {
+        auto it = std::lower_bound(central.begin(), central.end(), p.x - tol,
+                                   [](const auto& c, double x) { return c.first.x < x; });
+        for (; it != central.end() && it->first.x <= p.x + tol; ++it)
+            if (std::abs(it->first.y - p.y) <= tol) return it->second;
+        return std::nullopt;
+    };
+    struct Probe {
+        int copy;
+        std::size_t original;
+        Point back;
+    };
+    std::vector<Probe> probes;
+    for (const Point& back : {a.period1(), a.period2()}) {
+        for (std::size_t c = 0; c < count; ++c) {
+            if constexpr (std::is_same_v<CellT, Face>) {
+                if (map.faces()[c].unbounded) continue;
+            }
+            const Point moved = ref_of(b.map, int(c)) + back;
+            if (!in_central_tile(a, moved)) continue;
+            if (const auto k = original(moved)) probes.push_back({int(c), *k, back});
+        }
+    }
+    std::vector<char> bad(probes.size(), 0);
+    auto visit = [&](std::size_t k) {
+        CellT cell(b.map, probes[k].copy);
+        detail::NoRandomScope regular(op);
+        detail::StripesProbe probe;
+        bad[k] = !same_moved(out[probes[k].original].curves, m(cell), probes[k].back, tol);
+    };
+    if (threads == MapperThreads::Serial) {
+        for (std::size_t k = 0; k < probes.size(); ++k) visit(k);
+    } else {
+        parallel_for(probes.size(), visit);
+    }
+    const auto first = std::find(bad.begin(), bad.end(), 1);
+    if (first == bad.end()) return;
+    const Probe& pr = probes[std::size_t(first - bad.begin())];
+    std::ostringstream msg;
+    msg << "the mapper's output for the cell at " << point_text(out[pr.original].anchor) << " is not its output for "
+        << "the copy of that cell one period " << point_text(Point{0.0 - pr.back.x, 0.0 - pr.back.y})
+        << " away, moved back: the mapper reads absolute positions (a closed-form field, a test on x or y), "
+           "so its output does not repeat with the tiled map's periods "
+        << point_text(a.period1()) << " and " << point_text(a.period2())
+        << " and a tiled map cannot stand for it; make the mapper depend only on the cell (its geometry relative "
+           "to itself, its labels and neighbours), or evaluate the script with the planar-map engine";
+    throw Error(op, msg.str());
+}
+
 // The mapper run on the cells of the central tile of a's block (NIZ rule), each call in a
 // probe of the partitions it builds. When those partitions repeat only on a multiple of a's
 // lattice, the mapping is done again on that coarser lattice, so that the result is exact.
@@ -210,6 +321,7 @@ TiledMap map_block(const TiledMap& a, const Mapper& m, const std::vector<int> Ti
                               a.bounded_faces());
         return map_block<CellT>(coarse, m, ids_of, ref_of, t, op, true);
     }
+    check_translation_invariant<CellT>(a, b, m, ids, out, ref_of, t, op);
     std::vector<TiledMap::Element> kept;
     for (auto& e : out) {
         e.curves.origin.clear();
@@ -297,7 +409,7 @@ TiledMap StripesPartition(const Stripes& s, Tiled t) {
     return TiledMap(across, along, std::move(elements), t.border, s);
 }
 
-TiledMap::Block TiledMap::block() const {
+Curves TiledMap::block_curves() const {
     const int k = 2 * block_reach() + 2;
     Curves all;
     for (long long i = -k; i <= k; ++i)
@@ -312,9 +424,14 @@ TiledMap::Block TiledMap::block() const {
                 for (const auto& p : e.curves.points) all.points.push_back({p.point + s, p.labels});
             }
         }
+    Welder(weld_tolerance(all)).weld(all);
+    return all;
+}
+
+TiledMap::Block TiledMap::block() const {
+    const Curves all = block_curves();
     Block b;
     const BBox box = all.bbox();
-    Welder(weld_tolerance(all)).weld(all);
     b.map = PlanarMap::induce(all);
     const PlanarMap& m = *b.map;
     for (std::size_t v = 0; v < m.vertices().size(); ++v)
@@ -447,6 +564,131 @@ Common common_lattice(const TiledMap& a1, const TiledMap& a2, const char* op) {
     return {a1.period1() * double(k1), a1.period2() * double(k2), repeat(a1, k1, k2), repeat(a2, n1, n2)};
 }
 
+// The pieces of lines that a mask kept, joined again where the line was cut only by the
+// period. A tiled line is stored one period at a time (Element::continues), so the mask sees
+// pieces and keeps cuts where the engine, masking whole lines, has none. Two kept curves are
+// joined at a joint of the stored pieces (the start of a `continues` element, up to the
+// lattice) when exactly one of them ends there and one starts there, both open with equal
+// labels, and nothing else passes there (no other kept curve, no curve of the mask): a
+// vertex of degree 2 in the engine's map too. A piece that the mask kept whole (it starts
+// where its own copy ends) is a whole line again (continues). The joint point itself is left
+// out when the line is straight there, as the engine draws a stripe's line as one segment.
+struct JoinedCurve {
+    Curve curve;
+    bool continues = false;
+};
+
+std::vector<JoinedCurve> join_line_pieces(const TiledMap& lattice, const std::vector<Point>& joints,
+                                          std::vector<Curve> kept, const Curves& mask_block) {
+    std::vector<JoinedCurve> out;
+    const std::size_t n = kept.size();
+    double scale = 1;
+    for (const auto& c : kept)
+        for (const auto& p : c.points) scale = std::max({scale, std::abs(p.x), std::abs(p.y)});
+    const double tol = 1e-9 * scale;
+    // The shift (in periods) taking b onto a, when a - b is a lattice vector.
+    auto lattice_shift = [&](const Point& a, const Point& b) -> std::optional<std::pair<long long, long long>> {
+        const Point l = lattice.lattice(a - b);
+        const long long i = std::llround(l.x), j = std::llround(l.y);
+        if (distance(a, b + lattice.shift(i, j)) > tol) return std::nullopt;
+        return std::pair{i, j};
+    };
+    auto near_segment = [&](const Point& p, const Point& a, const Point& b) {
+        const Point d = b - a;
+        const double l2 = dot(d, d);
+        const double t = l2 > 0 ? std::clamp(dot(p - a, d) / l2, 0.0, 1.0) : 0.0;
+        return distance(p, a + d * t) <= tol;
+    };
+    const int reach = lattice.block_reach() + 1;
+    // next[k]: the curve that continues curve k, and the shift that puts it after k's end.
+    struct Next {
+        std::size_t curve = SIZE_MAX;
+        long long i = 0, j = 0;
+    };
+    std::vector<Next> next(n);
+    std::vector<char> has_prev(n, 0);
+    for (const Point& joint : joints) {
+        std::vector<std::size_t> ends, starts;
+        bool blocked = false;
+        for (std::size_t k = 0; k < n && !blocked; ++k) {
+            const Curve& c = kept[k];
+            if (c.points.size() < 2) continue;
+            const bool e = lattice_shift(c.points.back(), joint).has_value();
+            const bool s = lattice_shift(c.points.front(), joint).has_value();
+            if (c.closed && (e || s)) blocked = true;
+            if (e) ends.push_back(k);
+            if (s) starts.push_back(k);
+            // A curve through a copy of the joint elsewhere than at its ends.
+            for (std::size_t m = 1; m + 1 < c.points.size() && !blocked; ++m)
+                blocked = lattice_shift(c.points[m], joint).has_value();
+            const std::size_t segs = c.closed ? c.points.size() : c.points.size() - 1;
+            for (std::size_t m = 0; m < segs && !blocked; ++m) {
+                const Point& a = c.points[m];
+                const Point& b = c.points[(m + 1) % c.points.size()];
+                for (long long i = -reach; i <= reach && !blocked; ++i)
+                    for (long long j = -reach; j <= reach && !blocked; ++j) {
+                        const Point q = joint + lattice.shift(i, j);
+                        if (near_segment(q, a, b) && distance(q, a) > tol && distance(q, b) > tol) blocked = true;
+                    }
+            }
+        }
+        if (blocked || ends.size() != 1 || starts.size() != 1) continue;
+        const Curve &a = kept[ends[0]], &b = kept[starts[0]];
+        if (!(a.labels == b.labels && a.left == b.left && a.right == b.right)) continue;
+        // No curve of the mask through the joint (the mask's block surrounds the central tile).
+        const Point at = a.points.back();
+        bool on_mask = false;
+        for (const auto& c : mask_block.curves) {
+            const std::size_t segs = c.closed ? c.points.size() : c.points.size() - 1;
+            for (std::size_t m = 0; m < segs && !on_mask; ++m)
+                on_mask = near_segment(at, c.points[m], c.points[(m + 1) % c.points.size()]);
+            if (on_mask) break;
+        }
+        if (on_mask) continue;
+        const auto sh = lattice_shift(a.points.back(), b.points.front());
+        if (!sh) continue;
+        next[ends[0]] = {starts[0], sh->first, sh->second};
+        has_prev[starts[0]] = 1;
+    }
+    auto straight = [&](const Point& p, const Point& q, const Point& r) {
+        return std::abs(cross(q - p, r - q)) <= tol * (norm(q - p) + norm(r - q));
+    };
+    std::vector<char> used(n, 0);
+    // A piece kept whole: its own successor, one period along.
+    for (std::size_t k = 0; k < n; ++k) {
+        if (next[k].curve != k) continue;
+        used[k] = 1;
+        const bool one_period_along = next[k].i == 0 && next[k].j == 1;
+        out.push_back({std::move(kept[k]), one_period_along});
+    }
+    // Chains from a curve with no predecessor; the rest (cycles of several pieces, which a
+    // tiled line does not make) stay as they are.
+    for (std::size_t k = 0; k < n; ++k) {
+        if (used[k] || has_prev[k]) continue;
+        Curve line = kept[k];
+        used[k] = 1;
+        long long si = 0, sj = 0;
+        for (std::size_t c = k; next[c].curve != SIZE_MAX && !used[next[c].curve];) {
+            const Next& nx = next[c];
+            si += nx.i;
+            sj += nx.j;
+            const Point s = lattice.shift(si, sj);
+            const Curve& b = kept[nx.curve];
+            // The joint (the line's last point, b's first): dropped where the line goes
+            // straight through it.
+            if (line.points.size() >= 2 && straight(line.points[line.points.size() - 2], line.points.back(), b.points[1] + s))
+                line.points.pop_back();
+            for (std::size_t m = 1; m < b.points.size(); ++m) line.points.push_back(b.points[m] + s);
+            used[nx.curve] = 1;
+            c = nx.curve;
+        }
+        out.push_back({std::move(line), false});
+    }
+    for (std::size_t k = 0; k < n; ++k)
+        if (!used[k]) out.push_back({std::move(kept[k]), false});
+    return out;
+}
+
 // Inside / Outside: a1's elements cut by (or kept against) the bounded faces of a2. The mask
 // is the planar map of a2 over a block of tiles wide enough to hold every element of a1 with
 // the faces around it, induced once.
@@ -470,13 +712,18 @@ TiledMap mask(const TiledMap& a1, const TiledMap& a2, Border b, MaskSide side, c
     // engine); every curve it keeps becomes an element of its own.
     Curves all;
     for (const auto& e : subject.elements()) all.append(e.curves);
-    const Curves kept = apply_mask(all, *mask_map, side, cut);
+    Curves kept = apply_mask(all, *mask_map, side, cut);
+    std::vector<Point> joints;
+    for (const auto& e : subject.elements())
+        if (e.continues && !e.curves.curves.empty() && !e.curves.curves.front().points.empty())
+            joints.push_back(e.curves.curves.front().points.front());
     std::vector<TiledMap::Element> elements;
-    for (const auto& curve : kept.curves) {
+    for (auto& joined : join_line_pieces(subject, joints, std::move(kept.curves), block)) {
         TiledMap::Element e;
-        e.curves.curves.push_back(curve);
-        e.anchor = curve.points.empty() ? Point{} : curve.points.front();
+        e.anchor = joined.curve.points.empty() ? Point{} : joined.curve.points.front();
         e.key = anchor_key(e.anchor);
+        e.continues = joined.continues;
+        e.curves.curves.push_back(std::move(joined.curve));
         elements.push_back(std::move(e));
     }
     for (const auto& point : kept.points) {
