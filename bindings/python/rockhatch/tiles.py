@@ -473,6 +473,67 @@ def run(dem, partition, tile_size, outputs, *, style=None, script=None, params=N
     return run_args(argv + list(args), progress)
 
 
+def partition_difference(whole, tiled):
+    """How far a partition extracted tile by tile is from the whole extraction: a dict of
+    faces (whole, tiled), same (faces bit for bit the same), other (rock area of `whole` lying on
+    another face of `tiled` than its match, faces matched one to one by largest overlap),
+    twice (area covered by two tiled faces), uncovered (rock of `whole` no tiled face
+    covers), the last three as shares of the rock area, rock_m2, and places: (area, x, y) of
+    each piece uncovered or covered twice, largest first. Both are partition GeoPackages
+    (layer faces); reads them with GDAL's Python bindings."""
+    from osgeo import gdal, ogr
+
+    def polys(path):
+        ds = ogr.Open(str(path))  # kept open while its layer is read
+        return [f.GetGeometryRef().Clone() for f in ds.GetLayerByName("faces")]
+
+    def union(gs):
+        u = ogr.Geometry(ogr.wkbMultiPolygon)
+        for g in gs:
+            u.AddGeometry(g)
+        return u.UnionCascaded()
+
+    a, b = polys(whole), polys(tiled)
+    gdal.PushErrorHandler("CPLQuietErrorHandler")  # areas of the point and line parts of intersections
+    try:
+        pairs = []
+        for i, g in enumerate(a):
+            ea = g.GetEnvelope()
+            for j, h in enumerate(b):
+                eb = h.GetEnvelope()
+                if eb[0] > ea[1] or eb[1] < ea[0] or eb[2] > ea[3] or eb[3] < ea[2]:
+                    continue
+                x = g.Intersection(h)
+                if x is not None and x.GetArea() > 0:
+                    pairs.append((x.GetArea(), i, j))
+        pairs.sort(reverse=True)
+        used_a, used_b, matched = set(), set(), 0.0
+        for x, i, j in pairs:
+            if i not in used_a and j not in used_b:
+                used_a.add(i)
+                used_b.add(j)
+                matched += x
+        rock = sum(g.GetArea() for g in a)
+        tiled_union = union(b)
+        twice = sum(g.GetArea() for g in b) - tiled_union.GetArea()
+        gap = union(a).Difference(tiled_union)
+        uncovered = gap.GetArea()
+        pieces = [gap.GetGeometryRef(k) for k in range(gap.GetGeometryCount())] if gap.GetGeometryCount() else []
+        for i, g in enumerate(b):
+            for h in b[i + 1:]:
+                if g.Intersects(h):
+                    x = g.Intersection(h)
+                    if x is not None and x.GetGeometryType() == ogr.wkbPolygon:
+                        pieces.append(x)
+        places = sorted(((p.GetArea(), p.Centroid().GetX(), p.Centroid().GetY()) for p in pieces
+                         if p.GetGeometryType() == ogr.wkbPolygon and p.GetArea() > 0), reverse=True)
+    finally:
+        gdal.PopErrorHandler()
+    same = len({bytes(g.ExportToWkb()) for g in a} & {bytes(g.ExportToWkb()) for g in b})
+    return {"faces": (len(a), len(b)), "same": same, "other": (rock - matched) / rock, "twice": twice / rock,
+            "uncovered": uncovered / rock, "rock_m2": rock, "places": places}
+
+
 def help_text():
     lines = ["usage: rockhatch tiles --dem DEM --partition FACES|auto --tile-size METRES -o OUT [options]",
              "",
