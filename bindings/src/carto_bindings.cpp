@@ -601,6 +601,19 @@ CrestResult
         "layers faces, lines, mask (and network), as rockhatch reads them; the faces' fall line and shade as "
         "attributes fall_line and shade (derived: hatching follows the terrain), or, with fixed_controls, as "
         "orientation and density (read as given: one direction per face)");
+    py::class_<ExtractTileReport>(m, "ExtractTileReport", "What one tile of a tiled extraction read and kept")
+        .def_readonly("faces", &ExtractTileReport::faces)
+        .def_readonly("lines", &ExtractTileReport::lines)
+        .def_readonly("dem_cells", &ExtractTileReport::dem_cells)
+        .def_readonly("rounds", &ExtractTileReport::rounds)
+        .def_readonly("seconds", &ExtractTileReport::seconds);
+    m.def("extract_tile", &extract_tile, py::arg("options"), py::arg("tile"), py::arg("halo"), py::arg("out"),
+          py::call_guard<py::gil_scoped_release>(),
+          "the faces of the partition whose anchor lies in the tile, extracted from the DEM window under the tile "
+          "plus halo (ground units; larger where an owned face reaches the halo), written to out");
+    m.def("merge_partition_tiles", &merge_partition_tiles, py::arg("parts"), py::arg("out"),
+          py::arg("overwrite") = false, py::call_guard<py::gil_scoped_release>(),
+          "one partition GeoPackage from the tiles of a tiled extraction; returns the number of faces");
     m.def("check_extract_files", &check_extract_files, py::arg("options"), py::arg("output"), py::arg("png") = "",
           py::arg("overwrite") = false, "the outputs of partition_from_dem against its inputs (check_outputs)");
     m.def("write_partition_png", &write_partition_png, py::arg("result"), py::arg("path"), py::arg("pixels") = 1600,

@@ -145,7 +145,7 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
     for (std::size_t i = 0; i < g.size(); ++i)
         if (straight[i]) label_cells[i] = 0;
     std::vector<Chain> chains = label_chains(trace_chains(g, face, label_cells), g.w + 1, min_run, o.label_outline);
-    const BorderPlaces places{g, face, label_cells, slope, z, o.min_slope};
+    const BorderPlaces places{g, face, label_cells, slope, z, o.min_slope, window_offset(dem)};
     const Outlines outlines = face_outlines(chains, nfaces, places, dem, {o.simplify, o.smooth_rounds, min_area});
     if (!outlines.note.empty()) res.notes.push_back(outlines.note);
 
@@ -163,8 +163,9 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
     for (const Chain& c : chains) {
         LabelledLine l;
         l.kind = c.kind;
-        for (const Point& q : c.shape()) l.points.push_back(dem.to_world(q.x, q.y));
+        for (const Point& q : c.shape()) l.points.push_back(whole_pixel_to_world(dem, q));
         p.lines.push_back(std::move(l));
+        res.line_faces.push_back({c.right, c.left});
     }
     derive_face_controls(p, res.terrain);
     label_boundaries(p, kLabelSnapCells * dx);  // lines are the borders themselves

@@ -80,8 +80,10 @@ TileReport run_tile(const Options& o, const tex::BBox& tile, const std::string& 
     const auto t0 = std::chrono::steady_clock::now();
     TileReport report;
     if (o.partition.path == "auto")
-        throw Error(Code::Usage, "--partition auto: a tiled run hatches a partition file; extract it first with "
-                                 "'rockhatch partition --dem DEM -o faces.gpkg' and pass --partition faces.gpkg");
+        // A tiled run extracts the partition tile by tile first (extract_tile, rockhatch.tiles)
+        // and hands its hatching tiles the merged file.
+        throw Error(Code::Usage, "--partition auto: a hatching tile reads a partition file; rockhatch tiles extracts "
+                                 "the partition tile by tile first (carto::extract_tile) and passes the merged file");
     if (selected_style(o).terrain)
         throw Error(Code::Usage, "--style " + selected_style(o).info.name +
                                      ": a terrain style draws the whole DEM in one sequence and cannot be tiled yet");

@@ -258,7 +258,7 @@ def test_tiled_equals_whole_on_chamonix(tmp_path, rockhatch_exe):
 
 
 @pytest.mark.parametrize("args,code,words", [
-    (["--partition", "auto"], 2, "partition auto"),
+    (["--partition", "auto", "--extract-halo", "-5"], 2, "--extract-halo"),
     (["--tile-size", "0"], 2, "--tile-size"),
     (["--tile-size", "abc"], 2, "--tile-size"),
     (["--workers", "0"], 2, "--workers"),
@@ -325,3 +325,121 @@ def test_faces_without_orientation_follow_the_fall_line_tiled_as_whole(tmp_path)
     expected = whole_run(["--dem", DEM, "--partition", faces, "--style", "print"], tmp_path / "whole.gpkg")
     tiles.run(DEM, faces, 700, [tmp_path / "tiled.gpkg"], style="print", workers=2)
     assert features(tmp_path / "tiled.gpkg") == expected
+
+
+# ---- --partition auto: the partition extracted tile by tile ----------------------------------
+
+
+def partition_faces(path):
+    """(id, geometry WKB) of every face of a partition GeoPackage, in file order."""
+    ds = ogr.Open(str(path))
+    return [(f.GetField("id"), bytes(f.GetGeometryRef().ExportToWkb())) for f in ds.GetLayerByName("faces")]
+
+
+@pytest.fixture(scope="module")
+def sample_auto(tmp_path_factory, rockhatch_exe):
+    """The whole run with --partition auto, and the whole extraction (rockhatch partition)."""
+    tmp = tmp_path_factory.mktemp("auto")
+    hatches = whole_run(["--dem", DEM, "--partition", "auto", "--seed", "3"], tmp / "w.gpkg")
+    r = subprocess.run([str(rockhatch_exe), "partition", "--dem", DEM, "-o", str(tmp / "faces.gpkg"), "-q"],
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    return hatches, partition_faces(tmp / "faces.gpkg")
+
+
+def test_partition_auto_tiled_equals_the_whole_run_with_1_or_2_workers(tmp_path, sample_auto):
+    hatches, faces = sample_auto
+    outs = {}
+    for workers in (1, 2):
+        out = tmp_path / f"tiled{workers}.gpkg"
+        calls = []
+        s = tiles.run(DEM, "auto", 800, [out], seed=3, workers=workers, workdir=tmp_path / f"work{workers}",
+                      keep_tiles=True, progress=lambda f, stage: calls.append((f, stage)) or True)
+        assert s.tiles == 9 and s.partition_faces == len(faces)
+        # Extracted tile by tile, the partition is the whole extraction's, face for face and bit
+        # for bit (ids included), and the hatching is the whole --partition auto run's.
+        assert partition_faces(tmp_path / f"work{workers}" / "partition.gpkg") == faces
+        assert features(out) == hatches
+        assert any(st.startswith("partition tiles 9/9") for _, st in calls)
+        assert any(st.startswith("tiles 9/9") for _, st in calls)
+        fractions = [f for f, _ in calls]
+        assert fractions == sorted(fractions)
+        outs[workers] = out.read_bytes()
+    # One or two workers: the same bytes, partition and hatching.
+    assert (tmp_path / "work1" / "partition.gpkg").read_bytes() == (tmp_path / "work2" / "partition.gpkg").read_bytes()
+    assert outs[1] == outs[2]
+
+
+def test_partition_auto_other_tiles_same_partition(tmp_path, sample_auto):
+    # Tiles of 500 m (25 tiles; every face larger than a tile, or cut by a tile border, comes
+    # out once and whole from the tile holding its anchor) and a shorter halo: still the whole
+    # extraction on the sample.
+    hatches, faces = sample_auto
+    out = tmp_path / "t.gpkg"
+    s = tiles.run(DEM, "auto", 500, [out], seed=3, workers=2, workdir=tmp_path / "work", keep_tiles=True,
+                  extract_halo=1000)
+    assert s.tiles == 25
+    assert max(s.extract_rounds) >= 2  # some tile had to extract again over a larger window
+    assert partition_faces(tmp_path / "work" / "partition.gpkg") == faces
+    assert features(out) == hatches
+
+
+def test_partition_auto_resumes_in_either_stage(tmp_path, sample_auto):
+    hatches, _ = sample_auto
+    out, work = tmp_path / "t.gpkg", tmp_path / "work"
+    # Stopped while extracting: the finished partition tiles stay.
+    with pytest.raises(RockhatchError) as e:
+        tiles.run(DEM, "auto", 800, [out], seed=3, workers=1, workdir=work,
+                  progress=lambda f, stage: not stage.startswith("partition tiles 3/"))
+    assert e.value.code == 10 and not out.exists()
+    done = {p.name: p.stat().st_mtime_ns for p in work.glob("partition_*.gpkg")}
+    assert len(done) >= 3 and not (work / "partition.gpkg").exists()
+    # Stopped while hatching: the partition is merged, the extraction is not run again.
+    with pytest.raises(RockhatchError) as e:
+        tiles.run(DEM, "auto", 800, [out], seed=3, workers=1, workdir=work,
+                  progress=lambda f, stage: not stage.startswith("tiles 2/"))
+    assert e.value.code == 10
+    for name, stamp in done.items():
+        assert (work / name).stat().st_mtime_ns == stamp
+    s = tiles.run(DEM, "auto", 800, [out], seed=3, workers=1, workdir=work)
+    assert s.done_before >= 2 and s.partition_faces == 0  # nothing extracted again
+    assert features(out) == hatches
+    assert not work.exists()
+
+
+def test_partition_auto_without_rock_is_one_line(tmp_path):
+    flat = tmp_path / "flat.tif"
+    src = gdal.Open(DEM)
+    drv = gdal.GetDriverByName("GTiff")
+    ds = drv.Create(str(flat), 60, 60, 1, gdal.GDT_Float32)
+    ds.SetGeoTransform(src.GetGeoTransform())
+    ds.SetProjection(src.GetProjection())
+    ds.GetRasterBand(1).Fill(1000.0)
+    ds = None
+    r = subprocess.run([sys.executable, "-m", "rockhatch", "tiles", "--dem", str(flat), "--partition", "auto",
+                        "--tile-size", "100", "-q", "-o", str(tmp_path / "o.gpkg")],
+                       capture_output=True, text=True, env=python_env(), timeout=300)
+    assert r.returncode == 6, r.stderr
+    assert "no rock" in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
+    assert not (tmp_path / "o.gpkg").exists()
+
+
+@pytest.mark.skipif(not SHARED_DEM.exists(), reason=f"{SHARED_DEM} is absent (../shared not checked out)")
+def test_partition_auto_on_chamonix_within_the_documented_bound(tmp_path, rockhatch_exe):
+    # Chamonix.tif warped to UTM 32N at 30 m, 1:25000, tiles of 3 km, the default halo (4 km):
+    # the bound docs/tiles-partition.md states (same face count, no more than 6 faces not bit for
+    # bit the whole extraction's, at most 0.05% of the rock area on another face, covered twice
+    # or uncovered).
+    dem = tmp_path / "chamonix_utm.tif"
+    gdal.Warp(str(dem), str(SHARED_DEM), dstSRS="EPSG:32632", xRes=30, yRes=30, resampleAlg="bilinear")
+    r = subprocess.run([str(rockhatch_exe), "partition", "--dem", str(dem), "--scale", "25000", "-o",
+                        str(tmp_path / "whole.gpkg"), "-q"], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    work = tmp_path / "work"
+    tiles.run(dem, "auto", 3000, [tmp_path / "t.gpkg"], scale=25000, workers=2, workdir=work, keep_tiles=True)
+    whole, tiled = partition_faces(tmp_path / "whole.gpkg"), partition_faces(work / "partition.gpkg")
+    assert len(tiled) == len(whole)
+    assert len(set(w for _, w in whole) - set(w for _, w in tiled)) <= 6
+    d = tiles.partition_difference(tmp_path / "whole.gpkg", work / "partition.gpkg")
+    assert d["faces"] == (len(whole), len(tiled)) and d["same"] >= len(whole) - 6
+    assert d["other"] <= 0.0005 and d["twice"] <= 0.0005 and d["uncovered"] <= 0.0005, d

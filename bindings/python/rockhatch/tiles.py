@@ -13,6 +13,11 @@ the outputs (one GeoPackage with one R-tree per layer; SVG and PNG drawn from it
   a task lost with its worker is run again by Dask; an interrupted job run again with the
   same options skips the tiles already done (resume). Partial files are never merged.
 - Memory: a worker holds one tile (its faces, its DEM window and its hatches) at a time.
+- ``--partition auto``: the partition is first extracted tile by tile on the same grid
+  (carto::extract_tile: the faces whose anchor lies in the tile, from the DEM window under
+  it plus a halo, grown while a kept face reaches the halo) and merged into one partition
+  file in the work folder; the hatching tiles then read that file. Against one whole
+  extraction the result is bounded, not exact: docs/tiles-partition.md.
 
 Command line: ``rockhatch tiles --dem DEM --partition faces.gpkg --tile-size METRES
 [--workers N | --scheduler tcp://HOST:8786] -o out.gpkg`` plus every option of rockhatch.
@@ -30,6 +35,11 @@ import time
 from . import carto
 from ._rockhatch import RockhatchError, TexError
 
+# With --partition auto, the DEM an extraction tile reads around its box, in ground units: the
+# shortest halo measured with which Chamonix.tif's tiled partition has the whole one's faces
+# (docs/tiles-partition.md, bench/bench_tiles_partition.py).
+DEFAULT_EXTRACT_HALO = 4000.0
+
 # Options of `rockhatch tiles` on top of the rockhatch option table: (flag, takes a value, help).
 TILE_OPTIONS = [
     ("--tile-size", True, "METRES  side of a tile in ground units of the DEM's CRS (required)"),
@@ -39,7 +49,10 @@ TILE_OPTIONS = [
     ("--restart", False, "start again: remove the tiles a previous run of this job left"),
     ("--keep-tiles", False, "keep the tile files after the merge"),
     ("--dashboard", True, "ADDRESS  serve the local cluster's Dask dashboard there (e.g. :8787)"),
+    ("--extract-halo", True, "METRES  with --partition auto: DEM read around each extraction tile "
+                             f"(default {DEFAULT_EXTRACT_HALO:g}; see docs/tiles-partition.md)"),
 ]
+
 
 _MANIFEST = "job.json"
 
@@ -102,6 +115,41 @@ def _job_key(argv, tile_size):
     return {"args": kept, "tile_size": tile_size, "inputs": stamps}
 
 
+def _extract_task(dem, scale, box, halo, path):
+    """One tile of the partition, in a worker process: the faces whose anchor lies in the box,
+    extracted from the DEM window around it (carto::extract_tile), written to a tile file."""
+    import resource
+
+    from . import carto as c
+    from . import tex
+
+    if os.path.exists(path):
+        return {"skipped": True, "faces": 0, "seconds": 0.0, "rounds": 0,
+                "peak_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0}
+    eo = c.ExtractOptions()
+    eo.dem = dem
+    eo.scale = scale
+    r = c.extract_tile(eo, tex.BBox(*box), halo, path)
+    return {"skipped": False, "faces": r.faces, "seconds": r.seconds, "rounds": r.rounds, "dem_cells": r.dem_cells,
+            "peak_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0}
+
+
+def _with_partition(argv, path):
+    """The arguments with --partition replaced by `path`."""
+    out, i = [], 0
+    while i < len(argv):
+        a = argv[i]
+        if a == "--partition":
+            out += ["--partition", path]
+            i += 2
+            continue
+        if a.startswith("--partition="):
+            a = "--partition=" + path
+        out.append(a)
+        i += 1
+    return out
+
+
 def _tile_task(argv, box, path):
     """One tile, in a worker process: parse the options, hatch, write the tile file. A tile
     file that exists is complete (a retried task finds it and returns)."""
@@ -140,6 +188,9 @@ class Summary:
         self.peak_mb = 0.0      # largest peak resident memory reported by a worker
         self.merge_seconds = 0.0  # merging the tiles and writing the outputs
         self.workers = 0
+        self.partition_faces = 0      # --partition auto: face polygons of the merged partition
+        self.partition_seconds = 0.0  # --partition auto: extracting and merging the partition
+        self.extract_rounds = []      # --partition auto: windows extracted per tile computed
 
     def __repr__(self):
         return (f"Summary(tiles={self.tiles}, done_before={self.done_before}, faces={self.faces}, "
@@ -179,9 +230,8 @@ def run_args(argv, progress=None):
             options.custom_style is not None and options.custom_style.info.crest_ornament):
         raise carto.error(2, "--crest-ornament: not available in a tiled run yet (the ornaments follow ridge lines "
                              "that cross tiles); draw them with a whole run, e.g. with --window")
-    if options.partition.path == "auto":
-        raise carto.error(2, "--partition auto: a tiled run hatches a partition file; extract it first with "
-                             "'rockhatch partition --dem DEM -o faces.gpkg' and pass --partition faces.gpkg")
+    auto = options.partition.path == "auto"
+    halo = _positive("--extract-halo", mine["--extract-halo"]) if "--extract-halo" in mine else DEFAULT_EXTRACT_HALO
     dem = carto.raster_info(options.dem, "--dem")
     if carto.is_geographic(dem.crs):
         raise carto.error(2, f"--dem '{options.dem}': a tiled run needs a DEM in a projected CRS (this one is in "
@@ -192,10 +242,12 @@ def run_args(argv, progress=None):
         raise carto.error(9, f"--workdir '{workdir}' is an input")
     os.makedirs(workdir, exist_ok=True)
     key = _job_key(rest, tile_size)
+    if auto:
+        key["extract_halo"] = halo
     manifest = os.path.join(workdir, _MANIFEST)
     if mine.get("--restart") and os.path.exists(manifest):
         for name in os.listdir(workdir):
-            if name.startswith("tile_") and name.endswith(".gpkg"):
+            if name.startswith(("tile_", "partition")) and name.endswith(".gpkg"):
                 os.remove(os.path.join(workdir, name))
         os.remove(manifest)
     if os.path.exists(manifest):
@@ -224,11 +276,27 @@ def run_args(argv, progress=None):
     if "--threads" not in " ".join(rest) and "--scheduler" not in mine:
         task_args += ["--threads", str(max(1, (os.cpu_count() or 1) // workers))]
     job = hashlib.sha1(json.dumps(key).encode()).hexdigest()[:12]
-
-    if progress and not progress(summary.done_before / len(grid), f"tiles {summary.done_before}/{len(grid)}"):
-        raise carto.error(10, "cancelled before the first tile")
-    if pending:
-        _compute(pending, grid, paths, task_args, job, mine, workers, summary, progress)
+    cluster = _Cluster(mine, workers, summary)
+    try:
+        # Hatching fractions of the progress: after the partition's share with --partition auto.
+        span = (0.3, 0.99) if auto else (0.0, 0.99)
+        if auto:
+            # 1. The partition, tile by tile (the same grid), merged into one file that the
+            # hatching tiles then read as any partition file: the hatching is a whole run's
+            # for that partition.
+            merged_partition = os.path.join(workdir, "partition.gpkg")
+            if not os.path.exists(merged_partition):
+                _extract_partition(options, grid, workdir, halo, merged_partition, job, cluster, summary, progress)
+            task_args = _with_partition(task_args, merged_partition)
+        if progress and not progress(span[0] + (span[1] - span[0]) * summary.done_before / len(grid),
+                                     f"tiles {summary.done_before}/{len(grid)}"):
+            raise carto.error(10, "cancelled before the first tile")
+        if pending:
+            jobs = [(f"rockhatch-tile-{job}-{i}", _tile_task,
+                     (task_args, (grid[i].xmin, grid[i].ymin, grid[i].xmax, grid[i].ymax), paths[i])) for i in pending]
+            _compute(jobs, summary.done_before, len(grid), "tiles", span, cluster, summary, progress, _count_tile)
+    finally:
+        cluster.close()
     missing = [p for p in paths if not os.path.exists(p)]
     if missing:
         raise carto.error(1, f"{len(missing)} tile(s) missing after the run (first: {missing[0]})")
@@ -260,56 +328,105 @@ def run_args(argv, progress=None):
     return summary
 
 
-def _compute(pending, grid, paths, task_args, job, mine, workers, summary, progress):
-    from distributed import Client, LocalCluster, as_completed
+class _Cluster:
+    """The Dask client of a run, started on first use: a local cluster (--workers) or the
+    one behind --scheduler. close() stops a local cluster, so no worker outlives the run."""
 
-    cluster = None
-    if "--scheduler" in mine:
-        client = Client(mine["--scheduler"], timeout="15s")
-    else:
-        # The workers import this very module (the folder holding the package first on their
-        # path, set in their environment only).
-        here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-        path = os.pathsep.join([here] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p])
-        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                               dashboard_address=mine.get("--dashboard"), silence_logs=50, env={"PYTHONPATH": path})
-        client = Client(cluster)
-        if mine.get("--dashboard"):
-            # Without bokeh (not packaged by Debian bookworm) this serves distributed's
-            # information pages (/info/main/workers.html), not the graphical dashboard.
-            sys.stderr.write(f"rockhatch tiles: Dask dashboard at {client.dashboard_link}\n")
-    try:
-        summary.workers = len(client.scheduler_info().get("workers", {}))
-        futures = []
-        for i in pending:
-            b = grid[i]
-            futures.append(client.submit(_tile_task, task_args, (b.xmin, b.ymin, b.xmax, b.ymax), paths[i],
-                                         key=f"rockhatch-tile-{job}-{i}", retries=2, pure=False))
-        done, total, started = summary.done_before, len(grid), time.monotonic()
-        first = done
-        for fut in as_completed(futures):
-            try:
-                r = fut.result()
-            except (RockhatchError, TexError):
+    def __init__(self, mine, workers, summary):
+        self.mine, self.workers, self.summary = mine, workers, summary
+        self.client = self.local = None
+
+    def get(self):
+        if self.client is not None:
+            return self.client
+        from distributed import Client, LocalCluster
+
+        mine = self.mine
+        if "--scheduler" in mine:
+            self.client = Client(mine["--scheduler"], timeout="15s")
+        else:
+            # The workers import this very module (the folder holding the package first on
+            # their path, set in their environment only).
+            here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+            path = os.pathsep.join([here] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p])
+            self.local = LocalCluster(n_workers=self.workers, threads_per_worker=1, processes=True,
+                                      dashboard_address=mine.get("--dashboard"), silence_logs=50,
+                                      env={"PYTHONPATH": path})
+            self.client = Client(self.local)
+            if mine.get("--dashboard"):
+                # Without bokeh (not packaged by Debian bookworm) this serves distributed's
+                # information pages (/info/main/workers.html), not the graphical dashboard.
+                sys.stderr.write(f"rockhatch tiles: Dask dashboard at {self.client.dashboard_link}\n")
+        self.summary.workers = len(self.client.scheduler_info().get("workers", {}))
+        return self.client
+
+    def close(self):
+        if self.client is not None:
+            self.client.close()
+        if self.local is not None:
+            self.local.close()
+
+
+def _count_tile(summary, r):
+    summary.faces += r["faces"]
+    if not r["skipped"]:
+        summary.tile_seconds.append(r["seconds"])
+
+
+def _count_partition_tile(summary, r):
+    if not r["skipped"]:
+        summary.extract_rounds.append(r["rounds"])
+
+
+def _compute(jobs, done, total, label, span, cluster, summary, progress, count):
+    """Runs jobs (key, function, args) on the cluster with Dask's retries; progress reports
+    "<label> done/total" within the fraction span."""
+    from distributed import as_completed
+
+    client = cluster.get()
+    futures = [client.submit(fn, *args, key=key, retries=2, pure=False) for key, fn, args in jobs]
+    started, first = time.monotonic(), done
+    for fut in as_completed(futures):
+        try:
+            r = fut.result()
+        except (RockhatchError, TexError):
+            for f in futures:
+                f.cancel()
+            raise
+        done += 1
+        summary.peak_mb = max(summary.peak_mb, r["peak_mb"])
+        count(summary, r)
+        if progress:
+            rate, left = _eta(done, total, started, first)
+            stage = f"{label} {done}/{total}, {rate:.2f}/s, {_duration(left)} left"
+            if not progress(span[0] + (span[1] - span[0]) * done / total, stage):
                 for f in futures:
                     f.cancel()
-                raise
-            done += 1
-            summary.faces += r["faces"]
-            summary.peak_mb = max(summary.peak_mb, r["peak_mb"])
-            if not r["skipped"]:
-                summary.tile_seconds.append(r["seconds"])
-            if progress:
-                rate, left = _eta(done, total, started, first)
-                stage = f"tiles {done}/{total}, {rate:.2f}/s, {_duration(left)} left"
-                if not progress(done / total * 0.99, stage):
-                    for f in futures:
-                        f.cancel()
-                    raise carto.error(10, f"cancelled after {done} of {total} tiles (run again to resume)")
-    finally:
-        client.close()
-        if cluster is not None:
-            cluster.close()
+                raise carto.error(10, f"cancelled after {done} of {total} {label} (run again to resume)")
+
+
+def _extract_partition(options, grid, workdir, halo, out, job, cluster, summary, progress):
+    """--partition auto: the partition extracted tile by tile on the cluster, then merged."""
+    t0 = time.monotonic()
+    paths = [os.path.join(workdir, "partition_%07d.gpkg" % i) for i in range(len(grid))]
+    pending = [i for i, p in enumerate(paths) if not os.path.exists(p)]
+    if pending:
+        jobs = [(f"rockhatch-partition-{job}-{i}", _extract_task,
+                 (options.dem, options.scale, (grid[i].xmin, grid[i].ymin, grid[i].xmax, grid[i].ymax), halo,
+                  paths[i])) for i in pending]
+        _compute(jobs, len(grid) - len(pending), len(grid), "partition tiles", (0.0, 0.28), cluster, summary,
+                 progress, _count_partition_tile)
+    missing = [p for p in paths if not os.path.exists(p)]
+    if missing:
+        raise carto.error(1, f"{len(missing)} partition tile(s) missing after the run (first: {missing[0]})")
+    if progress:
+        progress(0.29, "merging the partition")
+    summary.partition_faces = carto.merge_partition_tiles(paths, out, True)
+    if summary.partition_faces == 0:
+        os.remove(out)
+        raise carto.error(6, f"--dem '{options.dem}': no rock: no face was extracted at 1:{options.scale:g} with the "
+                             "default thresholds (rockhatch partition --help says which to lower)")
+    summary.partition_seconds = time.monotonic() - t0
 
 
 def _duration(s):
@@ -321,9 +438,11 @@ def _duration(s):
 
 def run(dem, partition, tile_size, outputs, *, style=None, script=None, params=None, scale=None, seed=None,
         workers=None, scheduler=None, workdir=None, restart=False, keep_tiles=False, overwrite=False,
-        args=(), progress=None):
-    """A tiled run from Python: the same as `rockhatch tiles`. params: {name: value};
-    args: any other option of the rockhatch command, as on its command line."""
+        extract_halo=None, args=(), progress=None):
+    """A tiled run from Python: the same as `rockhatch tiles`. partition: a file, or "auto"
+    (extracted tile by tile, with `extract_halo` ground units of DEM around each tile);
+    params: {name: value}; args: any other option of the rockhatch command, as on its
+    command line."""
     argv = ["--dem", os.fspath(dem), "--partition", os.fspath(partition), "--tile-size", str(tile_size)]
     for out in ([outputs] if isinstance(outputs, (str, os.PathLike)) else outputs):
         argv += ["-o", os.fspath(out)]
@@ -347,13 +466,76 @@ def run(dem, partition, tile_size, outputs, *, style=None, script=None, params=N
         argv.append("--restart")
     if keep_tiles:
         argv.append("--keep-tiles")
+    if extract_halo is not None:
+        argv += ["--extract-halo", str(extract_halo)]
     if overwrite:
         argv.append("--overwrite")
     return run_args(argv + list(args), progress)
 
 
+def partition_difference(whole, tiled):
+    """How far a partition extracted tile by tile is from the whole extraction: a dict of
+    faces (whole, tiled), same (faces bit for bit the same), other (rock area of `whole` lying on
+    another face of `tiled` than its match, faces matched one to one by largest overlap),
+    twice (area covered by two tiled faces), uncovered (rock of `whole` no tiled face
+    covers), the last three as shares of the rock area, rock_m2, and places: (area, x, y) of
+    each piece uncovered or covered twice, largest first. Both are partition GeoPackages
+    (layer faces); reads them with GDAL's Python bindings."""
+    from osgeo import gdal, ogr
+
+    def polys(path):
+        ds = ogr.Open(str(path))  # kept open while its layer is read
+        return [f.GetGeometryRef().Clone() for f in ds.GetLayerByName("faces")]
+
+    def union(gs):
+        u = ogr.Geometry(ogr.wkbMultiPolygon)
+        for g in gs:
+            u.AddGeometry(g)
+        return u.UnionCascaded()
+
+    a, b = polys(whole), polys(tiled)
+    gdal.PushErrorHandler("CPLQuietErrorHandler")  # areas of the point and line parts of intersections
+    try:
+        pairs = []
+        for i, g in enumerate(a):
+            ea = g.GetEnvelope()
+            for j, h in enumerate(b):
+                eb = h.GetEnvelope()
+                if eb[0] > ea[1] or eb[1] < ea[0] or eb[2] > ea[3] or eb[3] < ea[2]:
+                    continue
+                x = g.Intersection(h)
+                if x is not None and x.GetArea() > 0:
+                    pairs.append((x.GetArea(), i, j))
+        pairs.sort(reverse=True)
+        used_a, used_b, matched = set(), set(), 0.0
+        for x, i, j in pairs:
+            if i not in used_a and j not in used_b:
+                used_a.add(i)
+                used_b.add(j)
+                matched += x
+        rock = sum(g.GetArea() for g in a)
+        tiled_union = union(b)
+        twice = sum(g.GetArea() for g in b) - tiled_union.GetArea()
+        gap = union(a).Difference(tiled_union)
+        uncovered = gap.GetArea()
+        pieces = [gap.GetGeometryRef(k) for k in range(gap.GetGeometryCount())] if gap.GetGeometryCount() else []
+        for i, g in enumerate(b):
+            for h in b[i + 1:]:
+                if g.Intersects(h):
+                    x = g.Intersection(h)
+                    if x is not None and x.GetGeometryType() == ogr.wkbPolygon:
+                        pieces.append(x)
+        places = sorted(((p.GetArea(), p.Centroid().GetX(), p.Centroid().GetY()) for p in pieces
+                         if p.GetGeometryType() == ogr.wkbPolygon and p.GetArea() > 0), reverse=True)
+    finally:
+        gdal.PopErrorHandler()
+    same = len({bytes(g.ExportToWkb()) for g in a} & {bytes(g.ExportToWkb()) for g in b})
+    return {"faces": (len(a), len(b)), "same": same, "other": (rock - matched) / rock, "twice": twice / rock,
+            "uncovered": uncovered / rock, "rock_m2": rock, "places": places}
+
+
 def help_text():
-    lines = ["usage: rockhatch tiles --dem DEM --partition FACES --tile-size METRES -o OUT [options]",
+    lines = ["usage: rockhatch tiles --dem DEM --partition FACES|auto --tile-size METRES -o OUT [options]",
              "",
              "Hatches the area tile by tile on a Dask cluster (a local one by default) and merges the",
              "tiles into the outputs; the result is the same as one whole run. Tiled-run options:"]
@@ -382,6 +564,9 @@ def main(argv=None):
         bar.finish()
         sys.stderr.write(f"rockhatch tiles: {s.tiles} tiles ({s.done_before} done before), {s.faces} faces, "
                          f"{s.hatches} hatches, {s.seconds:.2f} s, peak {s.peak_mb:.0f} MB per worker\n")
+        if s.partition_faces:
+            sys.stderr.write(f"rockhatch tiles: partition extracted tile by tile: {s.partition_faces} faces, "
+                             f"{s.partition_seconds:.2f} s\n")
         return 0
     except (RockhatchError, TexError, OSError) as e:
         return fail(e, bar, "rockhatch tiles")

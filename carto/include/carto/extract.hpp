@@ -30,6 +30,7 @@
 //  5. per face: orientation from the mean fall line, density from 1 - mean hillshade.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -68,6 +69,10 @@ struct ExtractResult {
     Raster rock;                  // the rock mask on the working grid: 1 rock, 0 not, NaN NoData
     Raster faces;                 // face index per cell (-1 outside the faces)
     std::vector<int> line_cells;  // per cell: 0 none, 1 ridge, 2 thalweg (whole DEM)
+    // Per line of `partition.lines`: the face numbers on its two sides (the face of a
+    // partition face is its id - 1; -1: outside the rock), e.g. to keep the borders of some
+    // faces only (a tile of a tiled extraction).
+    std::vector<std::array<int, 2>> line_faces;
     // The traced ridge and thalweg network inside the rock, whether or not it borders faces
     // (lines ending inside a face do not cut it), simplified to about a cell.
     std::vector<LabelledLine> network;

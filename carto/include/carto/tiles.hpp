@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "carto/extract.hpp"
 #include "carto/pipeline.hpp"
 #include "carto/raster.hpp"
 
@@ -48,5 +49,38 @@ int tile_halo_cells(const Options& o, double cell);
 // exist unless o.overwrite. The DEM must be in a projected CRS; --slope and --roughness
 // rasters must share its grid. Errors as carto::run.
 TileReport run_tile(const Options& o, const tex::BBox& tile, const std::string& out);
+
+// ---- `--partition auto`: the partition extracted tile by tile (docs/tiles-partition.md) ----
+//
+// A tile reads the DEM cells under its box plus `halo` ground units (GDAL windowed read,
+// never the whole DEM), runs extract_partition on that window, and keeps the faces whose
+// anchor lies in its box (the hatching tiles' rule) and the border lines of those faces. A
+// kept face that comes within `halo` of the window's edge (where that edge is not the DEM's)
+// may be cut or changed by what lies beyond, so the tile extracts again over a window that
+// holds all such faces plus the halo, until none does: a face larger than a tile comes out
+// once and whole, from the tile holding its anchor. The extraction places its points in the
+// whole raster's pixel grid (extract/grid.hpp), and numbers faces by the whole raster's
+// index of their first cell; the merge numbers them 1.. in that order, as a whole run does.
+//
+// Not exact in general: contributing areas and depression filling are not local, so a window
+// can place a line or a face differently from the whole DEM when the halo is too short; the
+// difference against the whole extraction is measured in docs/tiles-partition.md.
+struct ExtractTileReport {
+    std::size_t faces = 0;     // face polygons owned and written
+    std::size_t lines = 0;     // border lines of those faces written
+    long long dem_cells = 0;   // DEM cells of the last window read
+    int rounds = 0;            // windows extracted (1 unless an owned face reached the halo)
+    double seconds = 0;
+};
+
+// Extracts the faces owned by `tile` and writes them to the GeoPackage `out` (layers faces,
+// lines and mask as write_partition_gpkg; `id` is the face's whole-raster first-cell index,
+// written atomically, replacing `out`). The DEM (o.dem, a file) must be in a projected CRS.
+ExtractTileReport extract_tile(const ExtractOptions& o, const tex::BBox& tile, double halo, const std::string& out);
+
+// Merges partition tiles into one partition GeoPackage: faces in the order of their first
+// cells, numbered from 1; border lines shared by two tiles written once. Returns the number
+// of face polygons.
+std::size_t merge_partition_tiles(const std::vector<std::string>& parts, const std::string& out, bool overwrite);
 
 }  // namespace carto

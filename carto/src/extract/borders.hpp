@@ -78,6 +78,9 @@ struct BorderPlaces {
     const std::vector<float>& slope;     // averaged slope, percent
     const std::vector<float>& z;         // the smoothed DEM
     double min_slope;
+    // Where the grid lies in the whole raster's pixel grid (grid.hpp, window_offset): cells are
+    // indexed in the grid, the places returned are in the whole raster's grid.
+    Point offset{0, 0};
 
     // How far a thalweg's floor may move off its cell's centre, and how close the outline may
     // come to a cell's centre, in cells: the points stay near the edge they cut, so borders
@@ -99,9 +102,9 @@ struct BorderPlaces {
                        face[g.at(c, r)] >= 0;
             };
             const bool on0 = on(c0, r0), on1 = on(c1, r1);
-            if (on0 == on1) return m;
+            if (on0 == on1) return m + offset;
             const int c = on0 ? c0 : c1, r = on0 ? r0 : r1;
-            const Point centre{c + 0.5, r + 0.5};
+            const Point centre{c + offset.x + 0.5, r + offset.y + 0.5};
             if (kind == LineKind::Ridge) return centre;
             // Across the edge: rows for a horizontal edge, columns for a vertical one.
             const int sc = horizontal ? 0 : 1, sr = horizontal ? 1 : 0;
@@ -116,15 +119,15 @@ struct BorderPlaces {
         }
         const bool in0 = g.inside(c0, r0) && face[g.at(c0, r0)] >= 0,
                    in1 = g.inside(c1, r1) && face[g.at(c1, r1)] >= 0;
-        if (in0 == in1 || !g.inside(c0, r0) || !g.inside(c1, r1)) return m;
+        if (in0 == in1 || !g.inside(c0, r0) || !g.inside(c1, r1)) return m + offset;
         const double s_in = slope[g.at(in0 ? c0 : c1, in0 ? r0 : r1)],
                      s_out = slope[g.at(in0 ? c1 : c0, in0 ? r1 : r0)];
-        if (!(s_in >= min_slope && s_out < min_slope)) return m;
+        if (!(s_in >= min_slope && s_out < min_slope)) return m + offset;
         // Fraction of the way from the rock cell's centre to the outside cell's centre.
         const double t = std::clamp((s_in - min_slope) / (s_in - s_out), kOutlineMarginCells,
                                     1 - kOutlineMarginCells);
-        const Point from = in0 ? Point{c0 + 0.5, r0 + 0.5} : Point{c1 + 0.5, r1 + 0.5};
-        const Point to = in0 ? Point{c1 + 0.5, r1 + 0.5} : Point{c0 + 0.5, r0 + 0.5};
+        const Point p0{c0 + offset.x + 0.5, r0 + offset.y + 0.5}, p1{c1 + offset.x + 0.5, r1 + offset.y + 0.5};
+        const Point from = in0 ? p0 : p1, to = in0 ? p1 : p0;
         return from + (to - from) * t;
     }
 };

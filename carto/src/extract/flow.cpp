@@ -320,7 +320,7 @@ std::vector<LabelledLine> trace_network(const Grid& g, const std::vector<int>& d
         LabelledLine l;
         l.kind = kind;
         for (const Point& q : simplify(pts, false, tol))
-            l.points.push_back(grid.to_world(q.x, q.y));
+            l.points.push_back(whole_pixel_to_world(grid, q + window_offset(grid)));
         out.push_back(std::move(l));
     };
     for (std::size_t i = 0; i < g.size(); ++i)

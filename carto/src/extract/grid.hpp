@@ -24,6 +24,20 @@ struct Grid {
     std::size_t at(int c, int r) const { return std::size_t(r) * w + c; }
 };
 
+// Pixel positions in the whole raster's grid. The extraction may run on a window of a
+// larger raster (a tile of a tiled extraction: Raster::col0, row0): it indexes cells in the
+// window, but places every point of a border or line in the whole raster's pixel grid, the
+// window's integer offset added before any fraction of a cell, so that each point gets the
+// bits a whole run gives it (Raster::to_world, from the window's own origin, and a fraction
+// added to a window coordinate would both round differently).
+inline Point window_offset(const Raster& r) { return {double(r.col0), double(r.row0)}; }
+
+// World coordinates of a position in the whole raster's pixel grid.
+inline Point whole_pixel_to_world(const Raster& r, const Point& p) {
+    const auto& gt = r.grid_gt ? *r.grid_gt : r.gt;
+    return {gt[0] + p.x * gt[1] + p.y * gt[2], gt[3] + p.x * gt[4] + p.y * gt[5]};
+}
+
 inline void step(const Progress& p, double f, const std::string& stage) {
     if (p && !p(f, stage)) throw Error(Code::Cancelled, "cancelled during " + stage);
 }

@@ -17,14 +17,15 @@ Outlines face_outlines(std::vector<Chain>& chains, int nfaces, const BorderPlace
     std::vector<std::vector<Point>> fine(chains.size()), middles(chains.size());
     NodePlaces nodes;
     for (std::size_t k = 0; k < chains.size(); ++k) {
+        // Places in the whole raster's grid (cut() shifts its own; grid.hpp says why).
         const std::vector<Point>& raw = chains[k].raw;
         for (std::size_t i = 0; i + 1 < raw.size(); ++i) {
             fine[k].push_back(places.cut(raw[i], raw[i + 1], chains[k].kind));
-            middles[k].push_back((raw[i] + raw[i + 1]) / 2);
+            middles[k].push_back((raw[i] + raw[i + 1]) / 2 + places.offset);
         }
         if (!chains[k].closed) {
-            nodes.add(chains[k].start, raw.front(), middles[k].front());
-            nodes.add(chains[k].end, raw.back(), middles[k].back());
+            nodes.add(chains[k].start, raw.front() + places.offset, middles[k].front());
+            nodes.add(chains[k].end, raw.back() + places.offset, middles[k].back());
         }
     }
     auto shape_chain = [&](std::size_t k) {
@@ -32,6 +33,7 @@ Outlines face_outlines(std::vector<Chain>& chains, int nfaces, const BorderPlace
         const Point from = nodes.place(c.start), to = nodes.place(c.end);
         const std::vector<Point> cut = cut_steps(fine[k], c.closed, from, to);
         std::vector<Point> edges = c.raw;
+        for (Point& q : edges) q = q + places.offset;
         if (!c.closed) {
             edges.front() = from;
             edges.back() = to;

@@ -88,7 +88,7 @@ std::vector<FacePolygon> face_polygons(const std::vector<Chain>& chains,
                                        const std::vector<int>& mine, int f, const Raster& grid) {
     std::vector<std::vector<Point>> rings = face_rings(chains, mine, f);
     for (auto& ring : rings)
-        for (Point& p : ring) p = grid.to_world(p.x, p.y);
+        for (Point& p : ring) p = whole_pixel_to_world(grid, p);
     std::vector<FacePolygon> out;
     std::vector<std::vector<Point>> holes;
     for (auto& ring : rings) {
