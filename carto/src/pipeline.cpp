@@ -299,10 +299,12 @@ Drawing hatch(const Prepared& p, const Options& o, const std::vector<int>& selec
 Stats run(const Options& o, const Progress& progress) {
     const auto t0 = std::chrono::steady_clock::now();
     validate(o);
+    // The run's thread count for every step (reading, hatching, writing), on this thread
+    // only: the process's is left as it was.
+    const tex::ThreadsScope threads(o.threads);
     Prepared p = prepare(o, progress);
     Drawing d = hatch(p, o, progress);
     tick(progress, 0.92, "writing");
-    const tex::ThreadsScope threads(o.threads);  // the writers' parallel parts too
     for (const auto& out : o.outputs) {
         const std::string e = extension(out);
         if (e == ".gpkg")

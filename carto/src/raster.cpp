@@ -1,4 +1,5 @@
 #include "carto/raster.hpp"
+#include "libtex/parallel.hpp"
 
 #include <GeographicLib/UTMUPS.hpp>
 #include <gdal_priv.h>
@@ -265,6 +266,10 @@ Raster warp(const Raster& src, const std::string& dst_wkt, double cell) {
     GDALWarpOptions* wo = GDALCreateWarpOptions();
     wo->eResampleAlg = GRA_Bilinear;
     wo->papszWarpOptions = CSLSetNameValue(wo->papszWarpOptions, "INIT_DEST", "NO_DATA");
+    // The run's thread count (tex::ThreadsScope): GDAL warps rows in parallel, each output
+    // pixel computed alone, so the result does not depend on it.
+    wo->papszWarpOptions =
+        CSLSetNameValue(wo->papszWarpOptions, "NUM_THREADS", std::to_string(tex::GetThreads()).c_str());
     DatasetPtr vrt(GDALDataset::FromHandle(GDALAutoCreateWarpedVRTEx(
         GDALDataset::ToHandle(in.get()), src.crs_wkt.c_str(), dst_wkt.c_str(), GRA_Bilinear, 0.0, wo, nullptr)));
     GDALDestroyWarpOptions(wo);

@@ -27,11 +27,16 @@ namespace detail {
 namespace {
 thread_local bool g_exact_only = false;
 thread_local std::uint64_t g_fast_crops = 0;
-}
+thread_local bool g_general_only = false;
+thread_local std::uint64_t g_polyline_crops = 0;
+}  // namespace
 std::uint64_t fast_crops() { return g_fast_crops; }
 bool exact_crops_only() { return g_exact_only; }
 ExactCropScope::ExactCropScope() : saved_(g_exact_only) { g_exact_only = true; }
 ExactCropScope::~ExactCropScope() { g_exact_only = saved_; }
+GeneralCropScope::GeneralCropScope() : saved_(g_general_only) { g_general_only = true; }
+GeneralCropScope::~GeneralCropScope() { g_general_only = saved_; }
+std::uint64_t polyline_crops() { return g_polyline_crops; }
 }  // namespace detail
 
 namespace {
@@ -262,6 +267,136 @@ std::vector<char> mask_curves_needed(const Curves& mask, const detail::SegmentGr
     return included;
 }
 
+// A proper crossing of a subject segment with a mask segment.
+struct Cross {
+    double t;           // along the subject segment
+    double u;           // along the mask segment
+    std::uint32_t seg;  // mask segment (grid index)
+    Point x;
+};
+
+// The crossings of the subject segment a -> c with the mask's segments, ordered along it,
+// appended to `cs`. False when the segment meets the mask in any other way (through a mask
+// vertex, along a mask segment, ending on it) or two crossings are too close to order: the
+// caller then leaves it to the exact path.
+bool segment_crossings(const detail::SegmentGrid& grid, const Point& a, const Point& c, std::vector<Cross>& cs) {
+    const auto& msegs = grid.segments();
+    const std::size_t first = cs.size();
+    BBox sb;
+    sb.add(a);
+    sb.add(c);
+    bool degenerate = false;
+    grid.for_each_in(sb, [&](std::uint32_t j) {
+        if (degenerate) return;
+        const detail::Seg& m = msegs[j];
+        if (std::max(m.a.x, m.b.x) < sb.xmin || std::min(m.a.x, m.b.x) > sb.xmax ||
+            std::max(m.a.y, m.b.y) < sb.ymin || std::min(m.a.y, m.b.y) > sb.ymax)
+            return;
+        const int o1 = detail::orientation(m.a, m.b, a), o2 = detail::orientation(m.a, m.b, c);
+        if (o1 == o2 && o1 != 0) return;
+        const int o3 = detail::orientation(a, c, m.a), o4 = detail::orientation(a, c, m.b);
+        if (o3 == o4 && o3 != 0) return;
+        if (o1 * o2 >= 0 || o3 * o4 >= 0) {
+            degenerate = true;
+            return;
+        }
+        const Point d = c - a, e = m.b - m.a;
+        const double den = cross(d, e);
+        const double t = cross(m.a - a, e) / den;
+        const double u = cross(m.a - a, d) / den;
+        // On the mask line up to one rounding (the line may be a neighbour's outline
+        // too): the point is computed in extended precision along the mask segment.
+        using LD = long double;
+        const LD ex = LD(m.b.x) - LD(m.a.x), ey = LD(m.b.y) - LD(m.a.y);
+        const LD dx = LD(c.x) - LD(a.x), dy = LD(c.y) - LD(a.y);
+        const LD lu = ((LD(m.a.x) - LD(a.x)) * dy - (LD(m.a.y) - LD(a.y)) * dx) / (dx * ey - dy * ex);
+        Point x{double(LD(m.a.x) + ex * lu), double(LD(m.a.y) + ey * lu)};
+        // A horizontal or vertical subject keeps its coordinate exactly (window
+        // outlines, axis-aligned stripes).
+        if (a.y == c.y) x.y = a.y;
+        if (a.x == c.x) x.x = a.x;
+        if (!(t > 0 && t < 1 && u > 0 && u < 1) || x == a || x == c || x == m.a || x == m.b) {
+            degenerate = true;
+            return;
+        }
+        cs.push_back({t, u, j, x});
+    });
+    if (degenerate) return false;
+    std::sort(cs.begin() + std::ptrdiff_t(first), cs.end(), [](const Cross& p, const Cross& q) { return p.t < q.t; });
+    for (std::size_t i = first + 1; i < cs.size(); ++i)
+        if (!(cs[i].t > cs[i - 1].t) || cs[i].x == cs[i - 1].x) return false;
+    return true;
+}
+
+// CROP of open polylines (each with finite, distinct consecutive points and distinct ends)
+// when every contact with the mask is a proper crossing: each curve walked once, cut at its
+// crossings, the pieces on the wanted side kept in the curve's order. This is what
+// crop_by_crossings makes of such curves (its runs and the stitching of their pieces give
+// the same maximal pieces), without its per-curve runs and tables; the crops of a cell's
+// jittered lines (two-point curves) are nearly all of this kind. Returns false, leaving
+// `out` alone, when a curve is not of this kind or meets the mask otherwise.
+bool crop_open_polylines(const Curves& src, const detail::SegmentGrid& grid, Status wanted, Curves& out) {
+    std::vector<Point> sorted;
+    for (const Curve& c : src.curves) {
+        if (c.closed || c.points.size() < 2 || c.points.front() == c.points.back()) return false;
+        for (std::size_t i = 0; i < c.points.size(); ++i) {
+            const Point& p = c.points[i];
+            if (!std::isfinite(p.x) || !std::isfinite(p.y) || (i > 0 && p == c.points[i - 1])) return false;
+        }
+        if (c.points.size() > 3) {  // a curve through one of its points twice: stitched otherwise
+            sorted = c.points;
+            std::sort(sorted.begin(), sorted.end());
+            if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) return false;
+        }
+    }
+    const auto& msegs = grid.segments();
+    Curves result;
+    result.points = src.points;
+    result.curves.reserve(src.curves.size());
+    std::vector<Cross> cs;
+    std::vector<Point> seen;
+    for (const Curve& c : src.curves) {
+        const auto where = grid.locate(c.points.front());
+        if (where == detail::SegmentGrid::Where::On) return false;
+        Status st = where == detail::SegmentGrid::Where::In ? Status::In : Status::Out;
+        auto emit = [&](std::vector<Point>&& pts) {
+            Curve piece;
+            piece.labels = c.labels;
+            piece.left = c.left;
+            piece.right = c.right;
+            piece.points = std::move(pts);
+            result.curves.push_back(std::move(piece));
+        };
+        std::vector<Point> cur{c.points.front()};
+        // The curve's ends and crossings, which must all differ: crop_by_crossings joins two
+        // pieces again where a rounded crossing repeats and misses the mask.
+        seen.assign({c.points.front(), c.points.back()});
+        for (std::size_t k = 0; k + 1 < c.points.size(); ++k) {
+            cs.clear();
+            if (!segment_crossings(grid, c.points[k], c.points[k + 1], cs)) return false;
+            for (const Cross& x : cs) seen.push_back(x.x);
+            for (const Cross& x : cs) {
+                // A boundary with the same side on both hands (a slit of the mask): there
+                // the pieces may be joined again, by whether the rounded crossing still
+                // touches the mask. Left to crop_by_crossings.
+                if (!msegs[x.seg].changes()) return false;
+                cur.push_back(x.x);
+                if (st == wanted) emit(std::move(cur));
+                cur = {x.x};
+                st = st == Status::In ? Status::Out : Status::In;
+            }
+            cur.push_back(c.points[k + 1]);
+        }
+        if (st == wanted) emit(std::move(cur));
+        if (seen.size() > 2) {
+            std::sort(seen.begin(), seen.end());
+            if (std::adjacent_find(seen.begin(), seen.end()) != seen.end()) return false;
+        }
+    }
+    out = std::move(result);
+    return true;
+}
+
 // The common case of a crop, without the exact planar map: every contact between the
 // near runs and the mask is a proper crossing of two segments (decided with exact
 // predicates), so each curve is cut at its crossing points, computed once in doubles and
@@ -276,12 +411,6 @@ bool crop_by_crossings(const Curves& src, const Curves& mask, const detail::Segm
     // curve, so there any degeneracy sends the whole crop to the exact path.
     const bool per_curve = b == Border::CROP;
     hard.assign(src.curves.size(), 0);
-    struct Cross {
-        double t;          // along the subject segment
-        double u;          // along the mask segment
-        std::uint32_t seg;  // mask segment (grid index)
-        Point x;
-    };
     const auto& msegs = grid.segments();
     // Crossings of each near run, segment by segment, and of each mask segment.
     std::vector<std::vector<std::vector<Cross>>> run_cross(runs.size());
@@ -294,52 +423,7 @@ bool crop_by_crossings(const Curves& src, const Curves& mask, const detail::Segm
         auto& per_seg = run_cross[r];
         per_seg.resize(nseg);
         for (std::size_t k = 0; k < nseg; ++k) {
-            const Point& a = pts[k];
-            const Point& c = pts[(k + 1) % n];
-            BBox sb;
-            sb.add(a);
-            sb.add(c);
-            bool degenerate = false;
-            grid.for_each_in(sb, [&](std::uint32_t j) {
-                if (degenerate) return;
-                const detail::Seg& m = msegs[j];
-                if (std::max(m.a.x, m.b.x) < sb.xmin || std::min(m.a.x, m.b.x) > sb.xmax ||
-                    std::max(m.a.y, m.b.y) < sb.ymin || std::min(m.a.y, m.b.y) > sb.ymax)
-                    return;
-                const int o1 = detail::orientation(m.a, m.b, a), o2 = detail::orientation(m.a, m.b, c);
-                if (o1 == o2 && o1 != 0) return;
-                const int o3 = detail::orientation(a, c, m.a), o4 = detail::orientation(a, c, m.b);
-                if (o3 == o4 && o3 != 0) return;
-                if (o1 * o2 >= 0 || o3 * o4 >= 0) {
-                    degenerate = true;
-                    return;
-                }
-                const Point d = c - a, e = m.b - m.a;
-                const double den = cross(d, e);
-                const double t = cross(m.a - a, e) / den;
-                const double u = cross(m.a - a, d) / den;
-                // On the mask line up to one rounding (the line may be a neighbour's outline
-                // too): the point is computed in extended precision along the mask segment.
-                using LD = long double;
-                const LD ex = LD(m.b.x) - LD(m.a.x), ey = LD(m.b.y) - LD(m.a.y);
-                const LD dx = LD(c.x) - LD(a.x), dy = LD(c.y) - LD(a.y);
-                const LD lu = ((LD(m.a.x) - LD(a.x)) * dy - (LD(m.a.y) - LD(a.y)) * dx) / (dx * ey - dy * ex);
-                Point x{double(LD(m.a.x) + ex * lu), double(LD(m.a.y) + ey * lu)};
-                // A horizontal or vertical subject keeps its coordinate exactly (window
-                // outlines, axis-aligned stripes).
-                if (a.y == c.y) x.y = a.y;
-                if (a.x == c.x) x.x = a.x;
-                if (!(t > 0 && t < 1 && u > 0 && u < 1) || x == a || x == c || x == m.a || x == m.b) {
-                    degenerate = true;
-                    return;
-                }
-                per_seg[k].push_back({t, u, j, x});
-            });
-            auto& cs = per_seg[k];
-            std::sort(cs.begin(), cs.end(), [](const Cross& p, const Cross& q) { return p.t < q.t; });
-            for (std::size_t i = 1; i < cs.size() && !degenerate; ++i)
-                degenerate = !(cs[i].t > cs[i - 1].t) || cs[i].x == cs[i - 1].x;
-            if (degenerate) {
+            if (!segment_crossings(grid, pts[k], pts[(k + 1) % n], per_seg[k])) {
                 if (!per_curve) return false;
                 hard[runs[r].curve] = 1;
                 break;
@@ -458,6 +542,15 @@ Curves mask_core(const Curves& subject, const Curves& mask, MaskSide side, Borde
         sg.in_right = mc.right.has(in);
     }
     const detail::SegmentGrid grid(std::move(mask_segs));
+
+    if (b == Border::CROP && !detail::exact_crops_only() && !detail::g_general_only) {
+        Curves fast;
+        if (crop_open_polylines(subject, grid, wanted, fast)) {
+            ++detail::g_fast_crops;
+            ++detail::g_polyline_crops;
+            return fast;
+        }
+    }
 
     // KEEP modes decide on the edges of the subject's own planar map; CROP on its curves.
     Curves edges;

@@ -80,13 +80,6 @@ SavedSeed::~SavedSeed() {
     detail::restore_stream_state(stream_);
 }
 
-std::uint64_t hash_double(std::uint64_t h, double v) {
-    if (v == 0.0) v = 0.0;  // -0 and +0 hash alike
-    std::uint64_t bits;
-    std::memcpy(&bits, &v, sizeof bits);
-    return hash_combine(h, bits);
-}
-
 std::uint32_t KeyedRng::poisson(double mean) {
     if (mean <= 0) return 0;
     if (mean > 500) {

@@ -350,7 +350,10 @@ class _Cluster:
             here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
             path = os.pathsep.join([here] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p])
             self.local = LocalCluster(n_workers=self.workers, threads_per_worker=1, processes=True,
-                                      dashboard_address=mine.get("--dashboard"), silence_logs=50,
+                                      # Unasked, the scheduler's HTTP server takes any free
+                                      # port: with None it tries 8787 and warns on stderr
+                                      # when another cluster holds it.
+                                      dashboard_address=mine.get("--dashboard") or ":0", silence_logs=50,
                                       env={"PYTHONPATH": path})
             self.client = Client(self.local)
             if mine.get("--dashboard"):

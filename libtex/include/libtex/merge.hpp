@@ -52,4 +52,18 @@ private:
 bool exact_crops_only();
 // How many crops this thread cut crossing by crossing.
 std::uint64_t fast_crops();
+// Within this scope (on this thread) a CROP of open polylines goes through the general
+// crossing path instead of the walk along each curve; for the tests that compare both.
+class GeneralCropScope {
+public:
+    GeneralCropScope();
+    ~GeneralCropScope();
+    GeneralCropScope(const GeneralCropScope&) = delete;
+    GeneralCropScope& operator=(const GeneralCropScope&) = delete;
+
+private:
+    bool saved_;
+};
+// How many crops this thread cut by walking open polylines.
+std::uint64_t polyline_crops();
 }  // namespace tex::detail

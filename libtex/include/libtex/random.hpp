@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 #include "libtex/geometry.hpp"
 
@@ -27,7 +28,12 @@ inline std::uint64_t mix64(std::uint64_t z) {
     return z ^ (z >> 31);
 }
 inline std::uint64_t hash_combine(std::uint64_t h, std::uint64_t v) { return mix64(h ^ mix64(v)); }
-std::uint64_t hash_double(std::uint64_t h, double v);
+inline std::uint64_t hash_double(std::uint64_t h, double v) {
+    if (v == 0.0) v = 0.0;  // -0 and +0 hash alike
+    std::uint64_t bits;
+    std::memcpy(&bits, &v, sizeof bits);
+    return hash_combine(h, bits);
+}
 inline std::uint64_t hash_point(std::uint64_t h, const Point& p) {
     return hash_double(hash_double(h, p.x), p.y);
 }
