@@ -252,9 +252,11 @@ Drawing hatch(const Prepared& p, const Options& o, const std::vector<int>& selec
         } catch (const std::exception& e) {
             throw Error(Code::Failure, "style '" + style.info.name + "', face " + std::to_string(f.id) + ": " + e.what());
         }
-        const std::size_t n = ++done;
         if (progress) {
+            // Counted under the lock: the fractions reach the caller in increasing order
+            // whichever thread finishes first.
             std::lock_guard lock(progress_mutex);
+            const std::size_t n = ++done;
             if (!progress(0.2 + 0.7 * double(n) / double(selected.size()), "hatching")) cancelled = true;
         }
     };

@@ -301,6 +301,31 @@ TEST(Pipeline, AnErrorInAStyleNamesTheStyleTheFaceAndTheValue) {
     }
 }
 
+// Faces finish on two threads in any order; the fractions reported while hatching still
+// rise. A cheap style makes the faces finish together, where a count taken outside the
+// progress lock came out of order (seen in CI on the bundled sample).
+TEST(Pipeline, HatchingProgressRisesWhicheverThreadFinishesFirst) {
+    auto cheap = std::make_shared<Style>();
+    cheap->info = {"cheap", "", "one wide stripe per face", {}};
+    cheap->program = [](const ControlFields&, const ParamValues&) {
+        return tex::Arrangement(
+            [](const tex::Region& r) { return tex::StripesPartition(tex::StripesProperties(0.0, 1e6))(r); });
+    };
+    Options o = sample_options("");
+    o.custom_style = cheap;
+    o.threads = 2;
+    for (int round = 0; round < 200; ++round) {
+        std::vector<double> fractions;
+        hatch(sample(), o, [&](double f, const std::string& stage) {
+            if (stage == "hatching") fractions.push_back(f);
+            return true;
+        });
+        ASSERT_EQ(fractions.size(), sample().partition.faces.size());
+        ASSERT_TRUE(std::is_sorted(fractions.begin(), fractions.end())) << "round " << round;
+        ASSERT_DOUBLE_EQ(fractions.back(), 0.9);
+    }
+}
+
 TEST_P(EveryStyleKind, TwoHalvesGiveTheSameHatchesAsTheWhole) {
     Options o = sample_options(GetParam());
     const Drawing whole = hatch(sample(), o);
