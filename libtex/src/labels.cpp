@@ -77,11 +77,16 @@ Labels Labels::from_names(const std::vector<std::string>& names) {
 }
 
 void Labels::assign(const LabelId* first, std::uint32_t n) {
-    if (n <= kInline) {
-        std::copy(first, first + n, small_);
-        big_.clear();
+    LabelId* big = nullptr;
+    if (n > kInline) {
+        big = new LabelId[n];
+        std::copy(first, first + n, big);
+    }
+    release();
+    if (big) {
+        std::memcpy(small_, &big, sizeof big);
     } else {
-        big_.assign(first, first + n);
+        std::copy(first, first + n, small_);
     }
     n_ = n;
 }
@@ -90,23 +95,19 @@ void Labels::add(LabelId id) {
     const LabelId* b = begin();
     const LabelId* at = std::lower_bound(b, end(), id);
     if (at != end() && *at == id) return;
-    LabelId tmp[kInline + 1];
+    const std::size_t k = std::size_t(at - b);
     if (n_ < kInline) {  // stays inline
-        const std::size_t k = std::size_t(at - b);
         std::copy_backward(small_ + k, small_ + n_, small_ + n_ + 1);
         small_[k] = id;
         ++n_;
         return;
     }
-    if (n_ == kInline) {
-        const std::size_t k = std::size_t(at - b);
-        std::copy(small_, small_ + k, tmp);
-        tmp[k] = id;
-        std::copy(small_ + k, small_ + n_, tmp + k + 1);
-        big_.assign(tmp, tmp + n_ + 1);
-    } else {
-        big_.insert(big_.begin() + (at - b), id);
-    }
+    LabelId* grown = new LabelId[n_ + 1];
+    std::copy(b, b + k, grown);
+    grown[k] = id;
+    std::copy(b + k, b + n_, grown + k + 1);
+    release();
+    std::memcpy(small_, &grown, sizeof grown);
     ++n_;
 }
 
@@ -158,3 +159,4 @@ std::vector<std::string> Labels::names() const {
 }
 
 }  // namespace tex
+static_assert(sizeof(tex::Labels) == 16, "three label sets per curve and record: keep them small");

@@ -142,6 +142,24 @@ TEST(Labels, SetSemanticsAcrossInlineAndHeapStorage) {
     EXPECT_EQ(four.names(), (std::vector<std::string>{"w", "x", "y", "z"}));
     four.remove(intern_label("w"));
     EXPECT_EQ(four, three);
+    // Heap sets copied and moved over heap and inline sets: each keeps its own ids (the
+    // sanitizer pass checks that no array is lost or freed twice).
+    Labels big = l, other{"p", "q", "r", "s"};
+    other = big;
+    big.add("h");
+    EXPECT_EQ(other, l);
+    EXPECT_EQ(big.size(), 8u);
+    const Labels& self = other;
+    other = self;
+    EXPECT_EQ(other, l);
+    other = std::move(big);
+    EXPECT_EQ(other.size(), 8u);
+    EXPECT_TRUE(other.has("h"));
+    three = other;
+    EXPECT_EQ(three, other);
+    three = Labels{"x"};
+    EXPECT_EQ(three.names(), (std::vector<std::string>{"x"}));
+    EXPECT_EQ(sizeof(Labels), 16u);
 }
 
 TEST(CurvesInPlace, SameBytesAsTheCopyingOperators) {

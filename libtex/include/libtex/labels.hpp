@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <initializer_list>
 #include <string>
 #include <string_view>
@@ -28,20 +29,24 @@ bool find_label(std::string_view name, LabelId& out);
 class Labels {
 public:
     Labels() = default;
-    Labels(const Labels&) = default;
-    Labels& operator=(const Labels&) = default;
-    Labels(Labels&& o) noexcept : n_(o.n_), big_(std::move(o.big_)) {
+    Labels(const Labels& o) { assign(o.begin(), o.n_); }
+    Labels& operator=(const Labels& o) {
+        if (this != &o) assign(o.begin(), o.n_);
+        return *this;
+    }
+    Labels(Labels&& o) noexcept : n_(o.n_) {
         std::copy(o.small_, o.small_ + kInline, small_);
         o.n_ = 0;
     }
     Labels& operator=(Labels&& o) noexcept {
         if (this == &o) return *this;
+        release();
         n_ = o.n_;
         std::copy(o.small_, o.small_ + kInline, small_);
-        big_ = std::move(o.big_);
         o.n_ = 0;
         return *this;
     }
+    ~Labels() { release(); }
     Labels(std::initializer_list<std::string_view> names);
     static Labels from_names(const std::vector<std::string>& names);
 
@@ -53,7 +58,7 @@ public:
     bool has(std::string_view name) const;
     bool empty() const { return n_ == 0; }
     std::size_t size() const { return n_; }
-    const LabelId* begin() const { return n_ <= kInline ? small_ : big_.data(); }
+    const LabelId* begin() const { return n_ <= kInline ? small_ : heap(); }
     const LabelId* end() const { return begin() + n_; }
     std::vector<LabelId> ids() const { return {begin(), end()}; }
     std::vector<std::string> names() const;
@@ -62,12 +67,22 @@ public:
 
 private:
     // Most cells carry at most a few labels: those live inline, so that copying a curve or
-    // an edge record does not allocate; larger sets use the vector.
+    // an edge record does not allocate. A larger set lives in an array of exactly n_ ids
+    // on the heap, whose address is kept in the bytes of the inline ids (16 bytes in all:
+    // curves and the planar maps' records carry three sets each and are moved often).
     static constexpr std::uint32_t kInline = 3;
+    LabelId* heap() const {
+        LabelId* p;
+        std::memcpy(&p, small_, sizeof p);
+        return p;
+    }
+    void release() {
+        if (n_ > kInline) delete[] heap();
+    }
+    // Replaces the set with the n sorted unique ids at first (which may not lie in it).
     void assign(const LabelId* first, std::uint32_t n);
+    alignas(LabelId*) LabelId small_[kInline] = {};
     std::uint32_t n_ = 0;
-    LabelId small_[kInline] = {};
-    std::vector<LabelId> big_;  // sorted, unique; used when n_ > kInline
 };
 
 }  // namespace tex
