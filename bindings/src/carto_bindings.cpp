@@ -429,6 +429,8 @@ void bind_carto(py::module_& m) {
         .def_readonly("hatches", &FaceHatches::hatches);
     py::class_<CrestOrnament>(m, "CrestOrnament", "One ridge's crest ornament: closed rings (outer counter-clockwise, holes clockwise)")
         .def_readonly("ridge", &CrestOrnament::ridge, "index of the ridge in Partition.lines")
+        .def_readonly("id", &CrestOrnament::id,
+                      "the ridge's key (ridge_key, from its points): the ridge_id written, the same in tiled and whole runs")
         .def_readonly("rings", &CrestOrnament::rings);
     py::class_<CrestResult>(m, "CrestResult")
         .def_readonly("ornaments", &CrestResult::ornaments)
@@ -457,7 +459,8 @@ band_height : float
 seed : int
     Each ridge's pattern is keyed by this seed and the ridge's own points.
 window : BBox, optional
-    Only the ridges whose bounding-box centre lies in it.
+    Only the ridges whose anchor (the smaller of their two end points) lies in it,
+    half-open (as the tiles of a tiled run own them).
 
 Returns
 -------

@@ -147,6 +147,16 @@ std::vector<std::pair<double, double>> junction_trims(const Partition& p, double
 
 }  // namespace
 
+std::int64_t ridge_key(const std::vector<Point>& line) {
+    std::uint64_t key = 0x52494447454b4559ULL;  // "RIDGEKEY"
+    for (const Point& q : line) key = tex::hash_point(key, q);
+    return std::int64_t(key >> 1);
+}
+
+Point ridge_anchor(const std::vector<Point>& line) { return std::min(line.front(), line.back()); }
+
+double crest_context(double band_height) { return std::max(1.0, kNodeTolerance) * band_height; }
+
 const std::string& default_crest_svg() {
     static const std::string text = kCrestSvg;
     return text;
@@ -190,11 +200,9 @@ CrestResult draw_crests(const Partition& p, const CrestExemplar& exemplar, doubl
         const LabelledLine& l = p.lines[i];
         if (l.kind != LineKind::Ridge || l.points.size() < 2) continue;
         if (window) {
-            tex::BBox b;
-            for (const Point& q : l.points) b.add(q);
-            const Point c = b.center();
+            const Point a = ridge_anchor(l.points);
             const tex::BBox& w = *window;
-            if (!(c.x >= w.xmin && c.x < w.xmax && c.y >= w.ymin && c.y < w.ymax)) continue;
+            if (!(a.x >= w.xmin && a.x < w.xmax && a.y >= w.ymin && a.y < w.ymax)) continue;
         }
         ridges.push_back(i);
     }
@@ -222,6 +230,7 @@ CrestResult draw_crests(const Partition& p, const CrestExemplar& exemplar, doubl
                 const tex::Curves c = tex::SynthesizeAlongCurve(exemplar.shapes, tex::Polyline(cut_corners(pts, passes)),
                                                                 band_height, o);
                 drawn[k].ridge = ridges[k];
+                drawn[k].id = ridge_key(line);
                 for (const auto& cv : c.curves) drawn[k].rings.push_back(cv.points);
                 return;
             } catch (const tex::Error&) {

@@ -141,6 +141,11 @@ bool has_family(const Drawing& d, Family f) {
 // first point repeated at the end), with its face and style.
 using HatchSink = std::function<void(std::int64_t face_id, const char* style, const std::vector<Point>& points)>;
 
+// Receives the polygons of the crest ornaments, each as its ridge id, style and rings (the
+// outer ring first, then its holes; without the first point repeated).
+using CrestSink = std::function<void(std::int64_t ridge_id, const char* style, const std::vector<std::vector<Point>>& rings)>;
+using CrestSource = std::function<void(const CrestSink&)>;
+
 // The hatch GeoPackage: one layer per family that is `present` (fid, geom, face_id, family,
 // style, width_mm; LineStrings, Polygons for the filled families), written family by family
 // from `source`, which hands every hatch of the
@@ -151,7 +156,7 @@ void write_hatch_gpkg(const std::string& path, const std::string& crs_wkt, bool 
                       const std::function<bool(double)>& keep_going,
                       const std::function<void(Family, const HatchSink&)>& source,
                       const std::function<bool(Family)>& present,
-                      const std::vector<CrestOrnament>* crests = nullptr, const std::string& crest_style = "") {
+                      const CrestSource& crests = {}) {
     std::size_t written = 0;
     auto check = [&] {
         if (keep_going && ++written % 4096 == 0 &&
@@ -194,22 +199,20 @@ void write_hatch_gpkg(const std::string& path, const std::string& crs_wkt, bool 
         const int layer = out.add_layer("crest", wkbPolygon, {{"ridge_id", OFTInteger64}, {"style", OFTString}});
         out.begin();
         OGRFeature feat(out.definition(layer));
-        feat.SetField(1, crest_style.c_str());
-        for (const auto& c : *crests)
-            for (const auto& poly : crest_polygons(c)) {
-                feat.SetField(0, GIntBig(c.ridge));
-                auto* pg = new OGRPolygon();
-                for (std::size_t r : poly) {
-                    OGRLinearRing ring;
-                    const auto& pts = c.rings[r];
-                    ring.setNumPoints(int(pts.size() + 1), FALSE);
-                    for (std::size_t i = 0; i <= pts.size(); ++i)
-                        ring.setPoint(int(i), pts[i % pts.size()].x, pts[i % pts.size()].y);
-                    pg->addRing(&ring);
-                }
-                feat.SetGeometryDirectly(pg);
-                out.put(layer, feat, box_of(c.rings[poly[0]]));
+        crests([&](std::int64_t ridge_id, const char* style, const std::vector<std::vector<Point>>& rings) {
+            if (rings.empty()) return;
+            feat.SetField(0, GIntBig(ridge_id));
+            feat.SetField(1, style);
+            auto* pg = new OGRPolygon();
+            for (const auto& pts : rings) {
+                OGRLinearRing ring;
+                ring.setNumPoints(int(pts.size() + 1), FALSE);
+                for (std::size_t i = 0; i <= pts.size(); ++i) ring.setPoint(int(i), pts[i % pts.size()].x, pts[i % pts.size()].y);
+                pg->addRing(&ring);
             }
+            feat.SetGeometryDirectly(pg);
+            out.put(layer, feat, box_of(rings[0]));
+        });
         out.end();
     }
     out.commit();
@@ -252,6 +255,29 @@ void read_family(GDALDataset& ds, Family f, const std::string& what, const Hatch
     }
 }
 
+// Every polygon of layer "crest", in fid order, as (ridge id, style, rings); false when the
+// file has no such layer (a run without crest ornaments).
+bool read_crests(GDALDataset& ds, const std::string& what, const CrestSink& sink) {
+    OGRLayer* layer = ds.GetLayerByName("crest");
+    if (!layer) return false;
+    const int id_idx = layer->GetLayerDefn()->GetFieldIndex("ridge_id");
+    const int style_idx = layer->GetLayerDefn()->GetFieldIndex("style");
+    if (id_idx < 0 || style_idx < 0) throw Error(Code::BadLayer, what + ": layer crest has no ridge_id or style field");
+    std::vector<std::vector<Point>> rings;
+    layer->ResetReading();
+    for (auto& feat : *layer) {
+        const OGRGeometry* g = feat->GetGeometryRef();
+        if (!g || wkbFlatten(g->getGeometryType()) != wkbPolygon) continue;
+        rings.clear();
+        for (const OGRLinearRing* ring : *g->toPolygon()) {
+            std::vector<Point>& pts = rings.emplace_back();
+            for (int i = 0; i + 1 < ring->getNumPoints(); ++i) pts.push_back({ring->getX(i), ring->getY(i)});
+        }
+        sink(feat->GetFieldAsInteger64(id_idx), feat->GetFieldAsString(style_idx), rings);
+    }
+    return true;
+}
+
 }  // namespace
 
 void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index,
@@ -267,7 +293,15 @@ void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index,
                 if (h.closed && !pts.empty()) pts.push_back(pts.front());
                 sink(face.face_id, d.style.c_str(), pts);
             }
-    }, [&](Family f) { return has_family(d, f); }, d.crests ? &*d.crests : nullptr, d.style);
+    }, [&](Family f) { return has_family(d, f); }, d.crests ? CrestSource([&](const CrestSink& sink) {
+        std::vector<std::vector<Point>> rings;
+        for (const auto& c : *d.crests)
+            for (const auto& poly : crest_polygons(c)) {
+                rings.clear();
+                for (std::size_t r : poly) rings.push_back(c.rings[r]);
+                sink(c.id, d.style.c_str(), rings);
+            }
+    }) : CrestSource());
 }
 
 std::size_t merge_gpkg(const std::vector<std::string>& parts, const std::string& path, bool spatial_index,
@@ -282,6 +316,8 @@ std::size_t merge_gpkg(const std::vector<std::string>& parts, const std::string&
                 0, ds->GetLayerByName((std::string("hatch_") + family_name(Family(fam))).c_str())->GetFeatureCount()));
         if (crs_wkt.empty()) crs_wkt = wkt2_of(ds->GetLayer(0)->GetSpatialRef());
     }
+    bool crests = false;  // a crest layer in any part: one in the result
+    for (const auto& part : parts) crests = crests || open_hatches(part, "tile")->GetLayerByName("crest");
     std::size_t n = 0;
     write_hatch_gpkg(path, crs_wkt, spatial_index, total, keep_going, [&](Family f, const HatchSink& sink) {
         // One part open at a time: memory does not grow with the number of tiles.
@@ -292,7 +328,9 @@ std::size_t merge_gpkg(const std::vector<std::string>& parts, const std::string&
                 sink(id, style, p);
             });
         }
-    }, [](Family f) { return int(f) < kRockFamilies; });
+    }, [](Family f) { return int(f) < kRockFamilies; }, crests ? CrestSource([&](const CrestSink& sink) {
+        for (const auto& part : parts) read_crests(*open_hatches(part, "tile"), "tile '" + part + "'", sink);
+    }) : CrestSource());
     return n;
 }
 
@@ -318,6 +356,15 @@ Drawing read_gpkg(const std::string& path, double scale) {
             for (const auto& q : h.points) d.bounds.add(q);
             d.faces[it->second].hatches.push_back(std::move(h));
         });
+    std::vector<CrestOrnament> crests;
+    if (read_crests(*ds, "hatches '" + path + "'", [&](std::int64_t id, const char*, const std::vector<std::vector<Point>>& rings) {
+            CrestOrnament& c = crests.emplace_back();
+            c.id = id;
+            c.rings = rings;
+            for (const auto& ring : rings)
+                for (const Point& q : ring) d.bounds.add(q);
+        }))
+        d.crests = std::move(crests);
     return d;
 }
 

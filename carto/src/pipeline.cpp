@@ -187,6 +187,14 @@ void resolve_face_controls(Prepared& p, const Options& o) {
         p.notes.push_back("density of " + std::to_string(derived_d) + " face(s) derived from the terrain (1 - mean hillshade)");
 }
 
+std::optional<double> crest_band(const Options& o) {
+    const StyleInfo& info = selected_style(o).info;
+    if (!o.crest_ornament && !info.crest_ornament) return std::nullopt;
+    if (o.crest_height_mm) return *o.crest_height_mm * o.scale / 1000;
+    if (info.crest_ornament) return resolve_params(info, o.params, o.scale).at("crest_band");
+    return kDefaultCrestHeightMm * o.scale / 1000;
+}
+
 Drawing hatch(const Prepared& p, const Options& o, const Progress& progress) {
     std::vector<int> selected;
     for (std::size_t i = 0; i < p.partition.faces.size(); ++i)
@@ -267,13 +275,9 @@ Drawing hatch(const Prepared& p, const Options& o, const std::vector<int>& selec
     }
     if (cancelled) throw Error(Code::Cancelled, "cancelled during hatching");
     for (std::size_t k = 0; k < selected.size(); ++k) d.bounds.add(part.faces[selected[k]].region.bbox());
-    if (o.crest_ornament || style.info.crest_ornament) {
+    if (const std::optional<double> band = crest_band(o)) {
         tick(progress, 0.9, "crest ornaments");
-        // --crest-height, else the style's crest_band, else the option's default.
-        const double height = o.crest_height_mm              ? *o.crest_height_mm * o.scale / 1000
-                              : style.info.crest_ornament ? params.at("crest_band")
-                                                          : kDefaultCrestHeightMm * o.scale / 1000;
-        CrestResult crests = draw_crests(part, load_crest_exemplar(o.crest_ornament.value_or(kDefaultCrest)), height,
+        CrestResult crests = draw_crests(part, load_crest_exemplar(o.crest_ornament.value_or(kDefaultCrest)), *band,
                                          o.seed, o.window);
         for (const auto& c : crests.ornaments)
             for (const auto& ring : c.rings)

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "carto/crest.hpp"
 #include "carto/error.hpp"
 #include "carto/fields.hpp"
 #include "carto/output.hpp"
@@ -87,9 +88,6 @@ TileReport run_tile(const Options& o, const tex::BBox& tile, const std::string& 
     if (selected_style(o).terrain)
         throw Error(Code::Usage, "--style " + selected_style(o).info.name +
                                      ": a terrain style draws the whole DEM in one sequence and cannot be tiled yet");
-    if (o.crest_ornament)
-        throw Error(Code::Usage, "--crest-ornament: not available in a tiled run yet (the ornaments follow ridge lines "
-                                 "that cross tiles); draw them with a whole run, e.g. with --window");
     // The tile file is one more output: never an input, never an existing file unless asked.
     Options checked = o;
     checked.outputs.push_back(out);
@@ -110,8 +108,24 @@ TileReport run_tile(const Options& o, const tex::BBox& tile, const std::string& 
         const Point a = face_anchor(f);
         return owns(tile, a) && (!o.window || owns(*o.window, a));
     };
-    for (const RockFace& f : load_partition(po, dem_info.crs_wkt).faces)
+    // The crest ornaments of the ridge lines whose anchor (a point on the line) lies in the
+    // tile: the window of the tile's hatching, so the ridges and their neighbours are read.
+    const std::optional<double> band = crest_band(o);
+    Options tile_options = o;
+    tile_options.window = tile;
+    if (o.window)
+        tile_options.window = tex::BBox{std::max(tile.xmin, o.window->xmin), std::max(tile.ymin, o.window->ymin),
+                                        std::min(tile.xmax, o.window->xmax), std::min(tile.ymax, o.window->ymax)};
+    const Partition around = load_partition(po, dem_info.crs_wkt);
+    for (const RockFace& f : around.faces)
         if (mine(f)) reach.add(f.region.bbox());
+    double margin = tile_context_margin(o, cell);
+    if (band) {
+        for (const LabelledLine& l : around.lines)
+            if (l.kind == LineKind::Ridge && owns(*tile_options.window, ridge_anchor(l.points)))
+                for (const Point& q : l.points) reach.add(q);
+        margin = std::max(margin, crest_context(*band));
+    }
 
     Drawing d;
     d.crs_wkt = dem_info.crs_wkt;
@@ -119,7 +133,7 @@ TileReport run_tile(const Options& o, const tex::BBox& tile, const std::string& 
     d.scale = o.scale;
     if (!reach.empty()) {
         // 2. Their neighbourhood: every face a style may read across an owned face's border.
-        po.filter = reach.expanded(tile_context_margin(o, cell));
+        po.filter = reach.expanded(margin);
         Prepared p;
         p.partition = load_partition(po, dem_info.crs_wkt);
         // 3. The DEM under all of them, with a halo where the relief window and the terrain
@@ -140,7 +154,7 @@ TileReport run_tile(const Options& o, const tex::BBox& tile, const std::string& 
         for (std::size_t i = 0; i < p.partition.faces.size(); ++i)
             if (mine(p.partition.faces[i])) owned.push_back(int(i));
         report.context_faces = p.partition.faces.size();
-        d = hatch(p, o, owned);
+        d = hatch(p, tile_options, owned);
     }
     report.faces = d.faces.size();
     for (const auto& f : d.faces) report.hatches += f.hatches.size();

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "carto/crest.hpp"
@@ -123,9 +124,13 @@ TEST(Crest, OneValidPolygonPerRidgeInTheGeoPackage) {
         ++per_ridge[f->GetFieldAsInteger64("ridge_id")];
     }
     EXPECT_EQ(per_ridge.size(), s.crests);
+    // ridge_id is the ridge's key (from its points): the key of a ridge line of the partition.
+    std::set<std::int64_t> ridge_keys;
+    for (const auto& l : sample().partition.lines)
+        if (l.kind == LineKind::Ridge) ridge_keys.insert(ridge_key(l.points));
     for (const auto& [ridge, n] : per_ridge) {
         EXPECT_EQ(n, 1) << "ridge " << ridge;
-        EXPECT_EQ(sample().partition.lines[std::size_t(ridge)].kind, LineKind::Ridge);
+        EXPECT_EQ(ridge_keys.count(ridge), 1u) << "ridge " << ridge;
     }
 }
 
@@ -330,9 +335,10 @@ TEST(Crest, ShortAndHairpinRidgesAreSkippedWithANote) {
     EXPECT_NE(r.notes[0].find("1 skipped: no pattern fits"), std::string::npos) << r.notes[0];
 }
 
-// Only the ridges whose centre lies in the window are drawn (one owner per ridge when a
-// large area is drawn tile by tile), and they are drawn as in the whole run.
-TEST(Crest, AWindowDrawsTheRidgesCentredInIt) {
+// Only the ridges whose anchor (the smaller end point) lies in the window are drawn (one
+// owner per ridge when a large area is drawn tile by tile), and they are drawn as in the
+// whole run.
+TEST(Crest, AWindowDrawsTheRidgesAnchoredInIt) {
     const Partition& part = sample().partition;
     const CrestExemplar ex = load_crest_exemplar(kDefaultCrest);
     const tex::BBox b = part.bounds();
@@ -350,6 +356,14 @@ TEST(Crest, AWindowDrawsTheRidgesCentredInIt) {
     std::sort(halves.begin(), halves.end());
     std::sort(all.begin(), all.end());
     EXPECT_EQ(halves, all);
+    // The anchor is a point of the line, whichever way the line runs.
+    for (const auto& c : west.ornaments) {
+        const auto& pts = part.lines[c.ridge].points;
+        const Point a = ridge_anchor(pts);
+        EXPECT_TRUE(a == pts.front() || a == pts.back());
+        EXPECT_LT(a.x, xm);
+        EXPECT_EQ(ridge_anchor({pts.rbegin(), pts.rend()}), a);
+    }
 }
 
 // Bad exemplars and options: one clear error naming the option, with the exit code of the

@@ -3,6 +3,7 @@
 // hatches, feature for feature and bit for bit.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 #include <tuple>
@@ -102,12 +103,28 @@ TEST(Tiles, GridCoversTheDemAndThePlaneBeyond) {
     EXPECT_THROW(tile_grid(info, 1e-3), Error);  // billions of tiles
 }
 
+// The crest polygons of a drawing as written: (ridge id, rings) in a canonical order.
+static std::vector<std::pair<std::int64_t, std::vector<std::vector<Point>>>> crest_polygons_written(const Drawing& d,
+                                                                                           const std::string& path) {
+    write_gpkg(d, path, false);
+    std::vector<std::pair<std::int64_t, std::vector<std::vector<Point>>>> out;
+    const Drawing back = read_gpkg(path, d.scale);
+    for (const auto& c : *back.crests) out.push_back({c.id, c.rings});
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
 TEST(Tiles, MergedTilesAreTheWholeRunBitForBit) {
     TempDir dir;
     Options o = sample_options();
+    // With crest ornaments: each tile draws the ridges anchored in it, reading their neighbours.
+    o.crest_ornament = kDefaultCrest;
+    o.crest_height_mm = 3;
     const Prepared p = prepare(o);
     const Drawing whole = hatch(p, o);
     const Features expected = features(whole);
+    const auto expected_crests = crest_polygons_written(whole, dir / "whole.gpkg");
+    ASSERT_GE(expected_crests.size(), 5u);
     ASSERT_GT(expected.size(), 10000u);
     // Some faces are larger than the smaller tiles: they are still drawn once and whole.
     double widest = 0;
@@ -129,7 +146,14 @@ TEST(Tiles, MergedTilesAreTheWholeRunBitForBit) {
         EXPECT_EQ(owned, p.partition.faces.size()) << "tile size " << size;
         const std::string merged = dir / ("merged" + std::to_string(size) + ".gpkg");
         EXPECT_EQ(merge_gpkg(parts, merged), expected.size());
-        EXPECT_TRUE(features(read_gpkg(merged, o.scale)) == expected) << "tile size " << size;
+        const Drawing tiled = read_gpkg(merged, o.scale);
+        EXPECT_TRUE(features(tiled) == expected) << "tile size " << size;
+        ASSERT_TRUE(tiled.crests);
+        std::vector<std::pair<std::int64_t, std::vector<std::vector<Point>>>> got;
+        for (const auto& c : *tiled.crests) got.push_back({c.id, c.rings});
+        std::sort(got.begin(), got.end());
+        EXPECT_TRUE(got == expected_crests) << "tile size " << size << ": " << got.size() << " crest polygons, "
+                                            << expected_crests.size() << " in the whole run";
     }
 }
 

@@ -226,10 +226,6 @@ def run_args(argv, progress=None):
     if style is not None and style.terrain:
         raise carto.error(2, f"--style {style.name}: a terrain style draws the whole DEM in one sequence and cannot "
                              "be tiled yet")
-    if options.crest_ornament is not None or (style is not None and style.crest_ornament) or (
-            options.custom_style is not None and options.custom_style.info.crest_ornament):
-        raise carto.error(2, "--crest-ornament: not available in a tiled run yet (the ornaments follow ridge lines "
-                             "that cross tiles); draw them with a whole run, e.g. with --window")
     auto = options.partition.path == "auto"
     halo = _positive("--extract-halo", mine["--extract-halo"]) if "--extract-halo" in mine else DEFAULT_EXTRACT_HALO
     dem = carto.raster_info(options.dem, "--dem")

@@ -83,6 +83,10 @@ inline constexpr double kFieldSmoothingMm = 1.0;
 Raster load_dem(const std::string& path, std::vector<std::string>* notes = nullptr);
 // The style the options select: custom_style, else the built-in named by `style`.
 Style selected_style(const Options& o);
+// The height of the crest ornaments' band (ground units) when the run draws them
+// (--crest-ornament or a style that draws crests): --crest-height, else the style's
+// crest_band, else kDefaultCrestHeightMm.
+std::optional<double> crest_band(const Options& o);
 // Validates the options that need no file (style, parameters, scale, outputs).
 void validate(const Options& o);
 // The outputs as check_outputs sees them against every file the run reads (DEM, partition,
@@ -104,7 +108,8 @@ inline constexpr std::int64_t kTerrainFaceId = -1;
 // style then draws its elements (sequentially) around them, as one more entry of
 // Drawing::faces with kTerrainFaceId.
 Drawing hatch(const Prepared& p, const Options& o, const Progress& progress = {});
-// Hatches the faces of these indices, in this order.
+// Hatches the faces of these indices, in this order (and the crest ornaments of the ridges
+// whose ridge_anchor lies in Options::window, or of every ridge).
 Drawing hatch(const Prepared& p, const Options& o, const std::vector<int>& faces, const Progress& progress = {});
 // Everything: validate, prepare, hatch, write.
 Stats run(const Options& o, const Progress& progress = {});

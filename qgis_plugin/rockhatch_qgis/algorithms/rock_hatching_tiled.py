@@ -128,7 +128,7 @@ class RockHatchingTiled(RockhatchAlgorithm):
                 "separate Python process (Dask starts worker processes, which it cannot do inside QGIS); "
                 "cancelling stops it and keeps the finished tiles in the work folder, so running the same "
                 "job again resumes. The partition is a file (extract one with 'Rock partition from DEM'); the "
-                "DEM must be in a projected CRS; terrain styles and crest ornaments are not tiled yet.")
+                "DEM must be in a projected CRS; terrain styles are not tiled yet.")
 
     def command(self, parameters, context, feedback):
         """The `rockhatch tiles` arguments of these parameters."""
