@@ -614,9 +614,15 @@ CrestResult
           py::call_guard<py::gil_scoped_release>(),
           "the faces of the partition whose anchor lies in the tile, extracted from the DEM window under the tile "
           "plus halo (ground units; larger where an owned face reaches the halo), written to out");
+    py::class_<PartitionMerge>(m, "PartitionMerge", "What merge_partition_tiles wrote, and where its tiles disagree")
+        .def_readonly("faces", &PartitionMerge::faces, "face polygons written")
+        .def_readonly("overlaps", &PartitionMerge::overlaps,
+                      "pairs of faces from different tiles that overlap (the tiles placed a face differently)")
+        .def_readonly("overlap_area", &PartitionMerge::overlap_area, "their common area, ground units squared")
+        .def_readonly("area", &PartitionMerge::area, "the area of all faces");
     m.def("merge_partition_tiles", &merge_partition_tiles, py::arg("parts"), py::arg("out"),
           py::arg("overwrite") = false, py::call_guard<py::gil_scoped_release>(),
-          "one partition GeoPackage from the tiles of a tiled extraction; returns the number of faces");
+          "one partition GeoPackage from the tiles of a tiled extraction; returns a PartitionMerge");
     m.def("check_extract_files", &check_extract_files, py::arg("options"), py::arg("output"), py::arg("png") = "",
           py::arg("overwrite") = false, "the outputs of partition_from_dem against its inputs (check_outputs)");
     m.def("write_partition_png", &write_partition_png, py::arg("result"), py::arg("path"), py::arg("pixels") = 1600,

@@ -157,10 +157,45 @@ ExtractTileReport extract_tile(const ExtractOptions& o, const tex::BBox& tile, d
     return report;
 }
 
-std::size_t merge_partition_tiles(const std::vector<std::string>& parts, const std::string& out, bool overwrite) {
+namespace {
+
+// Counts the pairs of faces from different tiles that overlap, and their common area.
+void count_overlaps(const std::vector<std::unique_ptr<OGRGeometry>>& shapes, const std::vector<std::size_t>& tile_of,
+                    PartitionMerge& m) {
+    constexpr double kShare = 1e-6;  // of the smaller face: borders shared within rounding do not count
+    std::vector<OGREnvelope> box(shapes.size());
+    std::vector<double> area(shapes.size());
+    std::vector<std::size_t> order(shapes.size());
+    for (std::size_t i = 0; i < shapes.size(); ++i) {
+        shapes[i]->getEnvelope(&box[i]);
+        area[i] = OGR_G_Area(OGRGeometry::ToHandle(shapes[i].get()));
+        m.area += area[i];
+        order[i] = i;
+    }
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return box[a].MinX < box[b].MinX; });
+    for (std::size_t k = 0; k < order.size(); ++k) {
+        const std::size_t a = order[k];
+        for (std::size_t l = k + 1; l < order.size() && box[order[l]].MinX <= box[a].MaxX; ++l) {
+            const std::size_t b = order[l];
+            if (tile_of[a] == tile_of[b] || !box[a].Intersects(box[b]) || !shapes[a]->Intersects(shapes[b].get())) continue;
+            const std::unique_ptr<OGRGeometry> common(shapes[a]->Intersection(shapes[b].get()));
+            const double c = common ? OGR_G_Area(OGRGeometry::ToHandle(common.get())) : 0.0;
+            if (c > kShare * std::min(area[a], area[b])) {
+                ++m.overlaps;
+                m.overlap_area += c;
+            }
+        }
+    }
+}
+
+}  // namespace
+
+PartitionMerge merge_partition_tiles(const std::vector<std::string>& parts, const std::string& out, bool overwrite) {
     register_gdal();
     QuietGdal quiet;
     Partition all;
+    std::vector<std::unique_ptr<OGRGeometry>> shapes;  // each face as read, for the overlap check
+    std::vector<std::size_t> tile_of;
     std::set<std::pair<int, std::vector<Point>>, KeyLess> lines;
     for (const std::string& path : parts) {
         std::unique_ptr<GDALDataset> ds(static_cast<GDALDataset*>(
@@ -190,6 +225,8 @@ std::size_t merge_partition_tiles(const std::vector<std::string>& parts, const s
                 rf.orientation = (90.0 - f->GetFieldAsDouble(fall)) * M_PI / 180.0;
             if (shade >= 0 && f->IsFieldSetAndNotNull(shade)) rf.density = f->GetFieldAsDouble(shade);
             all.faces.push_back(std::move(rf));
+            shapes.emplace_back(g->clone());
+            tile_of.push_back(std::size_t(&path - parts.data()));
         }
         ls->ResetReading();
         for (std::unique_ptr<OGRFeature> f(ls->GetNextFeature()); f; f.reset(ls->GetNextFeature())) {
@@ -216,8 +253,11 @@ std::size_t merge_partition_tiles(const std::vector<std::string>& parts, const s
         f.id = n;
     }
     for (const auto& [kind, pts] : lines) all.lines.push_back({pts, LineKind(kind)});
+    PartitionMerge m;
+    m.faces = all.faces.size();
+    count_overlaps(shapes, tile_of, m);
     write_partition_gpkg(all, out, overwrite);
-    return all.faces.size();
+    return m;
 }
 
 }  // namespace carto

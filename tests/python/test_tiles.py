@@ -374,6 +374,7 @@ def test_partition_auto_tiled_equals_the_whole_run_with_1_or_2_workers(tmp_path,
         s = tiles.run(DEM, "auto", 800, [out], seed=3, workers=workers, workdir=tmp_path / f"work{workers}",
                       keep_tiles=True, progress=lambda f, stage: calls.append((f, stage)) or True)
         assert s.tiles == 9 and s.partition_faces == len(faces)
+        assert s.partition_overlaps == 0 and s.warnings == []  # the tiles agree
         # Extracted tile by tile, the partition is the whole extraction's, face for face and bit
         # for bit (ids included), and the hatching is the whole --partition auto run's.
         assert partition_faces(tmp_path / f"work{workers}" / "partition.gpkg") == faces
@@ -386,6 +387,17 @@ def test_partition_auto_tiled_equals_the_whole_run_with_1_or_2_workers(tmp_path,
     # One or two workers: the same bytes, partition and hatching.
     assert (tmp_path / "work1" / "partition.gpkg").read_bytes() == (tmp_path / "work2" / "partition.gpkg").read_bytes()
     assert outs[1] == outs[2]
+
+
+def test_partition_auto_warns_where_the_tiles_disagree(tmp_path):
+    # A halo too short for the sample's basins: neighbouring tiles place some faces
+    # differently and the merge finds them overlapping; the command says so in one line.
+    r = subprocess.run([sys.executable, "-m", "rockhatch", "tiles", "--dem", DEM, "--partition", "auto",
+                        "--tile-size", "1300", "--extract-halo", "300", "--workers", "1", "-q",
+                        "-o", str(tmp_path / "o.gpkg")], capture_output=True, text=True, env=python_env(), timeout=300)
+    assert r.returncode == 0, r.stderr
+    warnings = [line for line in r.stderr.splitlines() if "warning:" in line]
+    assert len(warnings) == 1 and "partition tiles disagree" in warnings[0] and "--extract-halo (now 300)" in warnings[0]
 
 
 def test_partition_auto_other_tiles_same_partition(tmp_path, sample_auto):

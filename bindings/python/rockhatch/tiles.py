@@ -189,6 +189,9 @@ class Summary:
         self.merge_seconds = 0.0  # merging the tiles and writing the outputs
         self.workers = 0
         self.partition_faces = 0      # --partition auto: face polygons of the merged partition
+        self.partition_overlaps = 0   # --partition auto: pairs of faces of different tiles that overlap
+        self.partition_overlap_area = 0.0  # their common area (ground units squared)
+        self.warnings = []            # what the user should know about the result
         self.partition_seconds = 0.0  # --partition auto: extracting and merging the partition
         self.extract_rounds = []      # --partition auto: windows extracted per tile computed
 
@@ -420,7 +423,16 @@ def _extract_partition(options, grid, workdir, halo, out, job, cluster, summary,
         raise carto.error(1, f"{len(missing)} partition tile(s) missing after the run (first: {missing[0]})")
     if progress:
         progress(0.29, "merging the partition")
-    summary.partition_faces = carto.merge_partition_tiles(paths, out, True)
+    merge = carto.merge_partition_tiles(paths, out, True)
+    summary.partition_faces = merge.faces
+    summary.partition_overlaps = merge.overlaps
+    summary.partition_overlap_area = merge.overlap_area
+    if merge.overlaps:
+        share = 100.0 * merge.overlap_area / merge.area if merge.area > 0 else 0.0
+        summary.warnings.append(
+            f"the partition tiles disagree: {merge.overlaps} pair(s) of faces from neighbouring tiles overlap "
+            f"({merge.overlap_area:.0f} square ground units, {share:.3f}% of the rock); a longer --extract-halo (now "
+            f"{halo:g}) brings the tiled partition closer to the whole extraction (docs/tiles-partition.md)")
     if summary.partition_faces == 0:
         os.remove(out)
         raise carto.error(6, f"--dem '{options.dem}': no rock: no face was extracted at 1:{options.scale:g} with the "
@@ -566,6 +578,8 @@ def main(argv=None):
         if s.partition_faces:
             sys.stderr.write(f"rockhatch tiles: partition extracted tile by tile: {s.partition_faces} faces, "
                              f"{s.partition_seconds:.2f} s\n")
+        for w in s.warnings:
+            sys.stderr.write(f"rockhatch tiles: warning: {w}\n")
         return 0
     except (RockhatchError, TexError, OSError) as e:
         return fail(e, bar, "rockhatch tiles")

@@ -78,9 +78,20 @@ struct ExtractTileReport {
 // written atomically, replacing `out`). The DEM (o.dem, a file) must be in a projected CRS.
 ExtractTileReport extract_tile(const ExtractOptions& o, const tex::BBox& tile, double halo, const std::string& out);
 
+// What a merge of partition tiles wrote, and where its tiles disagree.
+struct PartitionMerge {
+    std::size_t faces = 0;     // face polygons written
+    // Pairs of faces from different tiles that overlap (by more than a millionth of the
+    // smaller one: faces that only share a border do not count): where neighbouring tiles
+    // placed a face differently (a halo too short for the basins there).
+    std::size_t overlaps = 0;
+    double overlap_area = 0;   // their common area (ground units squared)
+    double area = 0;           // the area of all faces
+};
+
 // Merges partition tiles into one partition GeoPackage: faces in the order of their first
-// cells, numbered from 1; border lines shared by two tiles written once. Returns the number
-// of face polygons.
-std::size_t merge_partition_tiles(const std::vector<std::string>& parts, const std::string& out, bool overwrite);
+// cells, numbered from 1; border lines shared by two tiles written once. Counts the faces
+// of different tiles that overlap (tiles that disagree).
+PartitionMerge merge_partition_tiles(const std::vector<std::string>& parts, const std::string& out, bool overwrite);
 
 }  // namespace carto
