@@ -22,9 +22,7 @@ RegionLocator::RegionLocator(std::vector<Region> regions, std::optional<BBox> ar
     auto prepared = std::make_shared<std::vector<std::optional<PreparedRegion>>>(kept->size());
     for (std::size_t k = 0; k < kept->size(); ++k) {
         const Region& r = (*kept)[k];
-        std::size_t points = r.outer().size();
-        for (const auto& h : r.holes()) points += h.size();
-        if (points > 32) (*prepared)[k].emplace(r);
+        if (PreparedRegion::worth_preparing(r)) (*prepared)[k].emplace(r);
     }
     regions_ = std::move(kept);
     prepared_ = std::move(prepared);

@@ -92,10 +92,8 @@ Curves realize(const Complex& cx, const Region& r, Border b, detail::KnownVertic
         std::vector<char> kept(cx.cells.size(), 0);
         // Many cells against a region of many vertices (a traced face): index the region
         // once; the answers are the same.
-        std::size_t ring_points = r.outer().size();
-        for (const auto& h : r.holes()) ring_points += h.size();
         std::optional<PreparedRegion> prepared;
-        if (ring_points > 32 && cx.cells.size() > 4) prepared.emplace(r);
+        if (cx.cells.size() > 4 && PreparedRegion::worth_preparing(r)) prepared.emplace(r);
         for (std::size_t i = 0; i < cx.cells.size(); ++i) {
             const auto& c = cx.cells[i];
             if (prepared)

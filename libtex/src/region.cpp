@@ -274,6 +274,13 @@ bool in_ring(const PreparedRegion::Slabs& s, const std::vector<Point>& ring, con
 
 }  // namespace
 
+bool PreparedRegion::worth_preparing(const Region& r) {
+    constexpr std::size_t kManyPoints = 32;
+    std::size_t points = r.outer().size();
+    for (const auto& h : r.holes()) points += h.size();
+    return points > kManyPoints;
+}
+
 PreparedRegion::PreparedRegion(const Region& r) : r_(&r) {
     if (r.empty()) return;
     outer_ = make_slabs(r.outer());

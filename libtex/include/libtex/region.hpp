@@ -71,6 +71,9 @@ bool point_in_ring(const Point& p, const std::vector<Point>& ring);
 class PreparedRegion {
 public:
     explicit PreparedRegion(const Region& r);
+    // Whether preparing r pays off for more than a few tests: its rings hold more than a few
+    // dozen points (a traced face; a rectangle or a small polygon is quicker scanned).
+    static bool worth_preparing(const Region& r);
     const Region& region() const { return *r_; }
     bool contains(const Point& p) const;
     Overlap classify_polygon(const std::vector<Point>& poly, const BBox& poly_box) const;
