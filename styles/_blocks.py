@@ -13,9 +13,9 @@ from math import cos, isnan, sin
 from rockhatch.carto import Family, area_within, family_width_mm, ink_area, interior_point
 from rockhatch.tex import (CROP, CROP_ADD_BOUNDARY, KEEP_OUTSIDE, AlignToField, Arrangement, Centroid, Crop, Fallback,
                            Field, GridPartition, HasLabel, IncidentEdges, JitterEdges, Labelled, LeftFace, Location,
-                           LocationAt, MapToEdges, MapToFaces, MapToVertices, Nothing, Outline, Point, Polyline,
-                           Random, Region, RightFace, Scale, SetEdgeLabels, StripesPartition, StripesProperties,
-                           ToCurve, ToRegion, distance, dot, pi)
+                           LocationAt, MapAlong, MapToEdges, MapToFaces, MapToVertices, Nothing, Outline, Point,
+                           Polyline, Random, Region, RightFace, Scale, SetEdgeLabels, Smoothed, StripesPartition,
+                           StripesProperties, ThinRank, ToCurve, ToRegion, distance, dot, pi)
 
 # ---- Parameters (defaults follow App. E at 1:10000) ----
 
@@ -63,9 +63,10 @@ TONE = [
     ("follow_fall_line", 1.0, "ratio", "1: strokes follow the local fall line; 0: one direction per face"),
 ]
 CREST = [
-    ("crest_spacing", 0.4, "mm", "distance between two crest strokes along a ridge"),
-    ("crest_length", 1.2, "mm", "longest crest stroke on low ground"),
-    ("crest_height_gain", 1.0, "ratio", "crest strokes grow by this fraction on the highest ground"),
+    ("crest_spacing", 0.4, "mm", "distance between two shadow-side strokes along a crest line"),
+    ("crest_length", 0.8, "mm", "longest shadow-side stroke on low ground"),
+    ("crest_height_gain", 0.5, "ratio", "shadow-side strokes grow by this fraction on the highest ground"),
+    ("crest_smoothing", 0.8, "mm", "crest lines are drawn smooth at this length (shorter bends and steps go)"),
 ]
 CROSS = [
     ("roughness_min", 0.01, "ratio", "roughness (0..1) below which no cross hatching is drawn"),
@@ -232,37 +233,78 @@ def ridge_peaks(f, p, face, gain):
     return MapToVertices(shape, StripesPartition(stripes(theta, p["peak_spacing"])))
 
 
-def crest_strokes(f, p, face):
-    """Crest strokes: where stripes at theta every crest_spacing meet a ridge on its darker
-    side, one stroke down the local fall line (read crest_length / 2 inside the face); their
-    upper ends line up on the crest, the lit side gets none (dark sides denser)."""
-    height, fall_line, theta = f.height, f.fall_line, face.theta
-    follow, crest_length, gain = p["follow_fall_line"] > 0, p["crest_length"], p["crest_height_gain"]
+# Stroke k hanging from a crest line has (SHORTEST_CREST_STROKE + (1 - SHORTEST_CREST_STROKE) x
+# ThinRank(k)) of the longest length: the ink fades down the slope instead of ending in a comb.
+SHORTEST_CREST_STROKE = 0.35
+# Near a ridge's end the strokes shrink, to this fraction at the end, growing to full length
+# (1 - this) x crest_length from it.
+CREST_END_TAPER = 0.3
+# A stroke leaves the crest line within 60 degrees of its normal (this cosine); where the fall line
+# runs nearly along the crest (a spur falling away) the line is drawn alone.
+CREST_STROKE_MIN_COS = 0.5
 
-    def stroke(v):
-        dark, into_edge = ridge_foot(f, face, v)
-        if not dark or into_edge is None:
-            return Nothing()
-        apex = Location(v)
-        into = LocationAt(into_edge, 0.5) - apex
-        reach = distance(LocationAt(into_edge, 0.5), apex)
-        if reach == 0:
-            return Nothing()
-        # The fall line on the crest itself averages two opposite slopes: read it a little
-        # down the face instead.
-        a = theta
-        if follow:
-            local = fall_line(apex + into * (min(reach, 0.5 * crest_length) / reach))
-            if not isnan(local):
-                a = local
-        d = unit(a) if dot(into, unit(a)) >= 0 else -unit(a)
-        h = height(apex)
-        if isnan(h):
-            h = face.height
-        length = crest_length * (1 + gain * clamp01(h)) * Random(v, 0.4, 1.0, 5)
-        return Labelled(Polyline([apex, apex + d * length]), "ridge")
 
-    return MapToVertices(stroke, StripesPartition(stripes(theta, p["crest_spacing"])))
+def crest_lines(p):
+    """The crest line: each ridge the face owns (drawn once), whole and smooth at crest_smoothing."""
+    step = p["crest_smoothing"]
+
+    def line(e):
+        return Smoothed(ToCurve(e), step) if HasLabel(e, "ridge") and HasLabel(e, "owned") else Nothing()
+
+    return MapToEdges(line, Outline())
+
+
+def crest_strokes(f, p, face, region):
+    """Shadow-side strokes: along each ridge of the face on its darker side, every crest_spacing
+    along the crest line, one stroke into the face down the local fall line (read crest_length / 2
+    inside the face), of golden-ratio lengths, shorter near the ridge's ends; the lit side gets none."""
+    height, fall_line, density, theta = f.height, f.fall_line, f.density, face.theta
+    follow = p["follow_fall_line"] > 0
+    longest, spacing, gain, step = p["crest_length"], p["crest_spacing"], p["crest_height_gain"], p["crest_smoothing"]
+
+    def strokes(e):
+        if not HasLabel(e, "ridge"):
+            return Nothing()
+        # Which side of the ridge the face lies on, and whether it is the darker one.
+        a, b, mid = LocationAt(e, 0.49), LocationAt(e, 0.51), LocationAt(e, 0.5)
+        l = distance(a, b)
+        if l == 0:
+            return Nothing()
+        ab = b - a
+        left = Point(-ab.y / l, ab.x / l)
+        eps = min(0.5, 2.5 * l)  # 2.5 l: 5 % of the edge's length
+        side = 1.0 if region.contains(mid + left * eps) else -1.0
+        other = density(mid - left * (side * eps))
+        if not (face.density >= 0.5 if isnan(other) else face.density > other):
+            return Nothing()
+
+        def hang(foot, t, k, to_end):
+            n = Point(-t.y, t.x) * side  # into the face
+            # The fall line on the crest itself averages two opposite slopes: read it a little
+            # down the face instead.
+            angle = theta
+            if follow:
+                local = fall_line(foot + n * (0.5 * longest))
+                if not isnan(local):
+                    angle = local
+            d = unit(angle)
+            if dot(d, n) < 0:
+                d = -d
+            if dot(d, n) < CREST_STROKE_MIN_COS:
+                return Nothing()
+            h = height(foot)
+            if isnan(h):
+                h = face.height
+            from_end = min((k + 0.5) * spacing, to_end)
+            taper = min(1.0, CREST_END_TAPER + from_end / longest)
+            length = (longest * (1 + gain * clamp01(h)) *
+                      (SHORTEST_CREST_STROKE + (1 - SHORTEST_CREST_STROKE) * ThinRank(k)) * taper)
+            return Labelled(Polyline([foot, foot + d * length]), "ridge")
+
+        # The feet on the crest line as crest_lines draws it.
+        return MapAlong(Smoothed(ToCurve(e), step), spacing, hang)
+
+    return MapToEdges(strokes, Outline())
 
 
 def tone_coverage(p, shade):
@@ -271,10 +313,10 @@ def tone_coverage(p, shade):
 
 
 def toned_hatching(f, p, face, region, spent):
-    """Coarse jittered cells, each hatched so that its fill and cross ink follows the tone of
-    the shade at its centre, under ink_max less the ink `spent` (crests, valleys) has in the
-    cell over the cell's area inside the face `region`, with at least min_gap between fill strokes; strokes along the fall line when
-    follow_fall_line > 0."""
+    """Coarse jittered cells, each hatched so that its ink follows the tone of the shade at its
+    centre under ink_max, the ink `spent` (crests, valleys) has in the cell over the cell's
+    area inside the face `region` included, with at least min_gap between fill strokes;
+    strokes along the fall line when follow_fall_line > 0."""
     cs, theta0 = p["cell_spacing"], face.theta
     grid = MapToEdges(JitterEdges("grid", theta0, cs, cs, 0.5 * p["cell_jitter"]),
                       GridPartition(stripes(theta0, cs, "grid"), stripes(theta0 + pi / 2, cs, "grid"), KEEP_OUTSIDE))
@@ -293,11 +335,12 @@ def toned_hatching(f, p, face, region, spent):
         shade = shade_f(c)
         if isnan(shade):
             shade = face.density
-        # The ceiling less what the crests and valleys already put in this cell (they run
-        # along the face's border, where cells reach out of the face: its part counts).
+        # The tone under the ceiling, less what the crests and valleys already put in this
+        # cell (they run along the face's border, where cells reach out of the face: its part
+        # counts): the cell's ink, lines included, follows the shade.
         area = area_within(region, box)
-        room = p["ink_max"] - (ink_area(spent, mm, box) / area if area > 0 else 0.0)
-        target = min(tone_coverage(p, shade), room)
+        used = ink_area(spent, mm, box) / area if area > 0 else 0.0
+        target = min(tone_coverage(p, shade), p["ink_max"]) - used
         if not target > 0:
             return Nothing()
         theta = theta0

@@ -1,15 +1,15 @@
 #!/usr/bin/python3
 """Print: the drawing of issue 16 after Fig. 5.4g, and the default style. Ink follows the
 shade through a tone curve under a ceiling, strokes follow the fall line, crests are drawn
-by strokes falling from them on their dark side.
+as a smooth line with strokes falling from it on its dark side.
 
-The face is drawn in two steps: the crest strokes and the valleys first, then the fill and
-cross hatching of coarse jittered cells, each cell given the ink of the tone curve at its
-shade (1 - hillshade smoothed at map scale) less what the crests and valleys already put
-in it under ink_max. Fill strokes keep min_gap of white paper between them. Where the
-partition gives no orientation, the strokes of each cell run along the fall line at its
-centre and each stroke is turned to the fall line at its middle (follow_fall_line=0: one
-direction per face, the face's orientation).
+The face is drawn in two steps: the crest lines, the strokes hanging from them and the
+valleys first, then the fill and cross hatching of coarse jittered cells, each cell given
+the ink of the tone curve at its shade (1 - hillshade smoothed at map scale) less what the
+crests and valleys already put in it under ink_max. Fill strokes keep min_gap of white
+paper between them. Where the partition gives no orientation, the strokes of each cell run
+along the fall line at its centre and each stroke is turned to the fall line at its middle
+(follow_fall_line=0: one direction per face, the face's orientation).
 
 Parameters (--param NAME=VALUE; "mm" are millimetres on paper at --scale):
     length             1.5  mm     length of a hatch between two jittered break points
@@ -24,9 +24,10 @@ Parameters (--param NAME=VALUE; "mm" are millimetres on paper at --scale):
     cell_spacing       3.0  mm     width of the coarse jittered cells that carry local density
     cell_jitter        1.0  ratio  jitter of the coarse cells
     gap                0.95 ratio  each hatch is shortened to this fraction, leaving gaps
-    crest_spacing      0.4  mm     distance between two crest strokes along a ridge
-    crest_length       1.2  mm     longest crest stroke on low ground
-    crest_height_gain  1.0  ratio  crest strokes grow by this fraction on the highest ground
+    crest_spacing      0.4  mm     distance between two shadow-side strokes along a crest line
+    crest_length       0.8  mm     longest shadow-side stroke on low ground
+    crest_height_gain  0.5  ratio  shadow-side strokes grow by this fraction on the highest ground
+    crest_smoothing    0.8  mm     crest lines are drawn smooth at this length (shorter bends and steps go)
     roughness_min      0.01 ratio  roughness (0..1) below which no cross hatching is drawn
     roughness_max      0.08 ratio  roughness at which cross hatching is densest
     cross_spacing_min  0.6  mm     cross hatch spacing at the highest roughness
@@ -42,7 +43,8 @@ Run on its own, or through the rockhatch command:
 """
 import sys
 
-from _blocks import (COARSE, BALANCED, CREST, CROSS, TONE, crest_strokes, read_face, toned_hatching, valleys)
+from _blocks import (COARSE, BALANCED, CREST, CROSS, TONE, crest_lines, crest_strokes, read_face, toned_hatching,
+                     valleys)
 from rockhatch.tex import CROP, Arrangement, Crop
 
 NAME = "print"
@@ -66,7 +68,8 @@ def style(fields, params):
 
     def draw(region):
         face = read_face(fields, region)
-        spent = Crop(crest_strokes(fields, params, face), CROP)(region)
+        spent = Crop(crest_strokes(fields, params, face, region), CROP)(region)
+        spent.append(crest_lines(params)(region))
         spent.append(valleys()(region))
         out = Crop(toned_hatching(fields, params, face, region, spent), CROP)(region)
         out.append(spent)

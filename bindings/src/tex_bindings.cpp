@@ -468,6 +468,19 @@ void bind_tex(py::module_& m) {
         "ThinRank(k) < keep(its middle), else nothing (golden-ratio ranks: the kept lines are evenly spread at any "
         "fraction, and a smaller fraction keeps a subset); with `owner`, only edges whose middle lies in it");
     m.def("ThinRank", &ThinRank, py::arg("k"), "the rank of line k in ThinLines's order, in [0, 1)");
+    m.def("Smoothed", &Smoothed, py::arg("curves"), py::arg("step"),
+          "each curve drawn smooth at `step`: its points every `step` of length (its last point kept), then three "
+          "rounds of corner cutting; the ends stay put, bends and steps shorter than about `step` go");
+    m.def(
+        "MapAlong",
+        [](const Curves& c, double spacing, py::function f) {
+            return MapAlong(c, spacing, [&f](const Point& at, const Point& tangent, long long k, double to_end) {
+                return f(at, tangent, k, to_end).cast<Curves>();
+            });
+        },
+        py::arg("curves"), py::arg("spacing"), py::arg("mapper"),
+        "mapper(point, unit tangent, k, length left to the end) at the points every `spacing` along each curve, "
+        "the first half a spacing from its start; their curves together");
     m.def(
         "MapToEdges", [](const NativeMapper<Edge>& f, Arrangement a) { return MapToEdges(f.fn, a); },
         py::arg("mapper"), py::arg("arrangement"));

@@ -2,9 +2,11 @@
 
 #include <cmath>
 #include <utility>
+#include <vector>
 
 #include "libtex/cells.hpp"
 #include "libtex/curves.hpp"
+#include "libtex/discrete.hpp"
 #include "libtex/error.hpp"
 #include "libtex/labels.hpp"
 #include "libtex/random.hpp"
@@ -54,6 +56,87 @@ EdgeMapper ThinLines(EdgeMapper inner, double theta, double spacing, Field keep,
         if (!(ThinRank(std::llround(t)) < k)) return Nothing();
         return inner(e);
     };
+}
+
+std::vector<Point> CutCorners(std::vector<Point> pts, int passes) {
+    for (int r = 0; r < passes && pts.size() >= 3; ++r) {
+        std::vector<Point> next;
+        next.reserve(2 * pts.size());
+        next.push_back(pts.front());
+        for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+            const Point &a = pts[i], &b = pts[i + 1];
+            if (i > 0) next.push_back(a * 0.75 + b * 0.25);
+            if (i + 2 < pts.size()) next.push_back(a * 0.25 + b * 0.75);
+        }
+        next.push_back(pts.back());
+        pts = std::move(next);
+    }
+    return pts;
+}
+
+namespace {
+// The points of a curve in order, a closed one ending on its first point again.
+std::vector<Point> open_points(const Curve& c) {
+    std::vector<Point> pts = c.points;
+    if (c.closed && !pts.empty()) pts.push_back(pts.front());
+    return pts;
+}
+
+Curve smoothed(const Curve& c, double step) {
+    constexpr int kPasses = 3;  // three rounds: the curvature varies smoothly at the step's scale
+    const std::vector<Point> pts = open_points(c);
+    Curve out;
+    out.labels = c.labels;
+    if (pts.size() < 2) {
+        out.points = pts;
+        return out;
+    }
+    // Points every `step` of length from the first (seed 004's regular pinning along a curve).
+    std::vector<Point> samples = disc::RegularPinning1D(disc::Polyline{pts, false}, 1 / step);
+    // The last point kept, a sample too close to it dropped (it would make a kink there).
+    if (samples.size() > 1 && distance(samples.back(), pts.back()) < step / 2) samples.pop_back();
+    samples.push_back(pts.back());
+    out.points = CutCorners(std::move(samples), kPasses);
+    return out;
+}
+
+// The points along one curve every `spacing`, from half a spacing on (MapAlong).
+Curves map_along(const Curve& c, double spacing, const AlongMapper& f) {
+    const std::vector<Point> pts = open_points(c);
+    double total = 0;
+    for (std::size_t i = 0; i + 1 < pts.size(); ++i) total += distance(pts[i], pts[i + 1]);
+    Curves out;
+    double walked = 0, next = spacing / 2;  // length before segment i, and of the next point
+    long long k = 0;
+    for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+        const Point a = pts[i], b = pts[i + 1];
+        const double l = distance(a, b);
+        if (l == 0) continue;
+        const Point t = (b - a) * (1 / l);
+        for (; next <= walked + l && next <= total; next = (k + 0.5) * spacing) {
+            out.append(f(a + (b - a) * ((next - walked) / l), t, k, total - next));
+            ++k;
+        }
+        walked += l;
+    }
+    return out;
+}
+
+}  // namespace
+
+Curves Smoothed(const Curves& c, double step) {
+    if (!(step > 0) || !std::isfinite(step)) throw Error("Smoothed", "the step must be positive and finite");
+    Curves out = c;
+    for (Curve& cv : out.curves) cv = smoothed(cv, step);
+    return out;
+}
+
+Curves MapAlong(const Curves& c, double spacing, const AlongMapper& f) {
+    if (!(spacing > 0) || !std::isfinite(spacing)) throw Error("MapAlong", "the spacing must be positive and finite");
+    if (!f) throw Error("MapAlong", "no mapper");
+    Curves out;
+    for (const Curve& cv : c.curves) out.append(map_along(cv, spacing, f));
+    return out;
 }
 
 }  // namespace tex

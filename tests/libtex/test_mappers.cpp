@@ -264,3 +264,92 @@ TEST(ThinLines, BadArgumentsAreRefused) {
     EXPECT_DOUBLE_EQ(Pow(Field(2.0), 3.0)(Point{0, 0}), 8.0);
     EXPECT_TRUE(std::isnan(Pow(Field(), 3.0)(Point{0, 0})));
 }
+
+namespace {
+// Turning angle (degrees) at each inner point of a polyline.
+std::vector<double> turns(const std::vector<Point>& p) {
+    std::vector<double> out;
+    for (std::size_t i = 1; i + 1 < p.size(); ++i) {
+        const Point u = p[i] - p[i - 1], v = p[i + 1] - p[i];
+        out.push_back(std::abs(std::atan2(cross(u, v), dot(u, v))) * 180 / pi);
+    }
+    return out;
+}
+// Distance from q to the polyline p.
+double to_polyline(const Point& q, const std::vector<Point>& p) {
+    double best = 1e300;
+    for (std::size_t i = 0; i + 1 < p.size(); ++i) {
+        const Point e = p[i + 1] - p[i];
+        const double t = std::clamp(dot(q - p[i], e) / std::max(dot(e, e), 1e-300), 0.0, 1.0);
+        best = std::min(best, distance(q, p[i] + e * t));
+    }
+    return best;
+}
+}  // namespace
+
+// A staircase of unit steps (a raster border) smoothed at 4 units: no stair steps left (every
+// turn small), within a unit of the staircase, the ends where they were, the labels kept.
+TEST(Smoothed, TakesTheStairStepsOutAndKeepsTheEnds) {
+    Curve stairs;
+    for (int i = 0; i < 20; ++i) {
+        stairs.points.push_back({double(i), double(i)});
+        stairs.points.push_back({double(i + 1), double(i)});
+    }
+    stairs.points.push_back({20, 20});
+    stairs.labels = Labels::from_names({"ridge"});
+    Curves c;
+    c.curves.push_back(stairs);
+    const Curves s = Smoothed(c, 4);
+    ASSERT_EQ(s.curves.size(), 1u);
+    const std::vector<Point>& p = s.curves[0].points;
+    EXPECT_EQ(p.front(), stairs.points.front());
+    EXPECT_EQ(p.back(), stairs.points.back());
+    EXPECT_TRUE(s.curves[0].labels.has(intern_label("ridge")));
+    const std::vector<double> t = turns(p);
+    EXPECT_LT(*std::max_element(t.begin(), t.end()), 15.0);  // the staircase turns 90 degrees each step
+    const std::vector<double> steps = turns(stairs.points);
+    EXPECT_GT(*std::max_element(steps.begin(), steps.end()), 89.0);
+    for (const Point& q : p) EXPECT_LT(to_polyline(q, stairs.points), 1.0);
+    // A right angle is rounded, not cut across: the corner point stays within step / 4.
+    Curves corner;
+    corner.curves.push_back(Curve{{{0, 0}, {40, 0}, {40, 40}}});
+    const Curves rounded = Smoothed(corner, 4);
+    const std::vector<Point>& r = rounded.curves[0].points;
+    double nearest = 1e300;
+    for (const Point& q : r) nearest = std::min(nearest, distance(q, {40, 0}));
+    EXPECT_LT(nearest, 1.0);
+    EXPECT_GT(nearest, 0.1);
+    EXPECT_THROW(Smoothed(c, 0), Error);
+    EXPECT_THROW(Smoothed(c, NAN), Error);
+}
+
+// Points every `spacing` of length, the first half a spacing in, with the unit tangent, the
+// index and the length left; each curve on its own.
+TEST(MapAlong, VisitsEvenlySpacedPointsWithTheirTangents) {
+    Curves c;
+    c.curves.push_back(Curve{{{0, 0}, {10, 0}, {10, 4}}});  // length 14
+    c.curves.push_back(Curve{{{0, 0}, {0, 0.4}}});         // shorter than half a spacing
+    std::vector<Point> at, tangent;
+    std::vector<long long> index;
+    std::vector<double> left;
+    const Curves out = MapAlong(c, 2, [&](const Point& p, const Point& t, long long k, double to_end) {
+        at.push_back(p);
+        tangent.push_back(t);
+        index.push_back(k);
+        left.push_back(to_end);
+        return Polyline({p, p + Point{0, 1}});
+    });
+    ASSERT_EQ(at.size(), 7u);  // at 1, 3, ..., 13
+    EXPECT_EQ(out.curves.size(), 7u);
+    for (std::size_t k = 0; k < at.size(); ++k) {
+        const double s = 1 + 2.0 * double(k);
+        const Point want = s <= 10 ? Point{s, 0} : Point{10, s - 10};
+        EXPECT_NEAR(distance(at[k], want), 0, 1e-12) << k;
+        EXPECT_NEAR(norm(tangent[k]), 1, 1e-12);
+        EXPECT_NEAR(distance(tangent[k], s <= 10 ? Point{1, 0} : Point{0, 1}), 0, 1e-12) << k;
+        EXPECT_EQ(index[k], (long long)k);
+        EXPECT_NEAR(left[k], 14 - s, 1e-12);
+    }
+    EXPECT_THROW(MapAlong(c, 0, [](const Point&, const Point&, long long, double) { return Nothing(); }), Error);
+    EXPECT_THROW(MapAlong(c, 1, AlongMapper()), Error);
+}

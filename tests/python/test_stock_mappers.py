@@ -153,3 +153,32 @@ def test_thin_lines_keeps_an_even_share_that_grows_with_the_field():
     assert Pow(Field(3.0), 2.0)(Point(0, 0)) == 9.0
     with pytest.raises(Exception, match="spacing"):
         ThinLines(JitterEdges("fill", THETA, 8, 20, 0.0), THETA, 0.0, 1.0)
+
+
+def test_smoothed_and_map_along_draw_strokes_hanging_from_a_smooth_line():
+    """Smoothed keeps a curve's ends and rounds its corner; MapAlong hands a Python mapper the
+    points every spacing along it (from half a spacing), with unit tangents, indices and the
+    length left, and gathers what it returns."""
+    from rockhatch.tex import MapAlong, Polyline, Smoothed
+
+    corner = Curves()
+    corner.curves = [Curve([Point(0, 0), Point(40, 0), Point(40, 40)], labels=["ridge"])]
+    line = Smoothed(corner, 4.0).curves[0]
+    assert (line.points[0].x, line.points[0].y) == (0, 0) and (line.points[-1].x, line.points[-1].y) == (40, 40)
+    assert "ridge" in line.labels
+    assert 0.1 < min(math.hypot(p.x - 40, p.y) for p in line.points) < 1.0
+    seen = []
+
+    def hang(foot, tangent, k, to_end):
+        seen.append((foot, tangent, k, to_end))
+        return Polyline([foot, foot + Point(-tangent.y, tangent.x)])
+
+    straight = Curves()
+    straight.curves = [Curve([Point(0, 0), Point(10, 0)])]
+    strokes = MapAlong(straight, 2.0, hang)
+    assert len(strokes.curves) == 5 and [k for _, _, k, _ in seen] == [0, 1, 2, 3, 4]
+    assert [f.x for f, _, _, _ in seen] == [1.0, 3.0, 5.0, 7.0, 9.0]
+    assert all((t.x, t.y) == (1.0, 0.0) for _, t, _, _ in seen)
+    assert [round(r, 9) for _, _, _, r in seen] == [9.0, 7.0, 5.0, 3.0, 1.0]
+    with pytest.raises(Exception, match="MapAlong"):
+        MapAlong(straight, 0.0, hang)

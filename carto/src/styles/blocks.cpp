@@ -66,9 +66,10 @@ const std::vector<StyleParam> kTone = {
     {"follow_fall_line", 1.0, "ratio", "1: strokes follow the local fall line; 0: one direction per face"},
 };
 const std::vector<StyleParam> kCrest = {
-    {"crest_spacing", 0.4, "mm", "distance between two crest strokes along a ridge"},
-    {"crest_length", 1.2, "mm", "longest crest stroke on low ground"},
-    {"crest_height_gain", 1.0, "ratio", "crest strokes grow by this fraction on the highest ground"},
+    {"crest_spacing", 0.4, "mm", "distance between two shadow-side strokes along a crest line"},
+    {"crest_length", 0.8, "mm", "longest shadow-side stroke on low ground"},
+    {"crest_height_gain", 0.5, "ratio", "shadow-side strokes grow by this fraction on the highest ground"},
+    {"crest_smoothing", 0.8, "mm", "crest lines are drawn smooth at this length (shorter bends and steps go)"},
 };
 const std::vector<StyleParam> kCross = {
     {"roughness_min", 0.01, "ratio", "roughness (0..1) below which no cross hatching is drawn"},
@@ -177,27 +178,68 @@ Arrangement ridge_peaks(const ControlFields& f, const ParamValues& p, const Face
     return MapToVertices(shape, StripesPartition(stripes(face.theta, p.at("peak_spacing"))));
 }
 
-Arrangement crest_strokes(const ControlFields& f, const ParamValues& p, const FaceReading& face) {
-    auto stroke = [f, p, face](const Vertex& v) {
-        const RidgeFoot foot = ridge_foot(f, face, v);
-        if (!foot.dark || !foot.has_into) return Nothing();
-        const Point apex = Location(v), into = LocationAt(foot.into, 0.5) - apex;
-        const double reach = norm(into);
-        if (reach == 0) return Nothing();
-        // The fall line on the crest itself is the mean of two opposite slopes: read it a
-        // little down the face instead.
-        double a = face.theta;
-        if (p.at("follow_fall_line") > 0) {
-            const double local = f.fall_line(apex + into * (std::min(reach, 0.5 * p.at("crest_length")) / reach));
-            if (!std::isnan(local)) a = local;
-        }
-        const Point d = dot(into, dir(a)) >= 0 ? dir(a) : -dir(a);
-        double h = f.height(apex);
-        if (std::isnan(h)) h = face.height;
-        const double len = p.at("crest_length") * (1 + p.at("crest_height_gain") * clamp01(h)) * Random(v, 0.4, 1.0, 5);
-        return Labelled(tex::Polyline({apex, apex + d * len}), "ridge");
+namespace {
+// Stroke k hanging from a crest line has (kShortestCrestStroke + (1 - kShortestCrestStroke) x
+// ThinRank(k)) of the longest length: golden-ratio ranks spread the lengths evenly, so the ink
+// fades down the slope from the line instead of ending in a comb's edge.
+constexpr double kShortestCrestStroke = 0.35;
+// Near a ridge's end the strokes shrink, to this fraction of their length at the end itself,
+// growing to their full length (1 - this) x crest_length from it: the fringe tapers with the crest.
+constexpr double kCrestEndTaper = 0.3;
+// A stroke leaves the crest line within 60 degrees of its normal (this cosine): where the fall
+// line runs nearly along the crest (a spur falling away), the line is drawn alone; a stroke
+// turned off the fall line there would cross the fill strokes and read as a net.
+constexpr double kCrestStrokeMinCos = 0.5;
+}  // namespace
+
+Arrangement crest_lines(const ParamValues& p) {
+    const double step = p.at("crest_smoothing");
+    return MapToEdges(
+        [step](const Edge& e) {
+            return HasLabel(e, "ridge") && HasLabel(e, "owned") ? Smoothed(ToCurve(e), step) : Nothing();
+        },
+        Outline());
+}
+
+Arrangement crest_strokes(const ControlFields& f, const ParamValues& p, const FaceReading& face, const Region& region) {
+    auto strokes = [f, p, face, region](const Edge& e) -> Curves {
+        if (!HasLabel(e, "ridge")) return Nothing();
+        // Which side of the ridge the face lies on, and whether it is the darker one (the
+        // density just across the ridge's middle; NaN: no face there).
+        const Point a = LocationAt(e, 0.49), b = LocationAt(e, 0.51), mid = LocationAt(e, 0.5);
+        const double l = distance(a, b);
+        if (l == 0) return Nothing();
+        const Point left{-(b - a).y / l, (b - a).x / l};
+        const double eps = std::min(0.5, 2.5 * l);  // 2.5 l: 5 % of the edge's length
+        const double side = region.contains(mid + left * eps) ? 1.0 : -1.0;
+        const double other = f.density(mid - left * (side * eps));
+        if (!(std::isnan(other) ? face.density >= 0.5 : face.density > other)) return Nothing();
+        const double longest = p.at("crest_length"), spacing = p.at("crest_spacing");
+        const bool follow = p.at("follow_fall_line") > 0;
+        auto hang = [&](const Point& foot, const Point& t, long long k, double to_end) -> Curves {
+            const Point n = Point{-t.y, t.x} * side;  // into the face
+            // The fall line on the crest itself averages two opposite slopes: read it a little
+            // down the face instead.
+            double angle = face.theta;
+            if (follow) {
+                const double local = f.fall_line(foot + n * (0.5 * longest));
+                if (!std::isnan(local)) angle = local;
+            }
+            Point d = dir(angle);
+            if (dot(d, n) < 0) d = -d;
+            if (dot(d, n) < kCrestStrokeMinCos) return Nothing();
+            double h = f.height(foot);
+            if (std::isnan(h)) h = face.height;
+            const double from_end = std::min((double(k) + 0.5) * spacing, to_end);
+            const double taper = std::min(1.0, kCrestEndTaper + from_end / longest);
+            const double len = longest * (1 + p.at("crest_height_gain") * clamp01(h)) *
+                               (kShortestCrestStroke + (1 - kShortestCrestStroke) * ThinRank(k)) * taper;
+            return Labelled(tex::Polyline({foot, foot + d * len}), "ridge");
+        };
+        // The feet on the crest line as crest_lines draws it.
+        return MapAlong(Smoothed(ToCurve(e), p.at("crest_smoothing")), spacing, hang);
     };
-    return MapToVertices(stroke, StripesPartition(stripes(face.theta, p.at("crest_spacing"))));
+    return MapToEdges(strokes, Outline());
 }
 
 double tone_coverage(const ParamValues& p, double shade) {
@@ -216,11 +258,12 @@ Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const F
         const Point c = Centroid(cell);
         double shade = f.shade(c);
         if (std::isnan(shade)) shade = face.density;
-        // The ceiling less what the crests and valleys already put in this cell (they run
-        // along the face's border, where cells reach out of the face: its part counts).
+        // The tone under the ceiling, less what the crests and valleys already put in this
+        // cell (they run along the face's border, where cells reach out of the face: its part
+        // counts): the cell's ink, lines included, follows the shade.
         const double area = area_within(region, box);
-        const double room = p.at("ink_max") - (area > 0 ? ink_area(spent, mm, &box) / area : 0.0);
-        const double target = std::min(tone_coverage(p, shade), room);
+        const double used = area > 0 ? ink_area(spent, mm, &box) / area : 0.0;
+        const double target = std::min(tone_coverage(p, shade), p.at("ink_max")) - used;
         if (!(target > 0)) return Nothing();
         const bool follow = p.at("follow_fall_line") > 0;
         double theta = face.theta;

@@ -61,20 +61,27 @@ struct RidgeFoot {
     tex::Edge into;
 };
 RidgeFoot ridge_foot(const ControlFields& f, const FaceReading& face, const tex::Vertex& v);
-// Crest strokes: where stripes at theta every crest_spacing meet a ridge on its darker
-// side, one stroke down the local fall line (read crest_length / 2 inside the face), its
-// length crest_length x (1 + crest_height_gain x relief) x a random 0.4 .. 1. Their upper
-// ends line up on the crest; the lit side gets none (Swiss-style: dark sides denser).
-Arrangement crest_strokes(const ControlFields& f, const ParamValues& p, const FaceReading& face);
+// The crest line: each ridge the face owns (a ridge between two faces is drawn once), drawn
+// whole and smooth at crest_smoothing (tex::Smoothed), its ends where the ridge ends.
+Arrangement crest_lines(const ParamValues& p);
+// Shadow-side strokes: along each ridge of the face `region` on its darker side, every
+// crest_spacing along the crest line (as crest_lines draws it), one stroke from the line into
+// the face down the local fall line (read crest_length / 2 inside the face), its length
+// crest_length x (1 + crest_height_gain x relief) x a golden-ratio share 0.35 .. 1, shorter
+// near the ridge's ends; none where the fall line runs within 30 degrees of the crest. The
+// lit side gets none (Swiss-style: dark sides denser).
+Arrangement crest_strokes(const ControlFields& f, const ParamValues& p, const FaceReading& face,
+                          const tex::Region& region);
 // The tone curve: ink coverage (stroke area over area) for a shade in 0..1,
 // tone_min + (tone_max - tone_min) x shade^tone_gamma.
 double tone_coverage(const ParamValues& p, double shade);
-// Coarse jittered cells, each hatched so that its fill and cross ink follows the tone of the
-// shade at its centre, under the ceiling ink_max less the ink `spent` has in the cell
-// (crests, valleys) over the cell's area inside the face `region`, with at least min_gap between fill strokes; fill strokes run along the
-// fall line read at the cell's centre and are turned to the fall line at their middles
-// (AlignToField) when follow_fall_line > 0, else along the face's orientation (and are
-// turned onto it: break-point jitter shifts strokes without tilting them).
+// Coarse jittered cells, each hatched so that its ink follows the tone of the shade at its
+// centre under the ceiling ink_max, the ink `spent` has in the cell (crests, valleys; over
+// the cell's area inside the face `region`) included, with at least min_gap between fill
+// strokes; fill strokes run along the fall line read at the cell's centre and are turned to
+// the fall line at their middles (AlignToField) when follow_fall_line > 0, else along the
+// face's orientation (and are turned onto it: break-point jitter shifts strokes without
+// tilting them).
 Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const FaceReading& face,
                            const tex::Region& region, const tex::Curves& spent);
 

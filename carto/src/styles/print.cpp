@@ -1,7 +1,7 @@
 // Print: the drawing of issue 16 after (g). Ink follows the shade through a tone curve
-// under a ceiling, strokes follow the fall line, crests are drawn by strokes falling from
-// them on their dark side. The face is drawn in two steps: the crests and valleys first,
-// then the fill and cross hatching in the ink they leave under the ceiling.
+// under a ceiling, strokes follow the fall line, crests are drawn as a smooth line with
+// strokes falling from it on its dark side. The face is drawn in two steps: the crests and
+// valleys first, then the fill and cross hatching in the ink they leave under the ceiling.
 #include <sstream>
 
 #include "blocks.hpp"
@@ -40,7 +40,8 @@ Builtin print() {
         check_tone(p);
         return Arrangement([f, p](const tex::Region& r) {
             const FaceReading face = read_face(f, r);
-            tex::Curves spent = tex::Crop(crest_strokes(f, p, face), tex::CROP)(r);
+            tex::Curves spent = tex::Crop(crest_strokes(f, p, face, r), tex::CROP)(r);
+            spent.append(crest_lines(p)(r));
             spent.append(valleys()(r));
             tex::Curves out = tex::Crop(toned_hatching(f, p, face, r, spent), tex::CROP)(r);
             out.append(spent);

@@ -4,7 +4,9 @@
 // threads like any C++ mapper and its random values are keyed like Random(cell, ...).
 #pragma once
 
+#include <functional>
 #include <string>
+#include <vector>
 
 #include "libtex/fields.hpp"
 #include "libtex/mapping.hpp"
@@ -39,5 +41,27 @@ EdgeMapper JitterEdges(const std::string& label, double theta, double across, do
 EdgeMapper ThinLines(EdgeMapper inner, double theta, double spacing, Field keep, Region owner = Region());
 // The rank of line k in the thinning order of ThinLines, in [0, 1).
 double ThinRank(long long k);
+
+// Corner cutting (Chaikin's scheme): `passes` rounds, each replacing every inner corner by the
+// points at 1/4 and 3/4 of its two segments. The end points stay where they are, so chains
+// that meet at their ends still meet; each round stays inside the previous polyline's hull.
+// Fewer than three points are returned as they are.
+std::vector<Point> CutCorners(std::vector<Point> pts, int passes);
+
+// A curve drawn smooth at the scale `step` (issue 16: a crest line with no stair steps or
+// raster kinks): its points every `step` of length from its first point, its last point
+// kept (one closer than step / 2 to it dropped), then three rounds of corner cutting. Bends
+// and steps shorter than about `step` go, longer shapes stay within step / 4 of the curve;
+// the ends stay put. A closed curve is smoothed as open at its first point. Each curve of
+// `c` is smoothed alone, its labels kept; labelled points are kept as they are.
+Curves Smoothed(const Curves& c, double step);
+
+// Mapping along a curve (issue 16: strokes hanging from a crest line): the points every
+// `spacing` of its length, the first half a spacing from its start, each handed to
+// f(point, unit tangent there, index k from 0, length left to the curve's end), and the
+// curves f returns, together in order (each curve of `c` in turn, k from 0 on each). A
+// curve shorter than half a spacing has none.
+using AlongMapper = std::function<Curves(const Point&, const Point&, long long, double)>;
+Curves MapAlong(const Curves& c, double spacing, const AlongMapper& f);
 
 }  // namespace tex
