@@ -38,6 +38,9 @@ export ASAN_OPTIONS="detect_leaks=1:strict_string_checks=1:detect_stack_use_afte
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:suppressions=$SUPP/ubsan.supp"
 export LSAN_OPTIONS="suppressions=$SUPP/lsan.supp:print_suppressions=0"
 
+# RH_SANITIZED=1: the slowest tests check their property on less work (tests/common/sanitized.hpp,
+# tests/python/conftest.py); the normal pass runs their full versions.
+export RH_SANITIZED=1
 # The gallery's tests carry the label gallery.
 EXCLUDE=(-LE gallery)
 [ "${RH_SANITIZE_GALLERY:-0}" != 0 ] && EXCLUDE=()
@@ -61,11 +64,11 @@ if [ "${RH_SANITIZE_PYTEST:-1}" != 0 ]; then
   # Debian's interpreter is not instrumented: the ASan runtime must be loaded first
   # (LD_PRELOAD), and leaks are not checked (CPython keeps its objects at exit by design).
   # Child processes (the rockhatch commands, python3 -m rockhatch, Dask's workers, QGIS's
-  # qgis_process) inherit the settings; RH_SANITIZED tells the tests (test_bad_inputs.py
-  # limits memory through ASan, not with an address-space limit).
+  # qgis_process) inherit the settings (test_bad_inputs.py then limits memory through ASan,
+  # not with an address-space limit).
   LIBASAN="$(g++ -print-file-name=libasan.so)"
   LIBUBSAN="$(g++ -print-file-name=libubsan.so)"
-  RH_BUILD_DIR="$ROOT/$BUILD_DIR" RH_SANITIZED=1 \
+  RH_BUILD_DIR="$ROOT/$BUILD_DIR" \
   LD_PRELOAD="$LIBASAN $LIBUBSAN" \
   ASAN_OPTIONS="detect_leaks=0:suppressions=$SUPP/asan.supp" \
   QT_QPA_PLATFORM=offscreen \

@@ -16,6 +16,9 @@ def build_dir() -> pathlib.Path:
 PYTHON_DIR = build_dir() / "python"
 sys.path.insert(0, str(PYTHON_DIR))
 STYLES = ROOT / "styles"
+# Under the sanitizers (scripts/sanitize.sh sets RH_SANITIZED=1) the slowest tests check their
+# property on less work (fewer runs, smaller windows); the normal pass keeps the full versions.
+SANITIZED = os.environ.get("RH_SANITIZED") == "1"
 GALLERY_PY = ROOT / "bindings" / "examples" / "gallery.py"
 
 

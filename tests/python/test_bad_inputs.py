@@ -9,14 +9,13 @@ import subprocess
 import pytest
 
 import bad_inputs
-from conftest import ROOT
+from conftest import ROOT, SANITIZED
 
 
 # A refused run must refuse, not try: 8 GB is far more than any row needs to fail. Under the
 # sanitizers (scripts/sanitize.sh sets RH_SANITIZED=1) ASan reserves terabytes of address
 # space for its shadow memory, so the limit goes through ASan's allocator instead: no single
 # allocation over 8 GB, and malloc returns null rather than aborting, as it would at the limit.
-SANITIZED = os.environ.get("RH_SANITIZED") == "1"
 
 
 def _limit_memory():

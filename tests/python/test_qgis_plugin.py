@@ -17,7 +17,7 @@ os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 os.environ["GDAL_PAM_ENABLED"] = "NO"
 import qgis.core as qgis_core  # noqa: E402  (python3-qgis: scripts/setup.sh installs it)
 
-from conftest import PYTHON_DIR, ROOT, partition_with_scree, python_env  # noqa: E402
+from conftest import PYTHON_DIR, ROOT, SANITIZED, partition_with_scree, python_env  # noqa: E402
 from osgeo import gdal, ogr  # noqa: E402
 
 from qgis.core import (QgsApplication, QgsProcessingException, QgsProcessingFeedback, QgsProject,  # noqa: E402
@@ -627,8 +627,9 @@ def test_cancel_stops_quickly_and_leaves_no_output(qgis, sample_dir, tmp_path, p
     # The pipeline stops at its next progress report: while hatching, when a face is done,
     # so the faces in flight finish first. At 1:5000 with 0.15 mm spacing one sample face
     # took up to 1.65 s under a loaded CI run (pytest -n 2); an uncancelled run takes
-    # several seconds.
-    assert stopped < 3.0
+    # several seconds. Under the sanitizers every face takes about ten times longer, and so
+    # may the face in flight.
+    assert stopped < (30.0 if SANITIZED else 3.0)
     assert not list(tmp_path.iterdir())
 
 
