@@ -309,15 +309,15 @@ std::size_t merge_gpkg(const std::vector<std::string>& parts, const std::string&
     if (parts.empty()) throw Error(Code::Usage, "merge: no GeoPackage to merge into '" + path + "'");
     std::string crs_wkt;
     std::size_t total = 0;
+    bool crests = false;  // a crest layer in any part: one in the result
     for (const auto& part : parts) {
         auto ds = open_hatches(part, "tile");
         for (int fam = 0; fam < kRockFamilies; ++fam)
             total += std::size_t(std::max<GIntBig>(
                 0, ds->GetLayerByName((std::string("hatch_") + family_name(Family(fam))).c_str())->GetFeatureCount()));
         if (crs_wkt.empty()) crs_wkt = wkt2_of(ds->GetLayer(0)->GetSpatialRef());
+        crests = crests || ds->GetLayerByName("crest");
     }
-    bool crests = false;  // a crest layer in any part: one in the result
-    for (const auto& part : parts) crests = crests || open_hatches(part, "tile")->GetLayerByName("crest");
     std::size_t n = 0;
     write_hatch_gpkg(path, crs_wkt, spatial_index, total, keep_going, [&](Family f, const HatchSink& sink) {
         // One part open at a time: memory does not grow with the number of tiles.
