@@ -39,6 +39,11 @@ COARSE = [
     ("cell_spacing", 3.0, "mm", "width of the coarse jittered cells that carry local density"),
     ("cell_jitter", 1.0, "ratio", "jitter of the coarse cells"),
 ]
+# print's tone cells: COARSE's parameters, 2 mm wide.
+TONE_CELLS = [
+    ("cell_spacing", 2.0, "mm", "width of the coarse jittered cells that carry local tone"),
+    ("cell_jitter", 1.0, "ratio", "jitter of the coarse cells"),
+]
 PEAKS = [
     ("peak_spacing", 2.0, "mm", "distance between two ridge shapes"),
     ("peak_length", 2.0, "mm", "length of a ridge shape down the slope"),
@@ -245,13 +250,14 @@ CREST_STROKE_MIN_COS = 0.5
 
 
 def crest_lines(p):
-    """The crest line: each ridge the face owns (drawn once), whole and smooth at crest_smoothing."""
+    """The crest line: each ridge on the face's border smooth at crest_smoothing (the same line
+    from both faces), cut to the face: each face draws its part of it."""
     step = p["crest_smoothing"]
 
     def line(e):
-        return Smoothed(ToCurve(e), step) if HasLabel(e, "ridge") and HasLabel(e, "owned") else Nothing()
+        return Smoothed(ToCurve(e), step) if HasLabel(e, "ridge") else Nothing()
 
-    return MapToEdges(line, Outline())
+    return Crop(MapToEdges(line, Outline()), CROP)
 
 
 def crest_strokes(f, p, face, region):

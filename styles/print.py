@@ -21,7 +21,7 @@ Parameters (--param NAME=VALUE; "mm" are millimetres on paper at --scale):
     ink_max            0.4  ratio  ceiling of the ink coverage of every cell, crests and valleys included
     min_gap            0.15 mm     least white paper between two neighbouring fill strokes
     follow_fall_line   1.0  ratio  1: strokes follow the local fall line; 0: one direction per face
-    cell_spacing       3.0  mm     width of the coarse jittered cells that carry local density
+    cell_spacing       2.0  mm     width of the coarse jittered cells that carry local tone
     cell_jitter        1.0  ratio  jitter of the coarse cells
     gap                0.95 ratio  each hatch is shortened to this fraction, leaving gaps
     crest_spacing      0.4  mm     distance between two shadow-side strokes along a crest line
@@ -43,14 +43,14 @@ Run on its own, or through the rockhatch command:
 """
 import sys
 
-from _blocks import (COARSE, BALANCED, CREST, CROSS, TONE, crest_lines, crest_strokes, read_face, toned_hatching,
+from _blocks import (BALANCED, CREST, CROSS, TONE, TONE_CELLS, crest_lines, crest_strokes, read_face, toned_hatching,
                      valleys)
 from rockhatch.tex import CROP, Arrangement, Crop
 
 NAME = "print"
 FIGURE = "after 5.4g"
 TITLE = "print tone: ink follows the shade under a ceiling, strokes along the fall line, crests"
-PARAMS = TONE + COARSE + BALANCED + CREST + CROSS
+PARAMS = TONE + TONE_CELLS + BALANCED + CREST + CROSS
 
 
 def check_tone(p):

@@ -130,7 +130,9 @@ tex::Region face_region(const Partition& p, std::size_t face) {
     const RockFace& f = p.faces[face];
     // Runs of border segments with the same kind and owner become one labelled edge. A
     // border shared with another face is owned by the face with the smaller id, so that
-    // what lies on it (a valley) is drawn once.
+    // what lies on it (a valley) is drawn once. A ridge run also ends where the face across
+    // changes: both faces along a ridge then see the same edge (in opposite directions), and
+    // a style that draws its own part of a line along it (print's crest) draws the same line.
     tex::Curves edges;
     std::size_t k = 0;
     auto labels_of = [&](const BoundarySegment& s) {
@@ -143,9 +145,15 @@ tex::Region face_region(const Partition& p, std::size_t face) {
         // Segments k .. k + n - 1 of f.boundary belong to this ring, in order.
         if (n == 0) return;
         std::vector<tex::Labels> l(n);
-        for (std::size_t i = 0; i < n; ++i) l[i] = labels_of(f.boundary[k + i]);
+        std::vector<std::int64_t> across(n);  // the face across a ridge segment, else -2
+        for (std::size_t i = 0; i < n; ++i) {
+            const BoundarySegment& b = f.boundary[k + i];
+            l[i] = labels_of(b);
+            across[i] = b.kind == LineKind::Ridge ? std::int64_t(b.neighbor) : -2;
+        }
+        auto same = [&](std::size_t i, std::size_t j) { return l[i] == l[j] && across[i] == across[j]; };
         std::size_t start = 0;
-        while (start < n && l[start] == l[(start + n - 1) % n]) ++start;
+        while (start < n && same(start, (start + n - 1) % n)) ++start;
         if (start == n) {  // one kind all round: a closed edge
             tex::Curve c;
             for (std::size_t i = 0; i < n; ++i) c.points.push_back(f.boundary[k + i].a);
@@ -159,7 +167,7 @@ tex::Region face_region(const Partition& p, std::size_t face) {
                 c.labels = l[i0];
                 c.points.push_back(f.boundary[k + i0].a);
                 std::size_t len = 0;
-                while (s + len < n && l[(start + s + len) % n] == l[i0]) {
+                while (s + len < n && same((start + s + len) % n, i0)) {
                     c.points.push_back(f.boundary[k + (start + s + len) % n].b);
                     ++len;
                 }

@@ -1,5 +1,6 @@
 #include "libtex/mappers.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -82,8 +83,36 @@ std::vector<Point> open_points(const Curve& c) {
     return pts;
 }
 
-Curve smoothed(const Curve& c, double step) {
+bool point_before(const Point& a, const Point& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); }
+
+// The curve from its canonical start in its canonical direction (an open one from the
+// smaller of its ends, a closed one from its smallest point towards the smaller of that
+// point's neighbours), and whether it was turned round: two faces that see one border in
+// opposite directions smooth the same line.
+Curve canonical(const Curve& c, bool& reversed) {
+    Curve out = c;
+    reversed = false;
+    std::vector<Point>& p = out.points;
+    if (p.size() < 2) return out;
+    if (!c.closed) {
+        if (point_before(p.back(), p.front())) {
+            std::reverse(p.begin(), p.end());
+            reversed = true;
+        }
+        return out;
+    }
+    std::rotate(p.begin(), std::min_element(p.begin(), p.end(), point_before), p.end());
+    if (p.size() > 2 && point_before(p.back(), p[1])) {
+        std::reverse(p.begin() + 1, p.end());
+        reversed = true;
+    }
+    return out;
+}
+
+Curve smoothed(const Curve& in, double step) {
     constexpr int kPasses = 3;  // three rounds: the curvature varies smoothly at the step's scale
+    bool reversed = false;
+    const Curve c = canonical(in, reversed);
     const std::vector<Point> pts = open_points(c);
     Curve out;
     out.labels = c.labels;
@@ -97,6 +126,7 @@ Curve smoothed(const Curve& c, double step) {
     if (samples.size() > 1 && distance(samples.back(), pts.back()) < step / 2) samples.pop_back();
     samples.push_back(pts.back());
     out.points = CutCorners(std::move(samples), kPasses);
+    if (reversed) std::reverse(out.points.begin(), out.points.end());
     return out;
 }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "helpers.hpp"
+#include "libtex/discrete.hpp"
 
 using namespace tex;
 
@@ -321,6 +322,42 @@ TEST(Smoothed, TakesTheStairStepsOutAndKeepsTheEnds) {
     EXPECT_GT(nearest, 0.1);
     EXPECT_THROW(Smoothed(c, 0), Error);
     EXPECT_THROW(Smoothed(c, NAN), Error);
+}
+
+// Two faces see their common border in opposite directions, and a closed border from
+// different starts: both must draw the same smoothed line (issue 16: each face draws the
+// part of the crest line inside it).
+TEST(Smoothed, GivesTheSameLineWhicheverWayTheCurveRuns) {
+    Curve wiggle;
+    for (int i = 0; i <= 30; ++i) wiggle.points.push_back({3.0 * i, (i % 3 == 0) ? 0.0 : 1.7 * (i % 5)});
+    Curve back = wiggle;
+    std::reverse(back.points.begin(), back.points.end());
+    Curves a, b;
+    a.curves.push_back(wiggle);
+    b.curves.push_back(back);
+    const std::vector<Point> sa = Smoothed(a, 4).curves[0].points;
+    std::vector<Point> sb = Smoothed(b, 4).curves[0].points;
+    ASSERT_GT(sa.size(), 10u);
+    EXPECT_EQ(sb.front(), back.points.front());  // each keeps its own direction
+    std::reverse(sb.begin(), sb.end());
+    EXPECT_EQ(sa, sb);
+    // Sampled from one end only, the two would differ: the test can fail.
+    std::vector<Point> from_back = CutCorners(disc::RegularPinning1D(disc::Polyline{back.points, false}, 0.25), 3);
+    std::reverse(from_back.begin(), from_back.end());
+    EXPECT_NE(from_back, sa);
+    // A closed ring, from another start and the other way round: the same ring of points.
+    Curve ring{{{0, 0}, {10, 1}, {20, 0}, {21, 10}, {20, 20}, {10, 19}, {0, 20}, {1, 10}}};
+    ring.closed = true;
+    Curve other = ring;
+    std::rotate(other.points.begin(), other.points.begin() + 3, other.points.end());
+    std::reverse(other.points.begin(), other.points.end());
+    Curves r1, r2;
+    r1.curves.push_back(ring);
+    r2.curves.push_back(other);
+    std::vector<Point> p1 = Smoothed(r1, 4).curves[0].points, p2 = Smoothed(r2, 4).curves[0].points;
+    std::sort(p1.begin(), p1.end(), [](const Point& u, const Point& v) { return u.x < v.x || (u.x == v.x && u.y < v.y); });
+    std::sort(p2.begin(), p2.end(), [](const Point& u, const Point& v) { return u.x < v.x || (u.x == v.x && u.y < v.y); });
+    EXPECT_EQ(p1, p2);
 }
 
 // Points every `spacing` of length, the first half a spacing in, with the unit tangent, the

@@ -42,6 +42,10 @@ const std::vector<StyleParam> kCoarse = {
     {"cell_spacing", 3.0, "mm", "width of the coarse jittered cells that carry local density"},
     {"cell_jitter", 1.0, "ratio", "jitter of the coarse cells"},
 };
+const std::vector<StyleParam> kToneCells = {
+    {"cell_spacing", 2.0, "mm", "width of the coarse jittered cells that carry local tone"},
+    {"cell_jitter", 1.0, "ratio", "jitter of the coarse cells"},
+};
 const std::vector<StyleParam> kPeaks = {
     {"peak_spacing", 2.0, "mm", "distance between two ridge shapes"},
     {"peak_length", 2.0, "mm", "length of a ridge shape down the slope"},
@@ -194,11 +198,9 @@ constexpr double kCrestStrokeMinCos = 0.5;
 
 Arrangement crest_lines(const ParamValues& p) {
     const double step = p.at("crest_smoothing");
-    return MapToEdges(
-        [step](const Edge& e) {
-            return HasLabel(e, "ridge") && HasLabel(e, "owned") ? Smoothed(ToCurve(e), step) : Nothing();
-        },
-        Outline());
+    return Crop(MapToEdges([step](const Edge& e) { return HasLabel(e, "ridge") ? Smoothed(ToCurve(e), step) : Nothing(); },
+                           Outline()),
+                CROP);
 }
 
 Arrangement crest_strokes(const ControlFields& f, const ParamValues& p, const FaceReading& face, const Region& region) {

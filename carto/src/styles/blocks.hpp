@@ -15,6 +15,9 @@ using tex::Arrangement;
 // Parameter lists (defaults follow App. E at 1:10000).
 std::vector<StyleParam> fill_params(double length_mm, double jitter);
 extern const std::vector<StyleParam> kTriangles, kCoarse, kPeaks, kBalanced, kHigh, kCross, kTone, kCrest;
+// print's tone cells: kCoarse's parameters, 2 mm wide (3 mm cells, 150 m at 1:50000, let the
+// ink of a block follow its cell more than its own shade: rho 0.77 on the sample there).
+extern const std::vector<StyleParam> kToneCells;
 std::vector<StyleParam> operator+(std::vector<StyleParam> a, const std::vector<StyleParam>& b);
 
 // What a style reads about the face it draws (the region it is evaluated on): the
@@ -61,8 +64,9 @@ struct RidgeFoot {
     tex::Edge into;
 };
 RidgeFoot ridge_foot(const ControlFields& f, const FaceReading& face, const tex::Vertex& v);
-// The crest line: each ridge the face owns (a ridge between two faces is drawn once), drawn
-// whole and smooth at crest_smoothing (tex::Smoothed), its ends where the ridge ends.
+// The crest line: each ridge on the face's border smoothed at crest_smoothing
+// (tex::Smoothed, the same line from both faces), its ends where the ridge ends, cut to the
+// face: each face draws its part, the two faces along a ridge the whole line between them.
 Arrangement crest_lines(const ParamValues& p);
 // Shadow-side strokes: along each ridge of the face `region` on its darker side, every
 // crest_spacing along the crest line (as crest_lines draws it), one stroke from the line into

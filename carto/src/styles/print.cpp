@@ -35,7 +35,7 @@ Builtin print() {
     Builtin b;
     b.info = {"print", "after 5.4g",
               "print tone: ink follows the shade under a ceiling, strokes along the fall line, crests",
-              kTone + kCoarse + kBalanced + kCrest + kCross};
+              kTone + kToneCells + kBalanced + kCrest + kCross};
     b.program = [](const ControlFields& f, const ParamValues& p) {
         check_tone(p);
         return Arrangement([f, p](const tex::Region& r) {

@@ -52,8 +52,10 @@ std::vector<Point> CutCorners(std::vector<Point> pts, int passes);
 // raster kinks): its points every `step` of length from its first point, its last point
 // kept (one closer than step / 2 to it dropped), then three rounds of corner cutting. Bends
 // and steps shorter than about `step` go, longer shapes stay within step / 4 of the curve;
-// the ends stay put. A closed curve is smoothed as open at its first point. Each curve of
-// `c` is smoothed alone, its labels kept; labelled points are kept as they are.
+// the ends stay put. The line does not depend on the way the curve runs: an open curve is
+// smoothed from the smaller of its ends (x, then y) and turned back; a closed one as open at
+// its smallest point, towards the smaller of that point's neighbours. Each curve of `c` is
+// smoothed alone, its labels kept; labelled points are kept as they are.
 Curves Smoothed(const Curves& c, double step);
 
 // Mapping along a curve (issue 16: strokes hanging from a crest line): the points every
