@@ -50,6 +50,20 @@ def median_run(cmd, runs):
 
 PARTITION_MARK = "<!-- partition: written by bench/bench_carto.py -->"
 STYLES_MARK = "<!-- styles: written by bench/bench_carto.py -->"
+PRINT_MARK = "<!-- print quality: copied by bench/bench_carto.py from docs/print-quality.md -->"
+
+
+def print_quality_section():
+    """Issue 16's print measures, as bench/print_quality.py last wrote them to
+    docs/print-quality.md (it draws Chamonix.tif at three scales: run it on its own)."""
+    source = ROOT / "docs" / "print-quality.md"
+    if not source.exists():
+        return ""
+    lines = [line for line in source.read_text().splitlines()
+             if not line.startswith("<!--") and not line.startswith("# ")]
+    body = "\n".join(lines).strip()
+    return (f"{PRINT_MARK}\n\n### Print quality (issue 16)\n\nFrom [print-quality.md](print-quality.md), "
+            f"written by `bench/print_quality.py`.\n\n{body}\n")
 
 
 def knows_style(exe, style):
@@ -249,6 +263,9 @@ def main():
                 else:
                     f.write(f"| {label} | {t} | {wall:.2f} s | {rss:.0f} MB | {hatches} | {rate:.0f} |\n")
             f.write("\n" + styles + "\n" + partition)
+            quality = print_quality_section()
+            if quality:
+                f.write("\n" + quality)
         print(f"report written to {args.markdown}")
 
 
