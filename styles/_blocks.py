@@ -42,7 +42,7 @@ COARSE = [
 # print's tone cells: COARSE's parameters, 2 mm wide.
 TONE_CELLS = [
     ("cell_spacing", 2.0, "mm", "width of the coarse jittered cells that carry local tone"),
-    ("cell_jitter", 1.0, "ratio", "jitter of the coarse cells"),
+    COARSE[1],  # cell_jitter
 ]
 PEAKS = [
     ("peak_spacing", 2.0, "mm", "distance between two ridge shapes"),

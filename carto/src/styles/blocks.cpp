@@ -44,7 +44,7 @@ const std::vector<StyleParam> kCoarse = {
 };
 const std::vector<StyleParam> kToneCells = {
     {"cell_spacing", 2.0, "mm", "width of the coarse jittered cells that carry local tone"},
-    {"cell_jitter", 1.0, "ratio", "jitter of the coarse cells"},
+    kCoarse[1],  // cell_jitter
 };
 const std::vector<StyleParam> kPeaks = {
     {"peak_spacing", 2.0, "mm", "distance between two ridge shapes"},
