@@ -83,8 +83,6 @@ std::vector<Point> open_points(const Curve& c) {
     return pts;
 }
 
-bool point_before(const Point& a, const Point& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); }
-
 // The curve from its canonical start in its canonical direction (an open one from the
 // smaller of its ends, a closed one from its smallest point towards the smaller of that
 // point's neighbours), and whether it was turned round: two faces that see one border in
@@ -95,14 +93,14 @@ Curve canonical(const Curve& c, bool& reversed) {
     std::vector<Point>& p = out.points;
     if (p.size() < 2) return out;
     if (!c.closed) {
-        if (point_before(p.back(), p.front())) {
+        if (p.back() < p.front()) {
             std::reverse(p.begin(), p.end());
             reversed = true;
         }
         return out;
     }
-    std::rotate(p.begin(), std::min_element(p.begin(), p.end(), point_before), p.end());
-    if (p.size() > 2 && point_before(p.back(), p[1])) {
+    std::rotate(p.begin(), std::min_element(p.begin(), p.end()), p.end());
+    if (p.size() > 2 && p.back() < p[1]) {
         std::reverse(p.begin() + 1, p.end());
         reversed = true;
     }

@@ -355,8 +355,8 @@ TEST(Smoothed, GivesTheSameLineWhicheverWayTheCurveRuns) {
     r1.curves.push_back(ring);
     r2.curves.push_back(other);
     std::vector<Point> p1 = Smoothed(r1, 4).curves[0].points, p2 = Smoothed(r2, 4).curves[0].points;
-    std::sort(p1.begin(), p1.end(), [](const Point& u, const Point& v) { return u.x < v.x || (u.x == v.x && u.y < v.y); });
-    std::sort(p2.begin(), p2.end(), [](const Point& u, const Point& v) { return u.x < v.x || (u.x == v.x && u.y < v.y); });
+    std::sort(p1.begin(), p1.end());
+    std::sort(p2.begin(), p2.end());
     EXPECT_EQ(p1, p2);
 }
 
