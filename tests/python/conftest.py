@@ -40,6 +40,20 @@ def gallery_exe() -> pathlib.Path:
 SAMPLE = ROOT / "data" / "sample_montblanc"
 SHARED_DEM = ROOT.parent / "shared" / "data" / "montblanc" / "Chamonix.tif"
 
+# The tests on ../shared's real DEM: skipped when it is absent, and left to the normal pass
+# under the sanitizers, where they took a quarter of the Python tests' time: each runs, on a
+# larger real DEM, the code paths that the sample's tests run there.
+real_dem = pytest.mark.skipif(
+    not SHARED_DEM.exists() or SANITIZED,
+    reason=f"{SHARED_DEM} is absent (../shared is not beside the project)" if not SHARED_DEM.exists()
+    else "RH_SANITIZED=1: the real-DEM tests run in the normal pass")
+
+
+def one_under_sanitizers(values):
+    """Values of a parametrized test: all of them in the normal pass, the first only under the
+    sanitizers, for a test whose other values take the same code path on other sizes or counts."""
+    return values[:1] if SANITIZED else values
+
 
 @pytest.fixture(scope="session")
 def rockhatch_exe() -> pathlib.Path:

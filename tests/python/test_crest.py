@@ -8,7 +8,7 @@ import sys
 import pytest
 from osgeo import ogr
 
-from conftest import SHARED_DEM, python_env
+from conftest import SHARED_DEM, python_env, real_dem
 from rockhatch import RockhatchError, carto
 
 
@@ -89,7 +89,7 @@ def test_an_exemplar_that_cannot_make_one_band_is_refused(rockhatch_exe, sample_
     assert len(lines) == 1 and "cannot make one connected crest band" in lines[0]
 
 
-@pytest.mark.skipif(not SHARED_DEM.exists(), reason=f"{SHARED_DEM} absent (real DEM kept outside the project)")
+@real_dem
 def test_every_ridge_of_the_real_dem_is_one_valid_polygon():
     """The automatic partition of Chamonix.tif (599 ridge lines): each ornament drawn is one
     polygon GEOS finds valid (its outer ring and the holes inside it); the ridges skipped

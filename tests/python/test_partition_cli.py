@@ -4,7 +4,7 @@ import subprocess
 import pytest
 from osgeo import ogr
 
-from conftest import SHARED_DEM
+from conftest import SHARED_DEM, real_dem
 from partition_quality import precision_recall
 
 ogr.UseExceptions()
@@ -122,7 +122,7 @@ def test_errors(rockhatch_exe, sample_dir, tmp_path):
     assert run(rockhatch_exe, "partition", "--help").returncode == 0
 
 
-@pytest.mark.skipif(not SHARED_DEM.exists(), reason=f"{SHARED_DEM} absent (real DEM kept outside the project)")
+@real_dem
 def test_real_dem(rockhatch_exe, tmp_path):
     out = tmp_path / "cham.gpkg"
     r = run(rockhatch_exe, "partition", "--dem", SHARED_DEM, "-o", out, "--scale", "25000", "-q")
@@ -148,7 +148,7 @@ def axis_share(polys):
     return along / total
 
 
-@pytest.mark.skipif(not SHARED_DEM.exists(), reason=f"{SHARED_DEM} absent (real DEM kept outside the project)")
+@real_dem
 @pytest.mark.parametrize("scale", [10000, 25000])
 def test_real_dem_borders_are_generalised_without_specks_or_small_holes(rockhatch_exe, tmp_path, scale):
     # Issue 16 on a real DEM (31 m cells): under 10% of the border length along a grid axis

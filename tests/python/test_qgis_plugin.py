@@ -17,7 +17,7 @@ os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 os.environ["GDAL_PAM_ENABLED"] = "NO"
 import qgis.core as qgis_core  # noqa: E402  (python3-qgis: scripts/setup.sh installs it)
 
-from conftest import PYTHON_DIR, ROOT, SANITIZED, partition_with_scree, python_env  # noqa: E402
+from conftest import PYTHON_DIR, ROOT, SANITIZED, one_under_sanitizers, partition_with_scree, python_env  # noqa: E402
 from osgeo import gdal, ogr  # noqa: E402
 
 from qgis.core import (QgsApplication, QgsProcessingException, QgsProcessingFeedback, QgsProject,  # noqa: E402
@@ -182,7 +182,7 @@ def test_style_seed_params_and_script(qgis, sample_dir, tmp_path):
     assert (tmp_path / "s.svg").read_bytes() == (tmp_path / "q.svg").read_bytes()
 
 
-@pytest.mark.parametrize("style,layer", [("scree", "hatch_stone"), ("slope-hachures", "hatch_hachure")])
+@pytest.mark.parametrize("style,layer", one_under_sanitizers([("scree", "hatch_stone"), ("slope-hachures", "hatch_hachure")]))
 def test_terrain_styles_through_the_algorithm(qgis, sample_dir, tmp_path, style, layer):
     # The same drawing as carto.run, and the filled layer loaded as a polygon layer.
     from rockhatch import carto

@@ -7,7 +7,7 @@ import pytest
 from osgeo import gdal, ogr
 
 from bad_inputs import partition_file
-from conftest import SHARED_DEM
+from conftest import SANITIZED, SHARED_DEM, one_under_sanitizers
 
 gdal.UseExceptions()
 ogr.UseExceptions()
@@ -96,8 +96,9 @@ def test_seed_changes_the_hatches(rockhatch_exe, sample_dir, tmp_path):
     assert (tmp_path / "s1.svg").read_bytes() != (tmp_path / "s2.svg").read_bytes()
 
 
-@pytest.mark.parametrize("style", ["noisy", "ridge-triangles", "density-cells", "fine-ridges", "balanced",
-                                   "high-ridges", "bidirectional", "print"])
+# Under the sanitizers "print" only: test_styles runs every style's code there.
+@pytest.mark.parametrize("style", one_under_sanitizers(["print", "noisy", "ridge-triangles", "density-cells",
+                                                        "fine-ridges", "balanced", "high-ridges", "bidirectional"]))
 def test_every_style_runs(rockhatch_exe, sample_dir, tmp_path, style):
     r = run(rockhatch_exe, *sample_args(sample_dir), "-q", "--style", style, "-o", tmp_path / "o.gpkg")
     assert r.returncode == 0, r.stderr
@@ -206,6 +207,8 @@ def test_a_file_with_a_temporary_looking_name_is_never_touched(rockhatch_exe, sa
 def real_partition(tmp_path_factory):
     if not SHARED_DEM.exists():
         pytest.skip(f"{SHARED_DEM} is absent (../shared is not beside the project)")
+    if SANITIZED:
+        pytest.skip("RH_SANITIZED=1: the real-DEM tests run in the normal pass (conftest.real_dem)")
     from realdem import grid_partition
     path = tmp_path_factory.mktemp("real") / "grid.gpkg"
     n = grid_partition(SHARED_DEM, path, 90)

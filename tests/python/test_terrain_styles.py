@@ -7,7 +7,7 @@ import pytest
 from osgeo import gdal, ogr
 
 from rockhatch import carto
-from conftest import SHARED_DEM, partition_with_scree
+from conftest import SHARED_DEM, partition_with_scree, real_dem
 
 gdal.UseExceptions()
 
@@ -114,7 +114,7 @@ def test_no_hachure_in_nodata(rockhatch_exe, sample_dir, tmp_path):
             assert a[r_, c] != nodata, (x, y)
 
 
-@pytest.mark.skipif(not SHARED_DEM.exists(), reason=f"{SHARED_DEM} is absent (the shared Mont Blanc data)")
+@real_dem
 @pytest.mark.parametrize("style,layer", [("scree", "hatch_stone"), ("slope-hachures", "hatch_hachure")])
 def test_on_chamonix(rockhatch_exe, tmp_path, style, layer):
     # A 160 x 160 cell crop of the real DEM (read in place, cropped into tmp_path), its rock

@@ -334,6 +334,7 @@ class _Cluster:
     def __init__(self, mine, workers, summary):
         self.mine, self.workers, self.summary = mine, workers, summary
         self.client = self.local = None
+        self.before = set()  # pids of this process's children before the local cluster started
 
     def get(self):
         if self.client is not None:
@@ -348,6 +349,7 @@ class _Cluster:
             # their path, set in their environment only).
             here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
             path = os.pathsep.join([here] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p])
+            self.before = {p.pid for p in _children()}
             self.local = LocalCluster(n_workers=self.workers, threads_per_worker=1, processes=True,
                                       # Unasked, the scheduler's HTTP server takes any free
                                       # port: with None it tries 8787 and warns on stderr
@@ -363,10 +365,43 @@ class _Cluster:
         return self.client
 
     def close(self):
+        # The worker processes of the local cluster, listed now (a nanny, which lives in this
+        # process, starts a new worker when one is killed): the children multiprocessing
+        # spawned since the cluster started. The caller's own children are left alone.
+        procs = [p for p in _children() if p.pid not in self.before and _spawned_worker(p)] if self.local else []
         if self.client is not None:
             self.client.close()
         if self.local is not None:
             self.local.close()
+        # On a busy machine Dask's shutdown can time out and leave a worker computing: it could
+        # then write a tile after the run has returned. None outlives close().
+        if procs:
+            import psutil
+
+            for p in procs:
+                try:
+                    p.kill()  # psutil checks that the pid was not reused
+                except psutil.Error:  # NoSuchProcess: stopped by close() as it should
+                    pass
+            psutil.wait_procs(procs, timeout=10)
+
+
+def _children():
+    """This process's child processes (psutil, a dependency of distributed)."""
+    import psutil
+
+    return psutil.Process().children()
+
+
+def _spawned_worker(p):
+    """Whether a child process is one multiprocessing spawned to run a function (a Dask
+    worker), not its resource tracker, which outlives clusters and is shared by them."""
+    import psutil
+
+    try:
+        return "spawn_main" in " ".join(p.cmdline())
+    except psutil.Error:
+        return False
 
 
 def _count_tile(summary, r):
