@@ -591,6 +591,18 @@ CrestResult
         .def_readonly("network", &ExtractResult::network, "all traced ridges and thalwegs in the rock")
         .def_readonly("notes", &ExtractResult::notes);
     m.def(
+        "extract_option_names",
+        [] {
+            std::vector<std::pair<std::string, bool>> out;
+            for (const auto& e : extract_option_names()) out.emplace_back(e.name, e.takes_value);
+            return out;
+        },
+        "(name, takes a value) of the extraction's tuning options, as rockhatch partition spells them");
+    m.def("check_extract_options", &check_extract_options, py::arg("options"),
+          "the ranges of the tuning options (RockhatchError, code 2); extract_partition checks them first");
+    m.def("set_extract_option", &set_extract_option, py::arg("options"), py::arg("name"), py::arg("value") = "",
+          "sets one tuning option from its command-line value; False when `name` is not one");
+    m.def(
         "extract_partition",
         [](const ExtractOptions& o, const py::object& cb) { return extract_partition(o, to_progress(cb)); },
         py::arg("options"), py::arg("progress") = py::none(), py::call_guard<py::gil_scoped_release>(),

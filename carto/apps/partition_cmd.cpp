@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "carto/cli.hpp"
 #include "carto/error.hpp"
 #include "carto/extract.hpp"
 #include "carto/output.hpp"
@@ -60,13 +61,6 @@ const char* kUsage =
     "exit codes: 0 ok, 1 failure, 2 usage, 3 missing input, 4 no CRS, 6 bad layer or no rock,\n"
     "9 output exists, is an input or cannot be written, 10 cancelled\n";
 
-double number(const std::string& opt, const std::string& v) {
-    char* end = nullptr;
-    const double d = std::strtod(v.c_str(), &end);
-    if (v.empty() || *end != 0 || !std::isfinite(d)) throw Error(Code::Usage, opt + ": '" + v + "' is not a number");
-    return d;
-}
-
 }  // namespace
 
 int partition_main(int argc, char** argv) {
@@ -89,29 +83,23 @@ int partition_main(int argc, char** argv) {
                 return argv[++i];
             };
             double png_width = png_size;
-            // Options taking a number, then paths and flags.
-            const std::pair<const char*, double*> numbers[] = {
-                {"--min-slope", &o.min_slope},       {"--min-roughness", &o.min_roughness},
-                {"--min-area", &o.min_area_mm2},     {"--scale", &o.scale},
-                {"--thalweg-area", &o.thalweg_area}, {"--ridge-area", &o.ridge_area},
-                {"--max-fill", &o.max_fill},         {"--smooth", &o.smooth},
-                {"--converge", &o.converge},         {"--simplify", &o.simplify},
-                {"--png-size", &png_width}};
-            const std::pair<const char*, std::string*> paths[] = {
-                {"--dem", &o.dem}, {"-o", &out}, {"--mask", &o.mask}, {"--png", &png}};
+            // The command's own numbers, paths and flags; the extraction's tuning options come
+            // from carto's table (shared with `rockhatch tiles --partition auto`).
+            const std::pair<const char*, double*> numbers[] = {{"--scale", &o.scale}, {"--png-size", &png_width}};
+            const std::pair<const char*, std::string*> paths[] = {{"--dem", &o.dem}, {"-o", &out}, {"--png", &png}};
             const std::pair<const char*, std::function<void()>> flags[] = {
                 {"--overwrite", [&] { overwrite = true; }},
                 {"-q", [&] { quiet = true; }},
-                {"--no-ridge-extension", [&] { o.extend_ridges = false; }},
-                {"--no-outline-labels", [&] { o.label_outline = false; }},
                 {"--fixed-controls", [&] { fixed_controls = true; }}};
             if (a == "--help" || a == "-h") {
                 std::cout << kUsage;
                 return 0;
             }
             bool known = false;
+            for (const auto& e : carto::extract_option_names())
+                if (a == e.name) known = carto::set_extract_option(o, a, e.takes_value ? value() : std::string());
             for (const auto& [name, target] : numbers)
-                if (a == name) *target = number(a, value()), known = true;
+                if (a == name) *target = carto::parse_double(a, value()), known = true;
             for (const auto& [name, target] : paths)
                 if (a == name) *target = value(), known = true;
             for (const auto& [name, set] : flags)

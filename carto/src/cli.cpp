@@ -13,6 +13,14 @@
 #include "carto/styles.hpp"
 
 namespace carto {
+
+double parse_double(const std::string& opt, const std::string& v) {
+    char* end = nullptr;
+    const double d = std::strtod(v.c_str(), &end);
+    if (v.empty() || *end != 0 || !std::isfinite(d)) throw Error(Code::Usage, opt + ": '" + v + "' is not a number");
+    return d;
+}
+
 namespace {
 
 struct Option {
@@ -21,13 +29,6 @@ struct Option {
     const char* help;
     std::function<void(const std::string&)> set;
 };
-
-double parse_double(const std::string& opt, const std::string& v) {
-    char* end = nullptr;
-    const double d = std::strtod(v.c_str(), &end);
-    if (v.empty() || *end != 0 || !std::isfinite(d)) throw Error(Code::Usage, opt + ": '" + v + "' is not a number");
-    return d;
-}
 
 // A decimal integer in [0, max]: larger values are refused, not wrapped around (the
 // narrowing of --threads 4294967296 to 0 meant "all cores").

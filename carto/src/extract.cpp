@@ -48,8 +48,7 @@ double azimuth_degrees(double math_angle) {
     return az;
 }
 
-ExtractResult extract_partition(const ExtractOptions& o, const Progress& progress) {
-    const std::string what = o.what + (o.dem.empty() ? std::string() : " '" + o.dem + "'");
+void check_extract_options(const ExtractOptions& o) {
     auto positive = [](double v, const char* name, bool zero_ok) {
         if (!std::isfinite(v) || v < 0 || (!zero_ok && v == 0))
             throw Error(Code::Usage, std::string(name) + ": " + std::to_string(v) + " is not a " +
@@ -67,6 +66,11 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
     positive(o.simplify, "--simplify", true);
     if (o.min_roughness > 1) throw Error(Code::Usage, "--min-roughness: must lie in 0..1");
     if (o.simplify > 2) throw Error(Code::Usage, "--simplify: at most 2 cells (faces would cross)");
+}
+
+ExtractResult extract_partition(const ExtractOptions& o, const Progress& progress) {
+    const std::string what = o.what + (o.dem.empty() ? std::string() : " '" + o.dem + "'");
+    check_extract_options(o);
 
     ExtractResult res;
     step(progress, 0.0, "reading the DEM");

@@ -288,6 +288,12 @@ def test_tiled_equals_whole_on_chamonix(tmp_path, rockhatch_exe):
     (["-o", FACES, "--overwrite"], 9, "input"),
     (["--style", "nosuch"], 7, "nosuch"),
     (["--style", "scree"], 2, "terrain style"),
+    # The extraction's tuning options: with --partition auto only, checked before any work.
+    (["--min-slope", "60"], 2, "--min-slope: an option of the extraction, for --partition auto only"),
+    (["--partition", "auto", "--min-slope", "abc"], 2, "--min-slope: 'abc' is not a number"),
+    (["--partition", "auto", "--simplify", "5"], 2, "--simplify: at most 2 cells"),
+    (["--partition", "auto", "--mask", "none.gpkg"], 3, "--mask 'none.gpkg': no such file"),
+    (["--partition", "auto", "--mask", FACES, "-o", FACES, "--overwrite"], 9, "input"),
 ])
 def test_bad_input_is_refused_before_any_work(tmp_path, args, code, words):
     base = {"--dem": DEM, "--partition": FACES, "--tile-size": "1000", "-o": str(tmp_path / "o.gpkg")}
@@ -393,6 +399,28 @@ def test_partition_auto_tiled_equals_the_whole_run_with_1_or_2_workers(tmp_path,
         return
     assert (tmp_path / "work1" / "partition.gpkg").read_bytes() == (tmp_path / "work2" / "partition.gpkg").read_bytes()
     assert outs[1] == outs[2]
+
+
+def test_partition_auto_takes_the_extractions_options(tmp_path, rockhatch_exe):
+    # rockhatch partition's tuning options, passed to every extraction tile: the tiled
+    # partition is the whole extraction's with the same options, and not the default one.
+    opts = ["--min-slope", "90", "--no-ridge-extension", "--min-area=25"]
+    r = subprocess.run([str(rockhatch_exe), "partition", "--dem", DEM, "-o", str(tmp_path / "whole.gpkg"), "-q", *opts],
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    whole = partition_faces(tmp_path / "whole.gpkg")
+    work = tmp_path / "work"
+    s = tiles.run(DEM, "auto", 800, [tmp_path / "t.gpkg"], seed=3, workers=2, workdir=work, keep_tiles=True, args=opts)
+    assert s.partition_faces == len(whole) and s.warnings == []
+    assert partition_faces(work / "partition.gpkg") == whole
+    r = subprocess.run([str(rockhatch_exe), "partition", "--dem", DEM, "-o", str(tmp_path / "default.gpkg"), "-q"],
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0 and partition_faces(tmp_path / "default.gpkg") != whole
+    # Other extraction options are another job: the finished tiles are not reused.
+    with pytest.raises(RockhatchError) as e:
+        tiles.run(DEM, "auto", 800, [tmp_path / "t.gpkg"], seed=3, workers=1, workdir=work, overwrite=True,
+                  args=["--min-slope", "80"])
+    assert e.value.code == 9 and "another job" in str(e.value)
 
 
 def test_partition_auto_warns_where_the_tiles_disagree(tmp_path):

@@ -58,27 +58,43 @@ _MANIFEST = "job.json"
 
 
 def _split_args(argv):
-    """The tiled-run options, and the rest for the rockhatch option table."""
-    mine, rest = {}, []
+    """The tiled-run options, the extraction's tuning options (rockhatch partition's, for
+    --partition auto) as (name, value) pairs in order, and the rest for the rockhatch option
+    table."""
+    mine, extract, rest = {}, [], []
     table = {flag: takes for flag, takes, _ in TILE_OPTIONS}
+    extract_table = dict(carto.extract_option_names())
     i = 0
     while i < len(argv):
         a = argv[i]
         name, eq, value = a.partition("=")
-        if name in table:
-            if table[name]:
+        if name in table or name in extract_table:
+            if table.get(name, extract_table.get(name)):
                 if not eq:
                     if i + 1 >= len(argv):
                         raise carto.error(2, f"{name} needs a value")
                     i += 1
                     value = argv[i]
+            else:
+                value = True
+            if name in table:
                 mine[name] = value
             else:
-                mine[name] = True
+                extract.append((name, "" if value is True else value))
         else:
             rest.append(a)
         i += 1
-    return mine, rest
+    return mine, extract, rest
+
+
+def _extract_options(dem, scale, extract):
+    """carto.ExtractOptions of a tiled extraction: the DEM, the scale and the tuning options."""
+    eo = carto.ExtractOptions()
+    eo.dem = dem
+    eo.scale = scale
+    for name, value in extract:
+        carto.set_extract_option(eo, name, value)
+    return eo
 
 
 def _positive(name, value, kind=float):
@@ -107,15 +123,17 @@ def _job_key(argv, tile_size):
         if name not in skip_flag:
             kept.append(a)
         i += 1
-    stamps = []
-    for a in kept:
-        if os.path.isfile(a):
-            st = os.stat(a)
-            stamps.append([os.path.abspath(a), st.st_size, st.st_mtime_ns])
+    stamps = [_stamp(a) for a in kept if os.path.isfile(a)]
     return {"args": kept, "tile_size": tile_size, "inputs": stamps}
 
 
-def _extract_task(dem, scale, box, halo, path):
+def _stamp(path):
+    """An input file as a job knows it: path, size and modification time."""
+    st = os.stat(path)
+    return [os.path.abspath(path), st.st_size, st.st_mtime_ns]
+
+
+def _extract_task(dem, scale, extract, box, halo, path):
     """One tile of the partition, in a worker process: the faces whose anchor lies in the box,
     extracted from the DEM window around it (carto::extract_tile), written to a tile file."""
     import resource
@@ -126,10 +144,7 @@ def _extract_task(dem, scale, box, halo, path):
     if os.path.exists(path):
         return {"skipped": True, "faces": 0, "seconds": 0.0, "rounds": 0,
                 "peak_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0}
-    eo = c.ExtractOptions()
-    eo.dem = dem
-    eo.scale = scale
-    r = c.extract_tile(eo, tex.BBox(*box), halo, path)
+    r = c.extract_tile(_extract_options(dem, scale, extract), tex.BBox(*box), halo, path)
     return {"skipped": False, "faces": r.faces, "seconds": r.seconds, "rounds": r.rounds, "dem_cells": r.dem_cells,
             "peak_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0}
 
@@ -211,7 +226,7 @@ def run_args(argv, progress=None):
     TILE_OPTIONS). progress(fraction, stage) is called as tiles finish; returning False
     cancels (the tiles done are kept for a resume). Returns a Summary."""
     t0 = time.monotonic()
-    mine, rest = _split_args(list(argv))
+    mine, extract, rest = _split_args(list(argv))
     if "--tile-size" not in mine:
         raise carto.error(2, "--tile-size is required (side of a tile, ground units of the DEM's CRS)")
     tile_size = _positive("--tile-size", mine["--tile-size"])
@@ -230,6 +245,16 @@ def run_args(argv, progress=None):
         raise carto.error(2, f"--style {style.name}: a terrain style draws the whole DEM in one sequence and cannot "
                              "be tiled yet")
     auto = options.partition.path == "auto"
+    if extract and not auto:
+        raise carto.error(2, f"{extract[0][0]}: an option of the extraction, for --partition auto only")
+    if extract:
+        # Checked before any work: the numbers and their ranges, the mask against the outputs.
+        eo = _extract_options(options.dem, options.scale, extract)
+        carto.check_extract_options(eo)
+        if eo.mask and not os.path.exists(eo.mask):
+            raise carto.error(3, f"--mask '{eo.mask}': no such file")
+        for out in options.outputs:
+            carto.check_extract_files(eo, out, "", True)
     halo = _positive("--extract-halo", mine["--extract-halo"]) if "--extract-halo" in mine else DEFAULT_EXTRACT_HALO
     dem = carto.raster_info(options.dem, "--dem")
     if carto.is_geographic(dem.crs):
@@ -243,6 +268,9 @@ def run_args(argv, progress=None):
     key = _job_key(rest, tile_size)
     if auto:
         key["extract_halo"] = halo
+        key["extract"] = [list(e) for e in extract]
+        if dict(extract).get("--mask"):
+            key["inputs"].append(_stamp(dict(extract)["--mask"]))
     manifest = os.path.join(workdir, _MANIFEST)
     if mine.get("--restart") and os.path.exists(manifest):
         for name in os.listdir(workdir):
@@ -285,7 +313,8 @@ def run_args(argv, progress=None):
             # for that partition.
             merged_partition = os.path.join(workdir, "partition.gpkg")
             if not os.path.exists(merged_partition):
-                _extract_partition(options, grid, workdir, halo, merged_partition, job, cluster, summary, progress)
+                _extract_partition(options, extract, grid, workdir, halo, merged_partition, job, cluster, summary,
+                                   progress)
             task_args = _with_partition(task_args, merged_partition)
         if progress and not progress(span[0] + (span[1] - span[0]) * summary.done_before / len(grid),
                                      f"tiles {summary.done_before}/{len(grid)}"):
@@ -442,14 +471,14 @@ def _compute(jobs, done, total, label, span, cluster, summary, progress, count):
                 raise carto.error(10, f"cancelled after {done} of {total} {label} (run again to resume)")
 
 
-def _extract_partition(options, grid, workdir, halo, out, job, cluster, summary, progress):
+def _extract_partition(options, extract, grid, workdir, halo, out, job, cluster, summary, progress):
     """--partition auto: the partition extracted tile by tile on the cluster, then merged."""
     t0 = time.monotonic()
     paths = [os.path.join(workdir, "partition_%07d.gpkg" % i) for i in range(len(grid))]
     pending = [i for i, p in enumerate(paths) if not os.path.exists(p)]
     if pending:
         jobs = [(f"rockhatch-partition-{job}-{i}", _extract_task,
-                 (options.dem, options.scale, (grid[i].xmin, grid[i].ymin, grid[i].xmax, grid[i].ymax), halo,
+                 (options.dem, options.scale, extract, (grid[i].xmin, grid[i].ymin, grid[i].xmax, grid[i].ymax), halo,
                   paths[i])) for i in pending]
         _compute(jobs, len(grid) - len(pending), len(grid), "partition tiles", (0.0, 0.28), cluster, summary,
                  progress, _count_partition_tile)
@@ -471,7 +500,8 @@ def _extract_partition(options, grid, workdir, halo, out, job, cluster, summary,
     if summary.partition_faces == 0:
         os.remove(out)
         raise carto.error(6, f"--dem '{options.dem}': no rock: no face was extracted at 1:{options.scale:g} with the "
-                             "default thresholds (rockhatch partition --help says which to lower)")
+                             f"{'given' if extract else 'default'} thresholds (rockhatch partition --help says which "
+                             "to lower)")
     summary.partition_seconds = time.monotonic() - t0
 
 
@@ -587,7 +617,9 @@ def help_text():
              "tiles into the outputs; the result is the same as one whole run. Tiled-run options:"]
     for flag, _, text in TILE_OPTIONS:
         lines.append(f"  {flag:14s} {text}")
-    lines += ["", "and every option of the rockhatch command (rockhatch --help)."]
+    names = " ".join(n for n, _ in carto.extract_option_names())
+    lines += ["", "With --partition auto, the extraction's tuning options of rockhatch partition (see its --help):",
+              f"  {names}", "", "and every option of the rockhatch command (rockhatch --help)."]
     return "\n".join(lines) + "\n"
 
 

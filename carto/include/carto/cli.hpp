@@ -22,6 +22,9 @@ struct CommandLine {
 CommandLine parse_command_line(const std::vector<std::string>& args);
 // The --help text, and the style list of --list-styles.
 std::string help_text();
+
+// A command-line number: the whole of `v`, finite; else Error(Usage) "OPT: 'V' is not a number".
+double parse_double(const std::string& opt, const std::string& v);
 std::string styles_text();
 
 }  // namespace carto

@@ -63,6 +63,21 @@ struct ExtractOptions {
     std::string what = "--dem";    // how error messages name the DEM
 };
 
+// The extraction's tuning options as the command line spells them, one table for
+// `rockhatch partition` and `rockhatch tiles --partition auto`: --mask, --min-slope,
+// --min-roughness, --min-area, --thalweg-area, --ridge-area, --max-fill, --smooth, --converge,
+// --simplify (each with a value) and the flags --no-ridge-extension, --no-outline-labels.
+struct ExtractOptionName {
+    std::string name;
+    bool takes_value;
+};
+const std::vector<ExtractOptionName>& extract_option_names();
+
+// Sets the option `name` of the table above from its command-line value (ignored for a flag);
+// returns false when `name` is not in the table. Throws Error(Usage) when a number does not
+// parse (the ranges are checked by extract_partition).
+bool set_extract_option(ExtractOptions& o, const std::string& name, const std::string& value);
+
 struct ExtractResult {
     Partition partition;          // faces (orientation and density set) and labelled lines
     Terrain terrain;              // of the working DEM
@@ -78,6 +93,9 @@ struct ExtractResult {
     std::vector<LabelledLine> network;
     std::vector<std::string> notes;
 };
+
+// The ranges of the numbers (Error(Usage) naming the option); extract_partition checks them first.
+void check_extract_options(const ExtractOptions& o);
 
 // Throws carto::Error: InputMissing (no such DEM or mask), NoCrs (DEM or mask without a
 // CRS), BadLayer (all-NoData DEM, mask without polygons, no rock under the thresholds),
