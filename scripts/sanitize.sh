@@ -14,7 +14,7 @@
 #
 # Under RH_SANITIZED=1 (set below) the slowest tests check their property on less work, each
 # cut version still able to fail (tests/common/sanitized.hpp, tests/python/conftest.py:
-# one_under_sanitizers, real_dem); the normal pass runs their full versions.
+# one_under_sanitizers); the normal pass runs their full versions.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 ROOT="$PWD"

@@ -40,13 +40,9 @@ def gallery_exe() -> pathlib.Path:
 SAMPLE = ROOT / "data" / "sample_montblanc"
 SHARED_DEM = ROOT.parent / "shared" / "data" / "montblanc" / "Chamonix.tif"
 
-# The tests on ../shared's real DEM: skipped when it is absent, and left to the normal pass
-# under the sanitizers, where they took a quarter of the Python tests' time: each runs, on a
-# larger real DEM, the code paths that the sample's tests run there.
-real_dem = pytest.mark.skipif(
-    not SHARED_DEM.exists() or SANITIZED,
-    reason=f"{SHARED_DEM} is absent (../shared is not beside the project)" if not SHARED_DEM.exists()
-    else "RH_SANITIZED=1: the real-DEM tests run in the normal pass")
+# The tests on ../shared's real DEM: skipped, with the reason, when it is absent.
+real_dem = pytest.mark.skipif(not SHARED_DEM.exists(),
+                              reason=f"{SHARED_DEM} is absent (../shared is not beside the project)")
 
 
 def one_under_sanitizers(values):

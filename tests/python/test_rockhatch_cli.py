@@ -7,7 +7,7 @@ import pytest
 from osgeo import gdal, ogr
 
 from bad_inputs import partition_file
-from conftest import SANITIZED, SHARED_DEM, one_under_sanitizers
+from conftest import SHARED_DEM, one_under_sanitizers
 
 gdal.UseExceptions()
 ogr.UseExceptions()
@@ -207,8 +207,6 @@ def test_a_file_with_a_temporary_looking_name_is_never_touched(rockhatch_exe, sa
 def real_partition(tmp_path_factory):
     if not SHARED_DEM.exists():
         pytest.skip(f"{SHARED_DEM} is absent (../shared is not beside the project)")
-    if SANITIZED:
-        pytest.skip("RH_SANITIZED=1: the real-DEM tests run in the normal pass (conftest.real_dem)")
     from realdem import grid_partition
     path = tmp_path_factory.mktemp("real") / "grid.gpkg"
     n = grid_partition(SHARED_DEM, path, 90)
