@@ -269,8 +269,9 @@ def run_args(argv, progress=None):
     if auto:
         key["extract_halo"] = halo
         key["extract"] = [list(e) for e in extract]
-        if dict(extract).get("--mask"):
-            key["inputs"].append(_stamp(dict(extract)["--mask"]))
+        mask = dict(extract).get("--mask")
+        if mask:
+            key["inputs"].append(_stamp(mask))
     manifest = os.path.join(workdir, _MANIFEST)
     if mine.get("--restart") and os.path.exists(manifest):
         for name in os.listdir(workdir):
