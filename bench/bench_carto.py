@@ -129,13 +129,17 @@ def styles_section(build_dir, runs, tmp, baselines=()):
 
 def rewrite_section(markdown, mark, section):
     """Replaces (or adds) the section that starts at `mark` in the report: the report is its
-    head, then the styles section, then the partition section."""
+    head, then the styles section, then the partition section, then the print-quality section
+    (copied again from docs/print-quality.md)."""
     old = markdown.read_text() if markdown.exists() else ""
-    order = (STYLES_MARK, PARTITION_MARK)
+    order = (STYLES_MARK, PARTITION_MARK, PRINT_MARK)
     starts = sorted((old.index(m), m) for m in order if m in old)
     head = old[:starts[0][0]] if starts else old
     parts = {m: old[a:(starts[k + 1][0] if k + 1 < len(starts) else len(old))] for k, (a, m) in enumerate(starts)}
     parts[mark] = section
+    quality = print_quality_section()
+    if quality:
+        parts[PRINT_MARK] = quality
     chunks = [head.strip("\n")] + [parts[m].strip("\n") for m in order if m in parts]
     markdown.write_text("\n\n".join(c for c in chunks if c) + "\n")
 

@@ -149,8 +149,8 @@ void bind_carto(py::module_& m) {
     m.def("write_geotiff", &write_geotiff, py::arg("raster"), py::arg("path"), py::arg("nodata") = -9999.0,
           py::call_guard<py::gil_scoped_release>());
     m.def(
-        "warp", [](const Raster& r, const std::string& crs, double cell) { return std::make_shared<Raster>(warp(r, wkt_of(crs), cell)); },
-        py::arg("raster"), py::arg("crs"), py::arg("cell") = 0.0, py::call_guard<py::gil_scoped_release>());
+        "warp", [](const Raster& r, const std::string& crs) { return std::make_shared<Raster>(warp(r, wkt_of(crs))); },
+        py::arg("raster"), py::arg("crs"), py::call_guard<py::gil_scoped_release>());
     m.def(
         "resample_like", [](const Raster& r, const Raster& like) { return std::make_shared<Raster>(resample_like(r, like)); },
         py::arg("raster"), py::arg("like"), py::call_guard<py::gil_scoped_release>());
@@ -518,6 +518,22 @@ CrestResult
         .def_readonly("crs", &RasterInfo::crs_wkt)
         .def("bounds", &RasterInfo::bounds);
     m.def("raster_info", &raster_info, py::arg("path"), py::arg("what") = "raster");
+    py::class_<WorkingGrid>(m, "WorkingGrid",
+                            "The grid a DEM is worked on: its own, or for a geographic DEM its UTM reprojection")
+        .def_readonly("source", &WorkingGrid::source)
+        .def_readonly("grid", &WorkingGrid::grid)
+        .def_readonly("epsg", &WorkingGrid::epsg)
+        .def_property_readonly("reprojected", &WorkingGrid::reprojected)
+        .def_property_readonly("note", &WorkingGrid::note);
+    m.def("working_grid", &working_grid, py::arg("dem"));
+    m.def(
+        "read_working_window",
+        [](const std::string& path, const std::string& what, const WorkingGrid& g, const tex::BBox& box, int halo) {
+            return std::make_shared<Raster>(read_working_window(path, what, g, box, halo));
+        },
+        py::arg("path"), py::arg("what"), py::arg("grid"), py::arg("box"), py::arg("halo") = 0,
+        py::call_guard<py::gil_scoped_release>(),
+        "the cells of the working grid a box touches (grown by `halo` cells), read from a raster on the DEM's grid");
     py::class_<TileReport>(m, "TileReport", "What one tile of a tiled run read and drew")
         .def_readonly("faces", &TileReport::faces)
         .def_readonly("context_faces", &TileReport::context_faces)

@@ -74,12 +74,20 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
 
     ExtractResult res;
     step(progress, 0.0, "reading the DEM");
-    Raster dem = o.raster ? *o.raster : read_raster(o.dem, o.what);
-    if (dem.crs_wkt.empty()) throw Error(Code::NoCrs, what + ": the raster has no CRS");
-    if (!dem.north_up()) throw Error(Code::BadLayer, what + ": rotated rasters are not supported");
-    if (std::isnan(dem.min_max().first)) throw Error(Code::BadLayer, what + ": every cell is NoData");
+    Raster dem;
     std::string note;
-    dem = to_working_crs(std::move(dem), &note);
+    if (o.raster) {
+        dem = *o.raster;
+        if (dem.crs_wkt.empty()) throw Error(Code::NoCrs, what + ": the raster has no CRS");
+        if (!dem.north_up()) throw Error(Code::BadLayer, what + ": rotated rasters are not supported");
+        dem = to_working_crs(std::move(dem), &note);
+    } else {
+        // The file's CRS and rotation are checked as it is opened.
+        const WorkingGrid g = working_grid(raster_info(o.dem, o.what));
+        dem = read_working(o.dem, o.what, g);
+        note = g.note();
+    }
+    if (std::isnan(dem.min_max().first)) throw Error(Code::BadLayer, what + ": every cell is NoData");
     if (!note.empty()) res.notes.push_back(note);
 
     step(progress, 0.1, "terrain fields");

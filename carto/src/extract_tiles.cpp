@@ -75,11 +75,10 @@ ExtractTileReport extract_tile(const ExtractOptions& o, const tex::BBox& tile, d
         throw Error(Code::Usage, "--extract-halo: " + std::to_string(halo) + " is not a non-negative length");
     if (o.dem.empty()) throw Error(Code::Usage, o.what + ": a tiled extraction reads the DEM from a file");
     if (!o.mask.empty()) throw Error(Code::Usage, "--mask: not available in a tiled extraction");
-    const RasterInfo info = raster_info(o.dem, o.what);
-    if (info.crs_wkt.empty()) throw Error(Code::NoCrs, o.what + " '" + o.dem + "': the raster has no CRS");
-    if (is_geographic(info.crs_wkt))
-        throw Error(Code::Usage, o.what + " '" + o.dem + "': a tiled run needs a DEM in a projected CRS (this one is "
-                                 "in degrees); reproject it first, e.g. gdalwarp -t_srs EPSG:326NN");
+    // A geographic DEM is read in its working grid (UTM), window by window, as a whole
+    // extraction reads it whole.
+    const WorkingGrid grid = working_grid(raster_info(o.dem, o.what));
+    const RasterInfo& info = grid.grid;
     const tex::BBox dem_box = info.bounds();
     const double cell = std::min(std::abs(info.gt[1]), std::abs(info.gt[5]));
     const int halo_cells = int(std::ceil(halo / cell));
@@ -94,7 +93,7 @@ ExtractTileReport extract_tile(const ExtractOptions& o, const tex::BBox& tile, d
                                            ", " + std::to_string(tile.ymin) + " did not settle in " +
                                            std::to_string(kMaxRounds) + " windows");
         ExtractOptions eo = o;
-        eo.raster = read_raster_window(o.dem, o.what, box, halo_cells);
+        eo.raster = read_working_window(o.dem, o.what, grid, box, halo_cells);
         if (eo.raster->width == 0) break;
         const tex::BBox window = eo.raster->bounds();
         report.dem_cells = (long long)eo.raster->width * eo.raster->height;

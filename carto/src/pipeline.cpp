@@ -33,12 +33,11 @@ bool tick(const Progress& p, double f, const std::string& stage) {
 }  // namespace
 
 Raster load_dem(const std::string& path, std::vector<std::string>* notes) {
-    Raster dem = read_raster(path, "--dem");
+    const WorkingGrid g = working_grid(raster_info(path, "--dem"));
+    Raster dem = read_working(path, "--dem", g);
     if (dem.min_max().first != dem.min_max().first)
         throw Error(Code::BadLayer, "--dem '" + path + "': every cell is NoData");
-    std::string reprojected;
-    dem = to_working_crs(std::move(dem), &reprojected);
-    if (notes && !reprojected.empty()) notes->push_back(reprojected);
+    if (notes && g.reprojected()) notes->push_back(g.note());
     return dem;
 }
 
@@ -138,7 +137,11 @@ Prepared prepare(const Options& o, const Progress& progress) {
     tick(progress, 0.08, "terrain fields");
     p.terrain = compute_terrain(dem);
     auto load_like = [&](const std::string& path, const char* what, Raster& target) {
-        Raster r = read_raster(path, what);
+        // On the grid of a geographic DEM: reprojected as the DEM is (the cells a tiled run
+        // reads too); on another grid: resampled onto the DEM's.
+        const WorkingGrid g = working_grid(raster_info(o.dem, "--dem"));
+        Raster r = g.reprojected() && same_grid(raster_info(path, what), g.source) ? read_working(path, what, g)
+                                                                                   : read_raster(path, what);
         if (!same_crs(r.crs_wkt, dem.crs_wkt) || r.width != dem.width || r.height != dem.height || r.gt != dem.gt)
             r = resample_like(r, dem);
         target = std::move(r);

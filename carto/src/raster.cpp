@@ -137,6 +137,33 @@ RasterInfo checked_info(GDALDataset& ds, const std::string& what, const std::str
     return r;
 }
 
+// The cells [col0, col1) x [row0, row1) of a grid that a box touches, grown by `halo` and
+// clipped to the grid (empty when col1 <= col0 or row1 <= row0).
+struct CellWindow {
+    int col0 = 0, row0 = 0, col1 = 0, row1 = 0;
+    bool empty() const { return col1 <= col0 || row1 <= row0; }
+};
+CellWindow cells_touched(const RasterInfo& info, const BBox& box, int halo) {
+    const Point a = tex::grid_pixel(info.gt, {box.xmin, box.ymin}), b = tex::grid_pixel(info.gt, {box.xmax, box.ymax});
+    const double c0 = std::floor(std::min(a.x, b.x)) - halo, c1 = std::ceil(std::max(a.x, b.x)) + halo;
+    const double r0 = std::floor(std::min(a.y, b.y)) - halo, r1 = std::ceil(std::max(a.y, b.y)) + halo;
+    CellWindow w;
+    w.col0 = int(std::clamp(c0, 0.0, double(info.width)));
+    w.col1 = int(std::clamp(c1, 0.0, double(info.width)));
+    w.row0 = int(std::clamp(r0, 0.0, double(info.height)));
+    w.row1 = int(std::clamp(r1, 0.0, double(info.height)));
+    return w;
+}
+
+// A raster with no cells on a grid (a window that misses it).
+Raster empty_on(const RasterInfo& info) {
+    Raster empty;
+    empty.gt = info.gt;
+    empty.crs_wkt = info.crs_wkt;
+    empty.grid_gt = info.gt;
+    return empty;
+}
+
 }  // namespace
 
 Raster read_raster(const std::string& path, const std::string& what) {
@@ -163,24 +190,17 @@ RasterInfo raster_info(const std::string& path, const std::string& what) {
     return checked_info(*ds, what, path);
 }
 
+bool same_grid(const RasterInfo& a, const RasterInfo& b) {
+    return a.width == b.width && a.height == b.height && a.gt == b.gt && same_crs(a.crs_wkt, b.crs_wkt);
+}
+
 Raster read_raster_window(const std::string& path, const std::string& what, const BBox& box, int halo) {
     DatasetPtr ds = open_raster(path, what);
     QuietGdal quiet;
     const RasterInfo info = checked_info(*ds, what, path);
-    // The cells the box touches, in the raster's pixel grid.
-    const Point a = tex::grid_pixel(info.gt, {box.xmin, box.ymin}), b = tex::grid_pixel(info.gt, {box.xmax, box.ymax});
-    const double c0 = std::floor(std::min(a.x, b.x)) - halo, c1 = std::ceil(std::max(a.x, b.x)) + halo;
-    const double r0 = std::floor(std::min(a.y, b.y)) - halo, r1 = std::ceil(std::max(a.y, b.y)) + halo;
-    const int col0 = int(std::clamp(c0, 0.0, double(info.width))), col1 = int(std::clamp(c1, 0.0, double(info.width)));
-    const int row0 = int(std::clamp(r0, 0.0, double(info.height))), row1 = int(std::clamp(r1, 0.0, double(info.height)));
-    if (col1 <= col0 || row1 <= row0) {
-        Raster empty;
-        empty.gt = info.gt;
-        empty.crs_wkt = info.crs_wkt;
-        empty.grid_gt = info.gt;
-        return empty;
-    }
-    return from_dataset(*ds, what, path, col0, row0, col1 - col0, row1 - row0);
+    const CellWindow w = cells_touched(info, box, halo);
+    if (w.empty()) return empty_on(info);
+    return from_dataset(*ds, what, path, w.col0, w.row0, w.col1 - w.col0, w.row1 - w.row0);
 }
 
 void write_geotiff(const Raster& r, const std::string& path, double nodata) {
@@ -248,21 +268,36 @@ int utm_epsg(double lon, double lat) {
     return (lat >= 0 ? 32600 : 32700) + zone;
 }
 
-Raster warp(const Raster& src, const std::string& dst_wkt, double cell) {
-    register_gdal();
-    QuietGdal quiet;
+namespace {
+
+// A georeferenced Float32 MEM dataset of a grid (without cells when `bands` is 0).
+DatasetPtr mem_grid(int width, int height, int bands, const std::array<double, 6>& gt, const std::string& wkt) {
     GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
-    DatasetPtr in(mem->Create("", src.width, src.height, 1, GDT_Float32, nullptr));
-    in->SetGeoTransform(const_cast<double*>(src.gt.data()));
+    DatasetPtr ds(mem->Create("", width, height, bands, GDT_Float32, nullptr));
+    ds->SetGeoTransform(const_cast<double*>(gt.data()));
     OGRSpatialReference srs;
-    srs.importFromWkt(src.crs_wkt.c_str());
-    in->SetSpatialRef(&srs);
+    srs.importFromWkt(wkt.c_str());
+    ds->SetSpatialRef(&srs);
+    return ds;
+}
+
+// A MEM copy of an in-memory raster (NaN as NoData), for GDAL's warper.
+DatasetPtr mem_copy(const Raster& src) {
+    DatasetPtr in = mem_grid(src.width, src.height, 1, src.gt, src.crs_wkt);
     GDALRasterBand* b = in->GetRasterBand(1);
     b->SetNoDataValue(std::nan(""));
     std::vector<float> buf(src.data);
     if (b->RasterIO(GF_Write, 0, 0, src.width, src.height, buf.data(), src.width, src.height, GDT_Float32, 0, 0) != CE_None)
         throw Error(Code::Failure, "cannot copy the raster for reprojection");
+    return in;
+}
 
+}  // namespace
+
+Raster warp(const Raster& src, const std::string& dst_wkt) {
+    register_gdal();
+    QuietGdal quiet;
+    DatasetPtr in = mem_copy(src);
     GDALWarpOptions* wo = GDALCreateWarpOptions();
     wo->eResampleAlg = GRA_Bilinear;
     wo->papszWarpOptions = CSLSetNameValue(wo->papszWarpOptions, "INIT_DEST", "NO_DATA");
@@ -275,21 +310,6 @@ Raster warp(const Raster& src, const std::string& dst_wkt, double cell) {
     GDALDestroyWarpOptions(wo);
     if (!vrt) throw Error(Code::NoCrs, std::string("cannot reproject the raster: ") + CPLGetLastErrorMsg());
     Raster out = from_dataset(*vrt, "warp", "");
-    if (cell > 0) {
-        // Resample to square cells of the requested size over the same extent.
-        Raster target;
-        const BBox bb = out.bounds();
-        check_size(std::ceil(bb.width() / cell), std::ceil(bb.height() / cell), "reprojecting to square cells");
-        target.width = std::max(1, int(std::ceil(bb.width() / cell)));
-        target.height = std::max(1, int(std::ceil(bb.height() / cell)));
-        target.gt = {bb.xmin, cell, 0, bb.ymax, 0, -cell};
-        target.crs_wkt = dst_wkt;
-        target.data.assign(std::size_t(target.width) * target.height, kNaN);
-        for (int r = 0; r < target.height; ++r)
-            for (int c = 0; c < target.width; ++c) target.at(c, r) = float(out.sample(target.to_world(c + 0.5, r + 0.5)));
-        target.crs_wkt = dst_wkt;
-        return target;
-    }
     out.crs_wkt = dst_wkt;
     return out;
 }
@@ -298,15 +318,174 @@ Raster warp(const Raster& src, const std::string& dst_wkt, double cell) {
 
 namespace carto {
 
+namespace {
+
+// Working grids are laid on multiples of 2^-10 ground units: a cell centre computed from a
+// window's origin, (x0 + c0 * cell) + (c + 0.5) * cell, is then the same double as from the
+// grid's, x0 + (c0 + c + 0.5) * cell (every sum and product is exact), so a window warped
+// alone samples the DEM at the very points the whole raster does.
+constexpr double kGridStep = 1.0 / 1024;
+
+double snap_down(double v) { return std::floor(v / kGridStep) * kGridStep; }
+double snap_up(double v) { return std::ceil(v / kGridStep) * kGridStep; }
+
+// Warps band 1 of `src` (on the grid g.source) onto the cells `w` of the working grid:
+// bilinear over the 2 x 2 source cells around each cell centre's exact position (PROJ for
+// every cell, no approximation; the kernel is not widened where the source is finer, so
+// its weights do not depend on the window either), NoData kept. A cell's value depends on
+// the source and its position only: windows give the whole raster's bits.
+Raster warp_cells(GDALDataset& src, const WorkingGrid& g, const CellWindow& w, const std::string& what) {
+    const double cell = g.grid.gt[1];
+    const int width = w.col1 - w.col0, height = w.row1 - w.row0;
+    check_size(width, height, what + " reprojected to UTM");
+    const std::array<double, 6> gt{g.grid.gt[0] + w.col0 * cell, cell, 0, g.grid.gt[3] - w.row0 * cell, 0, -cell};
+    DatasetPtr dst = mem_grid(width, height, 1, gt, g.grid.crs_wkt);
+    GDALRasterBand* out = dst->GetRasterBand(1);
+    out->SetNoDataValue(std::nan(""));
+
+    char** topts = CSLSetNameValue(nullptr, "SRC_SRS", g.source.crs_wkt.c_str());
+    topts = CSLSetNameValue(topts, "DST_SRS", g.grid.crs_wkt.c_str());
+    void* transform = GDALCreateGenImgProjTransformer2(GDALDataset::ToHandle(&src), GDALDataset::ToHandle(dst.get()), topts);
+    CSLDestroy(topts);
+    if (!transform) throw Error(Code::NoCrs, what + ": cannot reproject to UTM (" + CPLGetLastErrorMsg() + ")");
+
+    GDALRasterBand* in = src.GetRasterBand(1);
+    int has_nodata = 0;
+    double nodata = in->GetNoDataValue(&has_nodata);
+    if (!has_nodata && GDALDataTypeIsFloating(in->GetRasterDataType())) {
+        has_nodata = 1;
+        nodata = std::nan("");
+    }
+    GDALWarpOptions* wo = GDALCreateWarpOptions();
+    wo->hSrcDS = GDALDataset::ToHandle(&src);
+    wo->hDstDS = GDALDataset::ToHandle(dst.get());
+    wo->nBandCount = 1;
+    wo->panSrcBands = static_cast<int*>(CPLMalloc(sizeof(int)));
+    wo->panSrcBands[0] = 1;
+    wo->panDstBands = static_cast<int*>(CPLMalloc(sizeof(int)));
+    wo->panDstBands[0] = 1;
+    wo->eResampleAlg = GRA_Bilinear;
+    wo->eWorkingDataType = GDT_Float32;
+    wo->pfnTransformer = GDALGenImgProjTransform;
+    wo->pTransformerArg = transform;
+    if (has_nodata) {
+        wo->padfSrcNoDataReal = static_cast<double*>(CPLMalloc(sizeof(double)));
+        wo->padfSrcNoDataReal[0] = nodata;
+        wo->padfSrcNoDataImag = static_cast<double*>(CPLCalloc(1, sizeof(double)));
+    }
+    wo->padfDstNoDataReal = static_cast<double*>(CPLMalloc(sizeof(double)));
+    wo->padfDstNoDataReal[0] = std::nan("");
+    wo->padfDstNoDataImag = static_cast<double*>(CPLCalloc(1, sizeof(double)));
+    wo->papszWarpOptions = CSLSetNameValue(wo->papszWarpOptions, "INIT_DEST", "NO_DATA");
+    // GDAL widens the bilinear kernel by a ratio it estimates per chunk of work: fixed here.
+    wo->papszWarpOptions = CSLSetNameValue(wo->papszWarpOptions, "XSCALE", "1");
+    wo->papszWarpOptions = CSLSetNameValue(wo->papszWarpOptions, "YSCALE", "1");
+    // The run's thread count (tex::ThreadsScope): rows are warped in parallel, each cell alone.
+    wo->papszWarpOptions =
+        CSLSetNameValue(wo->papszWarpOptions, "NUM_THREADS", std::to_string(tex::GetThreads()).c_str());
+    CPLErr err;
+    {
+        GDALWarpOperation op;
+        err = op.Initialize(wo);
+        if (err == CE_None) err = op.ChunkAndWarpImage(0, 0, width, height);
+    }
+    GDALDestroyWarpOptions(wo);
+    GDALDestroyGenImgProjTransformer(transform);
+    if (err != CE_None) throw Error(Code::InputMissing, what + ": cannot reproject to UTM (" + CPLGetLastErrorMsg() + ")");
+
+    Raster r;
+    r.width = width;
+    r.height = height;
+    r.gt = gt;
+    r.crs_wkt = g.grid.crs_wkt;
+    if (width != g.grid.width || height != g.grid.height) {
+        r.col0 = w.col0;
+        r.row0 = w.row0;
+        r.grid_gt = g.grid.gt;
+    }
+    r.data.resize(std::size_t(width) * height);
+    if (out->RasterIO(GF_Read, 0, 0, width, height, r.data.data(), width, height, GDT_Float32, 0, 0) != CE_None)
+        throw Error(Code::Failure, what + ": cannot read the reprojected cells");
+    for (float& v : r.data)
+        if (!std::isfinite(v)) v = kNaN;
+    return r;
+}
+
+}  // namespace
+
+WorkingGrid working_grid(const RasterInfo& dem) {
+    WorkingGrid g;
+    g.source = dem;
+    g.grid = dem;
+    if (!is_geographic(dem.crs_wkt)) return g;
+    register_gdal();
+    QuietGdal quiet;
+    const BBox b = dem.bounds();
+    g.epsg = utm_epsg(b.center().x, b.center().y);
+    g.grid.crs_wkt = epsg_wkt(g.epsg);
+    // Square cells of the north-south ground size of a source cell.
+    const double cell = std::max(kGridStep, std::round(std::abs(dem.gt[5]) * 111320.0 / kGridStep) * kGridStep);
+    // The extent GDAL suggests for the reprojection (the source's outline, transformed exactly).
+    // (A dataset of the source grid without cells: GDAL needs one to suggest the extent.)
+    DatasetPtr src = mem_grid(dem.width, dem.height, 0, dem.gt, dem.crs_wkt);
+    void* transform = GDALCreateGenImgProjTransformer(GDALDataset::ToHandle(src.get()), dem.crs_wkt.c_str(), nullptr,
+                                                      g.grid.crs_wkt.c_str(), FALSE, 0.0, 1);
+    if (!transform) throw Error(Code::NoCrs, std::string("cannot reproject the DEM to UTM: ") + CPLGetLastErrorMsg());
+    std::array<double, 6> suggested{};
+    int w = 0, h = 0;
+    const CPLErr err = GDALSuggestedWarpOutput(GDALDataset::ToHandle(src.get()), GDALGenImgProjTransform, transform,
+                                               suggested.data(), &w, &h);
+    GDALDestroyGenImgProjTransformer(transform);
+    if (err != CE_None) throw Error(Code::NoCrs, std::string("cannot reproject the DEM to UTM: ") + CPLGetLastErrorMsg());
+    Raster extent;
+    extent.width = w;
+    extent.height = h;
+    extent.gt = suggested;
+    const BBox e = extent.bounds();
+    const double x0 = snap_down(e.xmin), y0 = snap_up(e.ymax);
+    check_size(std::ceil((e.xmax - x0) / cell), std::ceil((y0 - e.ymin) / cell), "the DEM reprojected to UTM");
+    g.grid.width = std::max(1, int(std::ceil((e.xmax - x0) / cell)));
+    g.grid.height = std::max(1, int(std::ceil((y0 - e.ymin) / cell)));
+    g.grid.gt = {x0, cell, 0, y0, 0, -cell};
+    return g;
+}
+
+std::string WorkingGrid::note() const {
+    if (!reprojected()) return "";
+    return "DEM in a geographic CRS: reprojected to EPSG:" + std::to_string(epsg) + " (UTM, " +
+           std::to_string(int(std::round(grid.gt[1]))) + " m cells)";
+}
+
+Raster read_working_window(const std::string& path, const std::string& what, const WorkingGrid& g, const BBox& box,
+                           int halo) {
+    if (!g.reprojected()) return read_raster_window(path, what, box, halo);
+    DatasetPtr ds = open_raster(path, what);
+    QuietGdal quiet;
+    if (!same_grid(checked_info(*ds, what, path), g.source))
+        throw Error(Code::Usage, what + " '" + path + "': not on the grid of the DEM");
+    const CellWindow w = cells_touched(g.grid, box, halo);
+    if (w.empty()) return empty_on(g.grid);
+    return warp_cells(*ds, g, w, what + " '" + path + "'");
+}
+
+Raster read_working(const std::string& path, const std::string& what, const WorkingGrid& g) {
+    if (!g.reprojected()) return read_raster(path, what);
+    return read_working_window(path, what, g, g.grid.bounds(), 0);
+}
+
 Raster to_working_crs(Raster dem, std::string* note) {
     if (!is_geographic(dem.crs_wkt)) return dem;
-    const BBox b = dem.bounds();
-    const int epsg = utm_epsg(b.center().x, b.center().y);
-    const double cell = dem.cell_y() * 111320.0;
-    if (note)
-        *note = "DEM in a geographic CRS: reprojected to EPSG:" + std::to_string(epsg) + " (UTM, " +
-                std::to_string(int(std::round(cell))) + " m cells)";
-    return warp(dem, epsg_wkt(epsg), cell);
+    RasterInfo info;
+    info.width = dem.width;
+    info.height = dem.height;
+    info.gt = dem.gt;
+    info.crs_wkt = dem.crs_wkt;
+    const WorkingGrid g = working_grid(info);
+    if (note) *note = g.note();
+    register_gdal();
+    QuietGdal quiet;
+    DatasetPtr in = mem_copy(dem);
+    return warp_cells(*in, g, CellWindow{0, 0, g.grid.width, g.grid.height}, "the DEM");
 }
 
 Raster resample_like(const Raster& src0, const Raster& like) {

@@ -28,14 +28,14 @@ constexpr int kKernelCells = 4;
 // fields of the neighbour just across.
 constexpr double kReachLengths = 4.0;
 
-// A raster given with the DEM, in the tile's window: it must share the DEM's grid.
-Raster read_like_dem(const std::string& path, const char* what, const RasterInfo& dem, const tex::BBox& area, int halo,
+// A raster given with the DEM, in the tile's window of the working grid: it must share the
+// DEM's own grid (then a geographic one is reprojected as the DEM is).
+Raster read_like_dem(const std::string& path, const char* what, const WorkingGrid& dem, const tex::BBox& area, int halo,
                      const std::string& dem_path) {
-    const RasterInfo info = raster_info(path, what);
-    if (info.width != dem.width || info.height != dem.height || info.gt != dem.gt || !same_crs(info.crs_wkt, dem.crs_wkt))
+    if (!same_grid(raster_info(path, what), dem.source))
         throw Error(Code::Usage, std::string(what) + " '" + path + "': a tiled run needs it on the grid of --dem '" +
                                      dem_path + "' (same size, cells and CRS; e.g. gdalwarp -te/-tr to match)");
-    return read_raster_window(path, what, area, halo);
+    return read_working_window(path, what, dem, area, halo);
 }
 
 }  // namespace
@@ -92,10 +92,9 @@ TileReport run_tile(const Options& o, const tex::BBox& tile, const std::string& 
     Options checked = o;
     checked.outputs.push_back(out);
     validate(checked);
-    const RasterInfo dem_info = raster_info(o.dem, "--dem");
-    if (is_geographic(dem_info.crs_wkt))
-        throw Error(Code::Usage, "--dem '" + o.dem + "': a tiled run needs a DEM in a projected CRS (this one is in "
-                                 "degrees); reproject it first, e.g. gdalwarp -t_srs EPSG:326NN");
+    // The grid the whole run works on (a geographic DEM's UTM grid), read window by window.
+    const WorkingGrid grid = working_grid(raster_info(o.dem, "--dem"));
+    const RasterInfo& dem_info = grid.grid;
     // The smaller side of a cell: halos counted in it are wide enough along both axes.
     const double cell = std::min(std::abs(dem_info.gt[1]), std::abs(dem_info.gt[5]));
 
@@ -140,12 +139,12 @@ TileReport run_tile(const Options& o, const tex::BBox& tile, const std::string& 
         // kernels see the same cells as in the whole raster.
         const tex::BBox area = p.partition.bounds();
         const int halo = tile_halo_cells(o, cell);
-        Raster dem = read_raster_window(o.dem, "--dem", area, halo);
+        Raster dem = read_working_window(o.dem, "--dem", grid, area, halo);
         report.dem_cells = (long long)dem.width * dem.height;
         p.terrain = compute_terrain(dem);
-        if (!o.slope.empty()) p.terrain.slope = read_like_dem(o.slope, "--slope", dem_info, area, halo, o.dem);
+        if (!o.slope.empty()) p.terrain.slope = read_like_dem(o.slope, "--slope", grid, area, halo, o.dem);
         if (!o.roughness.empty()) {
-            p.terrain.roughness = read_like_dem(o.roughness, "--roughness", dem_info, area, halo, o.dem);
+            p.terrain.roughness = read_like_dem(o.roughness, "--roughness", grid, area, halo, o.dem);
             check_roughness(p.terrain.roughness, o.roughness);
         }
         p.relief = local_relief(dem, o.relief_radius);

@@ -264,17 +264,16 @@ def test_partial_tile_files_are_never_merged(tmp_path, sample_whole):
 
 @real_dem
 def test_tiled_equals_whole_on_chamonix(tmp_path, rockhatch_exe):
-    # A tiled run needs a projected DEM: Chamonix.tif (degrees) warped to UTM 32N first.
-    dem = tmp_path / "chamonix_utm.tif"
-    gdal.Warp(str(dem), str(SHARED_DEM), dstSRS="EPSG:32632", xRes=30, yRes=30, resampleAlg="bilinear")
+    # Chamonix.tif is in degrees, with NoData: both runs work on its UTM 32N reprojection,
+    # the tiles reading it window by window.
     faces = tmp_path / "faces.gpkg"
-    r = subprocess.run([str(rockhatch_exe), "partition", "--dem", str(dem), "-o", str(faces), "-q"],
+    r = subprocess.run([str(rockhatch_exe), "partition", "--dem", str(SHARED_DEM), "-o", str(faces), "-q"],
                        capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr
-    args = ["--dem", str(dem), "--partition", str(faces), "--scale", "25000"]
+    args = ["--dem", str(SHARED_DEM), "--partition", str(faces), "--scale", "25000"]
     expected = whole_run(args, tmp_path / "whole.gpkg")
     assert len(expected) > 100000
-    s = tiles.run(dem, faces, 2500, [tmp_path / "tiled.gpkg"], scale=25000, workers=2)
+    s = tiles.run(SHARED_DEM, faces, 2500, [tmp_path / "tiled.gpkg"], scale=25000, workers=2)
     assert s.tiles > 20
     assert features(tmp_path / "tiled.gpkg") == expected
 
@@ -310,14 +309,26 @@ def test_bad_input_is_refused_before_any_work(tmp_path, args, code, words):
     assert not (tmp_path / "o.gpkg").exists()
 
 
-def test_a_geographic_dem_is_refused_with_the_fix(tmp_path):
+def test_a_geographic_dem_is_tiled_as_the_whole_run_reprojects_it(tmp_path, rockhatch_exe):
+    # The sample in degrees (with NoData corners): tiles of the UTM grid the whole run works
+    # on, each warped alone from the DEM, give the whole run's hatches bit for bit; so does
+    # the partition extracted tile by tile.
     dem = tmp_path / "geo.tif"
-    gdal.Warp(str(dem), DEM, dstSRS="EPSG:4326")
-    r = subprocess.run([sys.executable, "-m", "rockhatch", "tiles", "--dem", str(dem), "--partition", FACES,
-                        "--tile-size", "0.01", "-o", str(tmp_path / "o.gpkg")],
-                       capture_output=True, text=True, env=python_env(), timeout=120)
-    assert r.returncode == 2
-    assert "projected CRS" in r.stderr and "gdalwarp" in r.stderr
+    gdal.Warp(str(dem), DEM, dstSRS="EPSG:4326", dstNodata=-9999)
+    whole = whole_run(["--dem", str(dem), "--partition", FACES, "--seed", "3"], tmp_path / "w.gpkg")
+    assert len(whole) > 1000
+    out = tmp_path / "tiled.gpkg"
+    s = tiles.run(dem, FACES, 700, [out], seed=3, workers=2)
+    assert s.tiles >= 9
+    assert features(out) == whole
+    assert ogr.Open(str(out)).GetLayer(0).GetSpatialRef().GetAuthorityCode(None) == "32632"
+    r = subprocess.run([str(rockhatch_exe), "partition", "--dem", str(dem), "-o", str(tmp_path / "p.gpkg"), "-q"],
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    work = tmp_path / "work"
+    s = tiles.run(dem, "auto", 900, [tmp_path / "auto.gpkg"], seed=3, workers=2, workdir=work, keep_tiles=True)
+    assert s.warnings == []
+    assert partition_faces(work / "partition.gpkg") == partition_faces(tmp_path / "p.gpkg")
 
 
 def test_a_vrt_mosaic_of_many_files_gives_the_same_hatches(tmp_path, sample_whole):

@@ -256,11 +256,8 @@ def run_args(argv, progress=None):
         for out in options.outputs:
             carto.check_extract_files(eo, out, "", True)
     halo = _positive("--extract-halo", mine["--extract-halo"]) if "--extract-halo" in mine else DEFAULT_EXTRACT_HALO
-    dem = carto.raster_info(options.dem, "--dem")
-    if carto.is_geographic(dem.crs):
-        raise carto.error(2, f"--dem '{options.dem}': a tiled run needs a DEM in a projected CRS (this one is in "
-                             "degrees); reproject it first, e.g. gdalwarp -t_srs EPSG:326NN")
-    grid = carto.tile_grid(dem, tile_size)
+    # The tiles cut the grid the whole run works on (a geographic DEM's UTM grid).
+    grid = carto.tile_grid(carto.working_grid(carto.raster_info(options.dem, "--dem")).grid, tile_size)
     workdir = mine.get("--workdir") or (options.outputs[0] + ".tiles")
     if os.path.abspath(workdir) in {os.path.abspath(p) for p in [options.dem, options.partition.path] if p}:
         raise carto.error(9, f"--workdir '{workdir}' is an input")

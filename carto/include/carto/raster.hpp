@@ -58,6 +58,8 @@ struct RasterInfo {
     BBox bounds() const;
 };
 RasterInfo raster_info(const std::string& path, const std::string& what);
+// True when both have the same size, geotransform and CRS.
+bool same_grid(const RasterInfo& a, const RasterInfo& b);
 // Band 1 of the cells of a raster that a box (in its CRS) touches, grown by `halo` cells on
 // every side and clipped to the raster: only those cells are read (a VRT mosaic reads only
 // the files under the window). An empty window (the box misses the raster) has width 0.
@@ -74,12 +76,34 @@ std::string crs_name(const std::string& wkt);
 bool same_crs(const std::string& a, const std::string& b);
 // The UTM zone (WGS 84) containing a longitude/latitude, as an EPSG code (GeographicLib).
 int utm_epsg(double lon, double lat);
-// Reprojects a raster (bilinear, NoData kept) to a CRS, with square cells of `cell` units
-// (0: chosen by GDAL to keep the resolution).
-Raster warp(const Raster& src, const std::string& dst_wkt, double cell = 0.0);
-// A DEM in a projected CRS, as slopes need ground distances: a geographic DEM is reprojected
-// to the UTM zone of its centre with square cells of its north-south ground size, and `note`
-// (when given) says so; a projected one is returned unchanged.
+// Reprojects a raster (bilinear, NoData kept) to a CRS, on the grid GDAL suggests.
+Raster warp(const Raster& src, const std::string& dst_wkt);
+
+// The grid a DEM is worked on: slopes need ground distances. A projected DEM is worked on its
+// own grid. A geographic one is reprojected to the UTM zone of its centre (GeographicLib),
+// with square cells of its north-south ground size, over the extent GDAL suggests, origin
+// and cell on multiples of 2^-10 m; each cell is the bilinear interpolation of the DEM at
+// the cell centre's exact position (PROJ per cell), NoData kept. A cell depends on the DEM
+// and its position only, so a window of the grid, read alone, holds the bits the whole grid
+// holds there (a tiled run equals a whole run on a geographic DEM too).
+struct WorkingGrid {
+    RasterInfo source;  // the DEM's own grid
+    RasterInfo grid;    // the grid the terrain steps see (== source when not reprojected)
+    int epsg = 0;       // the UTM zone's EPSG code when reprojected, else 0
+    bool reprojected() const { return epsg != 0; }
+    // "DEM in a geographic CRS: reprojected to EPSG:..." when reprojected, else "".
+    std::string note() const;
+};
+WorkingGrid working_grid(const RasterInfo& dem);
+// A raster on the DEM's own grid (the DEM, or a slope or roughness raster given with it), in
+// the working grid: the cells a box (working CRS) touches grown by `halo` cells and clipped
+// (read_raster_window when the grid is not reprojected; only the source cells under the
+// window are read), or all of them.
+Raster read_working_window(const std::string& path, const std::string& what, const WorkingGrid& g, const BBox& box,
+                           int halo);
+Raster read_working(const std::string& path, const std::string& what, const WorkingGrid& g);
+// An in-memory DEM in the working grid (the same cells as read_working of a file holding
+// it); `note` (when given) says when it was reprojected.
 Raster to_working_crs(Raster dem, std::string* note = nullptr);
 // Resamples `src` onto the grid of `like` (same CRS assumed or reprojected).
 Raster resample_like(const Raster& src, const Raster& like);
