@@ -47,6 +47,8 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:suppressions=$SUPP/ubsa
 export LSAN_OPTIONS="suppressions=$SUPP/lsan.supp:print_suppressions=0"
 
 export RH_SANITIZED=1
+# Here ctest runs each test program whole, the slow ones in gtest shards (rh_register_tests in
+# tests/CMakeLists.txt): a test process under ASan takes 0.2 to 0.6 s to start.
 ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$JOBS"
 ctest_rc=$?
 ctested=$(date +%s)

@@ -45,6 +45,15 @@ real_dem = pytest.mark.skipif(not SHARED_DEM.exists(),
                               reason=f"{SHARED_DEM} is absent (../shared is not beside the project)")
 
 
+# A real-DEM test whose code paths a sample test also takes, on 10 to 40 times the data: the
+# normal pass runs it; under the sanitizers (27 and 44 s each, the two longest Python tests
+# there) its sample twin, named in the reason, covers those paths. With them the test command
+# took 1,575 s from a fresh clone here, and 1,895 s in CI.
+def heavy_real_dem(twin):
+    return pytest.mark.skipif(SANITIZED, reason=f"a heavy real-DEM test, left to the normal pass; under the "
+                                                f"sanitizers {twin} takes its code paths")
+
+
 def one_under_sanitizers(values):
     """Values of a parametrized test: all of them in the normal pass, the first only under the
     sanitizers, for a test whose other values take the same code path on other sizes or counts."""

@@ -8,7 +8,7 @@ import sys
 import pytest
 from osgeo import ogr
 
-from conftest import SHARED_DEM, python_env, real_dem
+from conftest import SHARED_DEM, heavy_real_dem, python_env, real_dem
 from rockhatch import RockhatchError, carto
 
 
@@ -90,6 +90,7 @@ def test_an_exemplar_that_cannot_make_one_band_is_refused(rockhatch_exe, sample_
 
 
 @real_dem
+@heavy_real_dem("test_crests_from_python_one_polygon_per_ridge")
 def test_every_ridge_of_the_real_dem_is_one_valid_polygon():
     """The automatic partition of Chamonix.tif (599 ridge lines): each ornament drawn is one
     polygon GEOS finds valid (its outer ring and the holes inside it); the ridges skipped

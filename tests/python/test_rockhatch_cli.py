@@ -7,7 +7,7 @@ import pytest
 from osgeo import gdal, ogr
 
 from bad_inputs import partition_file
-from conftest import SHARED_DEM, one_under_sanitizers
+from conftest import SHARED_DEM, heavy_real_dem, one_under_sanitizers
 
 gdal.UseExceptions()
 ogr.UseExceptions()
@@ -234,6 +234,7 @@ def test_a_geographic_dem_with_nodata_is_reprojected_to_utm(rockhatch_exe, sampl
     assert 320000 < xmin < xmax < 360000 and 5060000 < ymin < ymax < 5110000
 
 
+@heavy_real_dem("test_a_geographic_dem_with_nodata_is_reprojected_to_utm")
 def test_real_dem_geographic_with_nodata(rockhatch_exe, real_partition, tmp_path):
     path, n = real_partition
     r = run(rockhatch_exe, "--dem", SHARED_DEM, "--partition", path, "--no-spatial-index",
