@@ -83,9 +83,7 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
         dem = to_working_crs(std::move(dem), &note);
     } else {
         // The file's CRS and rotation are checked as it is opened.
-        const WorkingGrid g = working_grid(raster_info(o.dem, o.what));
-        dem = read_working(o.dem, o.what, g);
-        note = g.note();
+        dem = read_working_dem(o.dem, o.what, &note);
     }
     if (std::isnan(dem.min_max().first)) throw Error(Code::BadLayer, what + ": every cell is NoData");
     if (!note.empty()) res.notes.push_back(note);

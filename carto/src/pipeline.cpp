@@ -1,6 +1,7 @@
 #include "carto/pipeline.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <chrono>
 #include <cmath>
 #include <atomic>
@@ -33,11 +34,11 @@ bool tick(const Progress& p, double f, const std::string& stage) {
 }  // namespace
 
 Raster load_dem(const std::string& path, std::vector<std::string>* notes) {
-    const WorkingGrid g = working_grid(raster_info(path, "--dem"));
-    Raster dem = read_working(path, "--dem", g);
+    std::string note;
+    Raster dem = read_working_dem(path, "--dem", &note);
     if (dem.min_max().first != dem.min_max().first)
         throw Error(Code::BadLayer, "--dem '" + path + "': every cell is NoData");
-    if (notes && g.reprojected()) notes->push_back(g.note());
+    if (notes && !note.empty()) notes->push_back(note);
     return dem;
 }
 
@@ -136,10 +137,12 @@ Prepared prepare(const Options& o, const Progress& progress) {
     Raster dem = load_dem(o.dem, &p.notes);
     tick(progress, 0.08, "terrain fields");
     p.terrain = compute_terrain(dem);
+    std::optional<WorkingGrid> dem_grid;
     auto load_like = [&](const std::string& path, const char* what, Raster& target) {
         // On the grid of a geographic DEM: reprojected as the DEM is (the cells a tiled run
         // reads too); on another grid: resampled onto the DEM's.
-        const WorkingGrid g = working_grid(raster_info(o.dem, "--dem"));
+        if (!dem_grid) dem_grid = working_grid(raster_info(o.dem, "--dem"));
+        const WorkingGrid& g = *dem_grid;
         Raster r = g.reprojected() && same_grid(raster_info(path, what), g.source) ? read_working(path, what, g)
                                                                                    : read_raster(path, what);
         if (!same_crs(r.crs_wkt, dem.crs_wkt) || r.width != dem.width || r.height != dem.height || r.gt != dem.gt)

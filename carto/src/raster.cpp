@@ -473,6 +473,12 @@ Raster read_working(const std::string& path, const std::string& what, const Work
     return read_working_window(path, what, g, g.grid.bounds(), 0);
 }
 
+Raster read_working_dem(const std::string& path, const std::string& what, std::string* note) {
+    const WorkingGrid g = working_grid(raster_info(path, what));
+    if (note) *note = g.note();
+    return read_working(path, what, g);
+}
+
 Raster to_working_crs(Raster dem, std::string* note) {
     if (!is_geographic(dem.crs_wkt)) return dem;
     RasterInfo info;

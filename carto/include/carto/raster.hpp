@@ -102,6 +102,8 @@ WorkingGrid working_grid(const RasterInfo& dem);
 Raster read_working_window(const std::string& path, const std::string& what, const WorkingGrid& g, const BBox& box,
                            int halo);
 Raster read_working(const std::string& path, const std::string& what, const WorkingGrid& g);
+// A DEM file read whole in its working grid; `note` (when given) gets WorkingGrid::note().
+Raster read_working_dem(const std::string& path, const std::string& what, std::string* note = nullptr);
 // An in-memory DEM in the working grid (the same cells as read_working of a file holding
 // it); `note` (when given) says when it was reprojected.
 Raster to_working_crs(Raster dem, std::string* note = nullptr);
