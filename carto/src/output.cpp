@@ -239,6 +239,7 @@ std::unique_ptr<GDALDataset, DatasetCloser> open_hatches(const std::string& path
 // Every feature of layer hatch_<family> in fid order, as (face id, style, points).
 void read_family(GDALDataset& ds, Family f, const std::string& what, const HatchSink& sink) {
     OGRLayer* layer = ds.GetLayerByName((std::string("hatch_") + family_name(f)).c_str());
+    if (!layer) return;  // a terrain family the drawing did not have (open_hatches checked the rock ones)
     const int face_idx = layer->GetLayerDefn()->GetFieldIndex("face_id");
     const int style_idx = layer->GetLayerDefn()->GetFieldIndex("style");
     if (face_idx < 0 || style_idx < 0)
@@ -247,8 +248,12 @@ void read_family(GDALDataset& ds, Family f, const std::string& what, const Hatch
     layer->ResetReading();
     for (auto& feat : *layer) {
         const OGRGeometry* g = feat->GetGeometryRef();
-        if (!g || wkbFlatten(g->getGeometryType()) != wkbLineString) continue;
-        const OGRLineString* ls = g->toLineString();
+        if (!g) continue;
+        // A hatch is a line; a stone or a hachure a polygon of one ring (its points as written).
+        const OGRSimpleCurve* ls = nullptr;
+        if (wkbFlatten(g->getGeometryType()) == wkbLineString) ls = g->toLineString();
+        else if (wkbFlatten(g->getGeometryType()) == wkbPolygon && family_filled(f)) ls = g->toPolygon()->getExteriorRing();
+        if (!ls) continue;
         pts.resize(std::size_t(ls->getNumPoints()));
         for (int i = 0; i < ls->getNumPoints(); ++i) pts[std::size_t(i)] = {ls->getX(i), ls->getY(i)};
         sink(feat->GetFieldAsInteger64(face_idx), feat->GetFieldAsString(style_idx), pts);
@@ -310,11 +315,14 @@ std::size_t merge_gpkg(const std::vector<std::string>& parts, const std::string&
     std::string crs_wkt;
     std::size_t total = 0;
     bool crests = false;  // a crest layer in any part: one in the result
+    std::vector<char> present(kFamilies, 0);  // the rock families, and the terrain ones of any part
     for (const auto& part : parts) {
         auto ds = open_hatches(part, "tile");
-        for (int fam = 0; fam < kRockFamilies; ++fam)
-            total += std::size_t(std::max<GIntBig>(
-                0, ds->GetLayerByName((std::string("hatch_") + family_name(Family(fam))).c_str())->GetFeatureCount()));
+        for (int fam = 0; fam < kFamilies; ++fam)
+            if (OGRLayer* l = ds->GetLayerByName((std::string("hatch_") + family_name(Family(fam))).c_str())) {
+                total += std::size_t(std::max<GIntBig>(0, l->GetFeatureCount()));
+                present[std::size_t(fam)] = 1;
+            }
         if (crs_wkt.empty()) crs_wkt = wkt2_of(ds->GetLayer(0)->GetSpatialRef());
         crests = crests || ds->GetLayerByName("crest");
     }
@@ -328,7 +336,7 @@ std::size_t merge_gpkg(const std::vector<std::string>& parts, const std::string&
                 sink(id, style, p);
             });
         }
-    }, [](Family f) { return int(f) < kRockFamilies; }, crests ? CrestSource([&](const CrestSink& sink) {
+    }, [&](Family f) { return present[std::size_t(f)] != 0; }, crests ? CrestSource([&](const CrestSink& sink) {
         for (const auto& part : parts) read_crests(*open_hatches(part, "tile"), "tile '" + part + "'", sink);
     }) : CrestSource());
     return n;
@@ -340,7 +348,7 @@ Drawing read_gpkg(const std::string& path, double scale) {
     d.scale = scale;
     d.crs_wkt = wkt2_of(ds->GetLayer(0)->GetSpatialRef());
     std::map<std::int64_t, std::size_t> face_index;
-    for (int fam = 0; fam < kRockFamilies; ++fam)
+    for (int fam = 0; fam < kFamilies; ++fam)
         read_family(*ds, Family(fam), "hatches '" + path + "'", [&](std::int64_t id, const char* style,
                                                                    const std::vector<Point>& p) {
             if (d.style.empty()) d.style = style;

@@ -105,9 +105,6 @@ void validate(const Options& o) {
     if (o.partition.path == "none" && !selected_style(o).terrain)
         throw Error(Code::Usage, "--partition none: style '" + selected_style(o).info.name +
                                      "' hatches rock faces and needs a partition (a file or auto)");
-    if (o.window && selected_style(o).terrain)
-        throw Error(Code::Usage, "--window: style '" + selected_style(o).info.name +
-                                     "' draws the whole DEM and cannot be tiled by a window");
     if (o.threads > kMaxThreads)
         throw Error(Code::Usage, "--threads: " + std::to_string(o.threads) + " is more than " +
                                      std::to_string(kMaxThreads));
@@ -210,13 +207,33 @@ Drawing hatch(const Prepared& p, const Options& o, const Progress& progress) {
     return hatch(p, o, selected, progress);
 }
 
-Drawing hatch(const Prepared& p, const Options& o, const std::vector<int>& selected, const Progress& progress) {
+std::optional<tex::BBox> terrain_read_area(const Options& o, const tex::BBox& dem_extent, double cell) {
+    const Style style = selected_style(o);
+    if (!style.terrain || !o.window) return std::nullopt;
+    const tex::BBox w{std::max(o.window->xmin, dem_extent.xmin), std::max(o.window->ymin, dem_extent.ymin),
+                      std::min(o.window->xmax, dem_extent.xmax), std::min(o.window->ymax, dem_extent.ymax)};
+    if (!(w.xmin <= w.xmax && w.ymin <= w.ymax)) return tex::BBox{};
+    return w.expanded(style.terrain_reach(resolve_params(style.info, o.params, o.scale), cell));
+}
+
+Drawing hatch(const Prepared& p, const Options& o, const std::vector<int>& chosen, const Progress& progress) {
     const Style style = selected_style(o);
     // A terrain style's parameters are its own; its faces are hatched with the default
     // rock style at its default values.
     const ParamValues params = resolve_params(style.terrain ? find_style(default_style()) : style.info,
                                               style.terrain ? std::map<std::string, double>{} : o.params, o.scale);
     const Partition& part = p.partition;
+    // A terrain style in a window also reads the hatches of the faces around it (drawn after
+    // the chosen ones, and dropped once the terrain is drawn).
+    std::vector<int> selected = chosen;
+    const Raster& elevation = p.terrain.elevation;
+    if (const auto around = terrain_read_area(o, p.extent.empty() ? elevation.bounds() : p.extent,
+                                              std::max(elevation.cell_x(), elevation.cell_y()))) {
+        std::vector<char> taken(part.faces.size(), 0);
+        for (int i : chosen) taken[std::size_t(i)] = 1;
+        for (std::size_t i = 0; i < part.faces.size(); ++i)
+            if (!taken[i] && !around->empty() && part.faces[i].region.bbox().intersects(*around)) selected.push_back(int(i));
+    }
     check_workload(style.terrain ? find_style(default_style()) : style.info, params, part, selected, o.scale);
     Drawing d;
     d.crs_wkt = part.crs_wkt;
@@ -280,7 +297,7 @@ Drawing hatch(const Prepared& p, const Options& o, const std::vector<int>& selec
         tex::parallel_for(selected.size(), draw);
     }
     if (cancelled) throw Error(Code::Cancelled, "cancelled during hatching");
-    for (std::size_t k = 0; k < selected.size(); ++k) d.bounds.add(part.faces[selected[k]].region.bbox());
+    for (std::size_t k = 0; k < chosen.size(); ++k) d.bounds.add(part.faces[chosen[k]].region.bbox());
     if (const std::optional<double> band = crest_band(o)) {
         tick(progress, 0.9, "crest ornaments");
         CrestResult crests = draw_crests(part, load_crest_exemplar(o.crest_ornament.value_or(kDefaultCrest)), *band,
@@ -295,15 +312,20 @@ Drawing hatch(const Prepared& p, const Options& o, const std::vector<int>& selec
         tick(progress, 0.9, "drawing the terrain");
         std::vector<Hatch> rock;
         for (const auto& f : d.faces) rock.insert(rock.end(), f.hatches.begin(), f.hatches.end());
+        d.faces.resize(chosen.size());  // the faces read around the window are not drawn
         const ParamValues own = resolve_params(style.info, o.params, o.scale);
         try {
-            d.faces.push_back({kTerrainFaceId, style.terrain({p.terrain, part, rock, o.scale, o.seed}, own)});
+            d.faces.push_back(
+                {kTerrainFaceId, style.terrain({p.terrain, part, rock, o.scale, o.seed, o.window}, own)});
         } catch (const Error&) {
             throw;
         } catch (const std::exception& e) {
             throw Error(Code::Failure, "style '" + style.info.name + "': " + e.what());
         }
-        d.bounds.add(p.terrain.elevation.bounds());
+        if (!o.window) d.bounds.add(p.terrain.elevation.bounds());
+        else
+            for (const Hatch& h : d.faces.back().hatches)
+                for (const Point& q : h.points) d.bounds.add(q);
     }
     return d;
 }

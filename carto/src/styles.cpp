@@ -88,6 +88,7 @@ Style builtin_style(const std::string& name) {
             Style s = builtin_style(default_style());
             s.info = b.info;
             s.terrain = b.program;
+            s.terrain_reach = b.reach;
             return s;
         }
     throw Error(Code::UnknownStyle, "--style: unknown style '" + name + "'");

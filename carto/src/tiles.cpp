@@ -63,8 +63,11 @@ std::vector<tex::BBox> tile_grid(const RasterInfo& dem, double size) {
 }
 
 double tile_context_margin(const Options& o, double cell) {
-    const StyleInfo& info = selected_style(o).info;
-    const ParamValues params = resolve_params(info, o.params, o.scale);
+    // The style that hatches the faces: a terrain style hatches them with the default rock
+    // style at its defaults (carto::hatch).
+    const Style style = selected_style(o);
+    const StyleInfo& info = style.terrain ? find_style(default_style()) : style.info;
+    const ParamValues params = resolve_params(info, style.terrain ? std::map<std::string, double>{} : o.params, o.scale);
     double longest = 0;
     for (const auto& sp : info.params)
         if (sp.unit == "mm") longest = std::max(longest, params.at(sp.name));
@@ -85,9 +88,6 @@ TileReport run_tile(const Options& o, const tex::BBox& tile, const std::string& 
         // and hands its hatching tiles the merged file.
         throw Error(Code::Usage, "--partition auto: a hatching tile reads a partition file; rockhatch tiles extracts "
                                  "the partition tile by tile first (carto::extract_tile) and passes the merged file");
-    if (selected_style(o).terrain)
-        throw Error(Code::Usage, "--style " + selected_style(o).info.name +
-                                     ": a terrain style draws the whole DEM in one sequence and cannot be tiled yet");
     // The tile file is one more output: never an input, never an existing file unless asked.
     Options checked = o;
     checked.outputs.push_back(out);
@@ -115,9 +115,24 @@ TileReport run_tile(const Options& o, const tex::BBox& tile, const std::string& 
     if (o.window)
         tile_options.window = tex::BBox{std::max(tile.xmin, o.window->xmin), std::max(tile.ymin, o.window->ymin),
                                         std::min(tile.xmax, o.window->xmax), std::min(tile.ymax, o.window->ymax)};
-    const Partition around = load_partition(po, dem_info.crs_wkt);
+    // A terrain style draws the elements the tile owns, reading the DEM and the faces (their
+    // hatches) within its reach of the tile's part of the DEM.
+    const std::optional<tex::BBox> terrain = terrain_read_area(tile_options, dem_info.bounds(), cell);
+    if (terrain && !terrain->empty()) {
+        po.filter = tex::BBox{std::min(tile.xmin, terrain->xmin), std::min(tile.ymin, terrain->ymin),
+                              std::max(tile.xmax, terrain->xmax), std::max(tile.ymax, terrain->ymax)};
+        reach.add(*terrain);
+    }
+    // --partition none (a terrain style over ground without rock): no faces.
+    auto read_faces = [&](const PartitionOptions& opt) {
+        if (o.partition.path != "none") return load_partition(opt, dem_info.crs_wkt);
+        Partition none;
+        none.crs_wkt = dem_info.crs_wkt;
+        return none;
+    };
+    const Partition around = read_faces(po);
     for (const RockFace& f : around.faces)
-        if (mine(f)) reach.add(f.region.bbox());
+        if (mine(f) || (terrain && f.region.bbox().intersects(*terrain))) reach.add(f.region.bbox());
     double margin = tile_context_margin(o, cell);
     if (band) {
         for (const LabelledLine& l : around.lines)
@@ -134,10 +149,12 @@ TileReport run_tile(const Options& o, const tex::BBox& tile, const std::string& 
         // 2. Their neighbourhood: every face a style may read across an owned face's border.
         po.filter = reach.expanded(margin);
         Prepared p;
-        p.partition = load_partition(po, dem_info.crs_wkt);
-        // 3. The DEM under all of them, with a halo where the relief window and the terrain
-        // kernels see the same cells as in the whole raster.
-        const tex::BBox area = p.partition.bounds();
+        p.partition = read_faces(po);
+        p.extent = dem_info.bounds();
+        // 3. The DEM under all of them (and the terrain's reach), with a halo where the relief
+        // window and the terrain kernels see the same cells as in the whole raster.
+        tex::BBox area = p.partition.bounds();
+        if (terrain) area.add(*terrain);
         const int halo = tile_halo_cells(o, cell);
         Raster dem = read_working_window(o.dem, "--dem", grid, area, halo);
         report.dem_cells = (long long)dem.width * dem.height;
@@ -155,7 +172,8 @@ TileReport run_tile(const Options& o, const tex::BBox& tile, const std::string& 
         report.context_faces = p.partition.faces.size();
         d = hatch(p, tile_options, owned);
     }
-    report.faces = d.faces.size();
+    report.faces = std::size_t(std::count_if(d.faces.begin(), d.faces.end(),
+                                             [](const FaceHatches& f) { return f.face_id != kTerrainFaceId; }));
     for (const auto& f : d.faces) report.hatches += f.hatches.size();
     write_gpkg(d, out, false);
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

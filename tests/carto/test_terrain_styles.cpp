@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "carto/error.hpp"
 #include "carto/fields.hpp"
@@ -175,15 +176,54 @@ TEST(TerrainStyles, BadParametersGiveOneLineErrors) {
               "--param spacing_min: must not exceed spacing_max for style 'slope-hachures'");
     EXPECT_EQ(message("scree", {{"stone_min", 1}}), "--param stone_min: must not exceed stone_max for style 'scree'");
     EXPECT_EQ(message("scree", {{"shade_weight", 2}}), "--param shade_weight: must not exceed 1 for style 'scree'");
-    // A terrain style covers the whole DEM: a window would cut it arbitrarily.
-    Options o = options("scree");
-    o.window = tex::BBox{0, 0, 10, 10};
-    o.dem = "x.tif", o.partition.path = "x.gpkg", o.outputs = {"/tmp/x.svg"};
-    try {
-        validate(o);
-        FAIL();
-    } catch (const Error& e) {
-        EXPECT_EQ(std::string(e.what()), "--window: style 'scree' draws the whole DEM and cannot be tiled by a window");
+}
+
+// The terrain elements of a drawing as rings, sorted (a multiset to compare).
+std::vector<std::vector<Point>> element_rings(const Drawing& d) {
+    std::vector<std::vector<Point>> out;
+    for (const auto& f : d.faces)
+        if (f.face_id == kTerrainFaceId)
+            for (const auto& h : f.hatches) out.push_back(h.points);
+    std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) {
+        return std::lexicographical_compare(a.begin(), a.end(), b.begin(), b.end(), [](const Point& p, const Point& q) {
+            return std::tie(p.x, p.y) < std::tie(q.x, q.y);
+        });
+    });
+    return out;
+}
+
+TEST(TerrainStyles, WindowsTogetherDrawTheWholeRunsElements) {
+    // Local control: the elements are thrown over one grid of tiles anchored in the working
+    // CRS, so four windows that cover the plane (half-open, meeting off the tile lines) draw
+    // exactly the whole run's elements between them, none twice, at any thread count. The
+    // windows meet across the scree band; the short contour interval gives the hachures
+    // tiles of about 230 m, many to a window (at the defaults, 788 m: two windows).
+    const double inf = 1e15;
+    const std::vector<tex::BBox> quarters{
+        {-inf, -inf, 430, 560}, {430, -inf, inf, 560}, {-inf, 560, 430, inf}, {430, 560, inf, inf}};
+    for (const auto& [style, params] : std::vector<std::pair<std::string, std::map<std::string, double>>>{
+             {"scree", {}}, {"slope-hachures", {{"interval", 5}}}, {"slope-hachures", {}}}) {
+        Options o = options(style, 2, 5);
+        o.params = params;
+        const auto whole = element_rings(hatch(synthetic(), o));
+        ASSERT_GT(whole.size(), 200u) << style;
+        std::vector<std::vector<Point>> joined;
+        std::size_t windows_with_elements = 0;
+        for (std::size_t k = 0; k < quarters.size(); ++k) {
+            o.window = quarters[k];
+            o.threads = unsigned(1 + k % 2);
+            const auto part = element_rings(hatch(synthetic(), o));
+            windows_with_elements += !part.empty();
+            joined.insert(joined.end(), part.begin(), part.end());
+        }
+        o.window.reset();
+        EXPECT_GE(windows_with_elements, 2u) << style;
+        std::sort(joined.begin(), joined.end(), [](const auto& a, const auto& b) {
+            return std::lexicographical_compare(a.begin(), a.end(), b.begin(), b.end(),
+                                                [](const Point& p, const Point& q) { return std::tie(p.x, p.y) < std::tie(q.x, q.y); });
+        });
+        ASSERT_EQ(joined.size(), whole.size()) << style;
+        EXPECT_TRUE(joined == whole) << style << ": a window drew other elements than the whole run";
     }
 }
 

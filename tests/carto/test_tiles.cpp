@@ -182,3 +182,99 @@ TEST(Tiles, RefusesWhatATiledRunCannotDoExactly) {
     run_tile(o, tiles[0], dir / "b.gpkg");
     EXPECT_THROW(run_tile(o, tiles[0], dir / "b.gpkg"), Error);
 }
+
+namespace {
+
+// A long slope falling to the south, 4 km x 1 km at 5 m, with shallow ribs, and small
+// square rock faces in a row along its top: a DEM much wider than a terrain style's reach,
+// whose faces are small, so that tiles read windows of it.
+void write_long_slope(const std::string& dem_path, const std::string& faces_path) {
+    constexpr double x0 = 900000, y0 = 6500000, w = 4000, h = 1000, cell = 5;
+    Raster r;
+    r.width = int(w / cell), r.height = int(h / cell);
+    r.gt = {x0, cell, 0, y0 + h, 0, -cell};
+    r.crs_wkt = epsg_wkt(2154);
+    r.data.resize(std::size_t(r.width) * r.height);
+    for (int row = 0; row < r.height; ++row)
+        for (int col = 0; col < r.width; ++col) {
+            const Point q = r.to_world(col + 0.5, row + 0.5);
+            const double u = q.x - x0, v = q.y - y0;
+            r.at(col, row) = float(1500 + 0.6 * v + 12 * std::sin(u / 90) + 0.05 * u);
+        }
+    write_geotiff(r, dem_path);
+    Partition p;
+    p.crs_wkt = r.crs_wkt;
+    for (int k = 0; k < 8; ++k) {
+        RockFace f;
+        f.id = k + 1;
+        const double a = x0 + 150 + 500 * k, b = y0 + 760;
+        f.region = tex::Region::rectangle(a, b, a + 130, b + 110);
+        const auto& ring = f.region.outer();
+        for (std::size_t i = 0; i < ring.size(); ++i) f.boundary.push_back({ring[i], ring[(i + 1) % ring.size()]});
+        f.orientation = M_PI / 2;
+        f.density = 0.5;
+        p.faces.push_back(std::move(f));
+    }
+    write_partition_gpkg(p, faces_path, true, nullptr, true);
+}
+
+// The terrain elements of a drawing, sorted (tiles write them tile by tile).
+std::vector<std::vector<Point>> terrain_elements(const Drawing& d) {
+    std::vector<std::vector<Point>> out;
+    for (const auto& f : d.faces)
+        if (f.face_id == kTerrainFaceId)
+            for (const auto& h : f.hatches) out.push_back(h.points);
+    auto less = [](const std::vector<Point>& a, const std::vector<Point>& b) {
+        return std::lexicographical_compare(a.begin(), a.end(), b.begin(), b.end(), [](const Point& p, const Point& q) {
+            return std::tie(p.x, p.y) < std::tie(q.x, q.y);
+        });
+    };
+    std::sort(out.begin(), out.end(), less);
+    return out;
+}
+
+}  // namespace
+
+TEST(Tiles, TerrainStylesTiledAreTheWholeRunBitForBit) {
+    // Each tile draws the terrain elements of the style's grid tiles whose centre it holds,
+    // after those they depend on, from a window of the DEM and the faces within the style's
+    // reach: the merged tiles hold the whole run's elements, bit for bit, and its hatches.
+    TempDir dir;
+    write_long_slope(dir / "slope.tif", dir / "faces.gpkg");
+    for (const auto& [style, params] : std::vector<std::pair<std::string, std::map<std::string, double>>>{
+             {"scree", {}}, {"slope-hachures", {{"interval", 5}}}}) {
+        Options o;
+        o.dem = dir / "slope.tif";
+        o.partition.path = dir / "faces.gpkg";
+        o.style = style;
+        o.params = params;
+        o.threads = 2;
+        o.relief_radius = 100;
+        o.seed = 9;
+        const Drawing whole = hatch(prepare(o), o);
+        const auto expected = terrain_elements(whole);
+        ASSERT_GT(expected.size(), 500u) << style;
+        const RasterInfo info = raster_info(o.dem, "--dem");
+        const auto tiles = tile_grid(info, 800);
+        std::vector<std::string> parts;
+        long long fewest = (long long)info.width * info.height;
+        for (std::size_t i = 0; i < tiles.size(); ++i) {
+            parts.push_back(dir / (style + std::to_string(i) + ".gpkg"));
+            fewest = std::min(fewest, run_tile(o, tiles[i], parts.back()).dem_cells);
+        }
+        // The tiles read windows: the test sees the style's reach, not the whole DEM.
+        EXPECT_LT(fewest, (long long)info.width * info.height * 7 / 10) << style;
+        const std::string merged = dir / (style + "_merged.gpkg");
+        merge_gpkg(parts, merged);
+        const Drawing tiled = read_gpkg(merged, o.scale);
+        const auto got = terrain_elements(tiled);
+        EXPECT_EQ(got.size(), expected.size()) << style;
+        EXPECT_TRUE(got == expected) << style << ": the tiles drew other terrain elements than the whole run";
+        Drawing rock = whole;
+        rock.faces.pop_back();  // the terrain entry
+        Features rock_tiled = features(tiled);
+        for (auto it = rock_tiled.begin(); it != rock_tiled.end();)
+            it = std::get<0>(it->first) == kTerrainFaceId ? rock_tiled.erase(it) : std::next(it);
+        EXPECT_TRUE(rock_tiled == features(rock)) << style;
+    }
+}

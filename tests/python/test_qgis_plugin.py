@@ -276,12 +276,13 @@ def test_crest_ornaments_through_the_algorithm(qgis, rockhatch_exe, sample_dir, 
 def test_tiled_algorithm_writes_what_the_tiles_command_writes(qgis, sample_dir, tmp_path):
     """rockhatch:rockhatchingtiled runs `rockhatch tiles` in a child Python (Dask starts
     worker processes there, not inside QGIS): the same GeoPackage bytes as the command, the
-    tile count and hatches reported, the hatch layers loaded, progress moving to 100%."""
+    tile count and hatches reported, the hatch layers loaded, progress moving to 100%. With a
+    terrain style (scree), which the tiled run draws as the whole run does."""
     import processing
     cli = tmp_path / "cli.gpkg"
     subprocess.run([sys.executable, "-m", "rockhatch", "tiles", "-q", "--dem", str(sample_dir / "dem.tif"),
                     "--partition", str(sample_dir / "partition.gpkg"), "--tile-size", "1200", "--workers", "1",
-                    "--seed", "2", "-o", str(cli)], check=True, env=python_env())
+                    "--seed", "2", "--style", "scree", "-o", str(cli)], check=True, env=python_env())
     project = QgsProject.instance()
     before = set(project.mapLayers())
     out = tmp_path / "q.gpkg"
@@ -294,13 +295,13 @@ def test_tiled_algorithm_writes_what_the_tiles_command_writes(qgis, sample_dir, 
 
     result = processing.runAndLoadResults("rockhatch:rockhatchingtiled", {
         "DEM": str(sample_dir / "dem.tif"), "PARTITION": str(sample_dir / "partition.gpkg"), "TILE_SIZE": 1200,
-        "WORKERS": 1, "SEED": 2, "OUTPUT": str(out)}, feedback=Feedback())
+        "WORKERS": 1, "SEED": 2, "STYLE": "scree", "OUTPUT": str(out)}, feedback=Feedback())
     loaded = {project.mapLayer(i).name() for i in set(project.mapLayers()) - before}
     try:
         assert out.read_bytes() == cli.read_bytes()
         assert result["TILES"] == 4
         assert result["HATCHES"] == sum(layer_counts(out).values()) > 10000
-        assert {"hatch_fill", "hatch_ridge", "hatch_valley"} <= loaded
+        assert {"hatch_fill", "hatch_ridge", "hatch_valley", "hatch_stone"} <= loaded
         assert steps and max(steps) == 100
         assert not (tmp_path / "q.gpkg.tiles").exists()  # the work folder goes after the merge
     finally:

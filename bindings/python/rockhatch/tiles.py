@@ -240,10 +240,6 @@ def run_args(argv, progress=None):
         carto.check_files(options)
         options.custom_style = carto.load_style(cl.script)
     carto.validate(options)
-    style = None if options.custom_style else carto.find_style(options.style or carto.default_style())
-    if style is not None and style.terrain:
-        raise carto.error(2, f"--style {style.name}: a terrain style draws the whole DEM in one sequence and cannot "
-                             "be tiled yet")
     auto = options.partition.path == "auto"
     if extract and not auto:
         raise carto.error(2, f"{extract[0][0]}: an option of the extraction, for --partition auto only")
@@ -609,7 +605,7 @@ def partition_difference(whole, tiled):
 
 
 def help_text():
-    lines = ["usage: rockhatch tiles --dem DEM --partition FACES|auto --tile-size METRES -o OUT [options]",
+    lines = ["usage: rockhatch tiles --dem DEM --partition FACES|auto|none --tile-size METRES -o OUT [options]",
              "",
              "Hatches the area tile by tile on a Dask cluster (a local one by default) and merges the",
              "tiles into the outputs; the result is the same as one whole run. Tiled-run options:"]

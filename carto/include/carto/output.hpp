@@ -38,8 +38,9 @@ void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index = 
                 const std::function<bool(double)>& keep_going = {});
 // Merges hatch GeoPackages written by write_gpkg (the tiles of a tiled run) into one, the
 // parts' features one after the other in the order given, each feature's geometry and
-// attributes copied bit for bit, with one R-tree per layer; reads one part at a time.
-// Returns the number of hatches.
+// attributes copied bit for bit, with one R-tree per layer (the rock families always, a
+// terrain family when a part has it); reads one part at a time. Returns the number of
+// hatches and terrain elements.
 std::size_t merge_gpkg(const std::vector<std::string>& parts, const std::string& path, bool spatial_index = true,
                        const std::function<bool(double)>& keep_going = {});
 // Reads a hatch GeoPackage written by write_gpkg back into a drawing (faces in order of

@@ -71,6 +71,9 @@ struct Prepared {
     // the face's mean fall line; strokes there may follow the local fall line instead.
     std::vector<bool> orientation_derived;
     std::vector<std::string> notes;
+    // The whole DEM's extent in the working CRS when the terrain is a window of it (a tile of
+    // a tiled run); empty: the terrain's own.
+    tex::BBox extent;
 };
 
 // Half-side, in millimetres on paper, of the square over which the fall line and the shade
@@ -103,10 +106,15 @@ void check_roughness(const Raster& r, const std::string& path);
 Prepared prepare(const Options& o, const Progress& progress = {});
 // The face id of the elements a terrain style draws outside the faces.
 inline constexpr std::int64_t kTerrainFaceId = -1;
+// The area whose rock faces a terrain style drawn in Options::window reads (their hatches
+// are obstacles to its elements): the window, cut to the DEM's extent, grown by the style's
+// reach for a DEM of that cell. nullopt without a window or a terrain style.
+std::optional<tex::BBox> terrain_read_area(const Options& o, const tex::BBox& dem_extent, double cell);
 // Hatches the faces (in parallel, deterministic): all of them, or those whose anchor
 // (face_anchor) lies in Options::window; draws the crest ornaments when asked; a terrain
-// style then draws its elements (sequentially) around them, as one more entry of
-// Drawing::faces with kTerrainFaceId.
+// style then draws its elements around them (those Options::window owns, exactly as a whole
+// run draws them: the faces within terrain_read_area are hatched too, as obstacles, and not
+// returned), as one more entry of Drawing::faces with kTerrainFaceId.
 Drawing hatch(const Prepared& p, const Options& o, const Progress& progress = {});
 // Hatches the faces of these indices, in this order (and the crest ornaments of the ridges
 // whose ridge_anchor lies in Options::window, or of every ridge).

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -91,15 +92,22 @@ inline constexpr const char* kGroundPerMm = "ground_per_mm";
 using StyleProgram = std::function<tex::Arrangement(const ControlFields&, const ParamValues&)>;
 
 // What a terrain style reads: the terrain fields, the rock faces and the rock hatches drawn
-// in them (which its elements must not touch), the map scale and the seed.
+// in them (which its elements must not touch), the map scale and the seed; with `window`,
+// it draws only the elements that window owns (those of its tiles whose centre lies in it),
+// as a whole run draws them, reading the fields, faces and hatches within its reach
+// (TerrainReach) of the window.
 struct TerrainInput {
     const Terrain& terrain;
     const Partition& partition;
     const std::vector<Hatch>& rock;
     double scale = 10000;
     std::uint64_t seed = 0;
+    std::optional<tex::BBox> window;
 };
 using TerrainProgram = std::function<std::vector<Hatch>(const TerrainInput&, const ParamValues&)>;
+// How far (ground units) beyond a window a terrain style reads, for its parameters and the
+// DEM's cell: what a window of the map must hold around it to draw as the whole run does.
+using TerrainReach = std::function<double(const ParamValues&, double cell)>;
 
 struct Style {
     StyleInfo info;
@@ -109,8 +117,10 @@ struct Style {
     // release the interpreter's lock; python_style(..., serial=True) asks for this).
     bool serial = false;
     // Set for a terrain style: `program` then hatches the rock faces (the default rock
-    // style) and `terrain` draws the style's own elements around them.
+    // style) and `terrain` draws the style's own elements around them, reading as far as
+    // `terrain_reach` beyond a window.
     TerrainProgram terrain;
+    TerrainReach terrain_reach;
 };
 
 // All built-in styles: the rock styles (a) to (g), then the terrain styles; the default is

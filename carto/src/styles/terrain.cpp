@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <set>
 #include <sstream>
+#include <tuple>
 
 #include "carto/error.hpp"
 #include "libtex/parallel.hpp"
@@ -17,13 +19,21 @@ constexpr int kDiscSides = 8;
 
 Raster cell_mask(const Raster& like, const std::function<bool(int, int)>& keep) {
     Raster m = like;
-    for (int r = 0; r < like.height; ++r)
-        for (int c = 0; c < like.width; ++c)
-            m.at(c, r) = std::isnan(like.at(c, r)) ? NAN : (keep(c, r) ? 1.0f : 0.0f);
+    tex::parallel_for(std::size_t(like.height), [&](std::size_t row) {
+        const int r = int(row);
+        for (int c = 0; c < like.width; ++c) m.at(c, r) = std::isnan(like.at(c, r)) ? NAN : (keep(c, r) ? 1.0f : 0.0f);
+    });
     return m;
 }
 
-RockProximity rock_proximity(const Partition& p, const Raster& elevation) {
+Point grid_world(const Raster& r, double col, double row) {
+    if (!r.grid_gt) return r.to_world(col, row);
+    const auto& g = *r.grid_gt;
+    const double c = col + r.col0, w = row + r.row0;
+    return {g[0] + c * g[1] + w * g[2], g[3] + c * g[4] + w * g[5]};
+}
+
+RockProximity rock_proximity(const Partition& p, const Raster& elevation, double radius) {
     const int w = elevation.width, h = elevation.height;
     const std::size_t n = std::size_t(w) * std::size_t(h);
     // The rock cells: centres inside a face (each face tested only over its bounding box).
@@ -35,42 +45,135 @@ RockProximity rock_proximity(const Partition& p, const Raster& elevation) {
         const int r0 = std::max(0, int(std::floor(std::min(a.y, z.y)))), r1 = std::min(h - 1, int(std::ceil(std::max(a.y, z.y))));
         for (int r = r0; r <= r1; ++r)
             for (int c = c0; c <= c1; ++c)
-                if (!rock[std::size_t(r) * w + c] && f.region.contains(elevation.to_world(c + 0.5, r + 0.5)))
+                if (!rock[std::size_t(r) * w + c] && f.region.contains(grid_world(elevation, c + 0.5, r + 0.5)))
                     rock[std::size_t(r) * w + c] = 1;
     }
-    // Nearest rock cell by two raster sweeps (each cell takes the best source of the
-    // neighbours already swept), repeated once to settle the corners.
-    constexpr long long kNone = -1;
-    std::vector<long long> src(n, kNone);
-    for (std::size_t i = 0; i < n; ++i)
-        if (rock[i]) src[i] = (long long)i;
-    auto dist2 = [&](std::size_t i, long long s) {
-        if (s < 0) return std::numeric_limits<double>::infinity();
-        const double dx = (double(i % w) - double(s % w)) * elevation.cell_x();
-        const double dy = (double(i / w) - double(s / w)) * elevation.cell_y();
-        return dx * dx + dy * dy;
+    // The cell offsets within the radius, nearest first (ties in a fixed order): the first
+    // offset that lands on rock is the nearest rock cell, found the same way in any window.
+    const double hx = elevation.cell_x(), hy = elevation.cell_y();
+    const int rc = std::max(0, int(std::floor(radius / hx))), rr = std::max(0, int(std::floor(radius / hy)));
+    struct Offset {
+        double d2;
+        int dc, dr;
     };
-    auto relax = [&](int c, int r, int dc, int dr) {
-        const int cc = c + dc, rr = r + dr;
-        if (cc < 0 || rr < 0 || cc >= w || rr >= h) return;
-        const std::size_t i = std::size_t(r) * w + c, j = std::size_t(rr) * w + cc;
-        if (src[j] != kNone && dist2(i, src[j]) < dist2(i, src[i])) src[i] = src[j];
+    std::vector<Offset> offsets;
+    for (int dr = -rr; dr <= rr; ++dr)
+        for (int dc = -rc; dc <= rc; ++dc) {
+            const double dx = double(dc) * hx, dy = double(dr) * hy, d2 = dx * dx + dy * dy;
+            if (d2 <= radius * radius) offsets.push_back({d2, dc, dr});
+        }
+    std::sort(offsets.begin(), offsets.end(), [](const Offset& a, const Offset& b) {
+        return std::tie(a.d2, a.dr, a.dc) < std::tie(b.d2, b.dr, b.dc);
+    });
+    // Rock cells counted over rectangles (summed-area table): a cell with no rock in the
+    // square around it skips the scan.
+    std::vector<std::uint32_t> sum(std::size_t(w + 1) * std::size_t(h + 1), 0);
+    for (int r = 0; r < h; ++r)
+        for (int c = 0; c < w; ++c)
+            sum[std::size_t(r + 1) * (w + 1) + c + 1] = sum[std::size_t(r) * (w + 1) + c + 1] +
+                                                        sum[std::size_t(r + 1) * (w + 1) + c] -
+                                                        sum[std::size_t(r) * (w + 1) + c] + rock[std::size_t(r) * w + c];
+    auto count = [&](int c0, int r0, int c1, int r1) {  // inclusive, clamped
+        c0 = std::max(c0, 0), r0 = std::max(r0, 0), c1 = std::min(c1, w - 1), r1 = std::min(r1, h - 1);
+        if (c0 > c1 || r0 > r1) return 0u;
+        const std::size_t W = std::size_t(w) + 1;
+        return sum[(r1 + 1) * W + c1 + 1] - sum[r0 * W + c1 + 1] - sum[(r1 + 1) * W + c0] + sum[r0 * W + c0];
     };
-    for (int round = 0; round < 2; ++round) {
-        for (int r = 0; r < h; ++r)
-            for (int c = 0; c < w; ++c) {
-                relax(c, r, -1, -1), relax(c, r, 0, -1), relax(c, r, 1, -1), relax(c, r, -1, 0);
-            }
-        for (int r = h - 1; r >= 0; --r)
-            for (int c = w - 1; c >= 0; --c) {
-                relax(c, r, 1, 1), relax(c, r, 0, 1), relax(c, r, -1, 1), relax(c, r, 1, 0);
-            }
-    }
     RockProximity out{elevation, elevation};
-    for (std::size_t i = 0; i < n; ++i) {
-        out.distance.data[i] = float(std::sqrt(dist2(i, src[i])));
-        out.rock_elevation.data[i] = src[i] == kNone ? NAN : elevation.data[std::size_t(src[i])];
+    tex::parallel_for(std::size_t(h), [&](std::size_t row) {
+        const int r = int(row);
+        for (int c = 0; c < w; ++c) {
+            const std::size_t i = std::size_t(r) * w + c;
+            out.distance.data[i] = std::numeric_limits<float>::infinity();
+            out.rock_elevation.data[i] = NAN;
+            if (count(c - rc, r - rr, c + rc, r + rr) == 0) continue;
+            for (const Offset& o : offsets) {
+                const int cc = c + o.dc, rw = r + o.dr;
+                if (cc < 0 || rw < 0 || cc >= w || rw >= h || !rock[std::size_t(rw) * w + cc]) continue;
+                out.distance.data[i] = float(std::sqrt(o.d2));
+                out.rock_elevation.data[i] = elevation.data[std::size_t(rw) * w + cc];
+                break;
+            }
+        }
+    });
+    return out;
+}
+
+TileIndex tile_of(const Point& p, double side) {
+    return {(long long)std::floor(p.x / side), (long long)std::floor(p.y / side)};
+}
+
+tex::BBox tile_box(const TileIndex& t, double side) {
+    return {double(t.first) * side, double(t.second) * side, double(t.first + 1) * side, double(t.second + 1) * side};
+}
+
+const tex::disc::RegionSet& Placed::tagged(long long tag) const {
+    static const tex::disc::RegionSet none;
+    const auto it = by_tag.find(tag);
+    return it == by_tag.end() ? none : it->second;
+}
+
+namespace {
+int phase_of(const TileIndex& t) { return int(t.second & 1) * 2 + int(t.first & 1); }
+}  // namespace
+
+std::vector<Element> throw_in_phases(std::vector<TileIndex> work, double side, const std::optional<tex::BBox>& window,
+                                     bool by_tag, const ThrowTile& throw_tile) {
+    std::sort(work.begin(), work.end());
+    work.erase(std::unique(work.begin(), work.end()), work.end());
+    auto has_work = [&](const TileIndex& t) { return std::binary_search(work.begin(), work.end(), t); };
+    // The tiles to throw: all, or the window's own and, transitively, their neighbours of
+    // earlier phases (whose elements they see).
+    std::set<TileIndex> run, own;
+    if (!window) {
+        run.insert(work.begin(), work.end());
+        own = run;
+    } else {
+        std::vector<TileIndex> todo;
+        for (const TileIndex& t : work) {
+            const tex::BBox b = tile_box(t, side);
+            if (owns(*window, {0.5 * (b.xmin + b.xmax), 0.5 * (b.ymin + b.ymax)})) {
+                own.insert(t), run.insert(t), todo.push_back(t);
+            }
+        }
+        while (!todo.empty()) {
+            const TileIndex t = todo.back();
+            todo.pop_back();
+            for (long long dj = -1; dj <= 1; ++dj)
+                for (long long di = -1; di <= 1; ++di) {
+                    const TileIndex u{t.first + di, t.second + dj};
+                    if (phase_of(u) < phase_of(t) && has_work(u) && run.insert(u).second) todo.push_back(u);
+                }
+        }
     }
+    Placed before;
+    // Per element of before.all, in its order: its tag and whether the caller gets it.
+    std::vector<long long> tags;
+    std::vector<char> kept;
+    for (int phase = 0; phase < 4; ++phase) {
+        std::vector<TileIndex> tiles;
+        for (const TileIndex& t : run)
+            if (phase_of(t) == phase) tiles.push_back(t);
+        std::vector<std::vector<Element>> thrown(tiles.size());
+        tex::parallel_for(tiles.size(), [&](std::size_t k) { thrown[k] = throw_tile(tiles[k], before); });
+        std::vector<tex::Region> joined;
+        std::map<long long, std::vector<tex::Region>> tagged;
+        for (std::size_t k = 0; k < tiles.size(); ++k) {
+            const char mine = char(own.count(tiles[k]));
+            for (Element& e : thrown[k]) {
+                if (by_tag) tagged[e.tag].push_back(e.region);
+                tags.push_back(e.tag);
+                kept.push_back(mine);
+                joined.push_back(std::move(e.region));
+            }
+        }
+        before.all.add(std::move(joined));
+        for (auto& [tag, v] : tagged) before.by_tag[tag].add(std::move(v));
+    }
+    std::vector<Element> out;
+    const std::vector<tex::Region>& all = before.all.regions();
+    for (std::size_t i = 0; i < all.size(); ++i)
+        if (kept[i]) out.push_back({all[i], tags[i]});
     return out;
 }
 
@@ -120,11 +223,6 @@ tex::disc::RegionSet hatch_obstacles(const std::vector<Hatch>& rock, double scal
     tex::disc::RegionSet set;
     set.add(std::move(all));
     return set;
-}
-
-tex::Region frame(const Raster& r) {
-    const tex::BBox b = r.bounds();
-    return tex::Region({{b.xmin, b.ymin}, {b.xmax, b.ymin}, {b.xmax, b.ymax}, {b.xmin, b.ymax}});
 }
 
 double ramp(double v, double lo, double hi) {

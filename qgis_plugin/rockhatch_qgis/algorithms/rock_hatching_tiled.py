@@ -87,7 +87,8 @@ class RockHatchingTiled(RockhatchAlgorithm):
             "tcp://HOST:8786 of an existing Dask cluster whose workers can import rockhatch and read the "
             "inputs and the work folder. Default: a local cluster.", advanced=True)
         names, default = self.style_names()
-        style_parameter(self, self.STYLE, names, default, f"Built-in rock style (terrain styles cannot be tiled yet). Default: {default}.")
+        style_parameter(self, self.STYLE, names, default, f"Built-in style: a rock style, or a terrain style (scree, slope-hachures), tiled as the whole run "
+                        f"draws it. Default: {default}.")
         self.add(QgsProcessingParameterString(self.PARAMS, "Style parameters", optional=True),
             "NAME=VALUE separated by ';', lengths in mm on paper at the map scale. Default: the style's values.",
             advanced=True)
@@ -119,7 +120,7 @@ class RockHatchingTiled(RockhatchAlgorithm):
             carto = self.carto()
         except QgsProcessingException:
             return ["print"], "print"
-        return [s.name for s in carto.styles() if not s.terrain], carto.default_style()
+        return [s.name for s in carto.styles()], carto.default_style()
 
     def shortHelpString(self):  # noqa: N802
         return ("Hatches a large area tile by tile on a Dask cluster and merges the tiles (the rockhatch tiles "
@@ -128,7 +129,8 @@ class RockHatchingTiled(RockhatchAlgorithm):
                 "separate Python process (Dask starts worker processes, which it cannot do inside QGIS); "
                 "cancelling stops it and keeps the finished tiles in the work folder, so running the same "
                 "job again resumes. The partition is a file (extract one with 'Rock partition from DEM'); the "
-                "DEM must be in a projected CRS; terrain styles are not tiled yet.")
+                "DEM may be geographic (worked in the UTM zone of its centre, as a whole run does); the terrain styles "
+                "are tiled too.")
 
     def command(self, parameters, context, feedback):
         """The `rockhatch tiles` arguments of these parameters."""
