@@ -42,6 +42,11 @@ SUPP="$ROOT/scripts/sanitizers"
 QUARANTINE="${RH_ASAN_QUARANTINE_MB:-16}"
 Q_OPT=""
 [ "$QUARANTINE" != 0 ] && Q_OPT=":quarantine_size_mb=$QUARANTINE"
+# The stack ASan records at every malloc and free, for its reports (30 frames by default):
+# 5 frames, the allocating call and four callers. The pipeline allocates many small vectors;
+# TerrainStyles.RunOnTheSample took 22.0 CPU-s with 30 frames, 19.4 with 5 (2.0 s less wall
+# of 14.3). RH_ASAN_CONTEXT=30 restores the default to read a report's full stacks.
+Q_OPT="$Q_OPT:malloc_context_size=${RH_ASAN_CONTEXT:-5}"
 export ASAN_OPTIONS="detect_leaks=1$Q_OPT:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1:strict_init_order=1:suppressions=$SUPP/asan.supp"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:suppressions=$SUPP/ubsan.supp"
 export LSAN_OPTIONS="suppressions=$SUPP/lsan.supp:print_suppressions=0"

@@ -7,7 +7,7 @@ import pytest
 from osgeo import gdal, ogr
 
 from rockhatch import carto
-from conftest import SHARED_DEM, one_under_sanitizers, partition_with_scree, real_dem
+from conftest import SANITIZED, SHARED_DEM, one_under_sanitizers, partition_with_scree, real_dem
 
 gdal.UseExceptions()
 
@@ -57,6 +57,10 @@ def test_same_bytes_at_one_and_two_threads(sample_dir, tmp_path, style):
     assert (tmp_path / f"{style}1.svg").read_bytes() == (tmp_path / f"{style}2.svg").read_bytes(), style
 
 
+# Three scree runs of the command: about 40 CPU-s under the sanitizers, where the C++ test
+# TerrainStyles.WindowsTogetherDrawTheWholeRunsElements takes the same code paths.
+@pytest.mark.skipif(SANITIZED, reason="left to the normal pass; under the sanitizers the C++ "
+                                      "TerrainStyles.WindowsTogetherDrawTheWholeRunsElements takes its code paths")
 def test_two_windows_draw_the_whole_runs_stones(rockhatch_exe, sample_dir, tmp_path):
     # --window with a terrain style: the window draws the elements whose tile of the style's
     # grid it owns, as the whole run draws them; two windows that meet draw them all once.
