@@ -543,6 +543,9 @@ CrestResult
     m.def("tile_grid", &tile_grid, py::arg("dem"), py::arg("size"),
           "square tiles of side `size` covering the DEM from its north-west corner, row by row (outer tiles reach "
           "beyond it)");
+    m.def("check_tiled_rasters", &check_tiled_rasters, py::arg("options"),
+          "refuses a --slope or --roughness raster a tile cannot read as the whole run does (another grid in "
+          "another CRS than the DEM's working CRS)");
     m.def("run_tile", &run_tile, py::arg("options"), py::arg("tile"), py::arg("out"),
           py::call_guard<py::gil_scoped_release>(),
           "hatches the faces whose anchor lies in the half-open box `tile` into the GeoPackage `out`");

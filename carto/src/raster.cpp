@@ -498,7 +498,7 @@ Raster resample_like(const Raster& src0, const Raster& like) {
     const Raster src = same_crs(src0.crs_wkt, like.crs_wkt) ? src0 : warp(src0, like.crs_wkt);
     Raster out = like;
     for (int r = 0; r < like.height; ++r)
-        for (int c = 0; c < like.width; ++c) out.at(c, r) = float(src.sample(like.to_world(c + 0.5, r + 0.5)));
+        for (int c = 0; c < like.width; ++c) out.at(c, r) = float(src.sample(like.grid_world(c + 0.5, r + 0.5)));
     return out;
 }
 

@@ -309,6 +309,50 @@ def test_terrain_styles_tiled_equal_the_whole_run(tmp_path, style, params, faces
     assert features(tmp_path / "tiled.gpkg") == whole
 
 
+def raster_on_another_grid(tmp_path, name, kind):
+    """A slope (percent) or roughness (0..1) raster of the sample in its CRS, on a grid of 7 m
+    cells whose origin is 2.5 m off the DEM's: the whole run resamples it onto the DEM."""
+    import numpy as np
+    src = str(tmp_path / f"{name}_dem_grid.tif")
+    if kind == "slope":
+        gdal.DEMProcessing(src, DEM, "slope", slopeFormat="percent")
+    else:
+        gdal.DEMProcessing(src, DEM, "roughness")
+        ds = gdal.Open(src, gdal.GA_Update)
+        a = ds.GetRasterBand(1).ReadAsArray()
+        ds.GetRasterBand(1).WriteArray(np.clip(a / max(float(np.nanmax(a)), 1e-9), 0, 1))
+        ds = None
+    d = gdal.Open(DEM)
+    gt, w, h = d.GetGeoTransform(), d.RasterXSize, d.RasterYSize
+    out = str(tmp_path / f"{name}.tif")
+    gdal.Warp(out, src, xRes=7, yRes=7, resampleAlg="bilinear",
+              outputBounds=(gt[0] + 2.5, gt[3] + h * gt[5] + 2.5, gt[0] + w * gt[1] + 2.5, gt[3] + 2.5))
+    return out
+
+
+def test_a_raster_on_another_grid_is_tiled_as_the_whole_run_resamples_it(tmp_path):
+    # Each tile resamples the window of the raster that holds its cells' neighbours at its cell
+    # centres, placed in the whole grid: the whole run's values, so its hatches. --roughness
+    # with print (its cross hatching follows the roughness); --slope takes the same path.
+    style, option, kind = "print", "--roughness", "roughness"
+    raster = raster_on_another_grid(tmp_path, kind, kind)
+    args = ["--dem", DEM, "--partition", FACES, "--seed", "6", "--style", style]
+    whole = whole_run(args + [option, raster], tmp_path / "whole.gpkg")
+    assert whole != whole_run(args, tmp_path / "plain.gpkg")  # the style reads the raster
+    s = tiles.run(DEM, FACES, 1000, [tmp_path / "tiled.gpkg"], style=style, seed=6, workers=2, args=[option, raster])
+    assert s.tiles == 9
+    assert features(tmp_path / "tiled.gpkg") == whole
+    # In another CRS the whole run warps the whole file first, which a tile cannot do: refused
+    # before any work, with the command's usage code.
+    other = str(tmp_path / "other_crs.tif")
+    gdal.Warp(other, raster, dstSRS="EPSG:32632")
+    r = subprocess.run([sys.executable, "-m", "rockhatch", "tiles", "--dem", DEM, "--partition", FACES,
+                        "--tile-size", "1000", option, other, "-o", str(tmp_path / "refused.gpkg")],
+                       capture_output=True, text=True, env=python_env(), timeout=120)
+    assert r.returncode == 2 and "CRS the DEM is worked in" in r.stderr, r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1 and not (tmp_path / "refused.gpkg").exists()
+
+
 @pytest.mark.parametrize("args,code,words", [
     (["--partition", "auto", "--extract-halo", "-5"], 2, "--extract-halo"),
     (["--tile-size", "0"], 2, "--tile-size"),

@@ -240,6 +240,7 @@ def run_args(argv, progress=None):
         carto.check_files(options)
         options.custom_style = carto.load_style(cl.script)
     carto.validate(options)
+    carto.check_tiled_rasters(options)
     auto = options.partition.path == "auto"
     if extract and not auto:
         raise carto.error(2, f"{extract[0][0]}: an option of the extraction, for --partition auto only")

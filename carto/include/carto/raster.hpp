@@ -35,6 +35,15 @@ struct Raster {
     Point to_world(double col, double row) const {
         return {gt[0] + col * gt[1] + row * gt[2], gt[3] + col * gt[4] + row * gt[5]};
     }
+    // World coordinates of a pixel position placed in the whole raster's grid (grid_gt) when
+    // this is a window of one: the same number in a window as in the whole (to_world adds the
+    // window's offset to its own origin, which may round differently).
+    Point grid_world(double col, double row) const {
+        if (!grid_gt) return to_world(col, row);
+        const auto& g = *grid_gt;
+        const double c = col + col0, r = row + row0;
+        return {g[0] + c * g[1] + r * g[2], g[3] + c * g[4] + r * g[5]};
+    }
     Point to_pixel(const Point& w) const;  // a rotated geotransform is inverted
     BBox bounds() const;
     // Bilinear interpolation at a world point over the four surrounding cell centres;
@@ -107,7 +116,10 @@ Raster read_working_dem(const std::string& path, const std::string& what, std::s
 // An in-memory DEM in the working grid (the same cells as read_working of a file holding
 // it); `note` (when given) says when it was reprojected.
 Raster to_working_crs(Raster dem, std::string* note = nullptr);
-// Resamples `src` onto the grid of `like` (same CRS assumed or reprojected).
+// Resamples `src` onto the grid of `like` (same CRS assumed or reprojected): each cell the
+// bilinear sample of `src` at its centre (placed in the whole grid when `like` is a window,
+// so a window of `like` gets the whole result's cells from a window of `src` that holds the
+// samples' neighbours).
 Raster resample_like(const Raster& src, const Raster& like);
 
 }  // namespace carto

@@ -43,11 +43,17 @@ std::vector<tex::BBox> tile_grid(const RasterInfo& dem, double size);
 double tile_context_margin(const Options& o, double cell);
 int tile_halo_cells(const Options& o, double cell);
 
+// Refuses (Error Usage) a --slope or --roughness raster a tile cannot read as the whole run
+// does: one on another grid than the DEM's and in another CRS than the one the DEM is worked
+// in (the whole run warps that file whole first). One on another grid in the working CRS is
+// resampled tile by tile at the DEM's cell centres, as the whole run resamples it.
+void check_tiled_rasters(const Options& o);
+
 // Hatches the faces owned by `tile` and writes them to the GeoPackage `out` (no spatial
 // index; written to a temporary file and renamed, so a tile file that exists is complete).
 // o.outputs are the final outputs of the run (checked against the inputs); `out` must not
-// exist unless o.overwrite. The DEM must be in a projected CRS; --slope and --roughness
-// rasters must share its grid. Errors as carto::run.
+// exist unless o.overwrite. --slope and --roughness rasters as check_tiled_rasters. Errors as
+// carto::run.
 TileReport run_tile(const Options& o, const tex::BBox& tile, const std::string& out);
 
 // ---- `--partition auto`: the partition extracted tile by tile (docs/tiles-partition.md) ----

@@ -56,7 +56,7 @@ std::vector<Hatch> draw_scree(const TerrainInput& in, const ParamValues& p) {
     auto area = std::make_shared<const Raster>(cell_mask(t.elevation, [&](int c, int r) {
         const double d = near.distance.at(c, r), s = t.slope.at(c, r);
         if (!given.empty()) {
-            const Point q = grid_world(t.elevation, c + 0.5, r + 0.5);
+            const Point q = t.elevation.grid_world(c + 0.5, r + 0.5);
             return d > 0 && std::any_of(given.begin(), given.end(), [&](const Region& g) { return g.contains(q); });
         }
         return d > 0 && d <= reach && t.elevation.at(c, r) < near.rock_elevation.at(c, r) && s >= slope_min &&
@@ -80,7 +80,7 @@ std::vector<Hatch> draw_scree(const TerrainInput& in, const ParamValues& p) {
     for (int r = 0; r < area->height; ++r)
         for (int c = 0; c < area->width; ++c) {
             if (area->at(c, r) != 1) continue;
-            const Point a = grid_world(*area, c, r), z = grid_world(*area, c + 1, r + 1);
+            const Point a = area->grid_world(c, r), z = area->grid_world(c + 1, r + 1);
             const double x0 = std::min(a.x, z.x), x1 = std::max(a.x, z.x), y0 = std::min(a.y, z.y), y1 = std::max(a.y, z.y);
             box.add(Point{x0, y0}), box.add(Point{x1, y1});
             const TileIndex lo = tile_of({x0, y0}, tile), hi = tile_of({x1, y1}, tile);

@@ -26,13 +26,6 @@ Raster cell_mask(const Raster& like, const std::function<bool(int, int)>& keep) 
     return m;
 }
 
-Point grid_world(const Raster& r, double col, double row) {
-    if (!r.grid_gt) return r.to_world(col, row);
-    const auto& g = *r.grid_gt;
-    const double c = col + r.col0, w = row + r.row0;
-    return {g[0] + c * g[1] + w * g[2], g[3] + c * g[4] + w * g[5]};
-}
-
 RockProximity rock_proximity(const Partition& p, const Raster& elevation, double radius) {
     const int w = elevation.width, h = elevation.height;
     const std::size_t n = std::size_t(w) * std::size_t(h);
@@ -45,7 +38,7 @@ RockProximity rock_proximity(const Partition& p, const Raster& elevation, double
         const int r0 = std::max(0, int(std::floor(std::min(a.y, z.y)))), r1 = std::min(h - 1, int(std::ceil(std::max(a.y, z.y))));
         for (int r = r0; r <= r1; ++r)
             for (int c = c0; c <= c1; ++c)
-                if (!rock[std::size_t(r) * w + c] && f.region.contains(grid_world(elevation, c + 0.5, r + 0.5)))
+                if (!rock[std::size_t(r) * w + c] && f.region.contains(elevation.grid_world(c + 0.5, r + 0.5)))
                     rock[std::size_t(r) * w + c] = 1;
     }
     // The cell offsets within the radius, nearest first (ties in a fixed order): the first

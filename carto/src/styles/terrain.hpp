@@ -82,9 +82,6 @@ std::vector<Element> throw_in_phases(std::vector<TileIndex> work, double side, c
 // where `like` is NoData. `keep` is called from several threads.
 Raster cell_mask(const Raster& like, const std::function<bool(int col, int row)>& keep);
 
-// The world position of pixel position (col, row) of `r`, placed in the whole raster's grid
-// when `r` is a window of one (Raster::grid_gt): the same number in a window as in the whole.
-Point grid_world(const Raster& r, double col, double row);
 
 // Whether the cell of `mask` containing p holds 1 (false outside and in NoData).
 inline bool in_mask(const Raster& mask, const Point& p) { return mask.nearest(p) == 1.0; }
