@@ -28,24 +28,25 @@ constexpr int kKernelCells = 4;
 // fields of the neighbour just across.
 constexpr double kReachLengths = 4.0;
 
-// A raster given with the DEM, on the tile's window `like` of the working grid, as the whole
-// run reads it (carto::prepare): on the DEM's own grid, reprojected as the DEM is; on another
-// grid in the working CRS, resampled at the window's cell centres from the window of it that
-// holds their neighbours. On another grid in another CRS the whole run warps the whole file
-// first, which a window cannot reproduce: refused.
-void check_like_dem(const std::string& path, const char* what, const WorkingGrid& dem, const std::string& dem_path) {
+// Whether a raster given with the DEM (--slope, --roughness) lies on the DEM's own grid (else
+// on another grid in the working CRS). On another grid in another CRS the whole run warps the
+// whole file first, which a window cannot reproduce: refused.
+bool on_dem_grid(const std::string& path, const char* what, const WorkingGrid& dem, const std::string& dem_path) {
     const RasterInfo info = raster_info(path, what);
-    if (same_grid(info, dem.source) || same_crs(info.crs_wkt, dem.grid.crs_wkt)) return;
+    if (same_grid(info, dem.source)) return true;
+    if (same_crs(info.crs_wkt, dem.grid.crs_wkt)) return false;
     throw Error(Code::Usage, std::string(what) + " '" + path + "': a tiled run needs it on the grid of --dem '" +
                                  dem_path + "' or in the CRS the DEM is worked in (" + crs_name(dem.grid.crs_wkt) +
                                  "; e.g. gdalwarp -t_srs to match)");
 }
 
+// Such a raster on the tile's window `like` of the working grid, as the whole run reads it
+// (carto::prepare): on the DEM's own grid, reprojected as the DEM is; on another grid,
+// resampled at the window's cell centres from the window of it that holds their neighbours.
 Raster read_like_dem(const std::string& path, const char* what, const WorkingGrid& dem, const Raster& like,
                      const tex::BBox& area, int halo, const std::string& dem_path) {
-    check_like_dem(path, what, dem, dem_path);
     // The same cells as the DEM's window (read with the same box and halo).
-    if (same_grid(raster_info(path, what), dem.source)) return read_working_window(path, what, dem, area, halo);
+    if (on_dem_grid(path, what, dem, dem_path)) return read_working_window(path, what, dem, area, halo);
     return resample_like(read_raster_window(path, what, like.bounds(), 2), like);
 }
 
@@ -54,8 +55,8 @@ Raster read_like_dem(const std::string& path, const char* what, const WorkingGri
 void check_tiled_rasters(const Options& o) {
     if (o.slope.empty() && o.roughness.empty()) return;
     const WorkingGrid grid = working_grid(raster_info(o.dem, "--dem"));
-    if (!o.slope.empty()) check_like_dem(o.slope, "--slope", grid, o.dem);
-    if (!o.roughness.empty()) check_like_dem(o.roughness, "--roughness", grid, o.dem);
+    if (!o.slope.empty()) on_dem_grid(o.slope, "--slope", grid, o.dem);
+    if (!o.roughness.empty()) on_dem_grid(o.roughness, "--roughness", grid, o.dem);
 }
 
 std::vector<tex::BBox> tile_grid(const RasterInfo& dem, double size) {

@@ -122,20 +122,20 @@ std::vector<Element> throw_in_phases(std::vector<TileIndex> work, double side, c
         run.insert(work.begin(), work.end());
         own = run;
     } else {
-        std::vector<TileIndex> todo;
+        std::vector<TileIndex> pending;
         for (const TileIndex& t : work) {
             const tex::BBox b = tile_box(t, side);
             if (owns(*window, {0.5 * (b.xmin + b.xmax), 0.5 * (b.ymin + b.ymax)})) {
-                own.insert(t), run.insert(t), todo.push_back(t);
+                own.insert(t), run.insert(t), pending.push_back(t);
             }
         }
-        while (!todo.empty()) {
-            const TileIndex t = todo.back();
-            todo.pop_back();
+        while (!pending.empty()) {
+            const TileIndex t = pending.back();
+            pending.pop_back();
             for (long long dj = -1; dj <= 1; ++dj)
                 for (long long di = -1; di <= 1; ++di) {
                     const TileIndex u{t.first + di, t.second + dj};
-                    if (phase_of(u) < phase_of(t) && has_work(u) && run.insert(u).second) todo.push_back(u);
+                    if (phase_of(u) < phase_of(t) && has_work(u) && run.insert(u).second) pending.push_back(u);
                 }
         }
     }
