@@ -24,10 +24,6 @@ namespace {
 // are only reached by a face that keeps growing as the window does (a bug, not terrain).
 constexpr int kMaxRounds = 16;
 
-tex::BBox intersection(const tex::BBox& a, const tex::BBox& b) {
-    return {std::max(a.xmin, b.xmin), std::max(a.ymin, b.ymin), std::min(a.xmax, b.xmax), std::min(a.ymax, b.ymax)};
-}
-
 // Whether `inner` grown by `margin` stays inside `window`, a side of the window lying on the
 // DEM's edge excepted (the whole run ends there too).
 bool well_inside(const tex::BBox& inner, double margin, const tex::BBox& window, const tex::BBox& dem) {
@@ -86,7 +82,7 @@ ExtractTileReport extract_tile(const ExtractOptions& o, const tex::BBox& tile, d
     ExtractTileReport report;
     Partition kept;
     kept.crs_wkt = info.crs_wkt;
-    tex::BBox box = intersection(tile, dem_box);
+    tex::BBox box = tile.intersection(dem_box);
     while (box.xmin < box.xmax && box.ymin < box.ymax) {
         if (++report.rounds > kMaxRounds)
             throw Error(Code::Failure, o.what + " '" + o.dem + "': the faces of tile " + std::to_string(tile.xmin) +
@@ -122,7 +118,7 @@ ExtractTileReport extract_tile(const ExtractOptions& o, const tex::BBox& tile, d
         if (!trusted) {
             // A face reaches the halo: what lies beyond the window may change it. Extract again
             // over a window holding every such face, with the halo around it.
-            box = intersection(reach, dem_box);
+            box = reach.intersection(dem_box);
             continue;
         }
         // Global face key: the whole raster's index of the face's first cell in raster order,

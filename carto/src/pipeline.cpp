@@ -210,8 +210,7 @@ Drawing hatch(const Prepared& p, const Options& o, const Progress& progress) {
 std::optional<tex::BBox> terrain_read_area(const Options& o, const tex::BBox& dem_extent, double cell) {
     const Style style = selected_style(o);
     if (!style.terrain || !o.window) return std::nullopt;
-    const tex::BBox w{std::max(o.window->xmin, dem_extent.xmin), std::max(o.window->ymin, dem_extent.ymin),
-                      std::min(o.window->xmax, dem_extent.xmax), std::min(o.window->ymax, dem_extent.ymax)};
+    const tex::BBox w = o.window->intersection(dem_extent);
     if (!(w.xmin <= w.xmax && w.ymin <= w.ymax)) return tex::BBox{};
     return w.expanded(style.terrain_reach(resolve_params(style.info, o.params, o.scale), cell));
 }

@@ -132,8 +132,7 @@ TileReport run_tile(const Options& o, const tex::BBox& tile, const std::string& 
     Options tile_options = o;
     tile_options.window = tile;
     if (o.window)
-        tile_options.window = tex::BBox{std::max(tile.xmin, o.window->xmin), std::max(tile.ymin, o.window->ymin),
-                                        std::min(tile.xmax, o.window->xmax), std::min(tile.ymax, o.window->ymax)};
+        tile_options.window = tile.intersection(*o.window);
     // A terrain style draws the elements the tile owns, reading the DEM and the faces (their
     // hatches) within its reach of the tile's part of the DEM.
     const std::optional<tex::BBox> terrain = terrain_read_area(tile_options, dem_info.bounds(), cell);

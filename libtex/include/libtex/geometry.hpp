@@ -5,6 +5,7 @@
 // (ARCHITECTURE.md, "right tool per step").
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -65,6 +66,10 @@ struct BBox {
     }
     bool contains(const Point& p) const {
         return p.x >= xmin && p.x <= xmax && p.y >= ymin && p.y <= ymax;
+    }
+    // The common part (xmin > xmax or ymin > ymax when the boxes do not meet).
+    BBox intersection(const BBox& b) const {
+        return {std::max(xmin, b.xmin), std::max(ymin, b.ymin), std::min(xmax, b.xmax), std::min(ymax, b.ymax)};
     }
     BBox expanded(double m) const {
         BBox r = *this;
