@@ -4,8 +4,8 @@
 #
 #   scripts/fuzz.sh [SECONDS] [TARGET...]    default 60 s each, every target
 #
-# Not part of scripts/test.sh: installs clang and libclang-rt-14-dev (libFuzzer and
-# clang's sanitizer runtimes, Debian bookworm) itself when they are missing. New inputs go
+# Not part of scripts/test.sh: installs the packages of scripts/setup.sh when missing
+# (clang and libclang-rt-14-dev: libFuzzer and clang's sanitizer runtimes, Debian bookworm). New inputs go
 # to build-fuzz/corpus/<target> (the repository's seeds are not touched); a crash leaves
 # its input in build-fuzz/artifacts/<target>/ and fails the script. Prints executions,
 # time and coverage per target.
@@ -20,16 +20,7 @@ BUILD_DIR="${RH_FUZZ_BUILD_DIR:-build-fuzz}"
 JOBS="${RH_JOBS:-$(nproc)}"
 [ "$JOBS" -gt 2 ] && JOBS=2
 
-missing=()
-for p in clang libclang-rt-14-dev; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  SUDO=""
-  [ "$(id -u)" -ne 0 ] && SUDO="sudo"
-  export DEBIAN_FRONTEND=noninteractive
-  $SUDO apt-get update -qq && $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" || exit 1
-fi
+scripts/setup.sh --packages || exit 1
 
 # Only what the targets need: libtex and carto, instrumented for coverage and the
 # sanitizers; no tests, Python module, gallery or benchmarks.

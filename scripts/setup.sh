@@ -3,6 +3,7 @@
 #
 #   scripts/setup.sh            install + configure + build into ./build
 #   RH_BUILD_DIR=dir scripts/setup.sh
+#   scripts/setup.sh --packages install only (scripts/sanitize.sh and scripts/fuzz.sh)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -23,6 +24,7 @@ PACKAGES=(
   librsvg2-bin time                                 # PNG previews of SVG outputs; GNU time (benchmarks)
   libopenimageio-dev                                # libtex_image: tiled maps rasterised to image files
   qgis python3-qgis qgis-providers                  # the QGIS plugin and its tests (headless QGIS, qgis_process)
+  clang libclang-rt-14-dev                          # the sanitizer build of the tests; libFuzzer (scripts/fuzz.sh)
 )
 
 missing=()
@@ -37,6 +39,7 @@ if [ ${#missing[@]} -gt 0 ]; then
   $SUDO apt-get update -qq
   $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
+[ "${1:-}" = --packages ] && exit 0
 
 BUILD_DIR="${RH_BUILD_DIR:-build}"
 cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release

@@ -68,8 +68,9 @@ inline std::vector<Run> runs(const tex::Curves& c, bool with_side_labels = true,
     for (auto& [key, iv] : lines) {
         std::sort(iv.begin(), iv.end());
         double s = iv[0].first, e = iv[0].second;
+        const auto& k3 = key;  // a structured binding cannot be captured in C++17 (clang refuses it)
         auto flush = [&] {
-            out.push_back({std::get<0>(key), std::get<1>(key), std::get<2>(key), Q(s), Q(e), std::get<3>(key)});
+            out.push_back({std::get<0>(k3), std::get<1>(k3), std::get<2>(k3), Q(s), Q(e), std::get<3>(k3)});
         };
         for (std::size_t k = 1; k < iv.size(); ++k) {
             if (iv[k].first <= e + q) {

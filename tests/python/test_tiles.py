@@ -9,7 +9,7 @@ import sys
 import time
 
 import pytest
-from conftest import SAMPLE, SANITIZED, SHARED_DEM, one_under_sanitizers, python_env, real_dem
+from conftest import SAMPLE, SANITIZED, SHARED_DEM, dask_or_qgis_heavy, one_under_sanitizers, python_env, real_dem
 
 from osgeo import gdal, ogr
 
@@ -79,6 +79,7 @@ def test_tiled_run_equals_the_whole_run(tmp_path, sample_whole, tile_size, worke
 
 
 @pytest.mark.parametrize("tile_size", one_under_sanitizers([500, 1300]))
+@dask_or_qgis_heavy("Crest.AWindowDrawsTheRidgesAnchoredInIt (C++)")
 def test_crest_ornaments_tiled_equal_the_whole_run(tmp_path, tile_size):
     # Each ridge is drawn by the tile holding its anchor, with the ridges around it read so
     # that ends are cut back where ridges meet as in the whole run: the same crest polygons,
@@ -94,6 +95,7 @@ def test_crest_ornaments_tiled_equal_the_whole_run(tmp_path, tile_size):
     assert '<g id="crest"' in (tmp_path / "tiled.svg").read_text()
 
 
+@dask_or_qgis_heavy("test_tiled_run_equals_the_whole_run")
 def test_the_dashboard_serves_the_cluster_pages(tmp_path, sample_whole):
     import socket
     import urllib.request
@@ -115,6 +117,7 @@ def test_the_dashboard_serves_the_cluster_pages(tmp_path, sample_whole):
     assert features(out) == sample_whole
 
 
+@dask_or_qgis_heavy("test_bad_input_is_refused_before_any_work")
 def test_an_unreachable_scheduler_is_one_line(tmp_path):
     t0 = time.monotonic()
     r = subprocess.run([sys.executable, "-m", "rockhatch", "tiles", "--dem", DEM, "--partition", FACES,
@@ -126,6 +129,7 @@ def test_an_unreachable_scheduler_is_one_line(tmp_path):
     assert not (tmp_path / "o.gpkg").exists()
 
 
+@dask_or_qgis_heavy("test_tiled_run_equals_the_whole_run and test_rockhatch_cli's SVG tests")
 def test_command_line_tiles_and_svg(tmp_path, rockhatch_exe, sample_whole):
     gpkg, svg = tmp_path / "t.gpkg", tmp_path / "t.svg"
     r = subprocess.run([str(rockhatch_exe), "tiles", "--dem", DEM, "--partition", FACES, "--seed", "3",
@@ -204,6 +208,7 @@ def test_a_killed_worker_loses_nothing(tmp_path, cluster, sample_whole):
     assert features(out) == sample_whole
 
 
+@dask_or_qgis_heavy("test_a_killed_worker_loses_nothing")
 def test_an_interrupted_job_resumes(tmp_path, sample_whole):
     out = tmp_path / "tiled.gpkg"
     work = tmp_path / "work"
@@ -229,6 +234,7 @@ def test_an_interrupted_job_resumes(tmp_path, sample_whole):
     assert features(out) == sample_whole
 
 
+@dask_or_qgis_heavy("test_a_killed_worker_loses_nothing")
 def test_a_terminated_command_stops_its_workers_and_resumes(tmp_path, sample_whole):
     """SIGTERM (QGIS's Cancel, a batch scheduler) stops `rockhatch tiles` in order: it exits
     with code 10 and one line, after closing its cluster, so no worker writes a tile later."""
@@ -254,6 +260,7 @@ def test_a_terminated_command_stops_its_workers_and_resumes(tmp_path, sample_who
     assert features(out) == sample_whole
 
 
+@dask_or_qgis_heavy("test_a_killed_worker_loses_nothing")
 def test_partial_tile_files_are_never_merged(tmp_path, sample_whole):
     out = tmp_path / "tiled.gpkg"
     work = tmp_path / "work"
@@ -267,6 +274,7 @@ def test_partial_tile_files_are_never_merged(tmp_path, sample_whole):
 
 
 @real_dem
+@dask_or_qgis_heavy("test_tiled_run_equals_the_whole_run")
 def test_tiled_equals_whole_on_chamonix(tmp_path, rockhatch_exe):
     # Chamonix.tif is in degrees, with NoData: both runs work on its UTM 32N reprojection,
     # the tiles reading it window by window.
@@ -290,6 +298,7 @@ def test_tiled_equals_whole_on_chamonix(tmp_path, rockhatch_exe):
     ("slope-hachures", ["interval=5"], FACES),
     ("slope-hachures", ["interval=5"], "none"),  # no rock at all
 ]))
+@dask_or_qgis_heavy("Tiles.TerrainStylesTiledAreTheWholeRunBitForBit (C++)")
 def test_terrain_styles_tiled_equal_the_whole_run(tmp_path, style, params, faces):
     # The terrain elements are thrown over one grid of tiles of the working CRS, in colour
     # phases: a map tile draws the elements of the grid's tiles whose centre it holds, after
@@ -330,6 +339,7 @@ def raster_on_another_grid(tmp_path, name, kind):
     return out
 
 
+@dask_or_qgis_heavy("test_bad_input_is_refused_before_any_work and Tiles.MergedTilesAreTheWholeRunBitForBit (C++)")
 def test_a_raster_on_another_grid_is_tiled_as_the_whole_run_resamples_it(tmp_path):
     # Each tile resamples the window of the raster that holds its cells' neighbours at its cell
     # centres, placed in the whole grid: the whole run's values, so its hatches. --roughness
@@ -383,6 +393,7 @@ def test_bad_input_is_refused_before_any_work(tmp_path, args, code, words):
     assert not (tmp_path / "o.gpkg").exists()
 
 
+@dask_or_qgis_heavy("test_rockhatch_cli's test_a_geographic_dem_with_nodata_is_reprojected_to_utm")
 def test_a_geographic_dem_is_tiled_as_the_whole_run_reprojects_it(tmp_path, rockhatch_exe):
     # The sample in degrees (with NoData corners): tiles of the UTM grid the whole run works
     # on, each warped alone from the DEM, give the whole run's hatches bit for bit; so does
@@ -405,6 +416,7 @@ def test_a_geographic_dem_is_tiled_as_the_whole_run_reprojects_it(tmp_path, rock
     assert partition_faces(work / "partition.gpkg") == partition_faces(tmp_path / "p.gpkg")
 
 
+@dask_or_qgis_heavy("test_tiled_run_equals_the_whole_run")
 def test_a_vrt_mosaic_of_many_files_gives_the_same_hatches(tmp_path, sample_whole):
     # The sample DEM cut into 3 x 3 files and put together again with gdalbuildvrt: a tiled
     # run over the mosaic draws what a whole run draws over the single file.
@@ -424,6 +436,7 @@ def test_a_vrt_mosaic_of_many_files_gives_the_same_hatches(tmp_path, sample_whol
     assert features(out) == sample_whole
 
 
+@dask_or_qgis_heavy("Tiles.MergedTilesAreTheWholeRunBitForBit (C++)")
 def test_faces_without_orientation_follow_the_fall_line_tiled_as_whole(tmp_path):
     # The sample's faces and lines without its orientation layer: every face's direction is
     # derived, and the print style lays its strokes along the smoothed fall line, a field the
@@ -459,6 +472,7 @@ def sample_auto(tmp_path_factory, rockhatch_exe):
     return hatches, partition_faces(tmp / "faces.gpkg")
 
 
+@dask_or_qgis_heavy("ExtractTile.FourTilesMergeIntoTheWholeExtractionByteForByte (C++)")
 def test_partition_auto_tiled_equals_the_whole_run_with_1_or_2_workers(tmp_path, sample_auto):
     hatches, faces = sample_auto
     outs = {}
@@ -486,6 +500,7 @@ def test_partition_auto_tiled_equals_the_whole_run_with_1_or_2_workers(tmp_path,
     assert outs[1] == outs[2]
 
 
+@dask_or_qgis_heavy("ExtractTile.FourTilesMergeIntoTheWholeExtractionByteForByte (C++)")
 def test_partition_auto_takes_the_extractions_options(tmp_path, rockhatch_exe):
     # rockhatch partition's tuning options, passed to every extraction tile: the tiled
     # partition is the whole extraction's with the same options, and not the default one.
@@ -508,6 +523,7 @@ def test_partition_auto_takes_the_extractions_options(tmp_path, rockhatch_exe):
     assert e.value.code == 9 and "another job" in str(e.value)
 
 
+@dask_or_qgis_heavy("ExtractTile.TheMergeCountsWhereTilesDisagree (C++)")
 def test_partition_auto_warns_where_the_tiles_disagree(tmp_path):
     # A halo too short for the sample's basins: neighbouring tiles place some faces
     # differently and the merge finds them overlapping; the command says so in one line.
@@ -519,6 +535,7 @@ def test_partition_auto_warns_where_the_tiles_disagree(tmp_path):
     assert len(warnings) == 1 and "partition tiles disagree" in warnings[0] and "--extract-halo (now 300)" in warnings[0]
 
 
+@dask_or_qgis_heavy("ExtractTile.FourTilesMergeIntoTheWholeExtractionByteForByte (C++)")
 def test_partition_auto_other_tiles_same_partition(tmp_path, sample_auto):
     # Tiles of 500 m (25 tiles; every face larger than a tile, or cut by a tile border, comes
     # out once and whole from the tile holding its anchor) and a shorter halo: still the whole
@@ -533,6 +550,7 @@ def test_partition_auto_other_tiles_same_partition(tmp_path, sample_auto):
     assert features(out) == hatches
 
 
+@dask_or_qgis_heavy("test_a_killed_worker_loses_nothing")
 def test_partition_auto_resumes_in_either_stage(tmp_path, sample_auto):
     hatches, _ = sample_auto
     out, work = tmp_path / "t.gpkg", tmp_path / "work"
@@ -585,6 +603,7 @@ def test_partition_auto_without_rock_is_one_line(tmp_path):
 
 
 @real_dem
+@dask_or_qgis_heavy("ExtractTile.TheMergeCountsWhereTilesDisagree (C++)")
 def test_partition_auto_on_chamonix_within_the_documented_bound(tmp_path, rockhatch_exe):
     # Chamonix.tif warped to UTM 32N at 30 m, 1:25000, tiles of 3 km, the default halo (4 km):
     # the bound docs/tiles-partition.md states (same face count, no more than 6 faces not bit for
