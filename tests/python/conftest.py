@@ -109,6 +109,7 @@ def partition_with_scree(sample_dir, path):
 
 def pytest_collection_modifyitems(items):
     """test_tiles first: its Dask runs are 60% of the normal pass's test time (326 of 533
-    test-seconds), and as the last file by name its longest tests ended the run on one worker
-    while the other had finished. The order within each file is kept."""
+    test-seconds), and as the last file by name its longest tests could end the run on one
+    worker while the other had finished (that run took 281 s of wall time for 533 / 2). The
+    order within each file is kept."""
     items.sort(key=lambda item: item.path.name != "test_tiles.py")
