@@ -71,7 +71,6 @@ ctested=$(date +%s)
 # points other tests reach are left to the normal pass (conftest.dask_or_qgis_heavy, each
 # naming its twin; with them the two files took 595 s of wall time under ASan, 1,178
 # test-seconds). RH_SANITIZE_PYTEST=all runs those too (RH_SANITIZE_EVERY=1).
-PYTESTS=(tests/python)
 [ "${RH_SANITIZE_PYTEST:-1}" = all ] && export RH_SANITIZE_EVERY=1
 pytest_rc=0
 if [ "${RH_SANITIZE_PYTEST:-1}" != 0 ]; then
@@ -80,14 +79,14 @@ if [ "${RH_SANITIZE_PYTEST:-1}" != 0 ]; then
   # Child processes (the rockhatch commands, python3 -m rockhatch, Dask's workers, QGIS's
   # qgis_process) inherit the settings (test_bad_inputs.py then limits memory through ASan,
   # not with an address-space limit).
-  # clang's shared ASan runtime, which also holds UBSan's; the programs of the build link the
-  # same one (-shared-libsan, CMakeLists.txt).
-  LIBASAN="$(clang++ -print-file-name=libclang_rt.asan-x86_64.so)"
+  # clang's shared ASan runtime, which also holds UBSan's: the one the programs of the build
+  # link (-shared-libsan), as CMakeLists.txt found it.
+  LIBASAN="$(sed -n 's/^RH_ASAN_RUNTIME:INTERNAL=//p' "$BUILD_DIR/CMakeCache.txt")"
   RH_BUILD_DIR="$BUILD_ABS" \
   LD_PRELOAD="$LIBASAN" \
   ASAN_OPTIONS="detect_leaks=0$Q_OPT:suppressions=$SUPP/asan.supp" \
   QT_QPA_PLATFORM=offscreen \
-    /usr/bin/python3 -m pytest -q -p no:cacheprovider -n "$JOBS" "${PYTESTS[@]}"
+    /usr/bin/python3 -m pytest -q -p no:cacheprovider -n "$JOBS" tests/python
   pytest_rc=$?
 fi
 end=$(date +%s)
