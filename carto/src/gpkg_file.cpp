@@ -61,6 +61,11 @@ void GpkgWriter::put(int layer, OGRFeature& f) {
     put(layer, f, box);
 }
 
+void GpkgWriter::set_metadata(const char* key, const std::string& value) {
+    if (ds_->SetMetadataItem(key, value.c_str()) != CE_None)
+        throw Error(Code::OutputExists, "-o '" + path_ + "': cannot write the metadata " + key);
+}
+
 void GpkgWriter::commit() {
     ds_.reset();  // flushes the file
     if (spatial_index_)

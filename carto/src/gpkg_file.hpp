@@ -41,6 +41,8 @@ public:
     // Writes the feature (a new fid); the R-tree gets `box`, or the geometry's envelope.
     void put(int layer, OGRFeature& f, const BoxD& box);
     void put(int layer, OGRFeature& f);
+    // A metadata item of the file (GeoPackage metadata, as GDAL's GetMetadataItem reads it).
+    void set_metadata(const char* key, const std::string& value);
     // Closes the file, loads the R-trees and renames it onto the output. Without commit, the
     // temporary file is removed.
     void commit();

@@ -146,17 +146,54 @@ using HatchSink = std::function<void(std::int64_t face_id, const char* style, co
 using CrestSink = std::function<void(std::int64_t ridge_id, const char* style, const std::vector<std::vector<Point>>& rings)>;
 using CrestSource = std::function<void(const CrestSink&)>;
 
+// The drawing's frame (Drawing::bounds: the faces drawn, their crests and the terrain's
+// extent; a hatch GeoPackage's hatches alone may cover less) is kept in the file as this
+// metadata item, so that an SVG or PNG drawn back from it (a tiled run's merged tiles) has
+// the frame of the run that wrote it: "xmin ymin xmax ymax", each the shortest text that
+// reads back to the same double (std::to_chars: no locale, which QGIS's process may set).
+constexpr const char* kFrameKey = "RH_FRAME";
+
+std::string frame_text(const tex::BBox& b) {
+    std::string s;
+    char buf[32];
+    for (double v : {b.xmin, b.ymin, b.xmax, b.ymax}) {
+        if (!s.empty()) s += ' ';
+        s.append(buf, std::to_chars(buf, buf + sizeof buf, v).ptr);
+    }
+    return s;
+}
+
+// The frame a hatch GeoPackage holds (empty if none, as in files of older versions).
+tex::BBox read_frame(GDALDataset& ds) {
+    tex::BBox b;
+    const char* t = ds.GetMetadataItem(kFrameKey);
+    if (!t) return b;
+    const char* end = t + std::strlen(t);
+    double v[4];
+    for (double& x : v) {
+        while (t < end && *t == ' ') ++t;
+        const auto r = std::from_chars(t, end, x);
+        if (r.ec != std::errc() || !std::isfinite(x)) return b;
+        t = r.ptr;
+    }
+    if (v[0] <= v[2] && v[1] <= v[3]) {
+        b.add(Point{v[0], v[1]});
+        b.add(Point{v[2], v[3]});
+    }
+    return b;
+}
+
 // The hatch GeoPackage: one layer per family that is `present` (fid, geom, face_id, family,
 // style, width_mm; LineStrings, Polygons for the filled families), written family by family
 // from `source`, which hands every hatch of the
 // family it is asked for to the sink, in order. `total` (hatches, for the progress) may be an
 // estimate. The R-trees are bulk-loaded once the file is closed; the file is renamed in
-// place at the end.
+// place at the end. A non-empty `frame` is kept in the file (kFrameKey).
 void write_hatch_gpkg(const std::string& path, const std::string& crs_wkt, bool spatial_index, std::size_t total,
                       const std::function<bool(double)>& keep_going,
                       const std::function<void(Family, const HatchSink&)>& source,
                       const std::function<bool(Family)>& present,
-                      const CrestSource& crests = {}) {
+                      const CrestSource& crests, const tex::BBox& frame) {
     std::size_t written = 0;
     auto check = [&] {
         if (keep_going && ++written % 4096 == 0 &&
@@ -164,6 +201,7 @@ void write_hatch_gpkg(const std::string& path, const std::string& crs_wkt, bool 
             throw Error(Code::Cancelled, "cancelled while writing '" + path + "'");
     };
     GpkgWriter out(path, crs_wkt, spatial_index);
+    if (!frame.empty()) out.set_metadata(kFrameKey, frame_text(frame));
     for (int fam = 0; fam < kFamilies; ++fam) {
         const Family f = Family(fam);
         if (!present(f)) continue;
@@ -306,7 +344,7 @@ void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index,
                 for (std::size_t r : poly) rings.push_back(c.rings[r]);
                 sink(c.id, d.style.c_str(), rings);
             }
-    }) : CrestSource());
+    }) : CrestSource(), d.bounds);
 }
 
 std::size_t merge_gpkg(const std::vector<std::string>& parts, const std::string& path, bool spatial_index,
@@ -316,6 +354,7 @@ std::size_t merge_gpkg(const std::vector<std::string>& parts, const std::string&
     std::size_t total = 0;
     bool crests = false;  // a crest layer in any part: one in the result
     std::vector<char> present(kFamilies, 0);  // the rock families, and the terrain ones of any part
+    tex::BBox frame;
     for (const auto& part : parts) {
         auto ds = open_hatches(part, "tile");
         for (int fam = 0; fam < kFamilies; ++fam)
@@ -325,6 +364,9 @@ std::size_t merge_gpkg(const std::vector<std::string>& parts, const std::string&
             }
         if (crs_wkt.empty()) crs_wkt = wkt2_of(ds->GetLayer(0)->GetSpatialRef());
         crests = crests || ds->GetLayerByName("crest");
+        // The parts' frames together: the whole run's (each face, ridge and terrain element is
+        // drawn by one tile, and a tile drawing terrain frames the whole DEM as the run does).
+        frame.add(read_frame(*ds));
     }
     std::size_t n = 0;
     write_hatch_gpkg(path, crs_wkt, spatial_index, total, keep_going, [&](Family f, const HatchSink& sink) {
@@ -338,7 +380,7 @@ std::size_t merge_gpkg(const std::vector<std::string>& parts, const std::string&
         }
     }, [&](Family f) { return present[std::size_t(f)] != 0; }, crests ? CrestSource([&](const CrestSink& sink) {
         for (const auto& part : parts) read_crests(*open_hatches(part, "tile"), "tile '" + part + "'", sink);
-    }) : CrestSource());
+    }) : CrestSource(), frame);
     return n;
 }
 
@@ -373,6 +415,7 @@ Drawing read_gpkg(const std::string& path, double scale) {
                 for (const Point& q : ring) d.bounds.add(q);
         }))
         d.crests = std::move(crests);
+    if (const tex::BBox frame = read_frame(*ds); !frame.empty()) d.bounds = frame;
     return d;
 }
 

@@ -173,3 +173,46 @@ TEST(GdalSettings, WriteGpkgPutsBackTheHostsOptionsAndErrorHandler) {
     CPLSetThreadLocalConfigOption("OGR_CURRENT_DATE", nullptr);
     CPLSetConfigOption("OGR_SQLITE_JOURNAL", nullptr);
 }
+
+// A hatch GeoPackage keeps its drawing's frame, which can be larger than its hatches (the
+// faces' extent, the DEM's for a terrain style); an SVG drawn back from it, or from tiles
+// merged into one, has that frame, exactly: a tiled run's SVG is framed as the whole run's.
+TEST(HatchGpkg, KeepsTheDrawingsFrameThroughReadAndMerge) {
+    const fs::path dir = fresh_dir("frame");
+    Drawing a = small_drawing(3), b = small_drawing(2);
+    a.bounds = {999999.875, 6499998.1, 1000010.3, 6500003.7};  // beyond the hatches on every side
+    b.faces[0].face_id = 2;
+    for (auto& h : b.faces[0].hatches)
+        for (auto& p : h.points) p.y += 50;
+    b.bounds = {1000000, 6500040.25, 1000004, 6500090.5};
+    write_gpkg(a, (dir / "a.gpkg").string());
+    write_gpkg(b, (dir / "b.gpkg").string());
+    const Drawing ra = read_gpkg((dir / "a.gpkg").string(), 10000);
+    EXPECT_EQ(ra.bounds.xmin, a.bounds.xmin);
+    EXPECT_EQ(ra.bounds.ymin, a.bounds.ymin);
+    EXPECT_EQ(ra.bounds.xmax, a.bounds.xmax);
+    EXPECT_EQ(ra.bounds.ymax, a.bounds.ymax);
+    write_svg(a, (dir / "a.svg").string());
+    write_svg(ra, (dir / "ra.svg").string());
+    EXPECT_EQ(bytes(dir / "ra.svg"), bytes(dir / "a.svg"));
+
+    EXPECT_EQ(merge_gpkg({(dir / "a.gpkg").string(), (dir / "b.gpkg").string()}, (dir / "m.gpkg").string()), 5u);
+    const Drawing m = read_gpkg((dir / "m.gpkg").string(), 10000);
+    EXPECT_EQ(m.bounds.xmin, 999999.875);
+    EXPECT_EQ(m.bounds.ymin, 6499998.1);
+    EXPECT_EQ(m.bounds.xmax, 1000010.3);
+    EXPECT_EQ(m.bounds.ymax, 6500090.5);
+
+    // A file without the frame (an older version's): the hatches' extent, as before.
+    {
+        std::unique_ptr<GDALDataset> ds(GDALDataset::Open((dir / "b.gpkg").string().c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE));
+        ASSERT_TRUE(ds);
+        ASSERT_NE(ds->GetMetadataItem("RH_FRAME"), nullptr);
+        ds->SetMetadataItem("RH_FRAME", nullptr);
+    }
+    const Drawing rb = read_gpkg((dir / "b.gpkg").string(), 10000);
+    EXPECT_EQ(rb.bounds.xmin, 1000000.0);
+    EXPECT_EQ(rb.bounds.ymin, 6500050.0);
+    EXPECT_EQ(rb.bounds.xmax, 1000001.5);
+    EXPECT_EQ(rb.bounds.ymax, 6500051.0);
+}

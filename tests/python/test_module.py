@@ -371,6 +371,15 @@ def test_export_svg_in_domain_fills_the_frame(tmp_path):
             assert 100 - 1e-6 <= p.x <= 400 + 1e-6 and 100 - 1e-6 <= p.y <= 400 + 1e-6
             assert not (200 + 1e-6 < p.x < 300 - 1e-6 and 200 + 1e-6 < p.y < 300 - 1e-6)
     assert [cv.closed for cv in c.curves[-2:]] == [True, True]
+    # The grid fills the whole frame: its lines' length is the frame's area (300^2 - 100^2)
+    # over each family's spacing (8,194 against 8,184 drawn).
+    def length(cv):
+        pts = list(cv.points) + (list(cv.points)[:1] if cv.closed else [])
+        return sum(math.hypot(q.x - p.x, q.y - p.y) for p, q in zip(pts, pts[1:]))
+
+    assert len(c.curves) > 300
+    assert sum(length(cv) for cv in c.curves[:-2]) == pytest.approx(80000 / 17 + 80000 / 23, rel=0.01)
+    assert [length(cv) for cv in c.curves[-2:]] == pytest.approx([1200, 400])
     assert ToSVG(Merge(a, a)(BOX), 1000) == ToSVG(Union(a, a)(BOX), 1000)
 
 

@@ -245,6 +245,8 @@ def test_a_style_built_from_libtex_operators(sample_dir, tmp_path):
     prepared = carto.prepare(sample_dir / "dem.tif", sample_dir / "partition.gpkg")
     drawings = [carto.hatch(prepared, style=script, threads=t, seed=4) for t in (1, 2)]
     assert drawings[0].hatch_count() > 5000
+    # The same faces, in the same order (zip alone would stop at the shorter list).
+    assert [f.face_id for f in drawings[0].faces] == [f.face_id for f in drawings[1].faces]
     for a, b in zip(drawings[0].faces, drawings[1].faces):
         assert a.face_id == b.face_id and list(a.hatches) == list(b.hatches)
     # The engine's stock mapper makes the same calls to Random natively: the same hatches.
@@ -264,6 +266,7 @@ def test_a_style_built_from_libtex_operators(sample_dir, tmp_path):
         return Arrangement(arrangement)
 
     stock = carto.hatch(prepared, style=carto.python_style(example.info, native), threads=2, seed=4)
+    assert [f.face_id for f in stock.faces] == [f.face_id for f in drawings[0].faces]
     for a, b in zip(drawings[0].faces, stock.faces):
         assert a.face_id == b.face_id and list(a.hatches) == list(b.hatches)
     # Cut with CROP: every stroke lies in its face (holes included), to rounding.

@@ -32,7 +32,7 @@ def test_in_memory_dem_and_errors(sample_dir, tmp_path):
     r = carto.partition_from_dem(dem, min_slope=80)
     assert 0 < len(r.partition.faces)
     flat = carto.Raster.from_array(np.full((60, 60), 1500.0), [0, 5, 0, 300, 0, -5], "EPSG:2154")
-    with pytest.raises(rockhatch.RockhatchError, match="rock") as e:
+    with pytest.raises(rockhatch.RockhatchError, match="no rock: no area") as e:
         carto.partition_from_dem(flat, tmp_path / "flat.gpkg")
     assert e.value.code == 6 and not (tmp_path / "flat.gpkg").exists()
     no_crs = carto.Raster.from_array(dem.array, dem.geotransform)

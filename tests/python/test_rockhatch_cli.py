@@ -4,7 +4,7 @@ import subprocess
 import xml.etree.ElementTree as ET
 
 import pytest
-from osgeo import gdal, ogr
+from osgeo import gdal, ogr, osr
 
 from bad_inputs import partition_file
 from conftest import SHARED_DEM, heavy_real_dem, one_under_sanitizers
@@ -44,11 +44,15 @@ def test_geopackage_layers_crs_and_attributes(sample_run):
         assert [defn.GetFieldDefn(i).GetName() for i in range(defn.GetFieldCount())] == \
             ["face_id", "family", "style", "width_mm"]
         assert layer.GetFeatureCount() > 0, name
-        f = layer.GetNextFeature()
-        assert f["family"] == name.split("_")[1]
-        assert f["style"] == "print"  # the default style
-        assert 1 <= f["face_id"] <= 20
-        assert f["width_mm"] > 0
+        # Every feature: its family, the default style, one of the sample's 20 faces, one width.
+        rows = ds.ExecuteSQL(f"SELECT family, style, min(face_id), max(face_id), min(width_mm), max(width_mm), "
+                             f"count(*) FROM {name} GROUP BY family, style")
+        groups = [[f.GetField(i) for i in range(7)] for f in rows]
+        ds.ReleaseResultSet(rows)
+        assert len(groups) == 1, groups
+        family, style, lo, hi, w_lo, w_hi, n = groups[0]
+        assert (family, style, n) == (name.split("_")[1], "print", layer.GetFeatureCount())
+        assert 1 <= lo <= hi <= 20 and 0 < w_lo == w_hi
 
 
 def test_svg_groups_scale_and_georeference(sample_run):
@@ -247,10 +251,18 @@ def test_real_dem_geographic_with_nodata(rockhatch_exe, real_partition, tmp_path
     layer = ds.GetLayerByName("hatch_fill")
     assert layer.GetSpatialRef().GetAuthorityCode(None) == "32632"
     assert layer.GetFeatureCount() > 10000
-    # Hatches stay within the DEM's footprint (in UTM 32N, about 331-346 km E, 5075-5092 km N).
+    # Hatches stay within the DEM's footprint: its box in degrees carried to UTM 32N (about
+    # 331-346 km E, 5075-5092 km N), give or take one cell (30 m).
+    dem = gdal.Open(str(SHARED_DEM))
+    gt, w, h = dem.GetGeoTransform(), dem.RasterXSize, dem.RasterYSize
+    src, dst = dem.GetSpatialRef().Clone(), layer.GetSpatialRef().Clone()
+    for srs in (src, dst):
+        srs.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)  # x = longitude / easting
+    to_utm = osr.CoordinateTransformation(src, dst)
+    fx0, fy0, fx1, fy1 = to_utm.TransformBounds(gt[0], gt[3] + h * gt[5], gt[0] + w * gt[1], gt[3], 21)
     xmin, xmax, ymin, ymax = layer.GetExtent()
-    assert 328000 < xmin < xmax < 350000
-    assert 5070000 < ymin < ymax < 5100000
+    assert 330000 < fx0 - 30 < xmin < xmax < fx1 + 30 < 347000
+    assert 5074000 < fy0 - 30 < ymin < ymax < fy1 + 30 < 5093000
 
 
 def test_geopackage_spatial_index_is_valid_and_maintained(sample_run, tmp_path):

@@ -8,8 +8,8 @@ import pytest
 from rockhatch.tex import (CROP, KEEP_OUTSIDE, Curve, Curves, Crop, EdgeMapper, GetSeed, GetThreads, GridPartition,
                            HasLabel, JitterEdges, Labelled, Location, MapToEdges, MatchPoints, Nothing, Outline, Point,
                            PlanarMap, Random, Region, SeedScope, SetEdgeLabels, SetSeed, SetThreads, SourceVertex,
-                           StreamScope, StripesProperties, TargetVertex, ToCurve, UniformPartition, IrregularProperties,
-                           pi)
+                           StreamScope, StripesProperties, TargetVertex, TexError, ToCurve, UniformPartition,
+                           IrregularProperties, pi)
 
 BOX = Region.rectangle(0, 0, 100, 80)
 THETA = 0.4
@@ -151,7 +151,8 @@ def test_thin_lines_keeps_an_even_share_that_grows_with_the_field():
     assert all((c.points[0].x + c.points[-1].x) / 2 <= 50 for c in owned.curves)
     assert any(max(c.points[0].x, c.points[-1].x) > 50 for c in owned.curves)
     assert Pow(Field(3.0), 2.0)(Point(0, 0)) == 9.0
-    with pytest.raises(Exception, match="spacing"):
+    # The engine's refusal, not a TypeError of a wrong call (whose text names "spacing" too).
+    with pytest.raises(TexError, match="ThinLines: the spacing must be positive"):
         ThinLines(JitterEdges("fill", THETA, 8, 20, 0.0), THETA, 0.0, 1.0)
 
 
@@ -180,5 +181,5 @@ def test_smoothed_and_map_along_draw_strokes_hanging_from_a_smooth_line():
     assert [f.x for f, _, _, _ in seen] == [1.0, 3.0, 5.0, 7.0, 9.0]
     assert all((t.x, t.y) == (1.0, 0.0) for _, t, _, _ in seen)
     assert [round(r, 9) for _, _, _, r in seen] == [9.0, 7.0, 5.0, 3.0, 1.0]
-    with pytest.raises(Exception, match="MapAlong"):
+    with pytest.raises(TexError, match="MapAlong: the spacing must be positive"):
         MapAlong(straight, 0.0, hang)

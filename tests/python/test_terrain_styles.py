@@ -1,6 +1,7 @@
 """The terrain styles scree and slope-hachures through the command and the Python module: their
 layers, the same bytes at one and two threads, NoData and the parameter errors. Their geometry
 (no overlap, fall line, density) is tested in tests/carto/test_terrain_styles.cpp."""
+import math
 import subprocess
 
 import pytest
@@ -138,10 +139,24 @@ def test_no_hachure_in_nodata(rockhatch_exe, sample_dir, tmp_path):
     band, gt = ds.GetRasterBand(1), ds.GetGeoTransform()
     a, nodata = band.ReadAsArray(), band.GetNoDataValue()
     assert (a == nodata).sum() > 1000, "the sample should hold NoData"
+    # Cells within 3 cells of NoData: hachures reach there, so the check below is exercised.
+    near = a == nodata
+    for _ in range(3):
+        grown = near.copy()
+        grown[1:, :] |= near[:-1, :]
+        grown[:-1, :] |= near[1:, :]
+        grown[:, 1:] |= near[:, :-1]
+        grown[:, :-1] |= near[:, 1:]
+        near = grown
+    hachures, close = 0, 0
     for g in polygons(out, "hatch_hachure"):
+        hachures += 1
         for x, y in g.GetGeometryRef(0).GetPoints():
-            c, r_ = int((x - gt[0]) / gt[1]), int((y - gt[3]) / gt[5])
+            c, r_ = math.floor((x - gt[0]) / gt[1]), math.floor((y - gt[3]) / gt[5])
+            assert 0 <= r_ < a.shape[0] and 0 <= c < a.shape[1], (x, y)
             assert a[r_, c] != nodata, (x, y)
+            close += bool(near[r_, c])
+    assert hachures > 1000 and close > 10, (hachures, close)
 
 
 @real_dem

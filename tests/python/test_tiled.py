@@ -4,7 +4,7 @@ import pytest
 
 from rockhatch.tex import (CROP, CROP_ADD_BOUNDARY, KEEP_INSIDE, Inside, Outside, Rasterize, KEEP_OUTSIDE, Contour, ExportSVG, GhostMap, GridPartition, HasLabel,
                            IncidentEdges, MapToFaces, MapToVertices, Nothing, Random, Region, Scale, SetFaceLabels,
-                           GetThreads, SetThreads, StripesPartition, StripesProperties, TexError, Tiled, TiledMap, pi)
+                           Curves, GetThreads, SetThreads, StripesPartition, StripesProperties, TexError, Tiled, TiledMap, pi)
 
 WINDOW = Region.rectangle(0, 0, 300, 200)
 
@@ -44,6 +44,9 @@ def test_mapped_faces_inside_match_the_engine():
     inside = [c for c in engine.curves if all(60 <= p.x <= 240 and 40 <= p.y <= 160 for p in c.points)]
     got = tiled.Convert(inner, KEEP_INSIDE)
     assert len(got.curves) == len(inside) > 0
+    expected = Curves()
+    expected.curves = inside
+    assert segments(got) == segments(expected)
 
 
 def test_border_vertices_have_degree_four():

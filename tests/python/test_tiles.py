@@ -23,10 +23,23 @@ DEM = str(SAMPLE / "dem.tif")
 FACES = str(SAMPLE / "partition.gpkg")
 
 
+class Hatches(dict):
+    """A hatch GeoPackage's features, and its frame (the drawing's extent, which SVG and PNG
+    outputs drawn from it use): equal when both are."""
+    frame = None
+
+    def __eq__(self, other):
+        return dict.__eq__(self, other) and self.frame == getattr(other, "frame", None)
+
+    def __ne__(self, other):
+        return not self == other
+
+
 def features(path):
     """(layer, face id, rank in its face) -> (geometry WKB, style, width) of every hatch; for the
     crest layer, (layer, ridge id, rank) -> (geometry WKB, style, None). The elements of a terrain
-    style (face id -1) are ranked in the order of their WKB: tiles write them tile by tile."""
+    style (face id -1) are ranked in the order of their WKB: tiles write them tile by tile. The
+    frame is the file's RH_FRAME metadata item, as written."""
     ds = ogr.Open(str(path))
     groups = {}
     for i in range(ds.GetLayerCount()):
@@ -36,12 +49,14 @@ def features(path):
             face = f.GetField("ridge_id" if crest else "face_id")
             groups.setdefault((layer.GetName(), face), []).append(
                 (bytes(f.GetGeometryRef().ExportToWkb()), f.GetField("style"), None if crest else f.GetField("width_mm")))
-    out = {}
+    out = Hatches()
     for (name, face), items in groups.items():
         if face == -1:
             items.sort()
         for k, item in enumerate(items):
             out[(name, face, k)] = item
+    out.frame = ds.GetMetadataItem("RH_FRAME")
+    assert out.frame, f"{path}: no frame"
     return out
 
 
@@ -138,9 +153,21 @@ def test_command_line_tiles_and_svg(tmp_path, rockhatch_exe, sample_whole):
     assert r.returncode == 0, r.stderr
     assert "9 tiles" in r.stderr and "hatches" in r.stderr
     assert features(gpkg) == sample_whole
-    # The SVG drawn from the merged tiles has one path per hatch.
-    text = svg.read_text()
-    assert text.count("<path") + text.count("<polyline") >= len(sample_whole) // 50
+    # The SVG drawn from the merged tiles is the whole run's drawing: the same frame and
+    # georeference (the tiles keep their frames in their GeoPackages), and in each group the
+    # same strokes, one per hatch; only the faces' order follows the tiles.
+    whole_svg = tmp_path / "w.svg"
+    r = subprocess.run([str(rockhatch_exe), "--dem", DEM, "--partition", FACES, "--seed", "3", "-q", "-o", str(whole_svg)],
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+
+    def svg_parts(path):
+        head, *groups = path.read_text().split("<g ")
+        return head, [(g.split(">", 1)[0], sorted(g.splitlines()[1:])) for g in groups]
+
+    head, groups = svg_parts(svg)
+    assert (head, groups) == svg_parts(whole_svg)
+    assert sum(len([x for x in lines if x.startswith("<poly")]) for _, lines in groups) == len(sample_whole)
 
 
 class ExternalCluster:
@@ -253,7 +280,7 @@ def test_a_terminated_command_stops_its_workers_and_resumes(tmp_path, sample_who
     assert rest.strip().splitlines()[-1].startswith("rockhatch tiles: terminated:"), rest
     done = sorted(p.name for p in work.glob("tile_*.gpkg"))
     time.sleep(3)  # nothing of the run is left to write a tile
-    assert sorted(p.name for p in work.glob("tile_*.gpkg")) == done and 2 <= len(done) < 9 * 9
+    assert sorted(p.name for p in work.glob("tile_*.gpkg")) == done and 2 <= len(done) < 25  # 5 x 5 tiles
     assert not out.exists()
     s = tiles.run(DEM, FACES, 500, [out], seed=3, workers=1, workdir=work)
     assert s.done_before == len(done)

@@ -45,7 +45,8 @@ std::size_t merge_gpkg(const std::vector<std::string>& parts, const std::string&
                        const std::function<bool(double)>& keep_going = {});
 // Reads a hatch GeoPackage written by write_gpkg back into a drawing (faces in order of
 // first appearance), e.g. to draw a tiled run's merged result as SVG or PNG. Its bounds are
-// those of the hatches.
+// the frame the file keeps (write_gpkg keeps the drawing's bounds; merge_gpkg the union of
+// its parts'), else those of its hatches and crests.
 Drawing read_gpkg(const std::string& path, double scale);
 void write_svg(const Drawing& d, const std::string& path);
 // A PNG preview `pixels` wide, over a light hillshade when one is given.
