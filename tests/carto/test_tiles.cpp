@@ -161,27 +161,85 @@ TEST(Tiles, MergedTilesAreTheWholeRunBitForBit) {
 TEST(Tiles, ATileReadsOnlyTheDemNearItsFaces) {
     TempDir dir;
     Options o = sample_options();
-    o.relief_radius = 100;  // a small relief window: the halo is 24 cells
+    o.relief_radius = 100;  // a small relief window: the halo is the style's reach, 29 cells
     const RasterInfo info = raster_info(o.dem, "--dem");
     const auto tiles = tile_grid(info, 800);
-    long long most = 0;
-    // The centre tile and a corner one (each reads its faces' neighbourhood and window).
-    for (std::size_t i : {std::size_t(4), std::size_t(0)})
-        most = std::max(most, run_tile(o, tiles[i], dir / ("t" + std::to_string(i) + ".gpkg")).dem_cells);
-    EXPECT_GT(most, 0);
-    EXPECT_LT(most, (long long)info.width * info.height);
+    const RasterInfo grid = working_grid(info).grid;
+    const double cell = std::min(std::abs(grid.gt[1]), std::abs(grid.gt[5]));
+    const double margin = tile_context_margin(o, cell);
+    const int halo = tile_halo_cells(o, cell);
+    EXPECT_EQ(halo, 29);
+    ASSERT_FALSE(crest_band(o));  // no crest ornaments: the context is the faces' margin alone
+    const Partition whole = load_partition(o.partition, grid.crs_wkt);
+    const double snap = o.partition.snap;
+    // The cells under the whole partition with the same halo: what a tile that read every
+    // face would read.
+    auto cells_of = [&](const tex::BBox& b) {
+        const double w = std::ceil(b.width() / cell) + 1 + 2 * halo, h = std::ceil(b.height() / cell) + 1 + 2 * halo;
+        return (long long)(std::min(w, double(grid.width)) * std::min(h, double(grid.height)));
+    };
+    const long long under_all = cells_of(whole.bounds());
+    // Each tile reads the DEM under the box of its own faces grown by the context margin (the
+    // faces meeting it, read whole) and the halo, no more: the box of the faces whose box
+    // meets the owned faces' box grown by the margin, plus one cell for the rounding out to
+    // whole cells and the halo on each side. The faces are taken from the whole partition, whose borders are snapped among
+    // more neighbours than a tile's: a snap of slack on each box. A tile that owns no face
+    // reads no DEM at all.
+    auto check = [&](std::size_t i) {
+        tex::BBox own;
+        for (const RockFace& f : whole.faces)
+            if (owns(tiles[i], face_anchor(f))) own.add(f.region.bbox());
+        const long long cells = run_tile(o, tiles[i], dir / ("t" + std::to_string(i) + ".gpkg")).dem_cells;
+        if (own.empty()) {
+            EXPECT_EQ(cells, 0) << "tile " << i;
+            return cells;
+        }
+        const tex::BBox reach = own.expanded(margin + 2 * snap);
+        tex::BBox context;
+        for (const RockFace& f : whole.faces)
+            if (f.region.bbox().intersects(reach)) context.add(f.region.bbox());
+        EXPECT_GT(cells, 0) << "tile " << i;
+        EXPECT_LE(cells, cells_of(context.expanded(snap))) << "tile " << i;
+        return cells;
+    };
+    // The centre tile, whose faces' neighbourhood is nearly all of the sample's faces (it
+    // reads 191,844 cells of the 192,721 under the partition, within its bound); a corner tile
+    // with faces, whose neighbourhood is a corner of the partition (80,512 cells); a corner
+    // tile without a face.
+    EXPECT_LT(check(4), (long long)info.width * info.height);
+    EXPECT_LT(check(2), under_all / 2);
+    EXPECT_EQ(check(0), 0);
 }
 
 TEST(Tiles, RefusesWhatATiledRunCannotDoExactly) {
     TempDir dir;
     Options o = sample_options();
     const auto tiles = tile_grid(raster_info(o.dem, "--dem"), 1000);
+    // The code and a piece of the message of the error run_tile throws (Failure and the
+    // message "accepted" when it throws none), so each refusal is the one meant.
+    auto refusal = [&](const Options& opt, const std::string& out) -> std::pair<Code, std::string> {
+        try {
+            run_tile(opt, tiles[0], out);
+        } catch (const Error& e) {
+            return {e.code(), e.what()};
+        }
+        return {Code::Failure, "accepted"};
+    };
+    // --partition auto: the partition is extracted tile by tile first, not by a hatching tile.
     o.partition.path = "auto";
-    EXPECT_THROW(run_tile(o, tiles[0], dir / "a.gpkg"), Error);
+    auto [code, what] = refusal(o, dir / "a.gpkg");
+    EXPECT_EQ(code, Code::Usage) << what;
+    EXPECT_NE(what.find("--partition auto"), std::string::npos) << what;
+    EXPECT_FALSE(fs::exists(dir / "a.gpkg"));
     o = sample_options();
     // A tile file that exists is a finished tile: not written over.
     run_tile(o, tiles[0], dir / "b.gpkg");
-    EXPECT_THROW(run_tile(o, tiles[0], dir / "b.gpkg"), Error);
+    const auto size = fs::file_size(dir / "b.gpkg");
+    std::tie(code, what) = refusal(o, dir / "b.gpkg");
+    EXPECT_EQ(code, Code::OutputExists) << what;
+    EXPECT_NE(what.find("b.gpkg"), std::string::npos) << what;
+    EXPECT_NE(what.find("exists"), std::string::npos) << what;
+    EXPECT_EQ(fs::file_size(dir / "b.gpkg"), size);
 }
 
 namespace {

@@ -78,11 +78,26 @@ TEST(Coverage, ClosedLinesCloseAndOrderAndThreadsDoNotMatter) {
     EXPECT_EQ(draw(2), one);
     std::reverse(lines.begin(), lines.end());
     EXPECT_EQ(draw(2), one);
-    // The closing segment is drawn: the middle of first-to-last of a triangle is inked.
-    const auto& t = lines.back();
-    const Point mid{(t.front().x + t.back().x) / 2, (t.front().y + t.back().y) / 2};
-    const int c = int((mid.x - g.window.xmin) / g.pixel), r = int((g.window.ymax - mid.y) / g.pixel);
-    if (c >= 0 && c < g.width && r >= 0 && r < g.height) EXPECT_GT(one[std::size_t(r) * g.width + c], 0.4f);
+    // The closing segment is drawn. A triangle alone, so no other line can ink the probe: the
+    // pixel centre (30.25, 45.25) lies on its closing segment (last point back to the first) and
+    // far from its two open segments, so it is blank when the line is open and fully inked
+    // when it is closed.
+    const std::vector<Point> tri = {{20.25, 20.25}, {60.25, 20.25}, {40.25, 70.25}};
+    const int c = 60, r = 109;
+    ASSERT_TRUE(c >= 0 && c < g.width && r >= 0 && r < g.height);
+    const Point probe = g.Centre(c, r);
+    ASSERT_NEAR(seg_dist(probe, tri.back(), tri.front()), 0.0, 1e-9);
+    ASSERT_GT(seg_dist(probe, tri[0], tri[1]), 0.5 + g.pixel);
+    ASSERT_GT(seg_dist(probe, tri[1], tri[2]), 0.5 + g.pixel);
+    auto draw_one = [&](bool closed) {
+        tex::StrokeCoverage s(g, 1.0);
+        s.Add(tri, closed);
+        std::vector<float> cover(g.Size(), 0.0f);
+        s.Render(cover);
+        return cover[std::size_t(r) * g.width + c];
+    };
+    EXPECT_EQ(draw_one(false), 0.0f);
+    EXPECT_GT(draw_one(true), 0.4f);
 }
 
 TEST(Coverage, FillsByTheEvenOddRuleAtPixelCentres) {

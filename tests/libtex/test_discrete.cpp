@@ -5,6 +5,7 @@
 // implementation independent of the R-tree and of the exact tests the operators use.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <boost/geometry.hpp>
 #include <cstdio>
 #include <fstream>
@@ -272,9 +273,25 @@ TEST(DiscreteOperators, ApplyThicknessGivesTheWidth) {
     EXPECT_NEAR(r.area(), 400, 1e-9);
     const Region tapered = ApplyThickness(Polyline{{{0, 0}, {50, 0}, {100, 0}}, false},
                                           [](double t) { return t < 0.5 ? 0.0 : 2.0; });
-    EXPECT_GT(tapered.area(), 0);
-    const Region annulus = ApplyThickness(Contour(square(0, 0, 10)), [](double) { return 2.0; });
-    EXPECT_EQ(annulus.holes().size(), 1u);
+    // The width is taken at the curve's points (t = 0, 0.5, 1: widths 0, 2, 2) and runs
+    // straight between them: a triangle 50 long and 2 high, then a 50 x 2 rectangle.
+    EXPECT_NEAR(tapered.area(), 50 * 2 / 2.0 + 50 * 2, 1e-9);
+    EXPECT_NEAR(tapered.bbox().ymax, 1, 1e-12);
+    EXPECT_NEAR(tapered.bbox().ymin, -1, 1e-12);
+    // Around a closed curve, a ring: 1 on each side of the square 10 x 10, mitred at the
+    // corners, so the 12 x 12 square less the 8 x 8 one, whichever way the curve runs (the
+    // square's contour runs counter-clockwise; reversed, clockwise).
+    const Polyline ccw = Contour(square(0, 0, 10));
+    Polyline cw = ccw;
+    std::reverse(cw.points.begin(), cw.points.end());
+    for (const Polyline* c : {&ccw, static_cast<const Polyline*>(&cw)}) {
+        SCOPED_TRACE(c == &cw ? "clockwise" : "counter-clockwise");
+        const Region annulus = ApplyThickness(*c, [](double) { return 2.0; });
+        ASSERT_EQ(annulus.holes().size(), 1u);
+        EXPECT_NEAR(annulus.area(), 12 * 12 - 8 * 8, 1e-9);
+        EXPECT_NEAR(annulus.bbox().xmin, -1, 1e-12);
+        EXPECT_NEAR(annulus.bbox().xmax, 11, 1e-12);
+    }
 }
 
 TEST(DiscreteOperators, ReadPGMAndImage) {

@@ -12,6 +12,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <string>
 #include <vector>
 
 #include "gallery.hpp"
@@ -1673,15 +1674,33 @@ TEST(FastCrop, SameMapsAsTheExactPathOnTheGallery) {
             exact = drawn(e);
         }
         // Both paths round every cut point to the nearest double of its exact value, so they
-        // differ only where a crossing of two cut curves is rounded (teaser_b: 292 big faces
-        // fast, 293 exact; the other examples agree exactly). Before the exact path rounded
-        // that way it gave 311 (Release) or 318 (the sanitizer build) on teaser_b.
-        const double tol = 0.01;
-        EXPECT_NEAR(double(fast.edges), double(exact.edges), tol * double(exact.edges));
-        EXPECT_NEAR(double(fast.faces), double(exact.faces), tol * double(exact.faces));
-        EXPECT_NEAR(fast.length, exact.length, 1e-6 * exact.length);
-        EXPECT_NEAR(double(fast.big_faces), double(exact.big_faces), tol * double(exact.big_faces) + 1);
-        EXPECT_NEAR(double(fast.loose_ends), double(exact.loose_ends), tol * double(exact.loose_ends) + 1);
+        // differ only where a crossing of two cut curves is rounded: six of the eight examples
+        // give the same map, count for count; teapot differs by 1 vertex and 2 edges (431/426
+        // fast, 430/424 exact), teaser_b by up to 6 (vertices 2000/1998, edges 1999/2001, faces
+        // 293/294, big faces 292/293, loose ends 1230/1224), the same numbers in Release and in
+        // the sanitizer build (clang, -O1). Those two may each differ by their measured largest
+        // difference in every count, no more; the others must agree exactly. Before the exact
+        // path rounded that way it gave 311 (Release) or 318 (the sanitizer build) big faces
+        // on teaser_b.
+        const std::string n = name;
+        const long long allow = n == "teapot" ? 2 : n == "teaser_b" ? 6 : 0;
+        auto near = [&](std::size_t a, std::size_t b) { return std::llabs((long long)a - (long long)b) <= allow; };
+        if (allow == 0) {
+            EXPECT_EQ(fast.vertices, exact.vertices);
+            EXPECT_EQ(fast.edges, exact.edges);
+            EXPECT_EQ(fast.faces, exact.faces);
+            EXPECT_EQ(fast.big_faces, exact.big_faces);
+            EXPECT_EQ(fast.loose_ends, exact.loose_ends);
+        } else {
+            EXPECT_TRUE(near(fast.vertices, exact.vertices)) << fast.vertices << " vs " << exact.vertices;
+            EXPECT_TRUE(near(fast.edges, exact.edges)) << fast.edges << " vs " << exact.edges;
+            EXPECT_TRUE(near(fast.faces, exact.faces)) << fast.faces << " vs " << exact.faces;
+            EXPECT_TRUE(near(fast.big_faces, exact.big_faces)) << fast.big_faces << " vs " << exact.big_faces;
+            EXPECT_TRUE(near(fast.loose_ends, exact.loose_ends)) << fast.loose_ends << " vs " << exact.loose_ends;
+        }
+        // The same curves cut at the same points, their pieces summed in another order (7e-16
+        // apart at most, measured): the lengths agree to 1e-12.
+        EXPECT_NEAR(fast.length, exact.length, 1e-12 * exact.length);
         std::printf("%-14s fast %zu/%zu/%zu/%zu/%zu exact %zu/%zu/%zu/%zu/%zu\n", name, fast.vertices, fast.edges,
                     fast.faces, fast.big_faces, fast.loose_ends, exact.vertices, exact.edges, exact.faces,
                     exact.big_faces, exact.loose_ends);

@@ -68,7 +68,18 @@ TEST(Merge, FacesWithoutMaskEdgesInheritTheirStatus) {
 }
 
 TEST(Merge, UnionKeepsEverything) {
-    EXPECT_EQ(Union(strokes(), square())(kAny).curves.size(), 4u);
+    // Every curve of both, uncut: the three strokes (20 + 2 + 10) and the square (40), and
+    // the label of the short stroke on that stroke alone.
+    const Curves u = Union(strokes(), square())(kAny);
+    EXPECT_EQ(u.curves.size(), 4u);
+    EXPECT_NEAR(th::length(u), 20 + 2 + 10 + 40, 1e-12);
+    int labelled = 0;
+    for (const auto& c : u.curves)
+        if (c.labels.has("short")) {
+            ++labelled;
+            EXPECT_NEAR(th::length(Curves{{c}, {}, ""}), 2, 1e-12);
+        }
+    EXPECT_EQ(labelled, 1);
 }
 
 TEST(Merge, RegionMaskWithHole) {

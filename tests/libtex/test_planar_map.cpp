@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <atomic>
 #include <random>
+#include <set>
+#include <utility>
 #include <cmath>
 #include <cstdio>
 
@@ -206,9 +208,22 @@ TEST(PlanarMapCells, VerticesAreEndsAndCrossingsNotBends) {
     EXPECT_EQ(m->edges().size(), 6u);
     EXPECT_EQ(th::bounded_faces(*m), 2u);
     for (const auto& v : m->vertices()) EXPECT_NE(v.edges.size(), 2u) << "a bend became a vertex";
+    // The edges keep every point of the curves (64 + 201 + 3), each once, plus the two
+    // crossings, each the end of two arcs and of two pieces of the S: 268 + 2 x 4 points.
     std::size_t points = 0;
-    for (const auto& e : m->edges()) points += e.points.size();
-    EXPECT_GT(points, 64u + 200u);  // the edges keep every point of the curves
+    std::set<std::pair<double, double>> kept;
+    for (const auto& e : m->edges()) {
+        points += e.points.size();
+        for (const Point& q : e.points) kept.insert({q.x, q.y});
+    }
+    std::size_t input = 0;
+    for (const Curve& c : circle_and_strokes().curves)
+        for (const Point& q : c.points) {
+            ++input;
+            EXPECT_EQ(kept.count({q.x, q.y}), 1u) << "lost " << q.x << "," << q.y;
+        }
+    EXPECT_EQ(input, 268u);
+    EXPECT_EQ(points, input + 2 * 4);
     // Faces: the two halves of the disc, each bounded by one arc and one piece of the S.
     for (std::size_t f = 0; f < m->faces().size(); ++f) {
         if (m->faces()[f].unbounded) continue;

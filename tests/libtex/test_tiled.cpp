@@ -3,9 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 #include <set>
 #include <sstream>
+#include <utility>
 
 #include "helpers.hpp"
 #include "libtex/tex.hpp"
@@ -404,7 +406,31 @@ TEST(Tiled, RasterizeAWindow) {
     EXPECT_EQ(at(30.5, 7.5), 0);     // on the line x = 30
     EXPECT_EQ(at(15.5, 10.5), 255);  // in the middle of a cell
     EXPECT_EQ(at(45.5, 30.5), 255);
-    // A finer pixel draws the same lines; a ghost map rasterises the same at 1 and 2 threads.
+    // A finer pixel draws the same lines: at both pixel sizes, a pixel whose centre is within
+    // half the line width of a line (y = 20k, x = 30k) is black, one beyond half the width
+    // plus half a pixel (past the anti-aliased edge) is white.
+    const Raster fine = Rasterize(t, Region::rectangle(0, 0, 60, 40).bbox(), 0.5, 2.0);
+    ASSERT_EQ(fine.width, 120);
+    ASSERT_EQ(fine.height, 80);
+    for (const auto& [img, pixel] : {std::pair<const Raster*, double>{&r, 1.0}, {&fine, 0.5}}) {
+        int black = 0, white = 0;
+        for (int row = 0; row < img->height; ++row)
+            for (int col = 0; col < img->width; ++col) {
+                const double x = (col + 0.5) * pixel, y = 40 - (row + 0.5) * pixel;
+                const double d = std::min(std::abs(y - 20 * std::round(y / 20)), std::abs(x - 30 * std::round(x / 30)));
+                const int v = img->pixels[std::size_t(row) * img->width + col];
+                if (d <= 1.0) {
+                    EXPECT_EQ(v, 0) << "pixel " << pixel << " at " << x << "," << y;
+                    ++black;
+                } else if (d >= 1.0 + pixel / 2) {
+                    EXPECT_EQ(v, 255) << "pixel " << pixel << " at " << x << "," << y;
+                    ++white;
+                }
+            }
+        EXPECT_GT(black, 0);
+        EXPECT_GT(white, black);
+    }
+    // A ghost map rasterises the same at 1 and 2 threads.
     const TiledMap ghost = GhostMap([](const TiledElement& e) { return Random(e, 0, 1, 0) < 0.5 ? Nothing() : e.curves; },
                                     MapToEdges([](const Edge& e) { return ToCurve(e); }, t));
     std::vector<std::uint8_t> one, two;
