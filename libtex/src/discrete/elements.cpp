@@ -361,7 +361,14 @@ Region ApplyThickness(const Polyline& curve, const ThicknessFn& thickness) {
         left.push_back(pts[i] + m * (0.5 * w / c));
         right.push_back(pts[i] - m * (0.5 * w / c));
     }
-    if (closed) return Region(left, {right}, "ApplyThickness");
+    if (closed) {
+        // The outer side is the left one of a clockwise curve and the right one of a
+        // counter-clockwise curve (the direction Contour gives): the other side is the hole.
+        double twice_area = 0;
+        for (std::size_t i = 0; i < n; ++i) twice_area += cross(pts[i], pts[(i + 1) % n]);
+        if (twice_area > 0) return Region(right, {left}, "ApplyThickness");
+        return Region(left, {right}, "ApplyThickness");
+    }
     std::vector<Point> ring = left;
     ring.insert(ring.end(), right.rbegin(), right.rend());
     return Region(ring, {}, "ApplyThickness");
