@@ -364,9 +364,7 @@ Region ApplyThickness(const Polyline& curve, const ThicknessFn& thickness) {
     if (closed) {
         // The outer side is the left one of a clockwise curve and the right one of a
         // counter-clockwise curve (the direction Contour gives): the other side is the hole.
-        double twice_area = 0;
-        for (std::size_t i = 0; i < n; ++i) twice_area += cross(pts[i], pts[(i + 1) % n]);
-        if (twice_area > 0) return Region(right, {left}, "ApplyThickness");
+        if (signed_area(pts) > 0) return Region(right, {left}, "ApplyThickness");
         return Region(left, {right}, "ApplyThickness");
     }
     std::vector<Point> ring = left;
