@@ -7,6 +7,8 @@
 #   scripts/sanitize.sh                   configure + build build-asan, run the tests
 #   RH_ASAN_BUILD_DIR=dir scripts/sanitize.sh
 #   RH_SANITIZE_PYTEST=0 scripts/sanitize.sh   C++ tests only (=all: every Python test)
+#   scripts/sanitize.sh --build-only      configure + build, no test (scripts/test.sh runs it
+#                                         beside the normal tests)
 #
 # A finding fails the test that meets it: UBSan does not recover (-fno-sanitize-recover),
 # ASan aborts at the first error, LeakSanitizer fails a C++ test that leaks. Findings in
@@ -40,6 +42,10 @@ CC=clang CXX=clang++ cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Debu
   || { cat "$BUILD_DIR/configure.log"; exit 1; }
 cmake --build "$BUILD_DIR" --parallel "$JOBS" || exit 1
 built=$(date +%s)
+if [ "${1:-}" = --build-only ]; then
+  echo "sanitize: build $((built - start)) s"
+  exit 0
+fi
 
 SUPP="$ROOT/scripts/sanitizers"
 # ASan's quarantine keeps freed memory poisoned (256 MB by default) to catch a use after free.

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Set up, build, then run every test: ctest (C++) and pytest (Python), then both again
-# under ASan + UBSan (scripts/sanitize.sh). Fails if any fails, and if pytest collects
-# nothing (exit code 5).
+# under ASan + UBSan (scripts/sanitize.sh), whose build runs beside the normal tests. Fails
+# if any fails, and if pytest collects nothing (exit code 5).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 t0=$(date +%s)
@@ -9,6 +9,17 @@ scripts/setup.sh || exit 1
 t_built=$(date +%s)
 BUILD_DIR="${RH_BUILD_DIR:-build}"
 export RH_BUILD_DIR="$(cd "$BUILD_DIR" && pwd)"
+
+# The sanitizer build starts now, beside the normal tests, at the lowest CPU priority (nice
+# 19): it takes the CPU time they leave idle (a test waiting on a child process, a Dask
+# cluster starting, the last test of a phase running alone) and hardly slows them; once they
+# are done it has the machine to itself. Its output goes to a log, shown if it fails.
+san_build_pid=""
+if [ "${RH_TEST_SANITIZERS:-1}" != 0 ]; then
+  san_log="$(mktemp)"
+  nice -n 19 scripts/sanitize.sh --build-only > "$san_log" 2>&1 &
+  san_build_pid=$!
+fi
 
 ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$(nproc)"
 ctest_rc=$?
@@ -26,14 +37,28 @@ fi
 # The same tests under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan), unless
 # RH_TEST_SANITIZERS=0 (a quick local run).
 sanitize_rc=0
-if [ "${RH_TEST_SANITIZERS:-1}" != 0 ]; then
-  scripts/sanitize.sh
-  sanitize_rc=$?
+t_san_built=$t_pytest
+if [ -n "$san_build_pid" ]; then
+  wait "$san_build_pid"
+  san_build_rc=$?
+  t_san_built=$(date +%s)
+  tail -n 1 "$san_log"
+  if [ "$san_build_rc" -ne 0 ]; then
+    cat "$san_log" >&2
+    echo "test: the sanitizer build failed" >&2
+    sanitize_rc=$san_build_rc
+  else
+    # Configures and builds again (nothing left to do) and runs the tests.
+    scripts/sanitize.sh
+    sanitize_rc=$?
+  fi
+  rm -f "$san_log"
 fi
 
 t_end=$(date +%s)
 # Each phase's wall time, for the budget of the whole command (README, "Running the tests").
 echo "test: setup+build $((t_built - t0)) s, ctest $((t_ctest - t_built)) s, pytest $((t_pytest - t_ctest)) s," \
-     "sanitizers $((t_end - t_pytest)) s, total $((t_end - t0)) s"
+     "sanitizer build after them $((t_san_built - t_pytest)) s, sanitizers $((t_end - t_san_built)) s," \
+     "total $((t_end - t0)) s"
 echo "test: ctest exit $ctest_rc, pytest exit $pytest_rc, sanitizers exit $sanitize_rc"
 [ "$ctest_rc" -eq 0 ] && [ "$pytest_rc" -eq 0 ] && [ "$sanitize_rc" -eq 0 ]

@@ -134,14 +134,30 @@ def test_the_dashboard_serves_the_cluster_pages(tmp_path, sample_whole):
 
 @dask_or_qgis_heavy("test_bad_input_is_refused_before_any_work")
 def test_an_unreachable_scheduler_is_one_line(tmp_path):
+    # Dask retries a refused connection until --connect-timeout (default 15 s); 1 s here.
     t0 = time.monotonic()
     r = subprocess.run([sys.executable, "-m", "rockhatch", "tiles", "--dem", DEM, "--partition", FACES,
-                        "--tile-size", "1000", "--scheduler", "tcp://127.0.0.1:9", "-q", "-o", str(tmp_path / "o.gpkg")],
+                        "--tile-size", "1000", "--scheduler", "tcp://127.0.0.1:9", "--connect-timeout", "1",
+                        "-q", "-o", str(tmp_path / "o.gpkg")],
                        capture_output=True, text=True, env=python_env(), timeout=120)
     assert r.returncode == 1
-    assert "127.0.0.1:9" in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
-    assert time.monotonic() - t0 < 60
+    assert "127.0.0.1:9" in r.stderr and "after 1 s" in r.stderr, r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1, r.stderr
+    assert time.monotonic() - t0 < 12
     assert not (tmp_path / "o.gpkg").exists()
+
+
+@pytest.mark.parametrize("extra, message", [
+    (["--connect-timeout", "5"], "--connect-timeout is for --scheduler"),
+    (["--scheduler", "tcp://127.0.0.1:9", "--connect-timeout", "0"], "--connect-timeout: 0 is not a positive number"),
+    (["--scheduler", "tcp://127.0.0.1:9", "--connect-timeout", "soon"], "--connect-timeout: 'soon' is not a number"),
+])
+def test_a_bad_connect_timeout_is_refused_before_any_work(tmp_path, extra, message):
+    r = subprocess.run([sys.executable, "-m", "rockhatch", "tiles", "--dem", DEM, "--partition", FACES,
+                        "--tile-size", "1000", *extra, "-q", "-o", str(tmp_path / "o.gpkg")],
+                       capture_output=True, text=True, env=python_env(), timeout=60)
+    assert r.returncode == 2 and message in r.stderr, r.stderr
+    assert not list(tmp_path.iterdir())
 
 
 @dask_or_qgis_heavy("test_tiled_run_equals_the_whole_run and test_rockhatch_cli's SVG tests")

@@ -45,6 +45,7 @@ TILE_OPTIONS = [
     ("--tile-size", True, "METRES  side of a tile in ground units of the DEM's CRS (required)"),
     ("--workers", True, "N  worker processes of the local Dask cluster (default 1)"),
     ("--scheduler", True, "ADDRESS  an existing Dask scheduler (tcp://HOST:8786) instead of a local cluster"),
+    ("--connect-timeout", True, "SECONDS  with --scheduler: how long to wait for it to answer (default 15)"),
     ("--workdir", True, "DIR  folder of the tile files (default: the first output + '.tiles')"),
     ("--restart", False, "start again: remove the tiles a previous run of this job left"),
     ("--keep-tiles", False, "keep the tile files after the merge"),
@@ -233,6 +234,10 @@ def run_args(argv, progress=None):
     if "--workers" in mine and "--scheduler" in mine:
         raise carto.error(2, "--workers and --scheduler exclude each other (the cluster behind a scheduler has its own)")
     workers = _positive("--workers", mine.get("--workers", 1), int)
+    if "--connect-timeout" in mine:
+        if "--scheduler" not in mine:
+            raise carto.error(2, "--connect-timeout is for --scheduler (a local cluster is started, not reached)")
+        _positive("--connect-timeout", mine["--connect-timeout"])
     cl = carto.parse_command_line(rest)
     options = cl.options
     if cl.script:
@@ -367,7 +372,8 @@ class _Cluster:
 
         mine = self.mine
         if "--scheduler" in mine:
-            self.client = Client(mine["--scheduler"], timeout="15s")
+            # Dask retries a refused connection until the timeout: a scheduler may be starting.
+            self.client = Client(mine["--scheduler"], timeout=f"{float(mine.get('--connect-timeout', 15)):g}s")
         else:
             # The workers import this very module (the folder holding the package first on
             # their path, set in their environment only).
@@ -508,7 +514,7 @@ def _duration(s):
 
 
 def run(dem, partition, tile_size, outputs, *, style=None, script=None, params=None, scale=None, seed=None,
-        workers=None, scheduler=None, workdir=None, restart=False, keep_tiles=False, overwrite=False,
+        workers=None, scheduler=None, connect_timeout=None, workdir=None, restart=False, keep_tiles=False, overwrite=False,
         extract_halo=None, args=(), progress=None):
     """A tiled run from Python: the same as `rockhatch tiles`. partition: a file, or "auto"
     (extracted tile by tile, with `extract_halo` ground units of DEM around each tile);
@@ -531,6 +537,8 @@ def run(dem, partition, tile_size, outputs, *, style=None, script=None, params=N
         argv += ["--workers", str(workers)]
     if scheduler:
         argv += ["--scheduler", scheduler]
+    if connect_timeout is not None:
+        argv += ["--connect-timeout", str(connect_timeout)]
     if workdir:
         argv += ["--workdir", os.fspath(workdir)]
     if restart:
