@@ -304,14 +304,42 @@ TEST(Crest, RidgesMeetingAtANodeDoNotOverlap) {
                 in = !in;
         return in;
     };
+    // Every segment of one ring against every segment of the other that reaches its box (two
+    // segments can only cross inside both rings' boxes): the same count as all pairs, without
+    // the millions of pairs apart (17 s under ASan at -O0; on this drawing the ends cut back
+    // at the nodes keep every two rings' boxes apart).
+    struct Box {
+        double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+        void add(Point p) { x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y); }
+        bool meets(const Box& o) const { return x0 <= o.x1 && o.x0 <= x1 && y0 <= o.y1 && o.y0 <= y1; }
+    };
+    auto box_of = [](const std::vector<Point>& ring) {
+        Box b;
+        for (const Point& p : ring) b.add(p);
+        return b;
+    };
+    auto segments_in = [&](const std::vector<Point>& ring, const Box& box) {
+        std::vector<std::size_t> kept;
+        for (std::size_t a = 0; a < ring.size(); ++a) {
+            Box s;
+            s.add(ring[a]);
+            s.add(ring[(a + 1) % ring.size()]);
+            if (s.meets(box)) kept.push_back(a);
+        }
+        return kept;
+    };
     for (std::size_t i = 0; i < r.ornaments.size(); ++i)
         for (std::size_t j = i + 1; j < r.ornaments.size(); ++j) {
             int meets = 0;
             for (const auto& ra : r.ornaments[i].rings)
                 for (const auto& rb : r.ornaments[j].rings) {
-                    for (std::size_t a = 0; a < ra.size(); ++a)
-                        for (std::size_t b = 0; b < rb.size(); ++b)
-                            meets += segments_meet(ra[a], ra[(a + 1) % ra.size()], rb[b], rb[(b + 1) % rb.size()]);
+                    const Box ba = box_of(ra), bb = box_of(rb);
+                    if (ba.meets(bb)) {
+                        const auto sa = segments_in(ra, bb), sb = segments_in(rb, ba);
+                        for (std::size_t a : sa)
+                            for (std::size_t b : sb)
+                                meets += segments_meet(ra[a], ra[(a + 1) % ra.size()], rb[b], rb[(b + 1) % rb.size()]);
+                    }
                     meets += inside(ra, rb[0]) + inside(rb, ra[0]);
                 }
             EXPECT_EQ(meets, 0) << "ridges " << r.ornaments[i].ridge << " and " << r.ornaments[j].ridge;

@@ -4,11 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <filesystem>
 #include <map>
 #include <numeric>
 #include <set>
+#include <utility>
+#include <vector>
 
 #include "carto/error.hpp"
 #include "carto/pipeline.hpp"
@@ -202,6 +203,27 @@ TEST(Pipeline, HatchDirectionsFollowTheOrientationField) {
     EXPECT_LT(all[all.size() / 2], 5.0);
 }
 
+namespace {
+
+// The hatches of `after` whose points no hatch of `before` has: looked up in a set, as a
+// face has thousands of hatches (a scan per hatch cost seconds under the sanitizers).
+std::vector<const Hatch*> new_hatches(const std::vector<Hatch>& before, const std::vector<Hatch>& after) {
+    auto key = [](const Hatch& h) {
+        std::vector<std::pair<double, double>> k;
+        k.reserve(h.points.size());
+        for (const auto& q : h.points) k.emplace_back(q.x, q.y);
+        return k;
+    };
+    std::set<std::vector<std::pair<double, double>>> seen;
+    for (const Hatch& h : before) seen.insert(key(h));
+    std::vector<const Hatch*> out;
+    for (const Hatch& h : after)
+        if (!seen.count(key(h))) out.push_back(&h);
+    return out;
+}
+
+}  // namespace
+
 // The properties every kind of style keeps: the thesis's final iteration (g) and print.
 class EveryStyleKind : public ::testing::TestWithParam<const char*> {};
 INSTANTIATE_TEST_SUITE_P(Pipeline, EveryStyleKind, ::testing::Values("bidirectional", "print"));
@@ -229,9 +251,8 @@ TEST_P(EveryStyleKind, ChangingAFieldInAWindowChangesOnlyNearby) {
             // Only faces meeting the window (plus one coarse cell of margin) may change.
             EXPECT_TRUE(f.region.bbox().intersects(win.expanded(60))) << "face " << f.id << " changed far away";
             // And within such a face, only hatches near the window.
-            for (const auto& h : b)
-                if (std::find_if(a.begin(), a.end(), [&](const Hatch& x) { return x.points == h.points; }) == a.end())
-                    for (const auto& q : h.points) EXPECT_TRUE(win.expanded(60).contains(q));
+            for (const Hatch* h : new_hatches(a, b))
+                for (const auto& q : h->points) EXPECT_TRUE(win.expanded(60).contains(q));
         }
     }
     EXPECT_GT(changed_faces, 0);
@@ -267,10 +288,9 @@ TEST(Pipeline, EditingElevationInAWindowChangesOnlyNearby) {
             ++n;
             const RockFace& f = face_by_id(sample().partition, before.faces[i].face_id);
             EXPECT_TRUE(f.region.bbox().intersects(reach)) << "face " << f.id << " changed far from the edit";
-            for (const auto& h : b)
-                if (std::find_if(a.begin(), a.end(), [&](const Hatch& x) { return x.points == h.points; }) == a.end())
-                    for (const auto& q : h.points)
-                        EXPECT_TRUE(reach.contains(q)) << "face " << f.id << ": " << q.x << "," << q.y;
+            for (const Hatch* h : new_hatches(a, b))
+                for (const auto& q : h->points)
+                    EXPECT_TRUE(reach.contains(q)) << "face " << f.id << ": " << q.x << "," << q.y;
         }
         return n;
     };

@@ -35,6 +35,54 @@ def test_crests_from_python_one_polygon_per_ridge(sample_dir, tmp_path):
     assert any(n.startswith("crest ornaments on") for n in stats.notes)
 
 
+def _crest_layer(path):
+    """{ridge_id: polygon} of a written crest layer (OGR geometries, cloned)."""
+    ds = ogr.Open(str(path))
+    out = {}
+    for f in ds.GetLayerByName("crest"):
+        assert f.GetField("ridge_id") not in out, "two crest polygons with one ridge id"
+        out[f.GetField("ridge_id")] = f.GetGeometryRef().Clone()
+    return out
+
+
+def _line(points):
+    g = ogr.Geometry(ogr.wkbLineString)
+    for p in points:
+        g.AddPoint_2D(p.x, p.y)
+    return g
+
+
+def test_each_crest_polygon_lies_along_its_own_ridge(sample_dir, tmp_path):
+    """Checked against the partition's ridge lines, not against draw_crests: each polygon of
+    the crest layer lies in a band of its height along one ridge line and covers it end to
+    end but for the branches cut back at nodes; no two polygons share a ridge; and the
+    ridge_id follows the ridge, the same in a run with another seed and band height."""
+    part = carto.prepare(str(sample_dir / "dem.tif"), str(sample_dir / "partition.gpkg")).partition
+    ridges = [_line(line.points) for line in part.lines if line.kind == carto.LineKind.RIDGE]
+    assert len(ridges) >= 5
+    heights = {"a": 2.5, "b": 1.5}  # mm at 1:10,000: 25 m and 15 m on the ground
+    owner = {}
+    for run, mm in heights.items():
+        run_sample(sample_dir, [tmp_path / f"{run}.gpkg"], crest_ornament="default", crest_height_mm=mm,
+                   seed={"a": 0, "b": 9}[run])
+        band = mm * 10000 / 1000
+        crests = _crest_layer(tmp_path / f"{run}.gpkg")
+        assert len(crests) == len(ridges)
+        mine = {}
+        for rid, poly in crests.items():
+            # The ridge this polygon covers most of (a ridge ends at nodes where others start).
+            covered = [r.Intersection(poly.Buffer(0.05 * band)).Length() / r.Length() for r in ridges]
+            best = max(range(len(ridges)), key=covered.__getitem__)
+            assert covered[best] > 0.6, f"{run}: crest {rid} covers no ridge ({max(covered):.2f})"
+            assert sorted(covered)[-2] < 0.2, f"{run}: crest {rid} covers two ridges"
+            # Within a band of its height of the ridge (a little more for the teeth's tips).
+            assert poly.Within(ridges[best].Buffer(1.5 * band)), f"{run}: crest {rid} strays from its ridge"
+            mine[best] = rid
+        assert sorted(mine) == list(range(len(ridges))), f"{run}: a ridge has no crest, or one has two"
+        owner[run] = mine
+    assert owner["a"] == owner["b"], "a ridge's id changed with the seed or the band height"
+
+
 def test_draw_crests_is_keyed_by_the_ridge(sample_dir):
     part = carto.prepare(str(sample_dir / "dem.tif"), str(sample_dir / "partition.gpkg")).partition
     a = _rings(carto.draw_crests(part, "default", 20.0, seed=5))
