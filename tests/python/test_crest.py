@@ -60,11 +60,10 @@ def test_each_crest_polygon_lies_along_its_own_ridge(sample_dir, tmp_path):
     part = carto.prepare(str(sample_dir / "dem.tif"), str(sample_dir / "partition.gpkg")).partition
     ridges = [_line(line.points) for line in part.lines if line.kind == carto.LineKind.RIDGE]
     assert len(ridges) >= 5
-    heights = {"a": 2.5, "b": 1.5}  # mm at 1:10,000: 25 m and 15 m on the ground
     owner = {}
-    for run, mm in heights.items():
-        run_sample(sample_dir, [tmp_path / f"{run}.gpkg"], crest_ornament="default", crest_height_mm=mm,
-                   seed={"a": 0, "b": 9}[run])
+    # (run, band height in mm at 1:10,000: 25 m and 15 m on the ground, seed)
+    for run, mm, seed in (("a", 2.5, 0), ("b", 1.5, 9)):
+        run_sample(sample_dir, [tmp_path / f"{run}.gpkg"], crest_ornament="default", crest_height_mm=mm, seed=seed)
         band = mm * 10000 / 1000
         crests = _crest_layer(tmp_path / f"{run}.gpkg")
         assert len(crests) == len(ridges)
