@@ -308,23 +308,18 @@ TEST(Crest, RidgesMeetingAtANodeDoNotOverlap) {
     // segments can only cross inside both rings' boxes): the same count as all pairs, without
     // the millions of pairs apart (17 s under ASan at -O0; on this drawing the ends cut back
     // at the nodes keep every two rings' boxes apart).
-    struct Box {
-        double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-        void add(Point p) { x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y); }
-        bool meets(const Box& o) const { return x0 <= o.x1 && o.x0 <= x1 && y0 <= o.y1 && o.y0 <= y1; }
-    };
     auto box_of = [](const std::vector<Point>& ring) {
-        Box b;
+        tex::BBox b;
         for (const Point& p : ring) b.add(p);
         return b;
     };
-    auto segments_in = [&](const std::vector<Point>& ring, const Box& box) {
+    auto segments_in = [&](const std::vector<Point>& ring, const tex::BBox& box) {
         std::vector<std::size_t> kept;
         for (std::size_t a = 0; a < ring.size(); ++a) {
-            Box s;
+            tex::BBox s;
             s.add(ring[a]);
             s.add(ring[(a + 1) % ring.size()]);
-            if (s.meets(box)) kept.push_back(a);
+            if (s.intersects(box)) kept.push_back(a);
         }
         return kept;
     };
@@ -333,8 +328,8 @@ TEST(Crest, RidgesMeetingAtANodeDoNotOverlap) {
             int meets = 0;
             for (const auto& ra : r.ornaments[i].rings)
                 for (const auto& rb : r.ornaments[j].rings) {
-                    const Box ba = box_of(ra), bb = box_of(rb);
-                    if (ba.meets(bb)) {
+                    const tex::BBox ba = box_of(ra), bb = box_of(rb);
+                    if (ba.intersects(bb)) {
                         const auto sa = segments_in(ra, bb), sb = segments_in(rb, ba);
                         for (std::size_t a : sa)
                             for (std::size_t b : sb)
