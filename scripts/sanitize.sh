@@ -38,7 +38,7 @@ if [ -f "$BUILD_DIR/CMakeCache.txt" ] && ! grep -q '^CMAKE_CXX_COMPILER:[A-Z]*=.
   rm -rf "$BUILD_DIR/CMakeCache.txt" "$BUILD_DIR/CMakeFiles"
 fi
 CC=clang CXX=clang++ cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DRH_SANITIZE=address,undefined \
-      -DRH_BUILD_BENCH=OFF -DRH_BUILD_EXAMPLES=ON >"$BUILD_DIR/configure.log" 2>&1 \
+      -DRH_BUILD_BENCH=OFF -DRH_BUILD_EXAMPLES=ON -DRH_UNITY_BUILD=ON >"$BUILD_DIR/configure.log" 2>&1 \
   || { cat "$BUILD_DIR/configure.log"; exit 1; }
 cmake --build "$BUILD_DIR" --parallel "$JOBS" || exit 1
 built=$(date +%s)

@@ -7,8 +7,10 @@
 #include <cpl_conv.h>
 #include <cpl_error.h>
 #include <gdal.h>
+#include <gdal_priv.h>
 #include <ogr_spatialref.h>
 
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -19,6 +21,12 @@ namespace carto {
 inline void register_gdal() {
     if (GDALGetDriverCount() == 0) GDALAllRegister();
 }
+
+// A dataset closed (GDALClose) when its owner goes.
+struct DatasetCloser {
+    void operator()(GDALDataset* d) const { GDALClose(GDALDataset::ToHandle(d)); }
+};
+using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
 
 // A configuration option for the calling thread (CPLSetThreadLocalConfigOption), the thread's
 // previous value back at the end of the scope. The GDAL work that reads it must run on this

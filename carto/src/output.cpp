@@ -256,15 +256,11 @@ void write_hatch_gpkg(const std::string& path, const std::string& crs_wkt, bool 
     out.commit();
 }
 
-struct DatasetCloser {
-    void operator()(GDALDataset* d) const { GDALClose(GDALDataset::ToHandle(d)); }
-};
-
 // A hatch GeoPackage written by write_gpkg, open for reading; `what` names it in errors.
-std::unique_ptr<GDALDataset, DatasetCloser> open_hatches(const std::string& path, const std::string& what) {
+DatasetPtr open_hatches(const std::string& path, const std::string& what) {
     register_gdal();
     if (!fs::exists(path)) throw Error(Code::InputMissing, what + " '" + path + "': no such file");
-    std::unique_ptr<GDALDataset, DatasetCloser> ds(GDALDataset::FromHandle(
+    DatasetPtr ds(GDALDataset::FromHandle(
         GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
     if (!ds) throw Error(Code::InputMissing, what + " '" + path + "': not a GeoPackage OGR can read");
     for (int fam = 0; fam < kRockFamilies; ++fam)

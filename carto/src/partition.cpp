@@ -20,11 +20,6 @@
 namespace carto {
 namespace {
 
-struct DsCloser {
-    void operator()(GDALDataset* d) const { GDALClose(GDALDataset::ToHandle(d)); }
-};
-using DsPtr = std::unique_ptr<GDALDataset, DsCloser>;
-
 std::string lower(std::string s) {
     std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     return s;
@@ -615,7 +610,7 @@ Partition load_partition(const PartitionOptions& opt, const std::string& working
     const QuietGdal quiet;
     const std::string what = "--partition '" + opt.path + "'";
     if (!std::filesystem::exists(opt.path)) throw Error(Code::InputMissing, what + ": no such file");
-    DsPtr ds(GDALDataset::FromHandle(GDALOpenEx(opt.path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr,
+    DatasetPtr ds(GDALDataset::FromHandle(GDALOpenEx(opt.path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr,
                                                 nullptr, nullptr)));
     if (!ds) throw Error(Code::InputMissing, what + ": not a vector dataset OGR can read");
 

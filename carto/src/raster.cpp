@@ -19,11 +19,6 @@
 namespace carto {
 namespace {
 
-struct DatasetCloser {
-    void operator()(GDALDataset* d) const { GDALClose(GDALDataset::ToHandle(d)); }
-};
-using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
-
 const float kNaN = std::numeric_limits<float>::quiet_NaN();
 
 // The terrain steps hold several float grids of the DEM's size at once: a raster beyond this

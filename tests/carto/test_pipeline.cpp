@@ -113,21 +113,39 @@ TEST(Pipeline, NoHatchCrossesARidgeOrValleyOfItsFace) {
     for (const char* style : {"noisy", "bidirectional", "print"}) {
         const Drawing d = hatch(sample(), sample_options(style));
         const Partition& p = sample().partition;
-        std::size_t checked = 0;
+        // Every hatch segment against the face's ridge and valley segments whose boxes meet the
+        // hatch's box (two segments whose boxes are apart cannot cross).
+        std::size_t segments = 0, near = 0;
         for (const auto& fh : d.faces) {
             const RockFace& f = face_by_id(p, fh.face_id);
+            std::vector<std::pair<tex::BBox, const BoundarySegment*>> lines;
+            for (const auto& s : f.boundary) {
+                if (s.kind == LineKind::Other) continue;
+                tex::BBox b;
+                b.add(s.a);
+                b.add(s.b);
+                lines.emplace_back(b, &s);
+            }
+            std::vector<const BoundarySegment*> close;
             for (const auto& h : fh.hatches) {
                 if (h.family == Family::Valley) continue;  // valleys are drawn on the line itself
-                for (std::size_t i = 0; i + 1 < h.points.size(); ++i)
-                    for (const auto& s : f.boundary) {
-                        if (s.kind == LineKind::Other) continue;
-                        ASSERT_FALSE(proper_cross(h.points[i], h.points[i + 1], s.a, s.b))
-                            << style << " face " << f.id << " hatch crosses a " << kind_name(s.kind);
-                        ++checked;
+                tex::BBox hb;
+                for (const auto& q : h.points) hb.add(q);
+                close.clear();
+                for (const auto& [b, s] : lines)
+                    if (b.intersects(hb)) close.push_back(s);
+                for (std::size_t i = 0; i + 1 < h.points.size(); ++i, ++segments)
+                    for (const BoundarySegment* s : close) {
+                        ASSERT_FALSE(proper_cross(h.points[i], h.points[i + 1], s->a, s->b))
+                            << style << " face " << f.id << " hatch crosses a " << kind_name(s->kind);
+                        ++near;
                     }
             }
         }
-        EXPECT_GT(checked, 100000u);
+        // Measured on the sample: 14,884 segments and 2,265 close pairs (noisy), 45,705 and 2,877
+        // (bidirectional), 72,274 and 30,233 (print).
+        EXPECT_GT(segments, 10000u) << style;
+        EXPECT_GT(near, 1000u) << style << ": few hatches near the ridges and valleys";
     }
 }
 

@@ -101,19 +101,18 @@ TEST_P(GalleryTest, SameBytesWithOneOrTwoThreadsAndAcrossRuns) {
     const auto& e = gallery::find(GetParam());
     const unsigned saved = GetThreads();
     if (rh_test::sanitized()) {
-        // Under the sanitizers (each render costs ten times more): one thread against two, and
-        // the two-thread drawing against its golden bytes (Golden.* is skipped there). The
-        // second run and the other seed are left to the normal pass.
+        // Under the sanitizers (each render costs ten times more): one render, on two threads
+        // (the parallel path, where a lifetime error between threads would show), against its
+        // golden bytes (Golden.* is skipped there). The one-thread render, the second run and
+        // the other seed are left to the normal pass, which checks that all three give the
+        // same bytes: with the golden line, the two-thread drawing here is the one-thread one.
         const std::uint64_t seed = GetSeed();
         SetSeed(0);
-        SetThreads(1);
-        const std::string one = render(e);
         SetThreads(2);
         const std::string two = render(e);
         SetThreads(saved);
         SetSeed(seed);
-        EXPECT_EQ(one, two);
-        EXPECT_GT(one.size(), 2000u) << "the drawing is nearly empty";
+        EXPECT_GT(two.size(), 2000u) << "the drawing is nearly empty";
         const auto want = golden_lines();
         const auto w = want.find(e.name);
         ASSERT_NE(w, want.end()) << "no golden line for " << e.name << " in " << RH_GALLERY_GOLDEN;

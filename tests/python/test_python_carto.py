@@ -11,7 +11,7 @@ import pytest
 from osgeo import ogr
 
 import rockhatch
-from rockhatch import carto
+from rockhatch import carto, tex
 from rockhatch.tex import (CROP, KEEP_OUTSIDE, Arrangement, Crop, GridPartition, HasLabel, Inside, JitterEdges,
                            MapToEdges, MapToFaces, Nothing, Outline, Point, Region, SetEdgeLabels, StripesPartition,
                            StripesProperties, ToCurve, pi)
@@ -103,6 +103,23 @@ def test_run_from_python_equals_the_command(rockhatch_exe, sample_dir, tmp_path)
     fractions = [f for f, _ in stages]
     assert fractions == sorted(fractions) and fractions[-1] == 1.0
     assert {"reading the DEM", "hatching", "writing", "done"} <= {s for _, s in stages}
+
+
+def test_a_window_from_python_is_the_commands_window(rockhatch_exe, sample_dir, tmp_path):
+    # Regression: window= raised NameError (make_options named BBox, which carto does not
+    # export). The south-west quarter of the sample, as a tuple and as a tex.BBox, gives the
+    # bytes of `rockhatch --window`, and fewer hatches than the whole run.
+    box = (1002900, 6538700, 1004100, 6539900)
+    cli = tmp_path / "cli.svg"
+    r = subprocess.run([str(rockhatch_exe), "-q", "--dem", str(sample_dir / "dem.tif"), "--partition",
+                        str(sample_dir / "partition.gpkg"), "--window", ",".join(map(str, box)), "-o", str(cli)],
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    for name, window in (("tuple", box), ("bbox", tex.BBox(*box))):
+        stats = carto.run(sample_dir / "dem.tif", sample_dir / "partition.gpkg", [tmp_path / f"{name}.svg"],
+                          window=window)
+        assert (tmp_path / f"{name}.svg").read_bytes() == cli.read_bytes(), name
+        assert 1000 < stats.hatches < 60000, stats.hatches
 
 
 def test_cancelling_from_the_progress_callback(sample_dir, tmp_path):

@@ -147,7 +147,7 @@ def make_options(dem="", partition="", outputs=(), style=None, params=None, scal
     o.seed = int(seed)
     o.threads = int(threads)
     if window is not None:
-        o.window = BBox(*window)  # noqa: F405
+        o.window = window if isinstance(window, _tex.BBox) else _tex.BBox(*window)
     o.png_pixels = int(png_pixels)
     o.spatial_index = bool(spatial_index)
     return o

@@ -27,7 +27,7 @@ constexpr double kTileInCells = 8.0;
 // Sides of the stone polygon: angular enough to read as a stone, round at print size.
 constexpr int kStoneSides = 6;
 
-double tile_side(const ParamValues& p, double cell) {
+double scree_tile_side(const ParamValues& p, double cell) {
     return std::max(kTileInStones * (p.at("stone_max") + p.at("gap_max")), kTileInCells * cell);
 }
 
@@ -35,7 +35,7 @@ double tile_side(const ParamValues& p, double cell) {
 // `reach` of their cells and the hatches within a stone and the clearance, with the cells of
 // the terrain kernels.
 double scree_reach(const ParamValues& p, double cell) {
-    return kPhasedReachTiles * tile_side(p, cell) + p.at("stone_max") + p.at("reach") + p.at("clearance") +
+    return kPhasedReachTiles * scree_tile_side(p, cell) + p.at("stone_max") + p.at("reach") + p.at("clearance") +
            p.at(kGroundPerMm) + 8 * cell;
 }
 
@@ -71,7 +71,7 @@ std::vector<Hatch> draw_scree(const TerrainInput& in, const ParamValues& p) {
     // gap reach at most a stone plus the gap past its tile, far less than the tile between
     // two tiles of one phase. Each tile draws from a stream keyed by its place: the same
     // stones at any thread count, in any window.
-    const double tile = tile_side(p, std::max(t.elevation.cell_x(), t.elevation.cell_y()));
+    const double tile = scree_tile_side(p, std::max(t.elevation.cell_x(), t.elevation.cell_y()));
     // The pieces of each tile to pin in: the area's cells cut to the tile (squares or smaller
     // rectangles).
     std::map<TileIndex, std::vector<Region>> pieces;

@@ -46,7 +46,7 @@ double step_length(const ParamValues& p, double cell) {
 // The tile side: a stroke reaches at most max_length from its pin, plus its width and the
 // smoothing's overshoot (E); strokes interact within the spacing and a width, or the contour
 // gap (D); two tiles of one phase are a tile apart, more than 2 E + D.
-double tile_side(const ParamValues& p, double cell) {
+double hachure_tile_side(const ParamValues& p, double cell) {
     const double reach = max_length(p) + p.at("width_max") + 2 * step_length(p, cell);
     const double interact = std::max(p.at("spacing_max") + p.at("width_max"), p.at("contour_gap"));
     return 2 * reach + interact + 2 * cell;
@@ -55,7 +55,7 @@ double tile_side(const ParamValues& p, double cell) {
 // Beyond a window: its tiles and those they depend on, a stroke past them, the rock cells
 // within the clearance and a cell, the rock hatches within the clearance, the kernel cells.
 double hachure_reach(const ParamValues& p, double cell) {
-    return kPhasedReachTiles * tile_side(p, cell) + max_length(p) + p.at("width_max") + p.at("clearance") +
+    return kPhasedReachTiles * hachure_tile_side(p, cell) + max_length(p) + p.at("width_max") + p.at("clearance") +
            p.at(kGroundPerMm) + 8 * cell;
 }
 
@@ -100,7 +100,7 @@ std::vector<Hatch> draw_hachures(const TerrainInput& in, const ParamValues& p) {
         std::uint64_t key;
         Point at;
     };
-    const double tile = tile_side(p, cell);
+    const double tile = hachure_tile_side(p, cell);
     std::map<TileIndex, std::vector<Pin>> pins;
     const tex::BBox frame = t.elevation.bounds();
     const long long i0 = (long long)std::floor(frame.xmin / spacing_min) - 1, i1 = (long long)std::ceil(frame.xmax / spacing_min);
