@@ -378,9 +378,13 @@ TEST_P(EveryStyleKind, TwoHalvesGiveTheSameHatchesAsTheWhole) {
     const Drawing whole = hatch(sample(), o);
     const tex::BBox b = sample().partition.bounds();
     // Split in the middle, and exactly through the anchor of one face: that face goes to the
-    // tile whose window starts there (half-open windows), and only to it.
+    // tile whose window starts there (half-open windows), and only to it. Under the sanitizers
+    // the second split only (the same code on other windows; 12.9 s there for print's five
+    // drawings).
     const RockFace& f0 = sample().partition.faces.front();
-    for (const double mid : {b.center().x, face_anchor(f0).x}) {
+    std::vector<double> splits = {b.center().x, face_anchor(f0).x};
+    if (rh_test::sanitized()) splits.erase(splits.begin());
+    for (const double mid : splits) {
         SCOPED_TRACE(mid);
         o.window = tex::BBox{b.xmin - 1, b.ymin - 1, mid, b.ymax + 1};
         const Drawing left = hatch(sample(), o);
