@@ -610,8 +610,8 @@ Partition load_partition(const PartitionOptions& opt, const std::string& working
     const QuietGdal quiet;
     const std::string what = "--partition '" + opt.path + "'";
     if (!std::filesystem::exists(opt.path)) throw Error(Code::InputMissing, what + ": no such file");
-    DatasetPtr ds(GDALDataset::FromHandle(GDALOpenEx(opt.path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr,
-                                                nullptr, nullptr)));
+    DatasetPtr ds(GDALDataset::FromHandle(
+        GDALOpenEx(opt.path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
     if (!ds) throw Error(Code::InputMissing, what + ": not a vector dataset OGR can read");
 
     auto find_layer = [&](const std::string& name, bool (*pred)(OGRLayer*), const char* role) -> OGRLayer* {
