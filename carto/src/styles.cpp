@@ -233,15 +233,21 @@ double ring_area(const std::vector<Point>& ring) {
 }
 
 // The ring clipped by the convex polygon `clip` (Sutherland-Hodgman); its area is exact for a
-// ring of any shape, though the result may run along the clip's edges more than once.
-std::vector<Point> clip_ring(std::vector<Point> ring, const std::vector<Point>& clip) {
+// ring of any shape, though the result may run along the clip's edges more than once. Two
+// buffers serve every clip edge (the ring itself is read, not copied): area_within calls this
+// for every face and grid cell, and a vector per edge made it the style's most frequent
+// allocation.
+std::vector<Point> clip_ring(const std::vector<Point>& ring, const std::vector<Point>& clip) {
     const double side = ring_area(clip) >= 0 ? 1.0 : -1.0;
-    for (std::size_t i = 0, n = clip.size(); i < n && !ring.empty(); ++i) {
+    std::vector<Point> cur, out;
+    const std::vector<Point>* in = &ring;
+    for (std::size_t i = 0, n = clip.size(); i < n && !in->empty(); ++i) {
         const Point a = clip[i], b = clip[(i + 1) % n];
         auto inside = [&](const Point& q) { return side * tex::cross(b - a, q - a) >= 0; };
-        std::vector<Point> out;
-        for (std::size_t k = 0, m = ring.size(); k < m; ++k) {
-            const Point p = ring[k], q = ring[(k + 1) % m];
+        out.clear();
+        out.reserve(in->size() + 2);
+        for (std::size_t k = 0, m = in->size(); k < m; ++k) {
+            const Point p = (*in)[k], q = (*in)[(k + 1) % m];
             const bool pin = inside(p), qin = inside(q);
             if (pin) out.push_back(p);
             if (pin != qin) {
@@ -249,9 +255,10 @@ std::vector<Point> clip_ring(std::vector<Point> ring, const std::vector<Point>& 
                 out.push_back(p + (q - p) * (dp / (dp - dq)));
             }
         }
-        ring = std::move(out);
+        std::swap(cur, out);
+        in = &cur;
     }
-    return ring;
+    return in == &ring ? ring : cur;
 }
 
 }  // namespace
