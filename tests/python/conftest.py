@@ -38,6 +38,8 @@ def gallery_exe() -> pathlib.Path:
 
 
 SAMPLE = ROOT / "data" / "sample_montblanc"
+# The south-west quarter of the sample (xmin, ymin, xmax, ymax), for a run on less work.
+SAMPLE_SW_QUARTER = (1002900, 6538700, 1004100, 6539900)
 SHARED_DEM = ROOT.parent / "shared" / "data" / "montblanc" / "Chamonix.tif"
 
 # The tests on ../shared's real DEM: skipped, with the reason, when it is absent.

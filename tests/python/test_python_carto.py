@@ -12,6 +12,7 @@ from osgeo import ogr
 
 import rockhatch
 from rockhatch import carto, tex
+from conftest import SAMPLE_SW_QUARTER
 from rockhatch.tex import (CROP, KEEP_OUTSIDE, Arrangement, Crop, GridPartition, HasLabel, Inside, JitterEdges,
                            MapToEdges, MapToFaces, Nothing, Outline, Point, Region, SetEdgeLabels, StripesPartition,
                            StripesProperties, ToCurve, pi)
@@ -109,7 +110,7 @@ def test_a_window_from_python_is_the_commands_window(rockhatch_exe, sample_dir, 
     # Regression: window= raised NameError (make_options named BBox, which carto does not
     # export). The south-west quarter of the sample, as a tuple and as a tex.BBox, gives the
     # bytes of `rockhatch --window`, and fewer hatches than the whole run.
-    box = (1002900, 6538700, 1004100, 6539900)
+    box = SAMPLE_SW_QUARTER
     cli = tmp_path / "cli.svg"
     r = subprocess.run([str(rockhatch_exe), "-q", "--dem", str(sample_dir / "dem.tif"), "--partition",
                         str(sample_dir / "partition.gpkg"), "--window", ",".join(map(str, box)), "-o", str(cli)],

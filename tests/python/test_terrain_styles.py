@@ -8,7 +8,7 @@ import pytest
 from osgeo import gdal, ogr
 
 from rockhatch import carto
-from conftest import SANITIZED, SHARED_DEM, one_under_sanitizers, partition_with_scree, real_dem
+from conftest import SAMPLE_SW_QUARTER, SANITIZED, SHARED_DEM, one_under_sanitizers, partition_with_scree, real_dem
 
 gdal.UseExceptions()
 
@@ -53,7 +53,7 @@ def test_command_writes_the_filled_layer(rockhatch_exe, sample_dir, tmp_path, st
 # (C++) checks both styles there.
 @pytest.mark.parametrize("style", one_under_sanitizers(["scree", "slope-hachures"]))
 def test_same_bytes_at_one_and_two_threads(sample_dir, tmp_path, style):
-    window = (1002900, 6538700, 1004100, 6539900) if SANITIZED else None
+    window = SAMPLE_SW_QUARTER if SANITIZED else None
     for threads in (1, 2):
         carto.run(str(sample_dir / "dem.tif"), str(sample_dir / "partition.gpkg"),
                   [str(tmp_path / f"{style}{threads}.svg")], style=style, threads=threads, seed=5, window=window)
