@@ -31,6 +31,7 @@
 #include <functional>
 #include <numeric>
 #include <optional>
+#include <stdexcept>
 #include <tuple>
 #include <unordered_map>
 
@@ -116,6 +117,116 @@ struct RawGraph {
         const int e = h / 2;
         for (std::uint32_t k = data_start[e]; k < data_start[e + 1]; ++k) f(data[k]);
     }
+    // Empty, keeping the vectors' storage for the next map.
+    void clear() {
+        for (auto* v : {&vrank, &vout_start, &vout}) v->clear();
+        vpt.clear();
+        visolated.clear();
+        vend.clear();
+        he.clear();
+        data_start.clear();
+        data.clear();
+        faces.clear();
+    }
+};
+
+// An end of a segment with its point copied in (no indirection while sorting ends).
+struct SegEnd {
+    Point p;
+    std::uint32_t k;
+    bool operator<(const SegEnd& o) const { return p != o.p ? p < o.p : k < o.k; }
+};
+
+// The chains of the common step: runs of half-edges between break vertices (the thesis's
+// edges), their half-edges kept together in one vector of the scratch.
+struct Chain {
+    std::size_t hs_begin = 0, hs_end = 0;  // in BuildScratch::chain_hs, in the chain's direction
+    std::vector<Point> points;
+    bool canon_reversed = false;  // the canonical reading runs from the last point
+    int source = -1, target = -1;
+};
+
+// The builder's temporary vectors, one set per thread, kept from map to map: a pipeline
+// builds tens of thousands of small maps, and these vectors, made afresh for each, were a
+// third of the allocations of a run on the sample (heaptrack). Vectors grown beyond
+// kKeepElements are freed after the build, so that one huge map does not hold its memory
+// for the life of the thread. The builder does not call itself: one set serves each call.
+struct BuildScratch {
+    static constexpr std::size_t kKeepElements = std::size_t(1) << 16;
+    RawGraph g;
+    // build_directly
+    std::vector<detail::Seg> segs;
+    std::vector<BBox> boxes;
+    std::vector<SegEnd> ends;
+    std::vector<std::uint32_t> first;
+    std::vector<int> ids, comp, parent, fill, pos, v0, outer_he, cycle, cycle_start, face_of_cycle, holder;
+    std::vector<char> cycle_outer;
+    // PlanarMapBuilder::build
+    std::vector<Point> curve_ends;
+    std::vector<char> is_break;
+    std::vector<std::uint32_t> ids_a, ids_b;
+    std::vector<Chain> chains;
+    std::vector<int> chain_hs, he_chain, breaks, vid, order, eid, side_of, fid, edge_seen, vertex_seen;
+    std::vector<std::vector<EdgeSource>> chain_sources;
+    std::vector<std::pair<int, int>> fs;
+    std::vector<std::vector<Side>> outer_cycle;
+    bool busy = false;
+
+    template <class V>
+    static void trim(V& v) {
+        if (v.capacity() > kKeepElements) V().swap(v);
+    }
+    void trim_all() {
+        for (auto* v : {&g.vrank, &g.vout_start, &g.vout, &ids, &comp, &parent, &fill, &pos, &v0, &outer_he, &cycle,
+                        &cycle_start, &face_of_cycle, &holder, &chain_hs, &he_chain, &breaks, &vid, &order, &eid,
+                        &side_of, &fid, &edge_seen, &vertex_seen})
+            trim(*v);
+        trim(g.vpt);
+        trim(g.visolated);
+        trim(g.vend);
+        trim(g.he);
+        trim(g.data_start);
+        trim(g.data);
+        trim(g.faces);
+        trim(segs);
+        trim(boxes);
+        trim(ends);
+        trim(first);
+        trim(cycle_outer);
+        trim(curve_ends);
+        trim(is_break);
+        trim(ids_a);
+        trim(ids_b);
+        trim(chains);
+        trim(chain_sources);
+        trim(fs);
+        trim(outer_cycle);
+    }
+};
+
+BuildScratch& build_scratch() {
+    thread_local BuildScratch scratch;
+    return scratch;
+}
+
+// Holds the thread's scratch for one build, and trims it when the build ends (also on an
+// exception).
+class ScratchLease {
+public:
+    ScratchLease() : s_(build_scratch()) {
+        if (s_.busy) throw std::logic_error("planar map builder: called again while building");
+        s_.busy = true;
+    }
+    ~ScratchLease() {
+        s_.trim_all();
+        s_.busy = false;
+    }
+    ScratchLease(const ScratchLease&) = delete;
+    ScratchLease& operator=(const ScratchLease&) = delete;
+    BuildScratch& operator*() const { return s_; }
+
+private:
+    BuildScratch& s_;
 };
 
 // ---- Way 1: CGAL ----
@@ -211,9 +322,11 @@ bool ccw_before(const Point& p, const Point& a, const Point& b) {
 // and names the vertex of each segment end: the exact check and the sort of the ends that
 // finds equal points are skipped, and the vertices are numbered in the same order (first
 // appearance), so the graph is the one the check and the sort would have produced.
-bool build_directly(const Curves& input, RawGraph& g, bool& many_crossings,
+bool build_directly(const Curves& input, BuildScratch& sc, bool& many_crossings,
                     const detail::KnownVertices* known = nullptr) {
-    std::vector<detail::Seg> segs = detail::curve_segments(input);
+    RawGraph& g = sc.g;
+    std::vector<detail::Seg>& segs = sc.segs;
+    detail::curve_segments(input, segs);
     if (segs.empty()) return false;
     if (known && known->ends.size() != segs.size()) return false;  // a segment left out
     // The grid index pays off from a few dozen segments on; the maps of small cells (a
@@ -232,7 +345,8 @@ bool build_directly(const Curves& input, RawGraph& g, bool& many_crossings,
         const std::size_t enough = segs.size() / 10 + 1;
         std::size_t crossings = 0;
         // Each segment's box once: most pairs are told apart by their boxes alone.
-        std::vector<BBox> boxes(segs.size());
+        std::vector<BBox>& boxes = sc.boxes;
+        boxes.assign(segs.size(), BBox{});
         for (std::size_t i = 0; i < segs.size(); ++i) {
             boxes[i].add(segs[i].a);
             boxes[i].add(segs[i].b);
@@ -300,24 +414,22 @@ bool build_directly(const Curves& input, RawGraph& g, bool& many_crossings,
     };
     if (known) {
         // Vertices named by the caller.
-        std::vector<int> id(known->count, -1);
+        std::vector<int>& id = sc.ids;
+        id.assign(known->count, -1);
         number([&](std::size_t k, std::uint32_t e) -> int& { return id[std::size_t(known->ends[k][e])]; });
     } else {
         auto end_point = [&](std::uint32_t k) -> const Point& { return (k & 1u) ? segs[k >> 1].b : segs[k >> 1].a; };
-        // The ends sorted by point, then by index (the points copied in: no indirection
-        // while sorting).
-        struct End {
-            Point p;
-            std::uint32_t k;
-            bool operator<(const End& o) const { return p != o.p ? p < o.p : k < o.k; }
-        };
-        std::vector<End> ends(2 * ns);
+        // The ends sorted by point, then by index.
+        std::vector<SegEnd>& ends = sc.ends;
+        ends.resize(2 * ns);
         for (std::uint32_t k = 0; k < 2 * ns; ++k) ends[k] = {end_point(k), k};
         std::sort(ends.begin(), ends.end());
-        std::vector<std::uint32_t> first(2 * ns);  // the first end at the same point
+        std::vector<std::uint32_t>& first = sc.first;  // the first end at the same point
+        first.resize(2 * ns);
         for (std::size_t i = 0; i < ends.size(); ++i)
             first[ends[i].k] = (i > 0 && ends[i].p == ends[i - 1].p) ? first[ends[i - 1].k] : ends[i].k;
-        std::vector<int> id(2 * ns, -1);
+        std::vector<int>& id = sc.ids;
+        id.assign(2 * ns, -1);
         number([&](std::size_t k, std::uint32_t e) -> int& { return id[first[2 * k + e]]; });
     }
     g.data_start[ns] = std::uint32_t(ns);
@@ -332,10 +444,12 @@ bool build_directly(const Curves& input, RawGraph& g, bool& many_crossings,
         if (k + 1 == ns || segs[k + 1].owner != owner) g.vend[std::size_t(g.he[2 * k].target)] = 1;
     }
     // Connected pieces of the drawing.
-    std::vector<int> comp(nv);
+    std::vector<int>& comp = sc.comp;
+    comp.resize(nv);
     int ncomp = 0;
     {
-        std::vector<int> parent(nv);
+        std::vector<int>& parent = sc.parent;
+        parent.resize(nv);
         std::iota(parent.begin(), parent.end(), 0);
         auto find = [&](int x) {
             while (parent[x] != x) x = parent[x] = parent[parent[x]];
@@ -345,7 +459,8 @@ bool build_directly(const Curves& input, RawGraph& g, bool& many_crossings,
             const int a = find(g.he[2 * k].source), b = find(g.he[2 * k].target);
             if (a != b) parent[a] = b;
         }
-        std::vector<int> id(nv, -1);
+        std::vector<int>& id = sc.ids;
+        id.assign(nv, -1);
         for (std::size_t v = 0; v < nv; ++v) {
             int& c = id[find(int(v))];
             if (c < 0) c = ncomp++;
@@ -359,10 +474,12 @@ bool build_directly(const Curves& input, RawGraph& g, bool& many_crossings,
     for (std::size_t v = 0; v < nv; ++v) g.vout_start[v + 1] += g.vout_start[v];
     g.vout.resize(g.he.size());
     {
-        std::vector<int> fill(g.vout_start.begin(), g.vout_start.end() - 1);
+        std::vector<int>& fill = sc.fill;
+        fill.assign(g.vout_start.begin(), g.vout_start.end() - 1);
         for (std::size_t h = 0; h < g.he.size(); ++h) g.vout[fill[g.he[h].source]++] = int(h);
     }
-    std::vector<int> pos(g.he.size());
+    std::vector<int>& pos = sc.pos;
+    pos.resize(g.he.size());
     for (std::size_t v = 0; v < nv; ++v) {
         const auto b = g.vout.begin() + g.vout_start[v], e = g.vout.begin() + g.vout_start[v + 1];
         const Point& p = g.vpt[v];
@@ -378,12 +495,14 @@ bool build_directly(const Curves& input, RawGraph& g, bool& many_crossings,
     }
     // Cycles. In each connected piece, the outer one lies left of the most counter-clockwise
     // edge leaving the piece's lexicographically smallest vertex.
-    std::vector<int> v0(std::size_t(ncomp), -1);
+    std::vector<int>& v0 = sc.v0;
+    v0.assign(std::size_t(ncomp), -1);
     for (std::size_t v = 0; v < nv; ++v) {
         int& m = v0[std::size_t(comp[v])];
         if (m < 0 || g.vpt[v] < g.vpt[m]) m = int(v);
     }
-    std::vector<int> outer_he(static_cast<std::size_t>(ncomp), -1);
+    std::vector<int>& outer_he = sc.outer_he;
+    outer_he.assign(std::size_t(ncomp), -1);
     for (int c = 0; c < ncomp; ++c) {
         const int v = v0[c];
         const Point& p = g.vpt[v];
@@ -394,8 +513,12 @@ bool build_directly(const Curves& input, RawGraph& g, bool& many_crossings,
         }
         outer_he[c] = o;
     }
-    std::vector<int> cycle(g.he.size(), -1), cycle_start;
-    std::vector<char> cycle_outer;
+    std::vector<int>& cycle = sc.cycle;
+    std::vector<int>& cycle_start = sc.cycle_start;
+    std::vector<char>& cycle_outer = sc.cycle_outer;
+    cycle.assign(g.he.size(), -1);
+    cycle_start.clear();
+    cycle_outer.clear();
     for (std::size_t h = 0; h < g.he.size(); ++h) {
         if (cycle[h] >= 0) continue;
         const int id = int(cycle_start.size());
@@ -412,7 +535,8 @@ bool build_directly(const Curves& input, RawGraph& g, bool& many_crossings,
     // Faces: one per inner cycle, plus the unbounded face. Each piece's outer cycle is a hole
     // of the face holding the piece: the face below the first segment of another piece met
     // by a ray going up from the piece's smallest vertex (exact predicates).
-    std::vector<int> face_of_cycle(cycle_start.size(), -1);
+    std::vector<int>& face_of_cycle = sc.face_of_cycle;
+    face_of_cycle.assign(cycle_start.size(), -1);
     g.faces.emplace_back();
     g.faces[0].unbounded = true;
     for (std::size_t c = 0; c < cycle_start.size(); ++c)
@@ -421,8 +545,9 @@ bool build_directly(const Curves& input, RawGraph& g, bool& many_crossings,
             g.faces.emplace_back();
             g.faces.back().outer = cycle_start[c];
         }
-    std::vector<int> holder(std::size_t(ncomp), -2);  // face holding each piece
-    std::function<int(int)> holding = [&](int c) -> int {
+    std::vector<int>& holder = sc.holder;
+    holder.assign(std::size_t(ncomp), -2);  // face holding each piece
+    auto holding = [&](auto&& self, int c) -> int {
         if (holder[c] != -2) return holder[c];
         // One piece, or no cycle at all (a forest: as many vertices as segments plus
         // pieces): the unbounded face is the only face.
@@ -435,11 +560,11 @@ bool build_directly(const Curves& input, RawGraph& g, bool& many_crossings,
         const int below = g.he[2 * k].l2r ? 2 * k + 1 : 2 * k;  // runs right to left
         const int cyc = cycle[below];
         if (!cycle_outer[cyc]) return holder[c] = face_of_cycle[cyc];
-        return holder[c] = holding(comp[g.he[below].source]);
+        return holder[c] = self(self, comp[g.he[below].source]);
     };
     for (std::size_t c = 0; c < cycle_start.size(); ++c) {
         if (!cycle_outer[c]) continue;
-        const int f = holding(comp[g.he[cycle_start[c]].source]);
+        const int f = holding(holding, comp[g.he[cycle_start[c]].source]);
         face_of_cycle[c] = f;
         g.faces[f].inner.push_back(cycle_start[c]);
     }
@@ -477,15 +602,18 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way, const detail::Known
     std::unordered_map<Point, Labels, PointHash> point_labels;
     for (const auto& lp : input.points) point_labels[lp.point].merge(lp.labels);
 
-    RawGraph g;
+    ScratchLease lease;
+    BuildScratch& sc = *lease;
+    RawGraph& g = sc.g;
+    g.clear();
     bool many_crossings = false;
-    if (known && build_directly(input, g, many_crossings, known)) {
+    if (known && build_directly(input, sc, many_crossings, known)) {
         ++detail::t_direct;
         ++detail::t_complex;
-    } else if (way == Way::Any && build_directly(input, g, many_crossings)) {
+    } else if (way == Way::Any && build_directly(input, sc, many_crossings)) {
         ++detail::t_direct;
     } else {
-        g = RawGraph{};
+        g.clear();
         // Few crossings for the number of segments: the non-caching traits are faster.
         const bool caching = way == Way::Any ? many_crossings : way == Way::CgalCaching;
         if (caching) build_with_cgal<Caching>(input, g);
@@ -496,7 +624,8 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way, const detail::Known
 
     // The end points of open curves: vertices whatever their degree, like labelled points
     // (the direct way marked them in the graph).
-    std::vector<Point> ends;
+    std::vector<Point>& ends = sc.curve_ends;
+    ends.clear();
     for (const Curve& c : input.curves) {
         if (!g.vend.empty()) break;
         if (c.closed) continue;
@@ -523,9 +652,11 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way, const detail::Known
 
     // 1. Break vertices: curve ends, labelled points, degree other than two, and points
     //    where the set of source curves changes.
-    std::vector<char> is_break(nv, 0);
+    std::vector<char>& is_break = sc.is_break;
+    is_break.assign(nv, 0);
     {
-        std::vector<std::uint32_t> ids_a, ids_b;
+        std::vector<std::uint32_t>& ids_a = sc.ids_a;
+        std::vector<std::uint32_t>& ids_b = sc.ids_b;
         auto ids = [&](int h, std::vector<std::uint32_t>& out) {
             out.clear();
             g.for_data(h, [&](std::uint32_t d) { out.push_back(d >> 1); });
@@ -546,26 +677,30 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way, const detail::Known
 
     // 2. Chains: walk from every break vertex along degree-two vertices; what is left are
     //    closed curves meeting nothing, which start at their smallest point.
-    struct Chain {
-        std::vector<int> hs;  // half-edges in the chain's direction
-        std::vector<Point> points;
-        bool canon_reversed = false;  // the canonical reading runs from the last point
-        int source = -1, target = -1;
-    };
-    std::vector<Chain> chains;
+    std::vector<Chain>& chains = sc.chains;
+    chains.clear();
     chains.reserve(nh / 2);
-    std::vector<int> he_chain(nh, -1);
+    std::vector<int>& chain_hs = sc.chain_hs;
+    chain_hs.clear();
+    chain_hs.reserve(nh / 2);
+    std::vector<int>& he_chain = sc.he_chain;
+    he_chain.assign(nh, -1);
     auto walk = [&](int start) {
         Chain ch;
+        ch.hs_begin = chain_hs.size();
         int cur = start;
         for (;;) {
-            ch.hs.push_back(cur);
+            chain_hs.push_back(cur);
             he_chain[cur] = he_chain[cur ^ 1] = int(chains.size());
             if (is_break[g.he[cur].target]) break;
             cur = g.he[cur].next;
         }
+        ch.hs_end = chain_hs.size();
         chains.push_back(std::move(ch));
     };
+    // A chain's half-edges, front and back.
+    auto hs_front = [&](const Chain& ch) { return chain_hs[ch.hs_begin]; };
+    auto hs_back = [&](const Chain& ch) { return chain_hs[ch.hs_end - 1]; };
     for (std::size_t v = 0; v < nv; ++v) {
         if (!is_break[v]) continue;
         for (int i = g.vout_start[v]; i < g.vout_start[v + 1]; ++i)
@@ -586,23 +721,27 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way, const detail::Known
     auto by_curve = [](const EdgeSource& a, const EdgeSource& b) {
         return a.curve < b.curve || (a.curve == b.curve && a.forward > b.forward);
     };
-    std::vector<std::vector<EdgeSource>> chain_sources(chains.size());
+    std::vector<std::vector<EdgeSource>>& chain_sources = sc.chain_sources;
+    chain_sources.clear();
+    chain_sources.resize(chains.size());
     for (std::size_t k = 0; k < chains.size(); ++k) {
         Chain& ch = chains[k];
-        const int h0 = ch.hs.front();
+        const auto hs_b = chain_hs.begin() + std::ptrdiff_t(ch.hs_begin);
+        const auto hs_e = chain_hs.begin() + std::ptrdiff_t(ch.hs_end);
+        const int h0 = *hs_b;
         const bool h0_l2r = g.he[h0].l2r;
         auto& src = chain_sources[k];
         g.for_data(h0, [&](std::uint32_t d) { src.push_back({d >> 1, ((d & 1u) != 0) == h0_l2r}); });
         std::sort(src.begin(), src.end(), by_curve);
-        ch.points.reserve(ch.hs.size() + 1);
-        for (int h : ch.hs) ch.points.push_back(g.vpt[g.he[h].source]);
-        ch.points.push_back(g.vpt[g.he[ch.hs.back()].target]);
+        ch.points.reserve(ch.hs_end - ch.hs_begin + 1);
+        for (auto it = hs_b; it != hs_e; ++it) ch.points.push_back(g.vpt[g.he[*it].source]);
+        ch.points.push_back(g.vpt[g.he[*(hs_e - 1)].target]);
         bool flip = !src.front().forward;
         // The first curve running both ways along the chain: keep the canonical direction.
         if (src.size() > 1 && src[1].curve == src[0].curve) flip = canonical_points(ch.points) != ch.points;
         if (flip) {
-            std::reverse(ch.hs.begin(), ch.hs.end());
-            for (auto& h : ch.hs) h ^= 1;
+            std::reverse(hs_b, hs_e);
+            for (auto it = hs_b; it != hs_e; ++it) *it ^= 1;
             std::reverse(ch.points.begin(), ch.points.end());
             for (auto& s : src) s.forward = !s.forward;
             std::sort(src.begin(), src.end(), by_curve);
@@ -612,7 +751,8 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way, const detail::Known
     }
 
     // 4. Vertices: the break vertices, in the order of their points.
-    std::vector<int> breaks;
+    std::vector<int>& breaks = sc.breaks;
+    breaks.clear();
     breaks.reserve(nv);
     for (std::size_t v = 0; v < nv; ++v)
         if (is_break[v]) breaks.push_back(int(v));
@@ -620,7 +760,8 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way, const detail::Known
         if (g.vpt[a] != g.vpt[b]) return g.vpt[a] < g.vpt[b];
         return g.vrank[a] < g.vrank[b];
     });
-    std::vector<int> vid(nv, -1);
+    std::vector<int>& vid = sc.vid;
+    vid.assign(nv, -1);
     for (std::size_t i = 0; i < breaks.size(); ++i) vid[breaks[i]] = int(i);
     pm.vertices_.resize(breaks.size());
     for (std::size_t i = 0; i < breaks.size(); ++i) {
@@ -635,10 +776,11 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way, const detail::Known
 
     // 5. Edges: chains ordered by their end vertices, then by their polylines.
     for (auto& ch : chains) {
-        ch.source = vid[g.he[ch.hs.front()].source];
-        ch.target = vid[g.he[ch.hs.back()].target];
+        ch.source = vid[g.he[hs_front(ch)].source];
+        ch.target = vid[g.he[hs_back(ch)].target];
     }
-    std::vector<int> order(chains.size());
+    std::vector<int>& order = sc.order;
+    order.resize(chains.size());
     std::iota(order.begin(), order.end(), 0);
     std::sort(order.begin(), order.end(), [&](int a, int b) {
         const Chain& x = chains[a];
@@ -656,12 +798,15 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way, const detail::Known
         return lex(p.rbegin(), p.rend(), q.rbegin(), q.rend());
     });
     pm.edges_.resize(chains.size());
-    std::vector<int> eid(chains.size());
+    std::vector<int>& eid = sc.eid;
+    eid.resize(chains.size());
     for (std::size_t i = 0; i < order.size(); ++i) eid[order[i]] = int(i);
     // Each half-edge as a side: 2 * edge id, plus one when it runs against the edge.
-    std::vector<int> side_of(nh);
+    std::vector<int>& side_of = sc.side_of;
+    side_of.resize(nh);
     for (std::size_t k = 0; k < chains.size(); ++k)
-        for (int h : chains[k].hs) {
+        for (std::size_t i = chains[k].hs_begin; i < chains[k].hs_end; ++i) {
+            const int h = chain_hs[i];
             side_of[h] = 2 * eid[k];
             side_of[h ^ 1] = 2 * eid[k] + 1;
         }
@@ -688,15 +833,19 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way, const detail::Known
         return std::make_pair(best, std::move(cycle));
     };
     const std::size_t nf = g.faces.size();
-    std::vector<std::pair<int, int>> fs(nf);  // (key, raw face)
-    std::vector<std::vector<Side>> outer_cycle(nf);  // kept for the face records (step 8)
+    std::vector<std::pair<int, int>>& fs = sc.fs;  // (key, raw face)
+    fs.resize(nf);
+    std::vector<std::vector<Side>>& outer_cycle = sc.outer_cycle;  // kept for the face records (step 8)
+    outer_cycle.clear();
+    outer_cycle.resize(nf);
     for (std::size_t f = 0; f < nf; ++f) {
         int key = -1;
         if (!g.faces[f].unbounded) std::tie(key, outer_cycle[f]) = cycle_of(g.faces[f].outer);
         fs[f] = {key, int(f)};
     }
     std::sort(fs.begin(), fs.end());
-    std::vector<int> fid(nf);
+    std::vector<int>& fid = sc.fid;
+    fid.resize(nf);
     for (std::size_t i = 0; i < nf; ++i) fid[fs[i].second] = int(i);
     pm.faces_.resize(nf);
 
@@ -705,8 +854,8 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way, const detail::Known
         EdgeRec& rec = pm.edges_[eid[k]];
         rec.source = ch.source;
         rec.target = ch.target;
-        rec.left = fid[g.he[ch.hs.front()].face];
-        rec.right = fid[g.he[ch.hs.front() ^ 1].face];
+        rec.left = fid[g.he[hs_front(ch)].face];
+        rec.right = fid[g.he[hs_front(ch) ^ 1].face];
         rec.sources = std::move(chain_sources[k]);
         for (const auto& s : rec.sources) {
             const Curve& c = input.curves[s.curve];
@@ -750,7 +899,10 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way, const detail::Known
     }
 
     // 8. Face records: cycles, incidences, labels rebuilt from the side labels.
-    std::vector<int> edge_seen(chains.size(), -1), vertex_seen(breaks.size(), -1);
+    std::vector<int>& edge_seen = sc.edge_seen;
+    std::vector<int>& vertex_seen = sc.vertex_seen;
+    edge_seen.assign(chains.size(), -1);
+    vertex_seen.assign(breaks.size(), -1);
     for (std::size_t i = 0; i < nf; ++i) {
         const RawGraph::RawFace& rf = g.faces[fs[i].second];
         const int f = int(i);

@@ -208,6 +208,12 @@ SegmentGrid::Where SegmentGrid::locate(const Point& p) const {
 
 std::vector<Seg> curve_segments(const Curves& c) {
     std::vector<Seg> out;
+    curve_segments(c, out);
+    return out;
+}
+
+void curve_segments(const Curves& c, std::vector<Seg>& out) {
+    out.clear();
     std::size_t most = 0;
     for (const Curve& cv : c.curves) most += cv.points.size();
     out.reserve(most);
@@ -228,7 +234,6 @@ std::vector<Seg> curve_segments(const Curves& c) {
             out.push_back(s);
         }
     }
-    return out;
 }
 
 Curves maximal_edges(const Curves& c) {

@@ -124,6 +124,8 @@ private:
 // The segments of a set of curves (zero-length and non-finite segments left out), each
 // tagged with the index of its curve.
 std::vector<Seg> curve_segments(const Curves& c);
+// The same into `out` (cleared first; its storage is reused).
+void curve_segments(const Curves& c, std::vector<Seg>& out);
 
 // The edges of the planar map the curves induce, as curves (PlanarMap::edge_curves()),
 // computed without the exact planar map for the curves that meet no other curve and do

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <random>
 #include <set>
+#include <thread>
 #include <utility>
 #include <cmath>
 #include <cstdio>
@@ -430,6 +431,31 @@ TEST(PlanarMapWays, SmallMapsAndForestsTraceLikeCgal) {
             }
         }
     EXPECT_EQ(traced, 4u);
+}
+
+TEST(PlanarMapWays, ReusedScratchGivesTheMapsOfAFreshThread) {
+    // The builder keeps its temporary vectors per thread from map to map (and frees those a
+    // large map grew). Maps built one after the other on one thread, a large one among them,
+    // by either way, are the maps a fresh thread builds for each drawing alone.
+    Stripes h = StripesProperties(0.3, 1.2), v = StripesProperties(1.9, 1.2);
+    SetEdgeLabels(h, {"a", "b"});
+    const Curves large = GridPartition(h, v, KEEP_INSIDE)(Region::rectangle(0, 0, 170, 170));
+    Curves t_junction = Polyline({{0, 0}, {10, 0}});
+    t_junction.append(Polyline({{5, 0}, {5, 7}}));
+    Curves nested = Polyline({{0, 0}, {100, 0}, {100, 100}, {0, 100}}, true);
+    nested.append(Polyline({{40, 40}, {60, 40}, {60, 60}, {40, 60}}, true));
+    nested.append(Polyline({{45, 50}, {55, 50}}));
+    nested.append(Polyline({{200, 0}, {300, 0}, {250, 80}}, true));
+    const std::vector<std::pair<const char*, Curves>> cases = {
+        {"two squares", two_squares()}, {"nested pieces", nested}, {"T junction (exact way)", t_junction},
+        {"large grid", large},          {"nested pieces again", nested}, {"two squares again", two_squares()},
+        {"T junction again", t_junction}};
+    std::vector<MapPtr> fresh(cases.size());
+    for (std::size_t i = 0; i < cases.size(); ++i)
+        std::thread([&, i] { fresh[i] = PlanarMap::induce(cases[i].second); }).join();
+    EXPECT_GT(fresh[3]->edges().size(), 30000u);  // enough half-edges to free the scratch after it
+    for (std::size_t i = 0; i < cases.size(); ++i)
+        th::expect_same_map(*PlanarMap::induce(cases[i].second), *fresh[i], cases[i].first);
 }
 
 TEST(PlanarMapWays, CrossingsAreRoundedToTheNearestDouble) {

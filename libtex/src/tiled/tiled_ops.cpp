@@ -206,7 +206,10 @@ bool same_moved(const Curves& a, const Curves& b, const Point& back, double tol)
         // The same position first (the usual case), then any.
         for (std::size_t t = 0; t < b.curves.size() && !found; ++t) {
             const std::size_t m = (k + t) % b.curves.size();
-            if (!used[m] && same_curve(a.curves[k], b.curves[m])) found = used[m] = 1;
+            if (!used[m] && same_curve(a.curves[k], b.curves[m])) {
+                used[m] = 1;
+                found = true;
+            }
         }
         if (!found) return false;
     }
