@@ -16,7 +16,10 @@ namespace tex::disc {
 namespace bg = boost::geometry;
 namespace bgi = boost::geometry::index;
 
-namespace {
+// A named namespace, not an anonymous one: RegionSet::Impl, a class of the header, holds these
+// types, and in a unity build GCC warns of such a member whose type is in an anonymous
+// namespace of an included file (-Wsubobject-linkage).
+namespace region_set_index {
 using BPoint = bg::model::point<double, 2, bg::cs::cartesian>;
 using BBox2 = bg::model::box<BPoint>;
 using Entry = std::pair<BBox2, std::size_t>;
@@ -41,7 +44,15 @@ struct Slot {
     BBox box;
     std::uint32_t index;
 };
-}  // namespace
+}  // namespace region_set_index
+using region_set_index::BBox2;
+using region_set_index::BPoint;
+using region_set_index::Entry;
+using region_set_index::kCellPerMedian;
+using region_set_index::kCellsPerMember;
+using region_set_index::kFirstGrid;
+using region_set_index::Slot;
+using region_set_index::to_box;
 
 // Two indexes over the members' boxes. Members no larger than a grid cell (almost all the
 // members of a dart throwing, which are alike in size) sit in a uniform grid over the
