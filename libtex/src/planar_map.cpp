@@ -28,7 +28,6 @@
 
 #include <algorithm>
 #include <climits>
-#include <functional>
 #include <numeric>
 #include <optional>
 #include <stdexcept>
