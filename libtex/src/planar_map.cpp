@@ -118,14 +118,8 @@ struct RawGraph {
     }
     // Empty, keeping the vectors' storage for the next map.
     void clear() {
-        for (auto* v : {&vrank, &vout_start, &vout}) v->clear();
-        vpt.clear();
-        visolated.clear();
-        vend.clear();
-        he.clear();
-        data_start.clear();
-        data.clear();
-        faces.clear();
+        auto clear_all = [](auto&... v) { (v.clear(), ...); };
+        clear_all(vpt, vrank, visolated, vend, vout_start, vout, he, data_start, data, faces);
     }
 };
 
@@ -171,35 +165,17 @@ struct BuildScratch {
     std::vector<std::vector<Side>> outer_cycle;
     bool busy = false;
 
-    template <class V>
-    static void trim(V& v) {
-        if (v.capacity() > kKeepElements) V().swap(v);
+    // Frees each vector grown beyond kKeepElements.
+    template <class... V>
+    static void trim(V&... v) {
+        ((v.capacity() > kKeepElements ? V().swap(v) : void()), ...);
     }
     void trim_all() {
-        for (auto* v : {&g.vrank, &g.vout_start, &g.vout, &ids, &comp, &parent, &fill, &pos, &v0, &outer_he, &cycle,
-                        &cycle_start, &face_of_cycle, &holder, &chain_hs, &he_chain, &breaks, &vid, &order, &eid,
-                        &side_of, &fid, &edge_seen, &vertex_seen})
-            trim(*v);
-        trim(g.vpt);
-        trim(g.visolated);
-        trim(g.vend);
-        trim(g.he);
-        trim(g.data_start);
-        trim(g.data);
-        trim(g.faces);
-        trim(segs);
-        trim(boxes);
-        trim(ends);
-        trim(first);
-        trim(cycle_outer);
-        trim(curve_ends);
-        trim(is_break);
-        trim(ids_a);
-        trim(ids_b);
-        trim(chains);
-        trim(chain_sources);
-        trim(fs);
-        trim(outer_cycle);
+        trim(g.vpt, g.vrank, g.visolated, g.vend, g.vout_start, g.vout, g.he, g.data_start, g.data, g.faces);
+        trim(segs, boxes, ends, first, ids, comp, parent, fill, pos, v0, outer_he, cycle, cycle_start, face_of_cycle,
+             holder, cycle_outer);
+        trim(curve_ends, is_break, ids_a, ids_b, chains, chain_hs, he_chain, breaks, vid, order, eid, side_of, fid,
+             edge_seen, vertex_seen, chain_sources, fs, outer_cycle);
     }
 };
 
