@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # The test suite under AddressSanitizer + UndefinedBehaviorSanitizer (clang's), in a second
 # build folder: every C++ test (ctest, the gallery's included), then the Python tests with the
-# instrumented module loaded into Debian's interpreter (every file; the costliest Dask and QGIS
-# tests too with RH_SANITIZE_PYTEST=all). scripts/test.sh runs it after the normal tests.
+# instrumented module loaded into Debian's interpreter (every test, none skipped). scripts/test.sh
+# runs it after the normal tests.
 #
 #   scripts/sanitize.sh                   configure + build build-asan, run the tests
 #   RH_ASAN_BUILD_DIR=dir scripts/sanitize.sh
-#   RH_SANITIZE_PYTEST=0 scripts/sanitize.sh   C++ tests only (=all: every Python test)
+#   RH_SANITIZE_PYTEST=0 scripts/sanitize.sh   C++ tests only
 #   scripts/sanitize.sh --build-only      configure + build, no test (scripts/test.sh runs it
 #                                         beside the normal tests)
 #
@@ -72,12 +72,9 @@ ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$JOBS"
 ctest_rc=$?
 ctested=$(date +%s)
 
-# The Python tests under ASan, JOBS at a time (pytest-xdist): every file. Of test_tiles and
-# test_qgis_plugin, the tests whose cost there is Dask's or QGIS's Python around C++ entry
-# points other tests reach are left to the normal pass (conftest.dask_or_qgis_heavy, each
-# naming its twin; with them the two files took 595 s of wall time under ASan, 1,178
-# test-seconds). RH_SANITIZE_PYTEST=all runs those too (RH_SANITIZE_EVERY=1).
-[ "${RH_SANITIZE_PYTEST:-1}" = all ] && export RH_SANITIZE_EVERY=1
+# The Python tests under ASan, JOBS at a time (pytest-xdist): every test, the Dask tiled runs,
+# the QGIS algorithms and the real-DEM tests included; the costliest of those run on less data
+# there (RH_SANITIZED=1: conftest.real_dem_file, test_tiles' dem and size).
 pytest_rc=0
 if [ "${RH_SANITIZE_PYTEST:-1}" != 0 ]; then
   # Debian's interpreter is not instrumented: the ASan runtime must be loaded first

@@ -322,9 +322,11 @@ Drawing hatch(const Prepared& p, const Options& o, const std::vector<int>& chose
             throw Error(Code::Failure, "style '" + style.info.name + "': " + e.what());
         }
         // The terrain is framed by the DEM's extent, also in a tile of a tiled run (p.extent),
-        // whose merged drawing then has the whole run's frame; a user's window by what it drew.
+        // whose merged drawing then has the whole run's frame; a user's window by what it drew,
+        // also in a tile (each element is drawn by one tile, so the tiles' frames together are
+        // the whole run's).
         if (!o.window) d.bounds.add(p.terrain.elevation.bounds());
-        else if (!p.extent.empty()) d.bounds.add(p.extent);
+        else if (!p.extent.empty() && !p.user_window) d.bounds.add(p.extent);
         else
             for (const Hatch& h : d.faces.back().hatches)
                 for (const Point& q : h.points) d.bounds.add(q);

@@ -169,6 +169,7 @@ TileReport run_tile(const Options& o, const tex::BBox& tile, const std::string& 
         Prepared p;
         p.partition = read_faces(po);
         p.extent = dem_info.bounds();
+        p.user_window = o.window.has_value();
         // 3. The DEM under all of them (and the terrain's reach), with a halo where the relief
         // window and the terrain kernels see the same cells as in the whole raster.
         tex::BBox area = p.partition.bounds();

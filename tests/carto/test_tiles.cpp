@@ -341,3 +341,37 @@ TEST(Tiles, TerrainStylesTiledAreTheWholeRunBitForBit) {
         EXPECT_TRUE(rock_tiled == features(rock)) << style;
     }
 }
+
+TEST(Tiles, ATerrainStyleInAWindowHasTheWholeRunsFrame) {
+    // In the user's --window the whole run frames a terrain style by what it drew, not by the
+    // DEM; so does each tile, and the merged tiles carry the whole run's frame, which the SVG
+    // and PNG drawn from them use. (The tiles framed the whole DEM before.)
+    TempDir dir;
+    write_long_slope(dir / "slope.tif", dir / "faces.gpkg");
+    Options o;
+    o.dem = dir / "slope.tif";
+    o.partition.path = dir / "faces.gpkg";
+    o.style = "scree";
+    o.threads = 2;
+    o.relief_radius = 100;
+    o.seed = 9;
+    o.window = tex::BBox{901000, 6500300, 902600, 6501000};
+    const Drawing whole = hatch(prepare(o), o);
+    ASSERT_GT(terrain_elements(whole).size(), 100u);
+    const RasterInfo info = raster_info(o.dem, "--dem");
+    // Drawn elements only: well inside the DEM's extent.
+    ASSERT_GT(whole.bounds.xmin, info.bounds().xmin + 500);
+    ASSERT_LT(whole.bounds.xmax, info.bounds().xmax - 500);
+    std::vector<std::string> parts;
+    for (const auto& tile : tile_grid(info, 800)) {
+        parts.push_back(dir / ("t" + std::to_string(parts.size()) + ".gpkg"));
+        run_tile(o, tile, parts.back());
+    }
+    merge_gpkg(parts, dir / "merged.gpkg");
+    const Drawing tiled = read_gpkg(dir / "merged.gpkg", o.scale);
+    EXPECT_TRUE(terrain_elements(tiled) == terrain_elements(whole));
+    EXPECT_EQ(tiled.bounds.xmin, whole.bounds.xmin);
+    EXPECT_EQ(tiled.bounds.ymin, whole.bounds.ymin);
+    EXPECT_EQ(tiled.bounds.xmax, whole.bounds.xmax);
+    EXPECT_EQ(tiled.bounds.ymax, whole.bounds.ymax);
+}

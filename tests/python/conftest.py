@@ -47,30 +47,29 @@ real_dem = pytest.mark.skipif(not SHARED_DEM.exists(),
                               reason=f"{SHARED_DEM} is absent (../shared is not beside the project)")
 
 
-def left_to_the_normal_pass(twin, what):
-    """Marks a test the sanitizer pass skips (scripts/sanitize.sh sets RH_SANITIZED=1): `what`
-    says why it is costly there, and `twin`, named in the reason, runs the C++ code it reaches
-    under the sanitizers. RH_SANITIZE_PYTEST=all (sets RH_SANITIZE_EVERY=1) runs it there too."""
-    skip = SANITIZED and os.environ.get("RH_SANITIZE_EVERY") != "1"
-    return pytest.mark.skipif(skip, reason=f"{what}, left to the normal pass; its code paths run under the "
-                                           f"sanitizers in {twin}")
+@pytest.fixture(scope="session")
+def real_dem_file(tmp_path_factory) -> pathlib.Path:
+    """../shared's real DEM, for the tests that run whole commands or tiled runs on it. Under
+    the sanitizers, its middle quarter (322 x 252 cells of 1 arc-second, about 7.8 x 7 km), cut
+    with gdal_translate, so still in degrees and with the same NoData value: the same code paths
+    on a quarter of the cells (on the whole DEM those tests took 27 to 66 s each under ASan)."""
+    if not SHARED_DEM.exists():
+        pytest.skip(f"{SHARED_DEM} is absent (../shared is not beside the project)")
+    if not SANITIZED:
+        return SHARED_DEM
+    from osgeo import gdal
+    out = tmp_path_factory.mktemp("real_dem") / "chamonix_middle.tif"
+    src = gdal.Open(str(SHARED_DEM))
+    w, h = src.RasterXSize, src.RasterYSize
+    gdal.Translate(str(out), src, srcWin=[w // 4, h // 4, w // 2, h // 2])
+    return out
 
 
-# A real-DEM test whose code paths a sample test also takes, on 10 to 40 times the data: the
-# normal pass runs it; under the sanitizers (27 and 44 s each, the two longest Python tests
-# there) its sample twin, named in the reason, covers those paths. With them the test command
-# took 1,575 s from a fresh clone here, and 1,895 s in CI.
-def heavy_real_dem(twin):
-    return left_to_the_normal_pass(twin, "a heavy real-DEM test")
-
-
-# A test of the Dask tiled runs or of the QGIS plugin whose own work under ASan is Python (Dask's
-# scheduling, resuming, QGIS's processing framework) around C++ entry points that other tests
-# run under the sanitizers: 20 to 115 s each there (a Dask worker or QGIS loads the instrumented
-# module; the whole of test_tiles and test_qgis_plugin took 595 s of the pass's wall time, for
-# 1,178 test-seconds). The rest of those two files runs under the sanitizers.
-def dask_or_qgis_heavy(twin):
-    return left_to_the_normal_pass(twin, "a tiled-run or QGIS test costly under ASan")
+def finished_tiles(work) -> list:
+    """The names of the finished tile files in a tiled run's work folder (tile_NNNNNNN.gpkg),
+    not those of a tile being written when its worker was stopped (tile_NNNNNNN.gpkg.part-PID-N
+    .gpkg, which a run that resumes removes): a glob of tile_*.gpkg matches both."""
+    return sorted(p.name for p in pathlib.Path(work).glob("tile_*.gpkg") if ".part-" not in p.name)
 
 
 def one_under_sanitizers(values):

@@ -7,7 +7,7 @@ import pytest
 from osgeo import gdal, ogr, osr
 
 from bad_inputs import partition_file
-from conftest import SHARED_DEM, heavy_real_dem, one_under_sanitizers
+from conftest import one_under_sanitizers
 
 gdal.UseExceptions()
 ogr.UseExceptions()
@@ -208,12 +208,10 @@ def test_a_file_with_a_temporary_looking_name_is_never_touched(rockhatch_exe, sa
 # ---- the real DEM (geographic CRS, NoData)
 
 @pytest.fixture(scope="module")
-def real_partition(tmp_path_factory):
-    if not SHARED_DEM.exists():
-        pytest.skip(f"{SHARED_DEM} is absent (../shared is not beside the project)")
+def real_partition(tmp_path_factory, real_dem_file):
     from realdem import grid_partition
     path = tmp_path_factory.mktemp("real") / "grid.gpkg"
-    n = grid_partition(SHARED_DEM, path, 90)
+    n = grid_partition(real_dem_file, path, 90)
     assert n > 50
     return path, n
 
@@ -238,10 +236,9 @@ def test_a_geographic_dem_with_nodata_is_reprojected_to_utm(rockhatch_exe, sampl
     assert 320000 < xmin < xmax < 360000 and 5060000 < ymin < ymax < 5110000
 
 
-@heavy_real_dem("test_a_geographic_dem_with_nodata_is_reprojected_to_utm")
-def test_real_dem_geographic_with_nodata(rockhatch_exe, real_partition, tmp_path):
+def test_real_dem_geographic_with_nodata(rockhatch_exe, real_dem_file, real_partition, tmp_path):
     path, n = real_partition
-    r = run(rockhatch_exe, "--dem", SHARED_DEM, "--partition", path, "--no-spatial-index",
+    r = run(rockhatch_exe, "--dem", real_dem_file, "--partition", path, "--no-spatial-index",
             "-o", tmp_path / "real.gpkg", "-o", tmp_path / "real.png")
     assert r.returncode == 0, r.stderr
     assert "reprojected to EPSG:32632" in r.stderr
@@ -253,7 +250,7 @@ def test_real_dem_geographic_with_nodata(rockhatch_exe, real_partition, tmp_path
     assert layer.GetFeatureCount() > 10000
     # Hatches stay within the DEM's footprint: its box in degrees carried to UTM 32N (about
     # 331-346 km E, 5075-5092 km N), give or take one cell (30 m).
-    dem = gdal.Open(str(SHARED_DEM))
+    dem = gdal.Open(str(real_dem_file))
     gt, w, h = dem.GetGeoTransform(), dem.RasterXSize, dem.RasterYSize
     src, dst = dem.GetSpatialRef().Clone(), layer.GetSpatialRef().Clone()
     for srs in (src, dst):

@@ -74,6 +74,9 @@ struct Prepared {
     // The whole DEM's extent in the working CRS when the terrain is a window of it (a tile of
     // a tiled run); empty: the terrain's own.
     tex::BBox extent;
+    // A tile of a tiled run given the user's --window: its terrain is framed by what it drew,
+    // as the whole run in that window is, not by `extent`.
+    bool user_window = false;
 };
 
 // Half-side, in millimetres on paper, of the square over which the fall line and the shade
