@@ -65,10 +65,31 @@ def real_dem_file(tmp_path_factory) -> pathlib.Path:
     return out
 
 
+@pytest.fixture(scope="session")
+def quarter_under_sanitizers(tmp_path_factory) -> str:
+    """The sample's DEM; under the sanitizers, its south-west quarter (SAMPLE_SW_QUARTER, a file
+    cut by gdal_translate), on which a tiled test takes tiles of half the size
+    (half_under_sanitizers): as many tiles, on a quarter of the cells."""
+    dem = SAMPLE / "dem.tif"
+    if not SANITIZED:
+        return str(dem)
+    from osgeo import gdal
+    out = str(tmp_path_factory.mktemp("sw_quarter") / "dem_sw_quarter.tif")
+    x0, y0, x1, y1 = SAMPLE_SW_QUARTER
+    gdal.Translate(out, str(dem), projWin=[x0, y1, x1, y0])
+    return out
+
+
+def half_under_sanitizers(metres):
+    """A tile size for quarter_under_sanitizers: half of it under the sanitizers."""
+    return metres // 2 if SANITIZED else metres
+
+
 def finished_tiles(work) -> list:
     """The names of the finished tile files in a tiled run's work folder (tile_NNNNNNN.gpkg),
-    not those of a tile being written when its worker was stopped (tile_NNNNNNN.gpkg.part-PID-N
-    .gpkg, which a run that resumes removes): a glob of tile_*.gpkg matches both."""
+    not the temporary file of a tile whose worker was stopped while writing it
+    (tile_NNNNNNN.gpkg.part-PID-N.gpkg, which a run that resumes removes): the glob
+    tile_*.gpkg matches both."""
     return sorted(p.name for p in pathlib.Path(work).glob("tile_*.gpkg") if ".part-" not in p.name)
 
 

@@ -17,8 +17,8 @@ os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 os.environ["GDAL_PAM_ENABLED"] = "NO"
 import qgis.core as qgis_core  # noqa: E402  (python3-qgis: scripts/setup.sh installs it)
 
-from conftest import (PYTHON_DIR, ROOT, SANITIZED, finished_tiles, one_under_sanitizers,  # noqa: E402
-                      partition_with_scree, python_env)
+from conftest import (PYTHON_DIR, ROOT, SANITIZED, finished_tiles, half_under_sanitizers,  # noqa: E402
+                      one_under_sanitizers, partition_with_scree, python_env)
 from osgeo import gdal, ogr  # noqa: E402
 
 from qgis.core import (QgsApplication, QgsProcessingException, QgsProcessingFeedback, QgsProject,  # noqa: E402
@@ -285,15 +285,17 @@ def test_crest_ornaments_through_the_algorithm(qgis, rockhatch_exe, sample_dir, 
 # ---- tiled runs (Dask, in a child process)
 
 
-def test_tiled_algorithm_writes_what_the_tiles_command_writes(qgis, sample_dir, tmp_path):
+def test_tiled_algorithm_writes_what_the_tiles_command_writes(qgis, sample_dir, tmp_path, quarter_under_sanitizers):
     """rockhatch:rockhatchingtiled runs `rockhatch tiles` in a child Python (Dask starts
     worker processes there, not inside QGIS): the same GeoPackage bytes as the command, the
     tile count and hatches reported, the hatch layers loaded, progress moving to 100%. With a
-    terrain style (scree), which the tiled run draws as the whole run does."""
+    terrain style (scree), which the tiled run draws as the whole run does. (Under the
+    sanitizers, on the sample's south-west quarter in tiles of half the size.)"""
     import processing
+    dem, tile = quarter_under_sanitizers, half_under_sanitizers(1200)
     cli = tmp_path / "cli.gpkg"
-    subprocess.run([sys.executable, "-m", "rockhatch", "tiles", "-q", "--dem", str(sample_dir / "dem.tif"),
-                    "--partition", str(sample_dir / "partition.gpkg"), "--tile-size", "1200", "--workers", "1",
+    subprocess.run([sys.executable, "-m", "rockhatch", "tiles", "-q", "--dem", dem,
+                    "--partition", str(sample_dir / "partition.gpkg"), "--tile-size", str(tile), "--workers", "1",
                     "--seed", "2", "--style", "scree", "-o", str(cli)], check=True, env=python_env())
     project = QgsProject.instance()
     before = set(project.mapLayers())
@@ -306,7 +308,7 @@ def test_tiled_algorithm_writes_what_the_tiles_command_writes(qgis, sample_dir, 
             super().setProgress(value)
 
     result = processing.runAndLoadResults("rockhatch:rockhatchingtiled", {
-        "DEM": str(sample_dir / "dem.tif"), "PARTITION": str(sample_dir / "partition.gpkg"), "TILE_SIZE": 1200,
+        "DEM": dem, "PARTITION": str(sample_dir / "partition.gpkg"), "TILE_SIZE": tile,
         "WORKERS": 1, "SEED": 2, "STYLE": "scree", "OUTPUT": str(out)}, feedback=Feedback())
     loaded = {project.mapLayer(i).name() for i in set(project.mapLayers()) - before}
     try:
@@ -320,11 +322,12 @@ def test_tiled_algorithm_writes_what_the_tiles_command_writes(qgis, sample_dir, 
         project.removeMapLayers([i for i in set(project.mapLayers()) - before])
 
 
-def test_tiled_algorithm_cancelled_then_resumed(qgis, sample_dir, tmp_path):
+def test_tiled_algorithm_cancelled_then_resumed(qgis, sample_dir, tmp_path, quarter_under_sanitizers):
     """Cancelling after the first tile stops the child run and keeps the finished tiles; the
-    same job run again resumes from them and writes what an uninterrupted run writes."""
-    params = {"DEM": str(sample_dir / "dem.tif"), "PARTITION": str(sample_dir / "partition.gpkg"),
-              "TILE_SIZE": 800, "WORKERS": 1, "SEED": 4, "OUTPUT": str(tmp_path / "q.gpkg")}
+    same job run again resumes from them and writes what an uninterrupted run writes. (Under
+    the sanitizers, on the sample's south-west quarter in tiles of half the size.)"""
+    params = {"DEM": quarter_under_sanitizers, "PARTITION": str(sample_dir / "partition.gpkg"),
+              "TILE_SIZE": half_under_sanitizers(800), "WORKERS": 1, "SEED": 4, "OUTPUT": str(tmp_path / "q.gpkg")}
     info = []
 
     class Feedback(QgsProcessingFeedback):
@@ -417,9 +420,11 @@ def test_rock_partition_fixed_controls_equals_the_command(qgis, rockhatch_exe, s
     assert {"fall_line", "shade"} <= set(QgsVectorLayer(f"{derived}|layername=faces", "f", "ogr").fields().names())
 
 
-def test_a_graphical_model_from_dem_to_hatching(qgis, rockhatch_exe, sample_dir, tmp_path):
+def test_a_graphical_model_from_dem_to_hatching(qgis, rockhatch_exe, tmp_path, quarter_under_sanitizers):
     """The algorithms chain in a Processing model: DEM -> Rock partition -> Rock hatching,
-    with the partition in a temporary file of the model; same hatches as the two commands."""
+    with the partition in a temporary file of the model; same hatches as the two commands.
+    (Under the sanitizers, on the sample's south-west quarter.)"""
+    dem = quarter_under_sanitizers
     from qgis.core import (QgsProcessingModelAlgorithm, QgsProcessingModelChildAlgorithm,
                            QgsProcessingModelChildParameterSource, QgsProcessingModelOutput,
                            QgsProcessingModelParameter, QgsProcessingParameterRasterLayer)
@@ -440,13 +445,12 @@ def test_a_graphical_model_from_dem_to_hatching(qgis, rockhatch_exe, sample_dir,
     hatch.setModelOutputs({"hatches": output})
     model.addChildAlgorithm(hatch)
     model.updateDestinationParameters()
-    result = run(model, {"dem": str(sample_dir / "dem.tif"), "hatching:hatches": str(tmp_path / "m.gpkg")})
+    result = run(model, {"dem": dem, "hatching:hatches": str(tmp_path / "m.gpkg")})
     assert result["hatching:hatches"] == str(tmp_path / "m.gpkg")
 
     part_gpkg, cli = tmp_path / "p.gpkg", tmp_path / "cli.gpkg"
-    subprocess.run([str(rockhatch_exe), "partition", "-q", "--dem", str(sample_dir / "dem.tif"), "-o", str(part_gpkg)],
-                   check=True)
-    subprocess.run([str(rockhatch_exe), "-q", "--dem", str(sample_dir / "dem.tif"), "--partition", str(part_gpkg),
+    subprocess.run([str(rockhatch_exe), "partition", "-q", "--dem", dem, "-o", str(part_gpkg)], check=True)
+    subprocess.run([str(rockhatch_exe), "-q", "--dem", dem, "--partition", str(part_gpkg),
                     "-o", str(cli)], check=True)
     assert layer_counts(tmp_path / "m.gpkg") == layer_counts(cli)
     assert layer_features(tmp_path / "m.gpkg") == layer_features(cli)

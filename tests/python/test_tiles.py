@@ -9,7 +9,8 @@ import sys
 import time
 
 import pytest
-from conftest import SAMPLE, SAMPLE_SW_QUARTER, SANITIZED, finished_tiles, one_under_sanitizers, python_env
+from conftest import (SAMPLE, SAMPLE_SW_QUARTER, SANITIZED, finished_tiles, half_under_sanitizers, one_under_sanitizers,
+                      python_env)
 
 from osgeo import gdal, ogr
 
@@ -320,7 +321,8 @@ def test_tiled_equals_whole_on_chamonix(tmp_path, rockhatch_exe, real_dem_file):
     args = ["--dem", str(real_dem_file), "--partition", str(faces), "--scale", "25000"]
     expected = whole_run(args, tmp_path / "whole.gpkg")
     assert len(expected) > (20000 if SANITIZED else 100000)
-    s = tiles.run(real_dem_file, faces, 1250 if SANITIZED else 2500, [tmp_path / "tiled.gpkg"], scale=25000, workers=2)
+    s = tiles.run(real_dem_file, faces, 1250 if SANITIZED else 2500, [tmp_path / "tiled.gpkg"], scale=25000,
+                  workers=2)
     assert s.tiles > 20
     assert features(tmp_path / "tiled.gpkg") == expected
 
@@ -435,22 +437,18 @@ def test_bad_input_is_refused_before_any_work(tmp_path, args, code, words):
     assert not (tmp_path / "o.gpkg").exists()
 
 
-def test_a_geographic_dem_is_tiled_as_the_whole_run_reprojects_it(tmp_path, rockhatch_exe):
+def test_a_geographic_dem_is_tiled_as_the_whole_run_reprojects_it(tmp_path, rockhatch_exe,
+                                                                  quarter_under_sanitizers):
     # The sample in degrees (with NoData corners): tiles of the UTM grid the whole run works
     # on, each warped alone from the DEM, give the whole run's hatches bit for bit; so does
     # the partition extracted tile by tile. Under the sanitizers, the sample's south-west
     # quarter warped, in tiles of half the size.
     dem = tmp_path / "geo.tif"
-    src = DEM
-    if SANITIZED:
-        src = str(tmp_path / "sw_quarter.tif")
-        x0, y0, x1, y1 = SAMPLE_SW_QUARTER
-        gdal.Translate(src, DEM, projWin=[x0, y1, x1, y0])
-    gdal.Warp(str(dem), src, dstSRS="EPSG:4326", dstNodata=-9999)
+    gdal.Warp(str(dem), quarter_under_sanitizers, dstSRS="EPSG:4326", dstNodata=-9999)
     whole = whole_run(["--dem", str(dem), "--partition", FACES, "--seed", "3"], tmp_path / "w.gpkg")
     assert len(whole) > 1000
     out = tmp_path / "tiled.gpkg"
-    s = tiles.run(dem, FACES, size(700), [out], seed=3, workers=2)
+    s = tiles.run(dem, FACES, half_under_sanitizers(700), [out], seed=3, workers=2)
     assert s.tiles >= 9
     assert features(out) == whole
     assert ogr.Open(str(out)).GetLayer(0).GetSpatialRef().GetAuthorityCode(None) == "32632"
@@ -458,7 +456,8 @@ def test_a_geographic_dem_is_tiled_as_the_whole_run_reprojects_it(tmp_path, rock
                        capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr
     work = tmp_path / "work"
-    s = tiles.run(dem, "auto", size(900), [tmp_path / "auto.gpkg"], seed=3, workers=2, workdir=work, keep_tiles=True)
+    s = tiles.run(dem, "auto", half_under_sanitizers(900), [tmp_path / "auto.gpkg"], seed=3, workers=2, workdir=work,
+                  keep_tiles=True)
     assert s.warnings == []
     assert partition_faces(work / "partition.gpkg") == partition_faces(tmp_path / "p.gpkg")
 
@@ -507,27 +506,9 @@ def partition_faces(path):
 
 
 @pytest.fixture(scope="module")
-def dem(tmp_path_factory):
-    """The DEM of the --partition auto tests: the sample's; under the sanitizers, its south-west
-    quarter (a file cut with gdal_translate), on which those tests take tiles of half the size
-    (`size`): as many tiles, on a quarter of the cells."""
-    if not SANITIZED:
-        return DEM
-    out = str(tmp_path_factory.mktemp("auto_dem") / "sw_quarter.tif")
-    x0, y0, x1, y1 = SAMPLE_SW_QUARTER
-    gdal.Translate(out, DEM, projWin=[x0, y1, x1, y0])
-    return out
-
-
-def size(metres):
-    """A tile size or halo of a test that runs on a quarter of the sample under the sanitizers
-    (the fixture dem): half of it there, so as many tiles."""
-    return metres // 2 if SANITIZED else metres
-
-
-@pytest.fixture(scope="module")
-def sample_auto(tmp_path_factory, rockhatch_exe, dem):
+def sample_auto(tmp_path_factory, rockhatch_exe, quarter_under_sanitizers):
     """The whole run with --partition auto, and the whole extraction (rockhatch partition)."""
+    dem = quarter_under_sanitizers
     tmp = tmp_path_factory.mktemp("auto")
     hatches = whole_run(["--dem", dem, "--partition", "auto", "--seed", "3"], tmp / "w.gpkg")
     r = subprocess.run([str(rockhatch_exe), "partition", "--dem", dem, "-o", str(tmp / "faces.gpkg"), "-q"],
@@ -536,15 +517,18 @@ def sample_auto(tmp_path_factory, rockhatch_exe, dem):
     return hatches, partition_faces(tmp / "faces.gpkg")
 
 
-def test_partition_auto_tiled_equals_the_whole_run_with_1_or_2_workers(tmp_path, sample_auto, dem):
+def test_partition_auto_tiled_equals_the_whole_run_with_1_or_2_workers(tmp_path, sample_auto,
+                                                                      quarter_under_sanitizers):
+    dem = quarter_under_sanitizers
     hatches, faces = sample_auto
     outs = {}
     # Under the sanitizers: two workers only (one worker takes the same path, in one process).
     for workers in (2,) if SANITIZED else (1, 2):
         out = tmp_path / f"tiled{workers}.gpkg"
         calls = []
-        s = tiles.run(dem, "auto", size(800), [out], seed=3, workers=workers, workdir=tmp_path / f"work{workers}",
-                      keep_tiles=True, progress=lambda f, stage: calls.append((f, stage)) or True)
+        s = tiles.run(dem, "auto", half_under_sanitizers(800), [out], seed=3, workers=workers,
+                      workdir=tmp_path / f"work{workers}", keep_tiles=True,
+                      progress=lambda f, stage: calls.append((f, stage)) or True)
         assert s.tiles == 9 and s.partition_faces == len(faces)
         assert s.partition_overlaps == 0 and s.warnings == []  # the tiles agree
         # Extracted tile by tile, the partition is the whole extraction's, face for face and bit
@@ -563,7 +547,8 @@ def test_partition_auto_tiled_equals_the_whole_run_with_1_or_2_workers(tmp_path,
     assert outs[1] == outs[2]
 
 
-def test_partition_auto_takes_the_extractions_options(tmp_path, rockhatch_exe, dem):
+def test_partition_auto_takes_the_extractions_options(tmp_path, rockhatch_exe, quarter_under_sanitizers):
+    dem = quarter_under_sanitizers
     # rockhatch partition's tuning options, passed to every extraction tile: the tiled
     # partition is the whole extraction's with the same options, and not the default one.
     opts = ["--min-slope", "90", "--no-ridge-extension", "--min-area=25"]
@@ -572,7 +557,8 @@ def test_partition_auto_takes_the_extractions_options(tmp_path, rockhatch_exe, d
     assert r.returncode == 0, r.stderr
     whole = partition_faces(tmp_path / "whole.gpkg")
     work = tmp_path / "work"
-    s = tiles.run(dem, "auto", size(800), [tmp_path / "t.gpkg"], seed=3, workers=2, workdir=work, keep_tiles=True, args=opts)
+    s = tiles.run(dem, "auto", half_under_sanitizers(800), [tmp_path / "t.gpkg"], seed=3, workers=2, workdir=work,
+                  keep_tiles=True, args=opts)
     assert s.partition_faces == len(whole) and s.warnings == []
     assert partition_faces(work / "partition.gpkg") == whole
     r = subprocess.run([str(rockhatch_exe), "partition", "--dem", dem, "-o", str(tmp_path / "default.gpkg"), "-q"],
@@ -580,8 +566,8 @@ def test_partition_auto_takes_the_extractions_options(tmp_path, rockhatch_exe, d
     assert r.returncode == 0 and partition_faces(tmp_path / "default.gpkg") != whole
     # Other extraction options are another job: the finished tiles are not reused.
     with pytest.raises(RockhatchError) as e:
-        tiles.run(dem, "auto", size(800), [tmp_path / "t.gpkg"], seed=3, workers=1, workdir=work, overwrite=True,
-                  args=["--min-slope", "80"])
+        tiles.run(dem, "auto", half_under_sanitizers(800), [tmp_path / "t.gpkg"], seed=3, workers=1, workdir=work,
+                  overwrite=True, args=["--min-slope", "80"])
     assert e.value.code == 9 and "another job" in str(e.value)
 
 
@@ -598,38 +584,40 @@ def test_partition_auto_warns_where_the_tiles_disagree(tmp_path):
     assert len(warnings) == 1 and "partition tiles disagree" in warnings[0] and "--extract-halo (now 300)" in warnings[0]
 
 
-def test_partition_auto_other_tiles_same_partition(tmp_path, sample_auto, dem):
+def test_partition_auto_other_tiles_same_partition(tmp_path, sample_auto, quarter_under_sanitizers):
+    dem = quarter_under_sanitizers
     # Tiles of 500 m (25 tiles; every face larger than a tile, or cut by a tile border, comes
     # out once and whole from the tile holding its anchor) and a shorter halo: still the whole
     # extraction on the sample.
     hatches, faces = sample_auto
     out = tmp_path / "t.gpkg"
-    s = tiles.run(dem, "auto", size(500), [out], seed=3, workers=2, workdir=tmp_path / "work", keep_tiles=True,
-                  extract_halo=size(1000))
+    s = tiles.run(dem, "auto", half_under_sanitizers(500), [out], seed=3, workers=2, workdir=tmp_path / "work",
+                  keep_tiles=True, extract_halo=half_under_sanitizers(1000))
     assert s.tiles == 25
     assert max(s.extract_rounds) >= 2  # some tile had to extract again over a larger window
     assert partition_faces(tmp_path / "work" / "partition.gpkg") == faces
     assert features(out) == hatches
 
 
-def test_partition_auto_resumes_in_either_stage(tmp_path, sample_auto, dem):
+def test_partition_auto_resumes_in_either_stage(tmp_path, sample_auto, quarter_under_sanitizers):
+    dem = quarter_under_sanitizers
     hatches, _ = sample_auto
     out, work = tmp_path / "t.gpkg", tmp_path / "work"
     # Stopped while extracting: the finished partition tiles stay.
     with pytest.raises(RockhatchError) as e:
-        tiles.run(dem, "auto", size(800), [out], seed=3, workers=1, workdir=work,
+        tiles.run(dem, "auto", half_under_sanitizers(800), [out], seed=3, workers=1, workdir=work,
                   progress=lambda f, stage: not stage.startswith("partition tiles 3/"))
     assert e.value.code == 10 and not out.exists()
     done = {p.name: p.stat().st_mtime_ns for p in work.glob("partition_*.gpkg")}
     assert len(done) >= 3 and not (work / "partition.gpkg").exists()
     # Stopped while hatching: the partition is merged, the extraction is not run again.
     with pytest.raises(RockhatchError) as e:
-        tiles.run(dem, "auto", size(800), [out], seed=3, workers=1, workdir=work,
+        tiles.run(dem, "auto", half_under_sanitizers(800), [out], seed=3, workers=1, workdir=work,
                   progress=lambda f, stage: not stage.startswith("tiles 2/"))
     assert e.value.code == 10
     for name, stamp in done.items():
         assert (work / name).stat().st_mtime_ns == stamp
-    s = tiles.run(dem, "auto", size(800), [out], seed=3, workers=1, workdir=work)
+    s = tiles.run(dem, "auto", half_under_sanitizers(800), [out], seed=3, workers=1, workdir=work)
     assert s.done_before >= 2 and s.partition_faces == 0  # nothing extracted again
     assert features(out) == hatches
     assert not work.exists()
