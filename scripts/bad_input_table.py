@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes README.md's table of bad inputs: every row of tests/python/bad_inputs.py, run
+"""Writes docs/bad-input.md's table of bad inputs: every row of tests/python/bad_inputs.py, run
 against the built command, with the message it really prints (scratch paths shortened).
 
 usage: /usr/bin/python3 scripts/bad_input_table.py [BUILD_DIR]   (default: build)
@@ -31,14 +31,14 @@ def main():
             msg = msg[:157] + "..."
         msg = msg.replace("|", "\\|")
         rows.append(f"| `{case.cmd}` | `{case.what}` | {case.bad} | {case.code} | {msg} |")
-    readme = ROOT / "README.md"
+    readme = ROOT / "docs" / "bad-input.md"
     text = readme.read_text()
     table = "<!-- bad-input-table:begin -->\n" + "\n".join(rows) + "\n<!-- bad-input-table:end -->"
     new, n = re.subn(r"<!-- bad-input-table:begin -->.*?<!-- bad-input-table:end -->", lambda m: table, text, flags=re.S)
     if n != 1:
-        sys.exit("bad_input_table: README.md has no <!-- bad-input-table:begin/end --> markers")
+        sys.exit("bad_input_table: docs/bad-input.md has no <!-- bad-input-table:begin/end --> markers")
     readme.write_text(new)
-    print(f"bad_input_table: {len(bad_inputs.CASES)} rows written to README.md")
+    print(f"bad_input_table: {len(bad_inputs.CASES)} rows written to docs/bad-input.md")
 
 
 if __name__ == "__main__":

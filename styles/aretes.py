@@ -8,14 +8,7 @@ crest_band millimetres high on paper. CREST_ORNAMENT = True is what asks for it:
 ornaments are drawn by the pipeline along the partition's lines, not by the per-face
 program.
 
-Parameters (--param NAME=VALUE; "mm" are millimetres on paper at --scale):
-    spacing_min  0.35 mm     hatch spacing in the darkest faces
-    spacing_max  1.5  mm     hatch spacing in the lightest faces
-    length       3.0  mm     length of a hatch between two jittered break points
-    jitter       1.0  ratio  jitter of the break points (fraction of spacing and length)
-    contrast     1.0  ratio  how much height pushes dark faces darker, light faces lighter
-    slope_min    0.0  %      no fill hatch where the slope is below this (percent; 0: everywhere)
-    crest_band   2.0  mm     height of the crest ornament band centred on each ridge
+The style is the program of noisy.py; the ornaments come from CREST_ORNAMENT.
 
 Run on its own, or through the rockhatch command:
     /usr/bin/python3 styles/aretes.py --dem DEM.tif --partition faces.gpkg -o out.svg
@@ -23,13 +16,15 @@ Run on its own, or through the rockhatch command:
 """
 import sys
 
-from _blocks import fill_params, per_face
+from rockhatch.carto import params_help
+from rockhatch.carto.blocks import fill_params, per_face
 from noisy import fill
 
 NAME = "aretes"
 FIGURE = "after 5.4a"
 TITLE = "noisy hatching with a crest ornament along every ridge (aretes of a schematic map)"
 PARAMS = fill_params(3.0, 1.0) + [("crest_band", 2.0, "mm", "height of the crest ornament band centred on each ridge")]
+__doc__ += params_help(PARAMS)
 CREST_ORNAMENT = True
 
 

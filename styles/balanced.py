@@ -4,23 +4,9 @@ squared), and hatches are broken into strokes with small gaps.
 
 Design iteration (e), on top of (d) (fine_ridges.py).
 
-Parameters (--param NAME=VALUE; "mm" are millimetres on paper at --scale):
-    spacing_min   0.35 mm     hatch spacing in the darkest faces
-    spacing_max   1.5  mm     hatch spacing in the lightest faces
-    length        2.0  mm     length of a hatch between two jittered break points
-    jitter        0.5  ratio  jitter of the break points (fraction of spacing and length)
-    contrast      1.0  ratio  how much height pushes dark faces darker, light faces lighter
-    slope_min     0.0  %      no fill hatch where the slope is below this (percent; 0: everywhere)
-    cell_spacing  3.0  mm     width of the coarse jittered cells that carry local density
-    cell_jitter   1.0  ratio  jitter of the coarse cells
-    peak_spacing  2.0  mm     distance between two ridge shapes
-    peak_length   2.0  mm     length of a ridge shape down the slope
-    peak_width    0.8  mm     width of a ridge shape at its base
-    peak_fill     0.2  mm     spacing of the fine hatching inside ridge shapes
-    gap           0.95 ratio  each hatch is shortened to this fraction, leaving gaps
-
-The style is a program of libtex operators (carto/src/styles/balanced.cpp in Python, its
-blocks in _blocks.py): style(fields, params) returns the arrangement drawn in each face.
+The style is a program over the native style blocks (rockhatch.carto.blocks, the
+built-in style's own, carto/src/styles/balanced.cpp) and libtex operators:
+style(fields, params) returns the arrangement drawn in each face.
 
 Run on its own, or through the rockhatch command:
     /usr/bin/python3 styles/balanced.py --dem DEM.tif --partition faces.gpkg -o out.svg
@@ -28,13 +14,15 @@ Run on its own, or through the rockhatch command:
 """
 import sys
 
-from _blocks import BALANCED, COARSE, PEAKS, cell_hatching, fill_params, per_face, ridge_peaks
+from rockhatch.carto import params_help
+from rockhatch.carto.blocks import BALANCED, COARSE, PEAKS, cell_hatching, fill_params, per_face, ridge_peaks
 from rockhatch.tex import Union
 
 NAME = "balanced"
 FIGURE = "5.4e"
 TITLE = "balanced density: linear height term, hatches broken into strokes"
 PARAMS = fill_params(2.0, 0.5) + COARSE + PEAKS + BALANCED
+__doc__ += params_help(PARAMS)
 
 
 def fill(f, p, face):

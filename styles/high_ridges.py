@@ -5,24 +5,9 @@
 Design iteration (f), on top of (e) (balanced.py). A valley between two faces is drawn
 once, by the face with the smaller id.
 
-Parameters (--param NAME=VALUE; "mm" are millimetres on paper at --scale):
-    spacing_min       0.35 mm     hatch spacing in the darkest faces
-    spacing_max       1.5  mm     hatch spacing in the lightest faces
-    length            2.0  mm     length of a hatch between two jittered break points
-    jitter            0.5  ratio  jitter of the break points (fraction of spacing and length)
-    contrast          1.0  ratio  how much height pushes dark faces darker, light faces lighter
-    slope_min         0.0  %      no fill hatch where the slope is below this (percent; 0: everywhere)
-    cell_spacing      3.0  mm     width of the coarse jittered cells that carry local density
-    cell_jitter       1.0  ratio  jitter of the coarse cells
-    peak_spacing      2.0  mm     distance between two ridge shapes
-    peak_length       2.0  mm     length of a ridge shape down the slope
-    peak_width        0.8  mm     width of a ridge shape at its base
-    peak_fill         0.2  mm     spacing of the fine hatching inside ridge shapes
-    gap               0.95 ratio  each hatch is shortened to this fraction, leaving gaps
-    peak_height_gain  1.0  ratio  ridge shapes grow by this fraction on the highest ground
-
-The style is a program of libtex operators (carto/src/styles/high_ridges.cpp in Python, its
-blocks in _blocks.py): style(fields, params) returns the arrangement drawn in each face.
+The style is a program over the native style blocks (rockhatch.carto.blocks, the
+built-in style's own, carto/src/styles/high_ridges.cpp) and libtex operators:
+style(fields, params) returns the arrangement drawn in each face.
 
 Run on its own, or through the rockhatch command:
     /usr/bin/python3 styles/high_ridges.py --dem DEM.tif --partition faces.gpkg -o out.svg
@@ -30,13 +15,15 @@ Run on its own, or through the rockhatch command:
 """
 import sys
 
-from _blocks import BALANCED, COARSE, HIGH, PEAKS, cell_hatching, fill_params, per_face, ridge_peaks
+from rockhatch.carto import params_help
+from rockhatch.carto.blocks import BALANCED, COARSE, HIGH, PEAKS, cell_hatching, fill_params, per_face, ridge_peaks
 from rockhatch.tex import Union
 
 NAME = "high-ridges"
 FIGURE = "5.4f"
 TITLE = "ridge shapes enhanced on higher ground, valleys drawn"
 PARAMS = fill_params(2.0, 0.5) + COARSE + PEAKS + BALANCED + HIGH
+__doc__ += params_help(PARAMS)
 
 
 def fill(f, p, face):

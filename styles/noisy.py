@@ -8,16 +8,9 @@ The program: a GridPartition of lines labelled "fill" every `spacing` at the fac
 orientation, broken every `length`, each piece moved by the native JitterEdges mapper
 (noisy_lines), cut to the face.
 
-Parameters (--param NAME=VALUE; "mm" are millimetres on paper at --scale):
-    spacing_min  0.35 mm     hatch spacing in the darkest faces
-    spacing_max  1.5  mm     hatch spacing in the lightest faces
-    length       3.0  mm     length of a hatch between two jittered break points
-    jitter       1.0  ratio  jitter of the break points (fraction of spacing and length)
-    contrast     1.0  ratio  how much height pushes dark faces darker, light faces lighter
-    slope_min    0.0  %      no fill hatch where the slope is below this (percent; 0: everywhere)
-
-The style is a program of libtex operators (carto/src/styles/noisy.cpp in Python, its
-blocks in _blocks.py): style(fields, params) returns the arrangement drawn in each face.
+The style is a program over the native style blocks (rockhatch.carto.blocks, the
+built-in style's own, carto/src/styles/noisy.cpp) and libtex operators:
+style(fields, params) returns the arrangement drawn in each face.
 
 Run on its own, or through the rockhatch command:
     /usr/bin/python3 styles/noisy.py --dem DEM.tif --partition faces.gpkg -o out.svg
@@ -25,12 +18,14 @@ Run on its own, or through the rockhatch command:
 """
 import sys
 
-from _blocks import fill_params, noisy_lines, per_face, spacing_for
+from rockhatch.carto import params_help
+from rockhatch.carto.blocks import fill_params, noisy_lines, per_face, spacing_for
 
 NAME = "noisy"
 FIGURE = "5.4a"
 TITLE = "noisy hatching: one axis of a jittered grid per face"
 PARAMS = fill_params(3.0, 1.0)
+__doc__ += params_help(PARAMS)
 
 
 def fill(f, p, face):

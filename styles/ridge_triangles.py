@@ -7,18 +7,9 @@ degrees from it is laid over the face; its cells cut by the face are drawn as cl
 shapes when they touch a ridge on which the face is the darker side (the face across is
 lighter: the thesis's must_provide_coulis).
 
-Parameters (--param NAME=VALUE; "mm" are millimetres on paper at --scale):
-    spacing_min    0.35 mm     hatch spacing in the darkest faces
-    spacing_max    1.5  mm     hatch spacing in the lightest faces
-    length         3.0  mm     length of a hatch between two jittered break points
-    jitter         1.0  ratio  jitter of the break points (fraction of spacing and length)
-    contrast       1.0  ratio  how much height pushes dark faces darker, light faces lighter
-    slope_min      0.0  %      no fill hatch where the slope is below this (percent; 0: everywhere)
-    ridge_spacing  3.0  mm     spacing of the triangle grid along the ridges
-    ridge_length   1.5  mm     side of the triangles falling from the ridges
-
-The style is a program of libtex operators (carto/src/styles/ridge_triangles.cpp in Python, its
-blocks in _blocks.py): style(fields, params) returns the arrangement drawn in each face.
+The style is a program over the native style blocks (rockhatch.carto.blocks, the
+built-in style's own, carto/src/styles/ridge_triangles.cpp) and libtex operators:
+style(fields, params) returns the arrangement drawn in each face.
 
 Run on its own, or through the rockhatch command:
     /usr/bin/python3 styles/ridge_triangles.py --dem DEM.tif --partition faces.gpkg -o out.svg
@@ -26,13 +17,15 @@ Run on its own, or through the rockhatch command:
 """
 import sys
 
-from _blocks import TRIANGLES, fill_params, noisy_lines, per_face, ridge_triangles, spacing_for
+from rockhatch.carto import params_help
+from rockhatch.carto.blocks import TRIANGLES, fill_params, noisy_lines, per_face, ridge_triangles, spacing_for
 from rockhatch.tex import Union
 
 NAME = "ridge-triangles"
 FIGURE = "5.4b"
 TITLE = "noisy hatching plus triangles falling from ridges into the darker face"
 PARAMS = fill_params(3.0, 1.0) + TRIANGLES
+__doc__ += params_help(PARAMS)
 
 
 def fill(f, p, face):

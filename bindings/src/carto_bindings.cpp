@@ -479,7 +479,24 @@ CrestResult
             for (const auto& f : d.faces) n += f.hatches.size();
             return n;
         });
-    m.def("validate", &validate, py::arg("options"));
+    py::enum_<PlanFor>(m, "PlanFor").value("RUN", PlanFor::Run).value("DRAWING", PlanFor::Drawing);
+    py::class_<Plan>(m, "Plan",
+                     "The options of a run resolved once: the style, the rock style and their parameters in ground "
+                     "units, the crest band, the outputs")
+        .def_property_readonly("options", [](const Plan& p) { return p.options; })
+        .def_property_readonly("style", [](const Plan& p) { return p.style.info; })
+        .def_property_readonly("rock", [](const Plan& p) { return p.rock; })
+        .def_readonly("rock_params", &Plan::rock_params)
+        .def_readonly("terrain_params", &Plan::terrain_params)
+        .def_readonly("crest_band", &Plan::crest_band, "ground units; None when the run draws no crest ornaments")
+        .def_property_readonly("outputs", [](const Plan& p) {
+            std::vector<std::string> out;
+            for (const auto& o : p.outputs) out.push_back(o.path);
+            return out;
+        });
+    m.def("make_plan", &make_plan, py::arg("options"), py::arg("use") = PlanFor::Run,
+          "the run plan of the options, every option checked (RockhatchError naming the bad one); DRAWING: "
+          "--dem, --partition and -o are not required");
     m.def(
         "prepare", [](const Options& o, const py::object& cb) { return prepare(o, to_progress(cb)); }, py::arg("options"),
         py::arg("progress") = py::none(), py::call_guard<py::gil_scoped_release>());
@@ -490,7 +507,7 @@ CrestResult
     m.def(
         "run", [](const Options& o, const py::object& cb) { return run(o, to_progress(cb)); }, py::arg("options"),
         py::arg("progress") = py::none(), py::call_guard<py::gil_scoped_release>(),
-        "everything the rockhatch command does: validate, prepare, hatch, write");
+        "everything the rockhatch command does: make the plan, prepare, hatch, write");
     m.def(
         "write_gpkg",
         [](const Drawing& d, const std::string& path, bool spatial_index, const py::object& cb) {
@@ -546,7 +563,8 @@ CrestResult
     m.def("check_tiled_rasters", &check_tiled_rasters, py::arg("options"),
           "refuses a --slope or --roughness raster a tile cannot read as the whole run does (another grid in "
           "another CRS than the DEM's working CRS)");
-    m.def("run_tile", &run_tile, py::arg("options"), py::arg("tile"), py::arg("out"),
+    m.def("run_tile", py::overload_cast<const Options&, const tex::BBox&, const std::string&>(&run_tile),
+          py::arg("options"), py::arg("tile"), py::arg("out"),
           py::call_guard<py::gil_scoped_release>(),
           "hatches the faces whose anchor lies in the half-open box `tile` into the GeoPackage `out`");
     m.def(
@@ -667,8 +685,32 @@ CrestResult
         .def_readonly("list_styles", &CommandLine::list_styles)
         .def_readonly("help", &CommandLine::help);
     m.def("parse_command_line", &parse_command_line, py::arg("args"), "the rockhatch option table");
+    py::class_<ProgressBar>(m, "ProgressBar",
+                            "The progress bar of the rockhatch command on standard error; as a progress callback it "
+                            "never cancels")
+        .def(py::init<bool, std::string>(), py::arg("on") = false, py::arg("prefix") = "")
+        .def("__call__", &ProgressBar::operator(), py::arg("fraction"), py::arg("stage"))
+        .def("finish", &ProgressBar::finish, "ends an unfinished bar line");
     m.def("help_text", &help_text);
     m.def("styles_text", &styles_text);
+    m.def(
+        "params_text",
+        [](const py::iterable& params, int indent) {
+            std::vector<StyleParam> ps;
+            for (const py::handle& h : params) {
+                if (py::isinstance<StyleParam>(h)) {
+                    ps.push_back(h.cast<StyleParam>());
+                    continue;
+                }
+                const auto t = h.cast<py::sequence>();
+                ps.push_back({t[0].cast<std::string>(), t[1].cast<double>(), t[2].cast<std::string>(),
+                              t.size() > 3 ? t[3].cast<std::string>() : std::string()});
+            }
+            return params_text(ps, indent);
+        },
+        py::arg("params"), py::arg("indent") = 4,
+        "the parameter lines of --list-styles for a table of StyleParam or (name, default, unit, help) tuples "
+        "(a style script's header is made from its PARAMS)");
 }
 
 }  // namespace rhpy

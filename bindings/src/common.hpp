@@ -77,6 +77,7 @@ void bind_tiled(py::module_& m);
 void bind_fields(py::module_& m);
 void bind_synthesis(py::module_& m);
 void bind_carto(py::module_& m);
+void bind_blocks(py::module_& m);
 void bind_discrete(py::module_& m);
 
 }  // namespace rhpy

@@ -60,4 +60,6 @@ PYBIND11_MODULE(_rockhatch, m) {
     rhpy::bind_synthesis(tex);
     py::module_ carto = m.def_submodule("carto", "carto: rasters, control fields, styles and the rock-hatching pipeline");
     rhpy::bind_carto(carto);
+    py::module_ blocks = carto.def_submodule("blocks", "the building blocks of the rock styles");
+    rhpy::bind_blocks(blocks);
 }

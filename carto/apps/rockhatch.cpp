@@ -21,41 +21,12 @@
 #include "carto/cli.hpp"
 #include "carto/error.hpp"
 #include "carto/pipeline.hpp"
+#include "carto/progress.hpp"
 
 namespace {
 
 using carto::Code;
 using carto::Error;
-
-class ProgressBar {
-public:
-    explicit ProgressBar(bool on) : on_(on) {}
-    // Ends an unfinished bar line, so that a following message starts on its own line.
-    void finish() {
-        if (open_) std::fprintf(stderr, "\n");
-        open_ = false;
-    }
-    bool operator()(double f, const std::string& stage) {
-        if (!on_) return true;
-        open_ = true;
-        const int pct = int(f * 100 + 0.5);
-        if (pct == last_ && stage == stage_) return true;
-        last_ = pct;
-        stage_ = stage;
-        const int filled = pct / 4;
-        std::fprintf(stderr, "\r[%-25s] %3d%% %-24s", std::string(std::size_t(filled), '#').c_str(), pct, stage.c_str());
-        if (pct >= 100) finish();
-        std::fflush(stderr);
-        return true;
-    }
-
-private:
-    bool on_;
-    bool open_ = false;
-    int last_ = -1;
-    std::string stage_;
-};
-
 
 // Runs `python3 -m rockhatch` with the same arguments (the Python module parses them with
 // the same option table; `tiles` is its tiled run). The build's package folder comes first
@@ -88,7 +59,7 @@ int main(int argc, char** argv) {
     if (argc > 1 && std::string(argv[1]) == "partition") return partition_main(argc - 1, argv + 1);
     // A tiled run is Python's (rockhatch.tiles, on Dask distributed): `python3 -m rockhatch tiles ...`.
     if (argc > 1 && std::string(argv[1]) == "tiles") return run_script(argv);
-    ProgressBar bar(false);
+    carto::ProgressBar bar(false);
     try {
         const carto::CommandLine cl = carto::parse_command_line(std::vector<std::string>(argv + 1, argv + argc));
         if (cl.help) {
@@ -103,7 +74,7 @@ int main(int argc, char** argv) {
             carto::check_files(cl.options);  // before Python starts: never write onto an input
             return run_script(argv);
         }
-        bar = ProgressBar(!cl.quiet);
+        bar = carto::ProgressBar(!cl.quiet);
         const carto::Stats s = carto::run(cl.options, [&](double f, const std::string& stage) { return bar(f, stage); });
         if (!cl.quiet)
             for (const auto& n : s.notes) std::fprintf(stderr, "rockhatch: note: %s\n", n.c_str());

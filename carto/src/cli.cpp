@@ -1,6 +1,7 @@
 // The rockhatch option table, its parser and its help text.
 #include "carto/cli.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -135,11 +136,18 @@ std::string styles_text() {
         os << "  " << s.name << (s.terrain ? std::string(" (terrain, around the rock)") : " (Fig. " + s.figure + ")")
            << (s.name == carto::default_style() ? " [default]" : "") << (s.crest_ornament ? " [crest ornaments]" : "")
            << ": " << s.title << "\n";
-        for (const auto& p : s.params) {
-            std::ostringstream v;
-            v << p.value;
-            os << "      " << p.name << " = " << v.str() << " " << p.unit << "  " << p.help << "\n";
-        }
+        os << params_text(s.params);
+    }
+    return os.str();
+}
+
+std::string params_text(const std::vector<StyleParam>& params, int indent) {
+    std::ostringstream os;
+    for (const auto& p : params) {
+        std::ostringstream v;
+        v << p.value;
+        os << std::string(std::size_t(std::max(indent, 0)), ' ') << p.name << " = " << v.str() << " " << p.unit << "  "
+           << p.help << "\n";
     }
     return os.str();
 }

@@ -20,12 +20,6 @@
 namespace carto {
 namespace {
 
-std::string extension(const std::string& path) {
-    std::string e = std::filesystem::path(path).extension().string();
-    for (auto& ch : e) ch = char(std::tolower((unsigned char)ch));
-    return e;
-}
-
 bool tick(const Progress& p, double f, const std::string& stage) {
     if (p && !p(f, stage)) throw Error(Code::Cancelled, "cancelled during " + stage);
     return true;
@@ -41,14 +35,6 @@ Raster load_dem(const std::string& path, std::vector<std::string>* notes) {
     if (notes && !note.empty()) notes->push_back(note);
     return dem;
 }
-
-Style selected_style(const Options& o) {
-    if (o.custom_style) return *o.custom_style;
-    return builtin_style(o.style.empty() ? default_style() : o.style);
-}
-
-// A crest band higher than this is a typo for a scale or a unit (it would cover the faces).
-constexpr double kMaxCrestHeightMm = 50;
 
 // The number of squares of the style's finest length (a "mm" parameter, in ground units)
 // over the faces to hatch: beyond this, a scale or a parameter asks for more geometry than
@@ -74,53 +60,6 @@ void check_workload(const StyleInfo& info, const ParamValues& params, const Part
     throw Error(Code::Usage, m.str());
 }
 
-void validate(const Options& o) {
-    if (!(o.scale > 0) || !std::isfinite(o.scale))
-        throw Error(Code::Usage, "--scale: " + std::to_string(o.scale) + " is not a positive number");
-    resolve_params(selected_style(o).info, o.params, o.scale);
-    if (o.dem.empty()) throw Error(Code::Usage, "--dem is required");
-    if (o.partition.path.empty()) throw Error(Code::Usage, "--partition is required");
-    if (o.outputs.empty()) throw Error(Code::Usage, "-o is required (.gpkg, .svg or .png)");
-    if (!(o.partition.snap > 0)) throw Error(Code::Usage, "--snap must be positive");
-    if (!(o.relief_radius > 0) || !std::isfinite(o.relief_radius))
-        throw Error(Code::Usage, "--relief-radius: " + std::to_string(o.relief_radius) + " is not a positive number");
-    // First: an output onto an input is refused as such, whatever its format.
-    check_files(o);
-    for (const auto& out : o.outputs) {
-        const std::string e = extension(out);
-        if (e != ".gpkg" && e != ".svg" && e != ".png")
-            throw Error(Code::Usage, "-o '" + out + "': unknown format (use .gpkg, .svg or .png)");
-    }
-    if (o.png_pixels < 16 || o.png_pixels > 20000) throw Error(Code::Usage, "--png-size must be in 16..20000");
-    if (o.crest_height_mm) {
-        if (!o.crest_ornament) throw Error(Code::Usage, "--crest-height needs --crest-ornament");
-        if (!(*o.crest_height_mm > 0) || *o.crest_height_mm > kMaxCrestHeightMm) {
-            std::ostringstream m;
-            m << "--crest-height: " << *o.crest_height_mm << " mm is not in (0, " << kMaxCrestHeightMm << "]";
-            throw Error(Code::Usage, m.str());
-        }
-    }
-    // The exemplar is read (and tried) now: a bad one is refused before any work.
-    if (o.crest_ornament) load_crest_exemplar(*o.crest_ornament);
-    if (o.partition.path == "none" && !selected_style(o).terrain)
-        throw Error(Code::Usage, "--partition none: style '" + selected_style(o).info.name +
-                                     "' hatches rock faces and needs a partition (a file or auto)");
-    if (o.threads > kMaxThreads)
-        throw Error(Code::Usage, "--threads: " + std::to_string(o.threads) + " is more than " +
-                                     std::to_string(kMaxThreads));
-}
-
-void check_files(const Options& o) {
-    std::vector<FileArg> outputs;
-    for (const auto& out : o.outputs) outputs.push_back({"-o", out});
-    const std::string partition = o.partition.path == "auto" || o.partition.path == "none" ? "" : o.partition.path;
-    const std::string crest =
-        o.crest_ornament && *o.crest_ornament != kDefaultCrest ? *o.crest_ornament : std::string();
-    check_outputs({{"--dem", o.dem}, {"--partition", partition}, {"--slope", o.slope}, {"--roughness", o.roughness},
-                   {"--script", o.style_file}, {"--crest-ornament", crest}},
-                  outputs, o.overwrite);
-}
-
 void check_roughness(const Raster& r, const std::string& path) {
     for (float v : r.data)
         if (!std::isnan(v) && (v < -1e-6 || v > 1 + 1e-6))
@@ -128,7 +67,8 @@ void check_roughness(const Raster& r, const std::string& path) {
                                             std::to_string(v) + ")");
 }
 
-Prepared prepare(const Options& o, const Progress& progress) {
+Prepared prepare(const Plan& plan, const Progress& progress) {
+    const Options& o = plan.options;
     Prepared p;
     tick(progress, 0.0, "reading the DEM");
     Raster dem = load_dem(o.dem, &p.notes);
@@ -174,15 +114,15 @@ Prepared prepare(const Options& o, const Progress& progress) {
     if (!p.partition.bounds().intersects(dem.bounds()))
         throw Error(Code::NoOverlap, "--partition '" + o.partition.path + "' does not overlap --dem '" + o.dem + "'");
 
-    resolve_face_controls(p, o);
+    resolve_face_controls(p, o.partition.path == "auto");
     return p;
 }
 
-void resolve_face_controls(Prepared& p, const Options& o) {
+void resolve_face_controls(Prepared& p, bool extracted) {
     // Resolve orientation and density of every face (neighbours need them too).
     // An extracted partition's orientations are its faces' mean fall lines (derived, not given).
     p.orientation_derived.clear();
-    for (const auto& f : p.partition.faces) p.orientation_derived.push_back(o.partition.path == "auto" || !f.orientation);
+    for (const auto& f : p.partition.faces) p.orientation_derived.push_back(extracted || !f.orientation);
     const auto [derived_o, derived_d] = derive_face_controls(p.partition, p.terrain);
     if (derived_o)
         p.notes.push_back("orientation of " + std::to_string(derived_o) + " face(s) derived from the terrain (mean fall line)");
@@ -190,57 +130,27 @@ void resolve_face_controls(Prepared& p, const Options& o) {
         p.notes.push_back("density of " + std::to_string(derived_d) + " face(s) derived from the terrain (1 - mean hillshade)");
 }
 
-std::optional<double> crest_band(const Options& o) {
-    const StyleInfo& info = selected_style(o).info;
-    if (!o.crest_ornament && !info.crest_ornament) return std::nullopt;
-    if (o.crest_height_mm) return *o.crest_height_mm * o.scale / 1000;
-    if (info.crest_ornament) return resolve_params(info, o.params, o.scale).at("crest_band");
-    return kDefaultCrestHeightMm * o.scale / 1000;
-}
-
-Drawing hatch(const Prepared& p, const Options& o, const Progress& progress) {
+Drawing hatch(const Prepared& p, const Plan& plan, const Progress& progress) {
+    const std::optional<tex::BBox>& window = plan.options.window;
     std::vector<int> selected;
     for (std::size_t i = 0; i < p.partition.faces.size(); ++i)
         // Half-open window: a face whose anchor lies on the shared border of two windows goes
         // to one of them (the rule a tiled run uses, carto/tiles.hpp).
-        if (!o.window || owns(*o.window, face_anchor(p.partition.faces[i]))) selected.push_back(int(i));
-    return hatch(p, o, selected, progress);
+        if (!window || owns(*window, face_anchor(p.partition.faces[i]))) selected.push_back(int(i));
+    return hatch(p, plan, selected, progress);
 }
 
-std::optional<tex::BBox> terrain_read_area(const Options& o, const tex::BBox& dem_extent, double cell) {
-    const Style style = selected_style(o);
-    if (!style.terrain || !o.window) return std::nullopt;
-    const tex::BBox w = o.window->intersection(dem_extent);
+std::optional<tex::BBox> terrain_read_area(const Plan& plan, const tex::BBox& dem_extent, double cell) {
+    const std::optional<tex::BBox>& window = plan.options.window;
+    if (!plan.terrain_style() || !window) return std::nullopt;
+    const tex::BBox w = window->intersection(dem_extent);
     if (!(w.xmin <= w.xmax && w.ymin <= w.ymax)) return tex::BBox{};
-    return w.expanded(style.terrain_reach(resolve_params(style.info, o.params, o.scale), cell));
+    return w.expanded(plan.style.terrain_reach(plan.terrain_params, cell));
 }
 
-Drawing hatch(const Prepared& p, const Options& o, const std::vector<int>& chosen, const Progress& progress) {
-    const Style style = selected_style(o);
-    // A terrain style's parameters are its own; its faces are hatched with the default
-    // rock style at its default values.
-    const ParamValues params = resolve_params(style.terrain ? find_style(default_style()) : style.info,
-                                              style.terrain ? std::map<std::string, double>{} : o.params, o.scale);
+ControlFields control_fields(const Prepared& p, const Plan& plan) {
     const Partition& part = p.partition;
-    // A terrain style in a window also reads the hatches of the faces around it (drawn after
-    // the chosen ones, and dropped once the terrain is drawn).
-    std::vector<int> selected = chosen;
-    const Raster& elevation = p.terrain.elevation;
-    if (const auto around = terrain_read_area(o, p.extent.empty() ? elevation.bounds() : p.extent,
-                                              std::max(elevation.cell_x(), elevation.cell_y()))) {
-        std::vector<char> taken(part.faces.size(), 0);
-        for (int i : chosen) taken[std::size_t(i)] = 1;
-        for (std::size_t i = 0; i < part.faces.size(); ++i)
-            if (!taken[i] && !around->empty() && part.faces[i].region.bbox().intersects(*around)) selected.push_back(int(i));
-    }
-    check_workload(style.terrain ? find_style(default_style()) : style.info, params, part, selected, o.scale);
-    Drawing d;
-    d.crs_wkt = part.crs_wkt;
-    d.style = style.info.name;
-    d.scale = o.scale;
-    d.faces.resize(selected.size());
-    // The control fields (seed 5.3): face-wise orientation and density, the relief of the
-    // elevation in its neighbourhood, roughness and slope.
+    // Face-wise orientation and density (resolved for every face by prepare).
     std::vector<double> orient, dens;
     for (const auto& f : part.faces) {
         orient.push_back(*f.orientation);
@@ -250,16 +160,40 @@ Drawing hatch(const Prepared& p, const Options& o, const std::vector<int>& chose
     std::vector<double> follows;
     for (std::size_t i = 0; i < part.faces.size(); ++i)
         follows.push_back(i < p.orientation_derived.size() && p.orientation_derived[i] ? 1.0 : NAN);
-    const double smoothing = kFieldSmoothingMm * o.scale / 1000.0;
-    const Field fall_line = tex::Combine(face_field(part, std::move(follows)), fall_line_field(p.terrain, smoothing),
-                                         [](double, double angle) { return angle; });
-    const ControlFields fields{face_field(part, std::move(orient)),
-                               face_field(part, std::move(dens)),
-                               raster_field(p.relief),
-                               raster_field(p.terrain.roughness),
-                               raster_field(p.terrain.slope),
-                               fall_line,
-                               shade_field(p.terrain, smoothing)};
+    const Field fall_line =
+        tex::Combine(face_field(part, std::move(follows)), fall_line_field(p.terrain, plan.field_smoothing),
+                     [](double, double angle) { return angle; });
+    return ControlFields{face_field(part, std::move(orient)),
+                         face_field(part, std::move(dens)),
+                         raster_field(p.relief),
+                         raster_field(p.terrain.roughness),
+                         raster_field(p.terrain.slope),
+                         fall_line,
+                         shade_field(p.terrain, plan.field_smoothing)};
+}
+
+Drawing hatch(const Prepared& p, const Plan& plan, const std::vector<int>& chosen, const Progress& progress) {
+    const Options& o = plan.options;
+    const Style& style = plan.style;
+    const Partition& part = p.partition;
+    // A terrain style in a window also reads the hatches of the faces around it (drawn after
+    // the chosen ones, and dropped once the terrain is drawn).
+    std::vector<int> selected = chosen;
+    const Raster& elevation = p.terrain.elevation;
+    if (const auto around = terrain_read_area(plan, p.extent.empty() ? elevation.bounds() : p.extent,
+                                              std::max(elevation.cell_x(), elevation.cell_y()))) {
+        std::vector<char> taken(part.faces.size(), 0);
+        for (int i : chosen) taken[std::size_t(i)] = 1;
+        for (std::size_t i = 0; i < part.faces.size(); ++i)
+            if (!taken[i] && !around->empty() && part.faces[i].region.bbox().intersects(*around)) selected.push_back(int(i));
+    }
+    check_workload(plan.rock, plan.rock_params, part, selected, o.scale);
+    Drawing d;
+    d.crs_wkt = part.crs_wkt;
+    d.style = style.info.name;
+    d.scale = o.scale;
+    d.faces.resize(selected.size());
+    const ControlFields fields = control_fields(p, plan);
     // The run's thread count, on this thread only: the process's (tex::SetThreads) is left
     // as it was, and the next call does not inherit this one's.
     const tex::ThreadsScope threads(o.threads);
@@ -267,7 +201,7 @@ Drawing hatch(const Prepared& p, const Options& o, const std::vector<int>& chose
         // A style script may call SetSeed (the faces draw from o.seed, see hatch_face): the
         // process's seed and stream numbering come back after it.
         const tex::SavedSeed saved;
-        return style.program(fields, params);
+        return style.program(fields, plan.rock_params);
     }();
     std::atomic<std::size_t> done{0};
     std::atomic<bool> cancelled{false};
@@ -297,10 +231,9 @@ Drawing hatch(const Prepared& p, const Options& o, const std::vector<int>& chose
     }
     if (cancelled) throw Error(Code::Cancelled, "cancelled during hatching");
     for (std::size_t k = 0; k < chosen.size(); ++k) d.bounds.add(part.faces[chosen[k]].region.bbox());
-    if (const std::optional<double> band = crest_band(o)) {
+    if (plan.crest_band) {
         tick(progress, 0.9, "crest ornaments");
-        CrestResult crests = draw_crests(part, load_crest_exemplar(o.crest_ornament.value_or(kDefaultCrest)), *band,
-                                         o.seed, o.window);
+        CrestResult crests = draw_crests(part, *plan.crest_exemplar, *plan.crest_band, o.seed, o.window);
         for (const auto& c : crests.ornaments)
             for (const auto& ring : c.rings)
                 for (const Point& q : ring) d.bounds.add(q);
@@ -312,10 +245,9 @@ Drawing hatch(const Prepared& p, const Options& o, const std::vector<int>& chose
         std::vector<Hatch> rock;
         for (const auto& f : d.faces) rock.insert(rock.end(), f.hatches.begin(), f.hatches.end());
         d.faces.resize(chosen.size());  // the faces read around the window are not drawn
-        const ParamValues own = resolve_params(style.info, o.params, o.scale);
         try {
-            d.faces.push_back(
-                {kTerrainFaceId, style.terrain({p.terrain, part, rock, o.scale, o.seed, o.window}, own)});
+            d.faces.push_back({kTerrainFaceId,
+                               style.terrain({p.terrain, part, rock, o.scale, o.seed, o.window}, plan.terrain_params)});
         } catch (const Error&) {
             throw;
         } catch (const std::exception& e) {
@@ -334,24 +266,27 @@ Drawing hatch(const Prepared& p, const Options& o, const std::vector<int>& chose
     return d;
 }
 
-Stats run(const Options& o, const Progress& progress) {
-    const auto t0 = std::chrono::steady_clock::now();
-    validate(o);
-    // The run's thread count for every step (reading, hatching, writing), on this thread
-    // only: the process's is left as it was.
-    const tex::ThreadsScope threads(o.threads);
-    Prepared p = prepare(o, progress);
-    Drawing d = hatch(p, o, progress);
+void write_outputs(const Drawing& d, const Prepared& p, const Plan& plan, const Progress& progress) {
     tick(progress, 0.92, "writing");
-    for (const auto& out : o.outputs) {
-        const std::string e = extension(out);
-        if (e == ".gpkg")
-            write_gpkg(d, out, o.spatial_index,
-                       [&](double f) { return !progress || progress(0.92 + 0.07 * f, "writing"); });
-        else if (e == ".svg") write_svg(d, out);
-        else write_png(d, out, o.png_pixels, &p.terrain.hillshade);
-    }
+    for (const Output& out : plan.outputs) switch (out.format) {
+            case OutputFormat::GeoPackage:
+                write_gpkg(d, out.path, plan.options.spatial_index,
+                           [&](double f) { return !progress || progress(0.92 + 0.07 * f, "writing"); });
+                break;
+            case OutputFormat::Svg: write_svg(d, out.path); break;
+            case OutputFormat::Png: write_png(d, out.path, plan.options.png_pixels, &p.terrain.hillshade); break;
+        }
     tick(progress, 1.0, "done");
+}
+
+Stats run(const Plan& plan, const Progress& progress) {
+    const auto t0 = std::chrono::steady_clock::now();
+    // The run's thread count for every stage (reading, hatching, writing), on this thread
+    // only: the process's is left as it was.
+    const tex::ThreadsScope threads(plan.options.threads);
+    const Prepared p = prepare(plan, progress);
+    const Drawing d = hatch(p, plan, progress);
+    write_outputs(d, p, plan, progress);
     Stats s;
     s.faces = std::size_t(std::count_if(d.faces.begin(), d.faces.end(),
                                         [](const FaceHatches& f) { return f.face_id != kTerrainFaceId; }));
@@ -360,6 +295,21 @@ Stats run(const Options& o, const Progress& progress) {
     s.crs = crs_name(d.crs_wkt);
     s.notes = p.notes;
     s.notes.insert(s.notes.end(), d.notes.begin(), d.notes.end());
+    s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return s;
+}
+
+Prepared prepare(const Options& o, const Progress& progress) {
+    return prepare(make_plan(o, PlanFor::Drawing), progress);
+}
+
+Drawing hatch(const Prepared& p, const Options& o, const Progress& progress) {
+    return hatch(p, make_plan(o, PlanFor::Drawing), progress);
+}
+
+Stats run(const Options& o, const Progress& progress) {
+    const auto t0 = std::chrono::steady_clock::now();
+    Stats s = run(make_plan(o), progress);
     s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return s;
 }

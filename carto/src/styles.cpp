@@ -9,7 +9,7 @@
 
 #include "carto/error.hpp"
 #include "libtex/random.hpp"
-#include "styles/blocks.hpp"
+#include "styles/builtins.hpp"
 #include "styles/terrain.hpp"
 
 namespace carto {

@@ -81,36 +81,40 @@ std::vector<tex::BBox> tile_grid(const RasterInfo& dem, double size) {
     return tiles;
 }
 
-double tile_context_margin(const Options& o, double cell) {
-    // The style that hatches the faces: a terrain style hatches them with the default rock
-    // style at its defaults (carto::hatch).
-    const Style style = selected_style(o);
-    const StyleInfo& info = style.terrain ? find_style(default_style()) : style.info;
-    const ParamValues params = resolve_params(info, style.terrain ? std::map<std::string, double>{} : o.params, o.scale);
+double tile_context_margin(const Plan& plan, double cell) {
+    // The style that hatches the faces (a terrain style hatches them with the default rock
+    // style at its defaults, Plan::rock).
     double longest = 0;
-    for (const auto& sp : info.params)
-        if (sp.unit == "mm") longest = std::max(longest, params.at(sp.name));
-    return kReachLengths * longest + kKernelCells * cell + 4 * o.partition.snap;
+    for (const auto& sp : plan.rock.params)
+        if (sp.unit == "mm") longest = std::max(longest, plan.rock_params.at(sp.name));
+    return kReachLengths * longest + kKernelCells * cell + 4 * plan.options.partition.snap;
 }
 
-int tile_halo_cells(const Options& o, double cell) {
+int tile_halo_cells(const Plan& plan, double cell) {
     // The relief window, or the style's reach when longer (its smoothed fields, such as the
     // fall line and the shade, average over a paper length shorter than that reach).
-    return int(std::ceil(std::max(o.relief_radius, tile_context_margin(o, cell)) / cell)) + kKernelCells;
+    return int(std::ceil(std::max(plan.options.relief_radius, tile_context_margin(plan, cell)) / cell)) + kKernelCells;
 }
 
 TileReport run_tile(const Options& o, const tex::BBox& tile, const std::string& out) {
+    // The tile file is one more output: never an input, never an existing file unless asked.
+    Options checked = o;
+    checked.outputs.push_back(out);
+    Plan plan = make_plan(checked);
+    plan.outputs.pop_back();
+    plan.options.outputs.pop_back();
+    return run_tile(plan, tile, out);
+}
+
+TileReport run_tile(const Plan& plan, const tex::BBox& tile, const std::string& out) {
     const auto t0 = std::chrono::steady_clock::now();
+    const Options& o = plan.options;
     TileReport report;
     if (o.partition.path == "auto")
         // A tiled run extracts the partition tile by tile first (extract_tile, rockhatch.tiles)
         // and hands its hatching tiles the merged file.
         throw Error(Code::Usage, "--partition auto: a hatching tile reads a partition file; rockhatch tiles extracts "
                                  "the partition tile by tile first (carto::extract_tile) and passes the merged file");
-    // The tile file is one more output: never an input, never an existing file unless asked.
-    Options checked = o;
-    checked.outputs.push_back(out);
-    validate(checked);
     // The grid the whole run works on (a geographic DEM's UTM grid), read window by window.
     const WorkingGrid grid = working_grid(raster_info(o.dem, "--dem"));
     const RasterInfo& dem_info = grid.grid;
@@ -128,14 +132,13 @@ TileReport run_tile(const Options& o, const tex::BBox& tile, const std::string& 
     };
     // The crest ornaments of the ridge lines whose anchor (a point on the line) lies in the
     // tile: the window of the tile's hatching, so the ridges and their neighbours are read.
-    const std::optional<double> band = crest_band(o);
-    Options tile_options = o;
-    tile_options.window = tile;
-    if (o.window)
-        tile_options.window = tile.intersection(*o.window);
+    const std::optional<double>& band = plan.crest_band;
+    Plan tile_plan = plan;
+    tile_plan.options.window = o.window ? tile.intersection(*o.window) : tile;
+    const tex::BBox& tile_window = *tile_plan.options.window;
     // A terrain style draws the elements the tile owns, reading the DEM and the faces (their
     // hatches) within its reach of the tile's part of the DEM.
-    const std::optional<tex::BBox> terrain = terrain_read_area(tile_options, dem_info.bounds(), cell);
+    const std::optional<tex::BBox> terrain = terrain_read_area(tile_plan, dem_info.bounds(), cell);
     if (terrain && !terrain->empty()) {
         po.filter = tex::BBox{std::min(tile.xmin, terrain->xmin), std::min(tile.ymin, terrain->ymin),
                               std::max(tile.xmax, terrain->xmax), std::max(tile.ymax, terrain->ymax)};
@@ -151,17 +154,17 @@ TileReport run_tile(const Options& o, const tex::BBox& tile, const std::string& 
     const Partition around = read_faces(po);
     for (const RockFace& f : around.faces)
         if (mine(f) || (terrain && f.region.bbox().intersects(*terrain))) reach.add(f.region.bbox());
-    double margin = tile_context_margin(o, cell);
+    double margin = tile_context_margin(plan, cell);
     if (band) {
         for (const LabelledLine& l : around.lines)
-            if (l.kind == LineKind::Ridge && owns(*tile_options.window, ridge_anchor(l.points)))
+            if (l.kind == LineKind::Ridge && owns(tile_window, ridge_anchor(l.points)))
                 for (const Point& q : l.points) reach.add(q);
         margin = std::max(margin, crest_context(*band));
     }
 
     Drawing d;
     d.crs_wkt = dem_info.crs_wkt;
-    d.style = selected_style(o).info.name;
+    d.style = plan.style.info.name;
     d.scale = o.scale;
     if (!reach.empty()) {
         // 2. Their neighbourhood: every face a style may read across an owned face's border.
@@ -174,7 +177,7 @@ TileReport run_tile(const Options& o, const tex::BBox& tile, const std::string& 
         // window and the terrain kernels see the same cells as in the whole raster.
         tex::BBox area = p.partition.bounds();
         if (terrain) area.add(*terrain);
-        const int halo = tile_halo_cells(o, cell);
+        const int halo = tile_halo_cells(plan, cell);
         Raster dem = read_working_window(o.dem, "--dem", grid, area, halo);
         report.dem_cells = (long long)dem.width * dem.height;
         p.terrain = compute_terrain(dem);
@@ -184,12 +187,12 @@ TileReport run_tile(const Options& o, const tex::BBox& tile, const std::string& 
             check_roughness(p.terrain.roughness, o.roughness);
         }
         p.relief = local_relief(dem, o.relief_radius);
-        resolve_face_controls(p, o);
+        resolve_face_controls(p, false);
         std::vector<int> owned;
         for (std::size_t i = 0; i < p.partition.faces.size(); ++i)
             if (mine(p.partition.faces[i])) owned.push_back(int(i));
         report.context_faces = p.partition.faces.size();
-        d = hatch(p, tile_options, owned);
+        d = hatch(p, tile_plan, owned);
     }
     report.faces = std::size_t(std::count_if(d.faces.begin(), d.faces.end(),
                                              [](const FaceHatches& f) { return f.face_id != kTerrainFaceId; }));

@@ -15,7 +15,6 @@
 #include "carto/tiles.hpp"
 #include "libtex/random.hpp"
 
-#include "sanitized.hpp"
 #include "scratch.hpp"
 
 using namespace carto;
@@ -166,10 +165,11 @@ TEST(Tiles, ATileReadsOnlyTheDemNearItsFaces) {
     const auto tiles = tile_grid(info, 800);
     const RasterInfo grid = working_grid(info).grid;
     const double cell = std::min(std::abs(grid.gt[1]), std::abs(grid.gt[5]));
-    const double margin = tile_context_margin(o, cell);
-    const int halo = tile_halo_cells(o, cell);
+    const Plan plan = make_plan(o, PlanFor::Drawing);
+    const double margin = tile_context_margin(plan, cell);
+    const int halo = tile_halo_cells(plan, cell);
     EXPECT_EQ(halo, 29);
-    ASSERT_FALSE(crest_band(o));  // no crest ornaments: the context is the faces' margin alone
+    ASSERT_FALSE(plan.crest_band);  // no crest ornaments: the context is the faces' margin alone
     const Partition whole = load_partition(o.partition, grid.crs_wkt);
     const double snap = o.partition.snap;
     // The cells under the whole partition with the same halo: what a tile that read every
@@ -302,9 +302,6 @@ TEST(Tiles, TerrainStylesTiledAreTheWholeRunBitForBit) {
     write_long_slope(dir / "slope.tif", dir / "faces.gpkg");
     std::vector<std::pair<std::string, std::map<std::string, double>>> cases{{"scree", {}},
                                                                             {"slope-hachures", {{"interval", 5}}}};
-    // Under the sanitizers (RH_SANITIZED=1) the scree only (the hachures' windows are checked
-    // there by TerrainStyles.WindowsTogetherDrawTheWholeRunsElements).
-    if (rh_test::sanitized()) cases.pop_back();
     for (const auto& [style, params] : cases) {
         Options o;
         o.dem = dir / "slope.tif";

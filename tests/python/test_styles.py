@@ -40,11 +40,29 @@ def test_header_and_parameters_match_the_builtin(name):
     assert module.NAME == name and module.FIGURE == builtin.figure
     assert getattr(module, "CREST_ORNAMENT", False) == builtin.crest_ornament
     assert [(p[0], p[1], p[2]) for p in module.PARAMS] == [(p.name, p.value, p.unit) for p in builtin.params]
+    # The header's parameter lines are made from PARAMS, as --list-styles prints them.
     header = module.__doc__
     for pname, value, unit, _ in module.PARAMS:
-        line = re.search(rf"^\s+{pname}\s+(\S+)\s+(\S+)\s", header, re.M)
+        line = re.search(rf"^\s+{pname} = (\S+) (\S+)\s", header, re.M)
         assert line, f"{name}: the header does not list {pname}"
         assert float(line.group(1)) == value and line.group(2) == unit, f"{name}: header of {pname}"
+
+
+def test_the_blocks_are_the_builtins_own():
+    # The scripts compose native blocks: no block is written in Python, and the parameter
+    # tables are the C++ ones.
+    from rockhatch.carto import blocks
+    assert not list(STYLES.glob("_*.py"))
+    assert type(blocks.toned_hatching).__name__ == "builtin_function_or_method"
+    print_params = carto.find_style("print").params
+    tables = blocks.TONE + blocks.TONE_CELLS + blocks.BALANCED + blocks.CREST + blocks.CROSS
+    assert [(p.name, p.value, p.unit, p.help) for p in print_params] == tables
+    face = blocks.FaceReading()
+    assert (face.theta, face.density, face.height) == (0.0, 0.5, 0.5)
+    # The print style's check of its tone parameters is the built-in's: a usage error.
+    with pytest.raises(carto.RockhatchError, match="tone_min=0.5 is above tone_max=0.1") as e:
+        blocks.check_tone({"tone_min": 0.5, "tone_max": 0.1, "ink_max": 0.4, "gap": 0.95})
+    assert e.value.code == 2
 
 
 def run(args, **kw):

@@ -20,10 +20,20 @@ from ._rockhatch import RockhatchError
 from ._rockhatch.carto import *  # noqa: F401,F403
 from ._rockhatch import carto as _carto
 from ._rockhatch import tex as _tex
+from ._rockhatch.carto import blocks  # noqa: F401  (the style blocks, also as rockhatch.carto.blocks)
+
+sys.modules[__name__ + ".blocks"] = blocks
 
 __all__ = [n for n in dir(_carto) if not n.startswith("_")] + [
     "run", "run_options", "prepare", "hatch", "make_options", "load_style", "as_style", "error", "partition_from_dem",
-    "style_file"]
+    "style_file", "params_help"]
+
+
+def params_help(params):
+    """The parameter section of a style script's header, made from its PARAMS (the lines
+    `rockhatch --list-styles` prints)."""
+    return ('\nParameters (--param NAME=VALUE; "mm" are millimetres on paper at --scale):\n' +
+            params_text(params))  # noqa: F405
 
 
 def error(code, message):
@@ -37,8 +47,8 @@ def load_style(path):
     """Loads a style script: a Python file defining NAME, PARAMS and style(fields, params),
     which returns the tex.Arrangement drawn in each face (evaluated on the face's labelled
     region; the pipeline sets the seed and random streams around it). Its folder is on
-    sys.path while it loads, so a script may import shared blocks (styles/_blocks.py) or
-    another script."""
+    sys.path while it loads, so a script may import another script; the shared blocks
+    are native (rockhatch.carto.blocks)."""
     if not os.path.isfile(path):
         raise error(3, f"--script '{path}': no such file")
     name = "rockhatch_style_" + os.path.splitext(os.path.basename(path))[0].replace("-", "_")

@@ -8,28 +8,6 @@ from . import carto
 from ._rockhatch import RockhatchError, TexError
 
 
-class _Bar:
-    def __init__(self, on):
-        self.on, self.last, self.open = on, None, False
-
-    def __call__(self, fraction, stage):
-        if self.on:
-            pct = int(fraction * 100 + 0.5)
-            if (pct, stage) != self.last:
-                self.last = (pct, stage)
-                sys.stderr.write("\r[%-25s] %3d%% %-24s" % ("#" * (pct // 4), pct, stage))
-                self.open = pct < 100
-                if pct >= 100:
-                    sys.stderr.write("\n")
-                sys.stderr.flush()
-        return True
-
-    def finish(self):
-        if self.open:
-            sys.stderr.write("\n")
-            self.open = False
-
-
 def fail(error, bar, prog="rockhatch"):
     """Ends the progress bar, writes the error on one line, returns its exit code."""
     bar.finish()
@@ -41,7 +19,7 @@ def main(argv=None, style=None):
     """Runs the command; returns its exit code. style: a script module to use instead of
     --script (a style script run on its own passes itself)."""
     argv = sys.argv[1:] if argv is None else list(argv)
-    bar = _Bar(False)
+    bar = carto.ProgressBar(False)
     try:
         cl = carto.parse_command_line(argv)
         if cl.help:
@@ -58,7 +36,7 @@ def main(argv=None, style=None):
             options.style_file = carto.style_file(chosen)
             carto.check_files(options)  # before the script runs: never write onto an input
             options.custom_style = carto.as_style(chosen) if not isinstance(chosen, str) else carto.load_style(chosen)
-        bar = _Bar(not cl.quiet)
+        bar = carto.ProgressBar(not cl.quiet)
         stats = carto.run_options(options, bar)
         bar.finish()
         if not cl.quiet:

@@ -244,7 +244,7 @@ def run_args(argv, progress=None):
         options.style_file = cl.script
         carto.check_files(options)
         options.custom_style = carto.load_style(cl.script)
-    carto.validate(options)
+    carto.make_plan(options)
     carto.check_tiled_rasters(options)
     auto = options.partition.path == "auto"
     if extract and not auto:
@@ -628,14 +628,14 @@ def help_text():
 
 def main(argv=None):
     """`rockhatch tiles`: returns the exit code."""
-    from .cli import _Bar, fail
+    from .cli import fail
 
     argv = sys.argv[1:] if argv is None else list(argv)
     if not argv or "--help" in argv or "-h" in argv:
         sys.stdout.write(help_text())
         return 0
     quiet = "-q" in argv
-    bar = _Bar(not quiet)
+    bar = carto.ProgressBar(not quiet)
     # A terminate request (QGIS's Cancel, a job scheduler) stops the run in order: the local
     # cluster is closed, so no worker goes on computing, or writing a tile, after the command
     # has exited. Only the command's own process is affected; run() installs nothing.

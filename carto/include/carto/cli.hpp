@@ -6,7 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "carto/pipeline.hpp"
+#include "carto/plan.hpp"
+#include "carto/styles.hpp"
 
 namespace carto {
 
@@ -26,5 +27,8 @@ std::string help_text();
 // A command-line number: the whole of `v`, finite; else Error(Usage) "OPT: 'V' is not a number".
 double parse_double(const std::string& opt, const std::string& v);
 std::string styles_text();
+// One line per parameter, as --list-styles prints them: "name = default unit  help", each
+// line indented by `indent` spaces (the style scripts' headers are made from it).
+std::string params_text(const std::vector<StyleParam>& params, int indent = 6);
 
 }  // namespace carto

@@ -36,7 +36,7 @@
 #include <vector>
 
 #include "carto/partition.hpp"
-#include "carto/pipeline.hpp"
+#include "carto/progress.hpp"
 #include "carto/raster.hpp"
 #include "carto/terrain.hpp"
 

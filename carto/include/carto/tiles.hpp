@@ -40,8 +40,8 @@ std::vector<tex::BBox> tile_grid(const RasterInfo& dem, double size);
 
 // The margin (ground units) around the owned faces within which neighbouring faces are
 // read, and the halo (DEM cells) around them: both from the options and the DEM's cell.
-double tile_context_margin(const Options& o, double cell);
-int tile_halo_cells(const Options& o, double cell);
+double tile_context_margin(const Plan& plan, double cell);
+int tile_halo_cells(const Plan& plan, double cell);
 
 // Refuses (Error Usage) a --slope or --roughness raster a tile cannot read as the whole run
 // does: one on another grid than the DEM's and in another CRS than the one the DEM is worked
@@ -54,6 +54,8 @@ void check_tiled_rasters(const Options& o);
 // o.outputs are the final outputs of the run (checked against the inputs); `out` must not
 // exist unless o.overwrite. --slope and --roughness rasters as check_tiled_rasters. Errors as
 // carto::run.
+TileReport run_tile(const Plan& plan, const tex::BBox& tile, const std::string& out);
+// The same from the options: their plan, with the tile file checked as one more output.
 TileReport run_tile(const Options& o, const tex::BBox& tile, const std::string& out);
 
 // ---- `--partition auto`: the partition extracted tile by tile (docs/tiles-partition.md) ----

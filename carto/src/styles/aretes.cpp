@@ -1,7 +1,7 @@
 // Aretes: the noisy fill of (a), with no ridge emphasis of its own, and every ridge line
 // drawn as a crest ornament (issue 14): the style-table form of --crest-ornament, for sharp
 // aretes on a schematic or tourist map.
-#include "blocks.hpp"
+#include "builtins.hpp"
 
 namespace carto::blocks {
 

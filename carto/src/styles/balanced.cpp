@@ -1,5 +1,5 @@
 // (e) Balanced density: the relief acts linearly, hatches are broken into strokes.
-#include "blocks.hpp"
+#include "builtins.hpp"
 
 namespace carto::blocks {
 

@@ -1,5 +1,5 @@
 // (g) Bidirectional hatching: (f) plus cross hatches where the terrain is rough.
-#include "blocks.hpp"
+#include "builtins.hpp"
 
 namespace carto::blocks {
 

@@ -1,7 +1,8 @@
-#include "blocks.hpp"
+#include "carto/blocks.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "carto/error.hpp"
 
@@ -242,6 +243,23 @@ Arrangement crest_strokes(const ControlFields& f, const ParamValues& p, const Fa
         return MapAlong(Smoothed(ToCurve(e), p.at("crest_smoothing")), spacing, hang);
     };
     return MapToEdges(strokes, Outline());
+}
+
+void check_tone(const ParamValues& p) {
+    auto bad = [](const std::string& what) { throw Error(Code::Usage, "style 'print': " + what); };
+    std::ostringstream m;
+    if (p.at("tone_min") > p.at("tone_max")) {
+        m << "--param tone_min=" << p.at("tone_min") << " is above tone_max=" << p.at("tone_max");
+        bad(m.str());
+    }
+    if (p.at("ink_max") <= 0 || p.at("ink_max") > 1) {
+        m << "--param ink_max=" << p.at("ink_max") << " is not a coverage in (0, 1]";
+        bad(m.str());
+    }
+    if (p.at("gap") <= 0 || p.at("gap") > 1) {
+        m << "--param gap=" << p.at("gap") << " is not a fraction in (0, 1]";
+        bad(m.str());
+    }
 }
 
 double tone_coverage(const ParamValues& p, double shade) {

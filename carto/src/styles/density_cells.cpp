@@ -1,6 +1,6 @@
 // (c) Density varying inside faces: coarse jittered cells, each hatched with the relief at
 // its centre; the ridge triangles of (b).
-#include "blocks.hpp"
+#include "builtins.hpp"
 
 namespace carto::blocks {
 

@@ -1,5 +1,5 @@
 // (d) Finer, sparser ridge shapes filled with sub-scale hatching, over the cells of (c).
-#include "blocks.hpp"
+#include "builtins.hpp"
 
 namespace carto::blocks {
 

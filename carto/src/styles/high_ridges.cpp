@@ -1,5 +1,5 @@
 // (f) Ridge shapes enhanced on higher ground; the valleys drawn.
-#include "blocks.hpp"
+#include "builtins.hpp"
 
 namespace carto::blocks {
 

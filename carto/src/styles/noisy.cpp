@@ -1,6 +1,6 @@
 // (a) Noisy hatching: one axis of a jittered grid per face, its spacing from the face's
 // density and relief.
-#include "blocks.hpp"
+#include "builtins.hpp"
 
 namespace carto::blocks {
 

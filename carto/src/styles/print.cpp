@@ -2,34 +2,9 @@
 // under a ceiling, strokes follow the fall line, crests are drawn as a smooth line with
 // strokes falling from it on its dark side. The face is drawn in two steps: the crests and
 // valleys first, then the fill and cross hatching in the ink they leave under the ceiling.
-#include <sstream>
-
-#include "blocks.hpp"
-#include "carto/error.hpp"
+#include "builtins.hpp"
 
 namespace carto::blocks {
-
-namespace {
-
-// The tone parameters must describe a curve under its ceiling.
-void check_tone(const ParamValues& p) {
-    auto bad = [](const std::string& what) { throw Error(Code::Usage, "style 'print': " + what); };
-    std::ostringstream m;
-    if (p.at("tone_min") > p.at("tone_max")) {
-        m << "--param tone_min=" << p.at("tone_min") << " is above tone_max=" << p.at("tone_max");
-        bad(m.str());
-    }
-    if (p.at("ink_max") <= 0 || p.at("ink_max") > 1) {
-        m << "--param ink_max=" << p.at("ink_max") << " is not a coverage in (0, 1]";
-        bad(m.str());
-    }
-    if (p.at("gap") <= 0 || p.at("gap") > 1) {
-        m << "--param gap=" << p.at("gap") << " is not a fraction in (0, 1]";
-        bad(m.str());
-    }
-}
-
-}  // namespace
 
 Builtin print() {
     Builtin b;

@@ -1,5 +1,5 @@
 // (b) Noisy hatching plus triangles falling from the ridges into the darker face.
-#include "blocks.hpp"
+#include "builtins.hpp"
 
 namespace carto::blocks {
 

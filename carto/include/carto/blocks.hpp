@@ -1,5 +1,7 @@
-// Building blocks shared by the style programs: controlled mappers and arrangements in the
-// thesis's idiom (App. E), each a small composition of libtex operators.
+// Building blocks of the rock styles: controlled mappers and arrangements in the thesis's
+// idiom (App. E), each a small composition of libtex operators. The built-in styles
+// (carto/src/styles/*.cpp) and the Python style scripts (styles/*.py, through
+// rockhatch.carto.blocks) are programs over these blocks.
 #pragma once
 
 #include <string>
@@ -76,6 +78,9 @@ Arrangement crest_lines(const ParamValues& p);
 // lit side gets none (Swiss-style: dark sides denser).
 Arrangement crest_strokes(const ControlFields& f, const ParamValues& p, const FaceReading& face,
                           const tex::Region& region);
+// Throws a usage error naming the style `print` unless the tone parameters describe a curve
+// under its ceiling (tone_min <= tone_max, ink_max and gap in (0, 1]).
+void check_tone(const ParamValues& p);
 // The tone curve: ink coverage (stroke area over area) for a shade in 0..1,
 // tone_min + (tone_max - tone_min) x shade^tone_gamma.
 double tone_coverage(const ParamValues& p, double shade);
@@ -99,24 +104,5 @@ Arrangement cross_hatching(const ControlFields& f, const ParamValues& p, const F
 // cut to the face; with `valleys`, the face's valleys (which lie on its border) added uncut.
 using FaceBody = std::function<Arrangement(const ControlFields&, const ParamValues&, const FaceReading&)>;
 StyleProgram per_face(FaceBody body, bool with_valleys = false);
-
-// One built-in style: its description and the body of its program.
-struct Builtin {
-    StyleInfo info;
-    FaceBody body;
-    bool valleys = false;
-    // A whole program, for a style that draws its face in steps (print): replaces body.
-    StyleProgram program;
-};
-// The built-ins, one per file (noisy.cpp ... bidirectional.cpp).
-Builtin noisy();
-Builtin ridge_triangles_style();
-Builtin density_cells();
-Builtin fine_ridges();
-Builtin balanced();
-Builtin high_ridges();
-Builtin bidirectional();
-Builtin aretes();
-Builtin print();
 
 }  // namespace carto::blocks
