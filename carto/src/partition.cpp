@@ -14,7 +14,6 @@
 #include <unordered_map>
 
 #include "carto/error.hpp"
-#include "carto/fields.hpp"
 #include "gdal_scope.hpp"
 
 namespace carto {

@@ -13,7 +13,7 @@
 #include "carto/crest.hpp"
 #include "carto/error.hpp"
 #include "carto/extract.hpp"
-#include "carto/fields.hpp"
+#include "carto/control_fields.hpp"
 #include "libtex/parallel.hpp"
 #include "libtex/random.hpp"
 

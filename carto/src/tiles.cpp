@@ -7,7 +7,7 @@
 
 #include "carto/crest.hpp"
 #include "carto/error.hpp"
-#include "carto/fields.hpp"
+#include "carto/control_fields.hpp"
 #include "carto/output.hpp"
 #include "carto/partition.hpp"
 #include "carto/styles.hpp"

@@ -97,4 +97,9 @@ void snap_borders(Partition& p, double snap);
 // by tools building partitions in memory).
 void label_boundaries(Partition& p, double snap);
 
+// A point inside a face (tex::InteriorPoint of its region): where a style reads the face's
+// orientation and density.
+inline Point interior_point(const tex::Region& r) { return tex::InteriorPoint(r); }
+inline Point interior_point(const RockFace& f) { return tex::InteriorPoint(f.region); }
+
 }  // namespace carto

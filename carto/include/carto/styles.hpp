@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "carto/fields.hpp"
+#include "carto/control_fields.hpp"
 #include "carto/partition.hpp"
 #include "carto/terrain.hpp"
 #include "libtex/arrangement.hpp"

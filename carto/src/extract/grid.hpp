@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "carto/error.hpp"
-#include "carto/fields.hpp"
+#include "carto/control_fields.hpp"
 #include "carto/pipeline.hpp"
 
 namespace carto::extraction {

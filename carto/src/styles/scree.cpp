@@ -9,7 +9,7 @@
 #include <map>
 
 #include "libtex/random.hpp"
-#include "terrain.hpp"
+#include "terrain_tools.hpp"
 
 namespace carto::terrain {
 using namespace tex::disc;

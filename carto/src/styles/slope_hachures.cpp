@@ -16,7 +16,7 @@
 
 #include "libtex/error.hpp"
 #include "libtex/random.hpp"
-#include "terrain.hpp"
+#include "terrain_tools.hpp"
 
 namespace carto::terrain {
 using namespace tex::disc;

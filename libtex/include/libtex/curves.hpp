@@ -57,6 +57,10 @@ Curves Append(const Curves& c1, const Curves& c2);
 double BBoxWidth(const Curves& c);
 double BBoxHeight(const Curves& c);
 Point BBoxCenter(const Curves& c);
+// Points along the polyline `pts` (closed: back to its first point) every 1 / density of
+// arc length, from its first point (seed 004's regular pinning along a curve; a closed
+// curve does not get its first point twice). density > 0 and pts not empty (unchecked).
+std::vector<Point> PointsAlong(const std::vector<Point>& pts, bool closed, double density);
 // Scales c by s (or sx, sy) about the centre of its bounding box.
 Curves Scale(const Curves& c, double s);
 Curves Scale(const Curves& c, double sx, double sy);

@@ -59,6 +59,9 @@ bool polygon_meets_region(const std::vector<Point>& poly, const BBox& poly_box, 
 
 // True when the point lies inside the (closed) polygon ring.
 bool point_in_ring(const Point& p, const std::vector<Point>& ring);
+// A point inside the region: the centroid of its outer ring when inside the region, else a
+// point just inside the middle of the outer ring's longest side.
+Point InteriorPoint(const Region& r);
 
 // A region prepared for many tests: the segments and vertices of each ring are sorted into
 // horizontal slabs, so that a point test visits the segments that span the point's height

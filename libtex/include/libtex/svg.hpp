@@ -4,6 +4,7 @@
 #include <string>
 
 #include "libtex/arrangement.hpp"
+#include "libtex/domain.hpp"
 
 namespace tex {
 
@@ -43,22 +44,6 @@ Curves ExportSVG(const Arrangement& a, double size, const std::string& filename,
 void ExportSVG(const Curves& c, double size, const std::string& filename,
                const SvgStyle& style = {});
 
-// ---- Filling an outline (the thesis's ExportSVGinDomain(arrangement, frame)) ----
-//
-// The region a frame bounds: of the frame's closed curves, the one enclosing the largest
-// area is the outside and the closed curves lying inside it are holes (one level: an
-// island in a hole is not supported). Open curves and labelled points of the frame play no
-// part. Throws tex::Error naming `op` when the frame has no closed curve with an area, or
-// when a closed curve lies outside the largest one (a region is one piece).
-Region FrameRegion(const Curves& frame, const std::string& op = "FrameRegion");
-// The arrangement evaluated on the frame's region, its curves cut to that region (CROP:
-// what lies outside the frame is cut off) and the frame's outline (the region's rings,
-// inside on the left) appended last. Labelled points outside the region are dropped.
-Curves EvaluateInDomain(const Arrangement& a, const Curves& frame);
-// An arrangement that ignores the region it is evaluated on and returns
-// EvaluateInDomain(a, frame): the filled frame as an arrangement, to combine or export in
-// a fixed window like any other.
-Arrangement InDomain(Arrangement a, Curves frame);
 // Evaluates a in the frame (EvaluateInDomain) and writes it to `filename` (atomically, as
 // ExportSVG) with a viewBox covering the frame's bounding box grown by `margin` on every
 // side (the SVG's width and height are the viewBox's). Returns the curves written. Throws

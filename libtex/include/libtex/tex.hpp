@@ -5,6 +5,7 @@
 #include "libtex/cells.hpp"
 #include "libtex/curves.hpp"
 #include "libtex/discrete.hpp"
+#include "libtex/domain.hpp"
 #include "libtex/error.hpp"
 #include "libtex/fields.hpp"
 #include "libtex/geometry.hpp"

@@ -5,7 +5,7 @@
 #include <limits>
 #include <optional>
 
-#include "../segment_index.hpp"
+#include "geometry/segment_index.hpp"
 #include "element_view.hpp"
 #include "libtex/error.hpp"
 #include "libtex/random.hpp"
@@ -235,26 +235,7 @@ std::vector<Point> RegularPinning1D(const Polyline& curve, double density) {
         throw Error("RegularPinning1D",
                     "density must be a positive number (got " + std::to_string(density) + ")");
     if (curve.points.empty()) throw Error("RegularPinning1D", "the curve has no point");
-    const double step = 1.0 / density;
-    std::vector<Point> pts = curve.points;
-    if (curve.closed) pts.push_back(pts.front());
-    std::vector<Point> out{pts.front()};
-    double to_next = step;  // length left before the next pin
-    for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
-        const Point a = pts[i], b = pts[i + 1];
-        const double l = distance(a, b);
-        double at = 0;
-        while (l - at >= to_next) {
-            at += to_next;
-            out.push_back(a + (b - a) * (at / l));
-            to_next = step;
-        }
-        to_next -= l - at;
-    }
-    // A closed curve must not get its first point twice.
-    if (curve.closed && out.size() > 1 && distance(out.back(), out.front()) < 1e-9 * step)
-        out.pop_back();
-    return out;
+    return PointsAlong(curve.points, curve.closed, density);
 }
 
 std::vector<Point> RegularPinning1D(const std::vector<Polyline>& curves, double density) {

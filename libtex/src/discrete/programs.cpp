@@ -6,7 +6,7 @@
 #include <cmath>
 #include <unordered_map>
 
-#include "../segment_index.hpp"
+#include "geometry/segment_index.hpp"
 #include "libtex/discrete.hpp"
 #include "libtex/error.hpp"
 

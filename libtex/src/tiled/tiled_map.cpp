@@ -6,7 +6,7 @@
 #include <mutex>
 #include <sstream>
 
-#include "../segment_index.hpp"
+#include "geometry/segment_index.hpp"
 #include "libtex/error.hpp"
 #include "libtex/parallel.hpp"
 #include "libtex/tiled.hpp"

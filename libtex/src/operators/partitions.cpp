@@ -25,7 +25,7 @@
 #include "libtex/error.hpp"
 #include "libtex/merge.hpp"
 #include "libtex/random.hpp"
-#include "segment_index.hpp"
+#include "geometry/segment_index.hpp"
 
 namespace tex {
 namespace {

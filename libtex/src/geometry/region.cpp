@@ -347,4 +347,35 @@ Overlap PreparedRegion::classify_as(const std::vector<Point>& poly, const BBox& 
                     any_vertex);
 }
 
+Point InteriorPoint(const Region& r) {
+    const auto& ring = r.outer();
+    Point c{0, 0};
+    double a = 0;
+    for (std::size_t i = 0, n = ring.size(); i < n; ++i) {
+        const double w = cross(ring[i], ring[(i + 1) % n]);
+        a += w;
+        c += (ring[i] + ring[(i + 1) % n]) * w;
+    }
+    if (a != 0) c = c / (3 * a);
+    if (a != 0 && r.contains(c)) return c;
+    // Step inwards from the middle of the longest border segment of the outer ring.
+    std::size_t best = 0;
+    double len = -1;
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+        const double l = distance(ring[i], ring[(i + 1) % ring.size()]);
+        if (l > len) {
+            len = l;
+            best = i;
+        }
+    }
+    const Point p = ring[best], q = ring[(best + 1) % ring.size()];
+    const Point d = (q - p) / std::max(len, 1e-300);
+    const Point inward{-d.y, d.x};  // the outer ring is counter-clockwise: inside on the left
+    for (double eps = len * 0.25; eps > len * 1e-6; eps /= 2) {
+        const Point x = (p + q) / 2 + inward * eps;
+        if (r.contains(x)) return x;
+    }
+    return (p + q) / 2;
+}
+
 }  // namespace tex

@@ -16,7 +16,7 @@
 #include <map>
 #include <numeric>
 
-#include "segment_index.hpp"
+#include "geometry/segment_index.hpp"
 
 #include "libtex/error.hpp"
 #include "libtex/parallel.hpp"

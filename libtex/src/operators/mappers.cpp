@@ -7,7 +7,6 @@
 
 #include "libtex/cells.hpp"
 #include "libtex/curves.hpp"
-#include "libtex/discrete.hpp"
 #include "libtex/error.hpp"
 #include "libtex/labels.hpp"
 #include "libtex/random.hpp"
@@ -119,7 +118,7 @@ Curve smoothed(const Curve& in, double step) {
         return out;
     }
     // Points every `step` of length from the first (seed 004's regular pinning along a curve).
-    std::vector<Point> samples = disc::RegularPinning1D(disc::Polyline{pts, false}, 1 / step);
+    std::vector<Point> samples = PointsAlong(pts, false, 1 / step);
     // The last point kept, a sample too close to it dropped (it would make a kink there).
     if (samples.size() > 1 && distance(samples.back(), pts.back()) < step / 2) samples.pop_back();
     samples.push_back(pts.back());

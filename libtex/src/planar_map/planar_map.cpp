@@ -35,7 +35,7 @@
 #include <unordered_map>
 
 #include "libtex/random.hpp"
-#include "segment_index.hpp"
+#include "geometry/segment_index.hpp"
 
 namespace tex {
 namespace {

@@ -1,4 +1,4 @@
-#include "segment_index.hpp"
+#include "geometry/segment_index.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 

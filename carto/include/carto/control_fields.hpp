@@ -27,9 +27,6 @@ Field face_field(const Partition& p, std::vector<double> values);
 // Closed-form fields are plain lambdas; a constant one for convenience.
 Field constant_field(double v);
 
-// A point inside a region (its centroid when that lies inside, else a point near the border).
-Point interior_point(const tex::Region& r);
-inline Point interior_point(const RockFace& f) { return interior_point(f.region); }
 
 // Relief of each cell within its neighbourhood: (z - min) / (max - min) over the square of
 // half-side `radius` (ground units) around it, 0.5 where that square is flat; NaN where z is.

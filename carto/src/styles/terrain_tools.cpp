@@ -1,4 +1,4 @@
-#include "terrain.hpp"
+#include "terrain_tools.hpp"
 
 #include <algorithm>
 #include <cmath>

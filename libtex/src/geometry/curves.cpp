@@ -159,4 +159,26 @@ Curves Labelled(const Curves& c, const std::string& l) {
     return out;
 }
 
+std::vector<Point> PointsAlong(const std::vector<Point>& points, bool closed, double density) {
+    const double step = 1.0 / density;
+    std::vector<Point> pts = points;
+    if (closed) pts.push_back(pts.front());
+    std::vector<Point> out{pts.front()};
+    double to_next = step;  // length left before the next point
+    for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+        const Point a = pts[i], b = pts[i + 1];
+        const double l = distance(a, b);
+        double at = 0;
+        while (l - at >= to_next) {
+            at += to_next;
+            out.push_back(a + (b - a) * (at / l));
+            to_next = step;
+        }
+        to_next -= l - at;
+    }
+    // A closed curve must not get its first point twice.
+    if (closed && out.size() > 1 && distance(out.back(), out.front()) < 1e-9 * step) out.pop_back();
+    return out;
+}
+
 }  // namespace tex

@@ -9,8 +9,8 @@
 
 #include "carto/error.hpp"
 #include "libtex/random.hpp"
-#include "styles/builtins.hpp"
-#include "styles/terrain.hpp"
+#include "builtins.hpp"
+#include "terrain_tools.hpp"
 
 namespace carto {
 namespace {

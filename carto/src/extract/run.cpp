@@ -11,7 +11,7 @@
 #include <memory>
 
 #include "carto/error.hpp"
-#include "carto/fields.hpp"
+#include "carto/control_fields.hpp"
 #include "carto/output.hpp"
 #include "extract/borders.hpp"
 #include "extract/faces.hpp"
