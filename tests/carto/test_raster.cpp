@@ -10,7 +10,7 @@
 #include <random>
 
 #include "carto/error.hpp"
-#include "carto/fields.hpp"
+#include "carto/control_fields.hpp"
 #include "carto/raster.hpp"
 #include "carto/terrain.hpp"
 #include "libtex/parallel.hpp"

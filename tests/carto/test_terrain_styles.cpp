@@ -11,10 +11,9 @@
 #include <tuple>
 
 #include "carto/error.hpp"
-#include "carto/fields.hpp"
+#include "carto/control_fields.hpp"
 #include "carto/pipeline.hpp"
 #include "libtex/discrete.hpp"
-#include "sanitized.hpp"
 
 using namespace carto;
 
@@ -204,8 +203,6 @@ TEST(TerrainStyles, WindowsTogetherDrawTheWholeRunsElements) {
         {-inf, -inf, 430, 560}, {430, -inf, inf, 560}, {-inf, 560, 430, inf}, {430, 560, inf, inf}};
     std::vector<std::pair<std::string, std::map<std::string, double>>> cases{
         {"scree", {}}, {"slope-hachures", {{"interval", 5}}}, {"slope-hachures", {}}};
-    // Under the sanitizers (RH_SANITIZED=1) the case with the most tiles and the tagged sets.
-    if (rh_test::sanitized()) cases = {{"slope-hachures", {{"interval", 5}}}};
     for (const auto& [style, params] : cases) {
         Options o = options(style, 2, 5);
         o.params = params;
@@ -413,10 +410,7 @@ TEST(TerrainStyles, RunOnTheSample) {
     o.dem = std::string(RH_SAMPLE_DIR) + "/dem.tif";
     o.partition.path = std::string(RH_SAMPLE_DIR) + "/partition.gpkg";
     const Prepared p = prepare(o);
-    // Under the sanitizers the hachures only (13 s each there): the Python
-    // test_command_writes_the_filled_layer runs both styles on the sample under them.
-    std::vector<std::string> styles{"scree", "slope-hachures"};
-    if (rh_test::sanitized()) styles.erase(styles.begin());
+    const std::vector<std::string> styles{"scree", "slope-hachures"};
     for (const std::string& style : styles) {
         o.style = style;
         const Drawing d = hatch(p, o);
