@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Crops of the drawing at true print scale, for docs/print.md: the sample and
-../shared/data/montblanc/Chamonix.tif at 1:10000, 1:25000 and 1:50000, each a square of SIZE mm on
+../shared/data/montblanc/Chamonix.tif and ../shared/data/nordkette/nordkette_5m.tif at 1:10000, 1:25000 and 1:50000, each a square of SIZE mm on
 paper around the same ground point, rendered at 300 dpi (rsvg-convert) so that one pixel
 is 1/300 inch on paper when the PNG is printed at 300 dpi.
 
@@ -19,12 +19,15 @@ from PIL import Image, ImageOps
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 SAMPLE = ROOT / "data" / "sample_montblanc"
 SHARED_DEM = ROOT.parent / "shared" / "data" / "montblanc" / "Chamonix.tif"
+NORDKETTE = ROOT.parent / "shared" / "data" / "nordkette" / "nordkette_5m.tif"
 DPI = 300
 # Ground points the crops are centred on (working CRS): the sample's summit, and the
 # steepest 1.5 km square of Chamonix.tif (72% of it over 90% slope; UTM 32N).
 CASES = {
     "sample": (SAMPLE / "dem.tif", SAMPLE / "partition.gpkg", (1004100.0, 6539900.0)),
     "chamonix": (SHARED_DEM, "auto", (343730.0, 5081360.0)),
+    # The Nordkette's crest, its cliff bands and couloirs (MGI / Austria Lambert).
+    "nordkette": (NORDKETTE, "auto", (256250.0, 380950.0)),
 }
 
 
@@ -66,9 +69,10 @@ def main():
     ap.add_argument("--tmp", type=pathlib.Path, default=pathlib.Path("/tmp"))
     ap.add_argument("--scales", type=int, nargs="+", default=[10000, 25000, 50000],
                     help="scale denominators (default: 10000 25000 50000)")
+    ap.add_argument("--cases", nargs="+", default=list(CASES), help="cases (default: all)")
     args = ap.parse_args()
     exe = args.build / "carto" / "rockhatch"
-    for case in CASES:
+    for case in args.cases:
         if not CASES[case][0].exists():
             print(f"print_crops: {CASES[case][0]} absent, {case} skipped")
             continue

@@ -13,7 +13,12 @@ Per case and scale:
     per rock area with 1 - hillshade;
   - fall-line angle: median angle between fill strokes and the terrain's fall line there;
   - specks / holes: faces, and holes of faces, smaller than the extraction's minimum area
-    (16 mm2 on paper).
+    (16 mm2 on paper);
+  - drawn outline: the share of the outer rock border (face borders with no face across and
+    no ridge or valley on them, sampled every 0.5 mm on paper) with a fill or cross stroke
+    end within 0.3 mm, and the share of fill and cross stroke ends within 0.1 mm of it.
+
+--style names the style (default: the default style).
 """
 import argparse
 import math
@@ -21,6 +26,7 @@ import pathlib
 import sys
 
 import numpy as np
+from scipy.spatial import cKDTree
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "build" / "python"))
@@ -30,6 +36,10 @@ from rockhatch.tex import Point  # noqa: E402
 
 SAMPLE = ROOT / "data" / "sample_montblanc"
 SHARED_DEM = ROOT.parent / "shared" / "data" / "montblanc" / "Chamonix.tif"
+NORDKETTE = ROOT.parent / "shared" / "data" / "nordkette" / "nordkette_5m.tif"
+BORDER_STEP_MM = 0.5
+END_NEAR_BORDER_MM = 0.3
+END_ON_BORDER_MM = 0.1
 MIN_FACE_MM2 = 25.0
 SPECK_MM2 = 16.0
 BLOCK_M = 100.0
@@ -65,9 +75,45 @@ def spearman(x, y):
     return float(np.corrcoef(rx, ry)[0, 1])
 
 
-def measure(dem, partition, scale):
+def outline_measures(partition, drawing, scale):
+    """(share of outer-border samples with a stroke end within 0.3 mm, share of stroke ends
+    within 0.1 mm of the outer border)."""
+    mm = scale / 1000.0
+    samples = []
+    for face in partition.faces:
+        for s in face.boundary:
+            if s.neighbor >= 0 or s.kind != carto.LineKind.OTHER:
+                continue
+            length = math.hypot(s.b.x - s.a.x, s.b.y - s.a.y)
+            n = max(1, int(length / (BORDER_STEP_MM * mm)))
+            for k in range(n):
+                t = (k + 0.5) / n
+                samples.append((s.a.x + (s.b.x - s.a.x) * t, s.a.y + (s.b.y - s.a.y) * t))
+    ends = []
+    for fh in drawing.faces:
+        for h in fh.hatches:
+            if h.closed or len(h.points) < 2 or h.family not in (carto.Family.FILL, carto.Family.CROSS):
+                continue
+            ends.append((h.points[0].x, h.points[0].y))
+            ends.append((h.points[len(h.points) - 1].x, h.points[len(h.points) - 1].y))
+    if not samples or not ends:
+        return float("nan"), float("nan")
+    samples, ends = np.array(samples), np.array(ends)
+    near = cKDTree(ends).query(samples, distance_upper_bound=END_NEAR_BORDER_MM * mm)[0]
+    border_share = float(np.mean(np.isfinite(near)))
+    # Distance from each end to the outer border, by the border's dense samples (0.5 mm apart:
+    # an end within 0.1 mm of a segment lies within 0.26 mm of a sample).
+    d = cKDTree(samples).query(ends, distance_upper_bound=0.3 * mm)[0]
+    close = np.isfinite(d)
+    on = 0
+    if close.any():
+        on = int(np.sum(d[close] <= math.hypot(END_ON_BORDER_MM, BORDER_STEP_MM / 2) * mm))
+    return border_share, on / len(ends)
+
+
+def measure(dem, partition, scale, style=None):
     prepared = carto.prepare(dem, partition, scale=scale)
-    drawing = carto.hatch(prepared, scale=scale)
+    drawing = carto.hatch(prepared, scale=scale, style=style)
     terrain = prepared.terrain
     faces = {f.id: f for f in prepared.partition.faces}
     ground_m2_per_mm2 = (scale / 1000.0) ** 2
@@ -135,6 +181,7 @@ def measure(dem, partition, scale):
     specks = sum(1 for f in prepared.partition.faces if f.region.area() < speck)
     holes = sum(1 for f in prepared.partition.faces for h in f.region.holes if ring_area(h) < speck)
     cov = np.array(coverage) if coverage else np.array([float("nan")])
+    border_share, ends_on = outline_measures(prepared.partition, drawing, scale)
     return {
         "faces": len(prepared.partition.faces),
         "axis share": axis_share(prepared.partition),
@@ -145,6 +192,8 @@ def measure(dem, partition, scale):
         "fall-line angle": float(np.median(angles)) if angles else float("nan"),
         "specks": specks,
         "small holes": holes,
+        "border with an end": border_share,
+        "ends on the border": ends_on,
     }
 
 
@@ -152,6 +201,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--markdown", type=pathlib.Path)
     ap.add_argument("--scales", default="10000,25000,50000")
+    ap.add_argument("--style", default=None)
     args = ap.parse_args()
     scales = [float(s) for s in args.scales.split(",")]
     cases = [("sample, hand-drawn partition", SAMPLE / "dem.tif", SAMPLE / "partition.gpkg"),
@@ -160,32 +210,42 @@ def main():
         cases.append(("Chamonix.tif, --partition auto", SHARED_DEM, "auto"))
     else:
         print(f"print_quality: {SHARED_DEM} absent, Chamonix rows skipped")
+    if NORDKETTE.exists():
+        cases.append(("Nordkette 5 m, --partition auto", NORDKETTE, "auto"))
+    else:
+        print(f"print_quality: {NORDKETTE} absent, Nordkette rows skipped")
     rows = []
     for label, dem, partition in cases:
         for scale in scales:
-            m = measure(dem, partition, scale)
+            m = measure(dem, partition, scale, args.style)
             rows.append((label, scale, m))
             print(f"{label:34s} 1:{scale:<6.0f} " + ", ".join(
                 f"{k} {v:.3g}" if isinstance(v, float) else f"{k} {v}" for k, v in m.items()), flush=True)
     if args.markdown:
         with open(args.markdown, "w") as f:
             f.write("<!-- written by bench/print_quality.py -->\n# How the drawing reads in print\n\n"
-                    "Measured by `/usr/bin/python3 bench/print_quality.py --markdown docs/print-quality.md` with the "
-                    "default style (print: issue 16's tone, fall line and crests; the figures of the thesis's "
-                    "final design, bidirectional, are in docs/print.md). Border along grid axes: share of face-border length running "
+                    f"Measured by `/usr/bin/python3 bench/print_quality.py --markdown FILE"
+                    f"{' --style ' + args.style if args.style else ''}` with the style "
+                    f"{args.style or carto.default_style()} (the figures of the thesis's final design, "
+                    "bidirectional, are in docs/print.md). Border along grid axes: share of face-border length running "
                     "exactly along an axis of the working CRS (raster stair steps). Ink: stroke length x stroke "
                     "width over face area, faces of 25 mm2 or more on paper. Ink vs shade: Spearman's rho over "
                     "100 m blocks at least half rock (number of blocks). Angle: median between fill strokes and "
                     "the fall line. Specks and small holes: faces and holes under 16 mm2 on paper. Goals of "
                     "issue 16: axis share under 10%, ink max under 45% at every scale, rho at least 0.8, "
-                    "angle under 15 degrees, no specks or small holes.\n\n")
+                    "angle under 15 degrees, no specks or small holes. Drawn outline (issue 46): share of the "
+                    "outer rock border (no face across, no ridge or valley on it; sampled every 0.5 mm on paper) "
+                    "with a fill or cross stroke end within 0.3 mm (goal: at most 0.40), and share of those "
+                    "strokes' ends within 0.1 mm of it (goal: at most 0.03).\n\n")
             f.write("| case | scale | faces | border along grid axes | ink per face p95 | ink max | "
-                    "ink vs 1-hillshade (rho, 100 m blocks) | median angle to fall line | specks | small holes |\n")
-            f.write("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n")
+                    "ink vs 1-hillshade (rho, 100 m blocks) | median angle to fall line | specks | small holes | "
+                    "outer border with an end within 0.3 mm | ends within 0.1 mm of it |\n")
+            f.write("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n")
             for label, scale, m in rows:
                 f.write(f"| {label} | 1:{scale:.0f} | {m['faces']} | {100 * m['axis share']:.0f}% | "
                         f"{100 * m['ink p95']:.0f}% | {100 * m['ink max']:.0f}% | {m['ink vs shade']:.2f} "
-                        f"({m['blocks']}) | {m['fall-line angle']:.1f} deg | {m['specks']} | {m['small holes']} |\n")
+                        f"({m['blocks']}) | {m['fall-line angle']:.1f} deg | {m['specks']} | {m['small holes']} | "
+                        f"{m['border with an end']:.2f} | {m['ends on the border']:.3f} |\n")
         print(f"print_quality: written to {args.markdown}")
 
 

@@ -47,6 +47,8 @@ void bind_blocks(py::module_& m) {
     m.attr("TONE") = table(blocks::kTone);
     m.attr("CREST") = table(blocks::kCrest);
     m.attr("CROSS") = table(blocks::kCross);
+    m.attr("FRAY") = table(blocks::kFray);
+    m.attr("CLIFF") = table(blocks::kCliff);
 
     // ---- What a style reads about its face ----
     py::class_<FaceReading>(m, "FaceReading",
@@ -108,6 +110,16 @@ void bind_blocks(py::module_& m) {
           py::arg("region"), py::arg("spent"),
           "coarse jittered cells, each hatched so that its ink follows the tone of its shade under ink_max, "
           "`spent` (crests, valleys) counted");
+    m.def("cliff_tops", &blocks::cliff_tops, py::arg("fields"), py::arg("params"), py::arg("region"),
+          "the tops of the cliff bands in the face (the level line slope = cliff_slope where the ground falls "
+          "into the band), smoothed, cut to the face, labelled ridge");
+    m.def("cliff_strokes", &blocks::cliff_strokes, py::arg("fields"), py::arg("params"), py::arg("face"),
+          py::arg("tops"), "rows of strokes hanging from cliff tops down the fall line");
+    m.def("check_fray", &blocks::check_fray, py::arg("params"),
+          "raises RockhatchError (usage) unless 0 <= fray_min <= fray_max");
+    m.def("frayed", &blocks::frayed, py::arg("fields"), py::arg("params"), py::arg("arrangement"),
+          "the arrangement cut to the face, its strokes drawn back irregularly from the rock's edge "
+          "(fray_min .. fray_max; not where a face lies across or a ridge or cliff lies on the border)");
     m.def("valleys", &blocks::valleys, "(f) the valleys the face owns");
     m.def("cross_hatching", &blocks::cross_hatching, py::arg("fields"), py::arg("params"), py::arg("face"),
           "(g) cross hatches in the coarse cells rough enough, denser when rougher");

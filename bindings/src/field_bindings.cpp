@@ -228,6 +228,11 @@ void bind_fields(py::module_& m) {
     m.def("AlignToField", &AlignToField, py::arg("a"), py::arg("angle"),
           "each open curve of the arrangement turned about its middle onto the axis the angle field (radians) "
           "gives there");
+    m.def(
+        "IsoLines", [](const py::object& f, double level, double cell) { return IsoLines(to_field(f), level, cell); },
+        py::arg("field"), py::arg("level"), py::arg("cell"),
+        "the level set field = level by marching squares on the global lattice of spacing `cell`, higher values on "
+        "the left of each line");
     m.def("Angle", &Angle, py::arg("v"), "atan2 of the vectors");
     m.def("Norm", &Norm, py::arg("v"), "length of the vectors");
     m.def("Gradient", [](const py::object& f, double h) { return Gradient(to_field(f), h); }, py::arg("f"),

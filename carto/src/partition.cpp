@@ -604,254 +604,404 @@ void label_boundaries(Partition& p, double snap) {
     }
 }
 
-Partition load_partition(const PartitionOptions& opt, const std::string& working_wkt) {
-    register_gdal();
-    const QuietGdal quiet;
-    const std::string what = "--partition '" + opt.path + "'";
-    if (!std::filesystem::exists(opt.path)) throw Error(Code::InputMissing, what + ": no such file");
-    DatasetPtr ds(GDALDataset::FromHandle(
-        GDALOpenEx(opt.path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
-    if (!ds) throw Error(Code::InputMissing, what + ": not a vector dataset OGR can read");
+namespace {
 
-    auto find_layer = [&](const std::string& name, bool (*pred)(OGRLayer*), const char* role) -> OGRLayer* {
+// ---- Reading the partition: the steps of load_partition
+
+// The dataset being read, with what every step reads along: its name for the messages, the
+// options and the working CRS.
+struct PartitionSource {
+    GDALDataset& ds;
+    const std::string& what;  // "--partition '<path>'", the start of every message
+    const PartitionOptions& opt;
+    const std::string& working_wkt;
+
+    // The layer named `name`, checked by `pred` when given; nullptr when no name is given.
+    OGRLayer* find_layer(const std::string& name, bool (*pred)(OGRLayer*), const char* role) const {
         if (!name.empty()) {
-            OGRLayer* l = ds->GetLayerByName(name.c_str());
+            OGRLayer* l = ds.GetLayerByName(name.c_str());
             if (!l) throw Error(Code::BadLayer, what + ": no layer named '" + name + "'");
-            if (pred && !pred(l)) throw Error(Code::BadLayer, what + ": layer '" + name + "' is not a " + role + " layer");
+            if (pred && !pred(l))
+                throw Error(Code::BadLayer, what + ": layer '" + name + "' is not a " + role + " layer");
             return l;
         }
         return nullptr;
-    };
+    }
+};
 
-    Partition p;
-    p.crs_wkt = working_wkt;
+// Opens the dataset, read-only, once the file is known to be there.
+DatasetPtr open_partition(const std::string& path, const std::string& what) {
+    if (!std::filesystem::exists(path)) throw Error(Code::InputMissing, what + ": no such file");
+    DatasetPtr ds(GDALDataset::FromHandle(
+        GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
+    if (!ds) throw Error(Code::InputMissing, what + ": not a vector dataset OGR can read");
+    return ds;
+}
 
-    // ---- Faces
-    OGRLayer* faces = find_layer(opt.faces_layer, is_polygon_layer, "polygon");
+// The faces' layer: the one named, else the first polygon layer.
+OGRLayer* face_layer(const PartitionSource& src) {
+    OGRLayer* faces = src.find_layer(src.opt.faces_layer, is_polygon_layer, "polygon");
     if (!faces)
-        for (int i = 0; i < ds->GetLayerCount() && !faces; ++i)
-            if (is_polygon_layer(ds->GetLayer(i))) faces = ds->GetLayer(i);
-    if (!faces) throw Error(Code::BadLayer, what + ": no polygon layer (the rock faces)");
-    const Reprojector face_proj = reprojector(faces, working_wkt, what);
+        for (int i = 0; i < src.ds.GetLayerCount() && !faces; ++i)
+            if (is_polygon_layer(src.ds.GetLayer(i))) faces = src.ds.GetLayer(i);
+    if (!faces) throw Error(Code::BadLayer, src.what + ": no polygon layer (the rock faces)");
+    return faces;
+}
+
+// The fields of the faces' layer that a face reads (-1: none).
+struct FaceFields {
+    int id_idx;
+    std::string orient_name, dens_name;
+    int orient_idx, dens_idx;
+};
+
+// Finds the id, orientation and density fields of the faces' layer.
+FaceFields face_fields(const PartitionSource& src, OGRLayer* faces) {
+    const PartitionOptions& opt = src.opt;
+    const std::string& what = src.what;
     OGRFeatureDefn* fdef = faces->GetLayerDefn();
-    const int id_idx = opt.id_field.empty() ? -1 : fdef->GetFieldIndex(opt.id_field.c_str());
-    if (!opt.id_field.empty() && id_idx < 0)
+    FaceFields f;
+    f.id_idx = opt.id_field.empty() ? -1 : fdef->GetFieldIndex(opt.id_field.c_str());
+    if (!opt.id_field.empty() && f.id_idx < 0)
         throw Error(Code::BadLayer, what + ": layer '" + faces->GetName() + "' has no field '" + opt.id_field + "'");
-    const std::string orient_name = opt.orientation_field.empty() ? "orientation" : opt.orientation_field;
-    const std::string dens_name = opt.density_field.empty() ? "density" : opt.density_field;
-    const int orient_idx = fdef->GetFieldIndex(orient_name.c_str());
-    const int dens_idx = fdef->GetFieldIndex(dens_name.c_str());
+    f.orient_name = opt.orientation_field.empty() ? "orientation" : opt.orientation_field;
+    f.dens_name = opt.density_field.empty() ? "density" : opt.density_field;
+    f.orient_idx = fdef->GetFieldIndex(f.orient_name.c_str());
+    f.dens_idx = fdef->GetFieldIndex(f.dens_name.c_str());
     // A field the user named must be there (the density may come from --density-layer instead).
     auto missing = [&](const std::string& field, const char* option) {
         return Error(Code::BadLayer, what + ": layer '" + faces->GetName() + "' has no field '" + field + "' (" +
                                          option + ")");
     };
-    if (!opt.orientation_field.empty() && orient_idx < 0) throw missing(orient_name, "--orientation-field");
-    if (!opt.density_field.empty() && opt.density_layer.empty() && dens_idx < 0) throw missing(dens_name, "--density-field");
+    if (!opt.orientation_field.empty() && f.orient_idx < 0) throw missing(f.orient_name, "--orientation-field");
+    if (!opt.density_field.empty() && opt.density_layer.empty() && f.dens_idx < 0)
+        throw missing(f.dens_name, "--density-field");
+    return f;
+}
+
+// A face feature's geometry in the working CRS, repaired when invalid (counted in `repaired`)
+// unless --no-repair; nullptr for a feature without geometry or off the filter box.
+std::unique_ptr<OGRGeometry> face_geometry(const PartitionSource& src, const OGRFeature& feat, const Reprojector& proj,
+                                           int& repaired) {
+    const std::string& what = src.what;
+    const OGRGeometry* g0 = feat.GetGeometryRef();
+    if (!g0 || g0->IsEmpty()) return nullptr;
+    std::unique_ptr<OGRGeometry> g(g0->clone());
+    proj.apply(g.get());
+    require_finite(g.get(), what, "face " + std::to_string(feat.GetFID()));
+    if (!keep(g.get(), src.opt.filter)) return nullptr;
+    if (!g->IsValid()) {
+        if (!src.opt.repair)
+            throw Error(Code::BadGeometry, what + ": face " + std::to_string(feat.GetFID()) +
+                                               " is not a valid polygon (self-intersecting?); repair it or drop "
+                                               "--no-repair");
+        std::unique_ptr<OGRGeometry> fixed(g->MakeValid());
+        if (!fixed || fixed->IsEmpty())
+            throw Error(Code::BadGeometry,
+                        what + ": face " + std::to_string(feat.GetFID()) + " is invalid and cannot be repaired");
+        g = std::move(fixed);
+        ++repaired;
+    }
+    return g;
+}
+
+// The polygons of a geometry, in order (a repaired face may be a collection).
+void collect_polygons(const OGRGeometry* x, std::vector<const OGRPolygon*>& polys) {
+    const auto t = wkbFlatten(x->getGeometryType());
+    if (t == wkbPolygon) polys.push_back(x->toPolygon());
+    else if (t == wkbMultiPolygon || t == wkbGeometryCollection)
+        for (const auto* part : *x->toGeometryCollection()) collect_polygons(part, polys);
+}
+
+// A face's orientation and density from the fields of its feature, when set.
+void read_face_attributes(const PartitionSource& src, const OGRFeature& feat, const FaceFields& fields, RockFace& rf) {
+    const std::string& what = src.what;
+    if (fields.orient_idx >= 0 && feat.IsFieldSetAndNotNull(fields.orient_idx)) {
+        const double az = feat.GetFieldAsDouble(fields.orient_idx);
+        if (!std::isfinite(az))
+            throw Error(Code::BadLayer, what + ": face " + std::to_string(rf.id) + ": bad " + fields.orient_name);
+        rf.orientation = (90.0 - az) * M_PI / 180.0;
+    }
+    if (fields.dens_idx >= 0 && feat.IsFieldSetAndNotNull(fields.dens_idx)) {
+        const double d = feat.GetFieldAsDouble(fields.dens_idx);
+        if (!(d >= 0 && d <= 1))
+            throw Error(Code::BadLayer, what + ": face " + std::to_string(rf.id) + ": " + fields.dens_name + " " +
+                                            std::to_string(d) + " is not in [0, 1]");
+        rf.density = d;
+    }
+}
+
+// The faces of one feature, one per polygon of its geometry `g` (a zero-area sliver left by
+// a repair makes none).
+void add_faces(const PartitionSource& src, const OGRFeature& feat, const OGRGeometry* g, const FaceFields& fields,
+               std::vector<RockFace>& faces) {
+    std::vector<const OGRPolygon*> polys;
+    collect_polygons(g, polys);
+    for (const OGRPolygon* poly : polys) {
+        if (!poly->getExteriorRing() || poly->getExteriorRing()->getNumPoints() < 4) continue;
+        RockFace rf;
+        rf.id = fields.id_idx >= 0 ? feat.GetFieldAsInteger64(fields.id_idx) : feat.GetFID();
+        std::vector<std::vector<Point>> holes;
+        for (int k = 0; k < poly->getNumInteriorRings(); ++k)
+            holes.push_back(ring_points(poly->getInteriorRing(k)));
+        try {
+            rf.region = tex::Region(ring_points(poly->getExteriorRing()), holes, "face");
+        } catch (const std::exception&) {
+            continue;  // a zero-area sliver left by a repair
+        }
+        rf.anchor = interior_point(rf.region);
+        read_face_attributes(src, feat, fields, rf);
+        faces.push_back(std::move(rf));
+    }
+}
+
+// Reads the faces meeting the filter box (all without one) and notes the repairs.
+void read_faces(const PartitionSource& src, OGRLayer* faces, const Reprojector& proj, const FaceFields& fields,
+                Partition& p) {
     int repaired = 0;
-    filter_layer(faces, face_proj, opt.filter);
+    filter_layer(faces, proj, src.opt.filter);
     faces->ResetReading();
     for (auto& feat : *faces) {
-        OGRGeometry* g0 = feat->GetGeometryRef();
-        if (!g0 || g0->IsEmpty()) continue;
-        std::unique_ptr<OGRGeometry> g(g0->clone());
-        face_proj.apply(g.get());
-        require_finite(g.get(), what, "face " + std::to_string(feat->GetFID()));
-        if (!keep(g.get(), opt.filter)) continue;
-        if (!g->IsValid()) {
-            if (!opt.repair)
-                throw Error(Code::BadGeometry, what + ": face " + std::to_string(feat->GetFID()) +
-                                                   " is not a valid polygon (self-intersecting?); repair it or drop --no-repair");
-            std::unique_ptr<OGRGeometry> fixed(g->MakeValid());
-            if (!fixed || fixed->IsEmpty())
-                throw Error(Code::BadGeometry, what + ": face " + std::to_string(feat->GetFID()) + " is invalid and cannot be repaired");
-            g = std::move(fixed);
-            ++repaired;
-        }
-        std::vector<const OGRPolygon*> polys;
-        std::function<void(const OGRGeometry*)> collect = [&](const OGRGeometry* x) {
-            const auto t = wkbFlatten(x->getGeometryType());
-            if (t == wkbPolygon) polys.push_back(x->toPolygon());
-            else if (t == wkbMultiPolygon || t == wkbGeometryCollection)
-                for (const auto* part : *x->toGeometryCollection()) collect(part);
-        };
-        collect(g.get());
-        for (const OGRPolygon* poly : polys) {
-            if (!poly->getExteriorRing() || poly->getExteriorRing()->getNumPoints() < 4) continue;
-            RockFace rf;
-            rf.id = id_idx >= 0 ? feat->GetFieldAsInteger64(id_idx) : feat->GetFID();
-            std::vector<std::vector<Point>> holes;
-            for (int k = 0; k < poly->getNumInteriorRings(); ++k) holes.push_back(ring_points(poly->getInteriorRing(k)));
-            try {
-                rf.region = tex::Region(ring_points(poly->getExteriorRing()), holes, "face");
-            } catch (const std::exception&) {
-                continue;  // a zero-area sliver left by a repair
-            }
-            rf.anchor = interior_point(rf.region);
-            if (orient_idx >= 0 && feat->IsFieldSetAndNotNull(orient_idx)) {
-                const double az = feat->GetFieldAsDouble(orient_idx);
-                if (!std::isfinite(az))
-                    throw Error(Code::BadLayer, what + ": face " + std::to_string(rf.id) + ": bad " + orient_name);
-                rf.orientation = (90.0 - az) * M_PI / 180.0;
-            }
-            if (dens_idx >= 0 && feat->IsFieldSetAndNotNull(dens_idx)) {
-                const double d = feat->GetFieldAsDouble(dens_idx);
-                if (!(d >= 0 && d <= 1))
-                    throw Error(Code::BadLayer, what + ": face " + std::to_string(rf.id) + ": " + dens_name + " " +
-                                                    std::to_string(d) + " is not in [0, 1]");
-                rf.density = d;
-            }
-            p.faces.push_back(std::move(rf));
+        const std::unique_ptr<OGRGeometry> g = face_geometry(src, *feat, proj, repaired);
+        if (g) add_faces(src, *feat, g.get(), fields, p.faces);
+    }
+    if (p.faces.empty() && !src.opt.filter)
+        throw Error(Code::BadLayer, src.what + ": layer '" + std::string(faces->GetName()) + "' holds no polygon");
+    if (repaired) p.notes.push_back("repaired " + std::to_string(repaired) + " invalid face polygon(s)");
+}
+
+// Borders digitised twice become one (neighbours are matched on identical segments).
+void snap_face_borders(const PartitionSource& src, Partition& p) {
+    snap_borders(p, src.opt.snap);
+    if (p.faces.empty() && !src.opt.filter)
+        throw Error(Code::BadLayer, src.what + ": no face keeps an area once its borders are snapped");
+}
+
+// The line layers: one layer with a label attribute, or one layer per kind.
+struct LineLayers {
+    OGRLayer* labelled = nullptr;
+    std::vector<std::pair<OGRLayer*, LineKind>> per_kind;
+};
+
+// Finds the line layers: the one named, else the layers named after a kind and the first
+// other line layer with the label field.
+LineLayers line_layers(const PartitionSource& src) {
+    LineLayers layers;
+    OGRLayer*& lines = layers.labelled;
+    lines = src.find_layer(src.opt.lines_layer, is_line_layer, "line");
+    if (!lines) {
+        for (int i = 0; i < src.ds.GetLayerCount(); ++i) {
+            OGRLayer* l = src.ds.GetLayer(i);
+            if (!is_line_layer(l)) continue;
+            const std::string n = lower(l->GetName());
+            if (n.rfind("ridge", 0) == 0 || n.rfind("crete", 0) == 0) layers.per_kind.push_back({l, LineKind::Ridge});
+            else if (n.rfind("valley", 0) == 0 || n.rfind("thalweg", 0) == 0 || n.rfind("talweg", 0) == 0)
+                layers.per_kind.push_back({l, LineKind::Valley});
+            else if (!lines && l->GetLayerDefn()->GetFieldIndex(src.opt.label_field.c_str()) >= 0)
+                lines = l;
         }
     }
-    if (p.faces.empty() && !opt.filter)
-        throw Error(Code::BadLayer, what + ": layer '" + std::string(faces->GetName()) + "' holds no polygon");
-    if (repaired) p.notes.push_back("repaired " + std::to_string(repaired) + " invalid face polygon(s)");
-    // Borders digitised twice become one (neighbours are matched on identical segments).
-    snap_borders(p, opt.snap);
-    if (p.faces.empty() && !opt.filter)
-        throw Error(Code::BadLayer, what + ": no face keeps an area once its borders are snapped");
+    return layers;
+}
+
+// The ridge and valley lines of a layer labelled by an attribute (other lines are skipped).
+void read_labelled_lines(const PartitionSource& src, OGRLayer* lines, const std::optional<tex::BBox>& around,
+                         std::vector<LabelledLine>& out) {
+    const std::string& what = src.what;
+    const Reprojector proj = reprojector(lines, src.working_wkt, what);
+    const int idx = lines->GetLayerDefn()->GetFieldIndex(src.opt.label_field.c_str());
+    if (idx < 0)
+        throw Error(Code::BadLayer, what + ": line layer '" + std::string(lines->GetName()) + "' has no label field '" +
+                                        src.opt.label_field + "' (ridge / valley / other)");
+    filter_layer(lines, proj, around);
+    lines->ResetReading();
+    for (auto& feat : *lines) {
+        OGRGeometry* g = feat->GetGeometryRef();
+        if (!g) continue;
+        LineKind kind;
+        const std::string v = feat->IsFieldSetAndNotNull(idx) ? feat->GetFieldAsString(idx) : "";
+        if (!parse_kind(v, kind))
+            throw Error(Code::BadLayer, what + ": line " + std::to_string(feat->GetFID()) + ": label '" + v +
+                                            "' is not ridge, valley or other");
+        if (kind == LineKind::Other) continue;
+        std::unique_ptr<OGRGeometry> c(g->clone());
+        proj.apply(c.get());
+        require_finite(c.get(), what, "line " + std::to_string(feat->GetFID()));
+        if (keep(c.get(), around)) add_lines(c.get(), kind, out);
+    }
+}
+
+// The lines of the layers named after their kind, layer by layer.
+void read_per_kind_lines(const PartitionSource& src, const std::vector<std::pair<OGRLayer*, LineKind>>& per_kind,
+                         const std::optional<tex::BBox>& around, std::vector<LabelledLine>& out) {
+    const std::string& what = src.what;
+    for (auto [l, kind] : per_kind) {
+        const Reprojector proj = reprojector(l, src.working_wkt, what);
+        filter_layer(l, proj, around);
+        l->ResetReading();
+        for (auto& feat : *l) {
+            if (!feat->GetGeometryRef()) continue;
+            std::unique_ptr<OGRGeometry> c(feat->GetGeometryRef()->clone());
+            proj.apply(c.get());
+            require_finite(c.get(), what,
+                           "line " + std::to_string(feat->GetFID()) + " of layer '" + l->GetName() + "'");
+            if (keep(c.get(), around)) add_lines(c.get(), kind, out);
+        }
+    }
+}
+
+// Reads the ridge and valley lines near the faces (`around`); without any line layer the
+// borders cannot be labelled: an error.
+void read_lines(const PartitionSource& src, const std::optional<tex::BBox>& around, Partition& p) {
+    const LineLayers layers = line_layers(src);
+    if (layers.labelled) {
+        read_labelled_lines(src, layers.labelled, around, p.lines);
+    } else if (!layers.per_kind.empty()) {
+        read_per_kind_lines(src, layers.per_kind, around, p.lines);
+    } else {
+        throw Error(Code::BadLayer, src.what + ": no line layer with a '" + src.opt.label_field +
+                                        "' field and no 'ridges' / 'valleys' layers: the faces' borders cannot be "
+                                        "labelled");
+    }
+}
+
+// The orientation layer: the one named, else the first line layer named "orient...".
+OGRLayer* orientation_layer(const PartitionSource& src) {
+    OGRLayer* olayer = src.find_layer(src.opt.orientation_layer, is_line_layer, "line");
+    if (!olayer && src.opt.orientation_layer.empty()) {
+        for (int i = 0; i < src.ds.GetLayerCount() && !olayer; ++i) {
+            const std::string n = lower(src.ds.GetLayer(i)->GetName());
+            if (is_line_layer(src.ds.GetLayer(i)) && n.rfind("orient", 0) == 0) olayer = src.ds.GetLayer(i);
+        }
+    }
+    return olayer;
+}
+
+// Gives the line's direction, from its first point to its last, to the first face without
+// an orientation that holds its midpoint. Returns whether a face took it.
+bool orient_face(const LabelledLine& l, std::vector<RockFace>& faces) {
+    const Point a = l.points.front(), b = l.points.back();
+    const Point mid = (a + b) / 2;
+    for (auto& f : faces)
+        if (!f.orientation && f.region.contains(mid)) {
+            f.orientation = std::atan2(b.y - a.y, b.x - a.x);
+            return true;
+        }
+    return false;
+}
+
+// Orientations from the lines of the orientation layer, when there is one (noted).
+void read_orientations(const PartitionSource& src, const std::optional<tex::BBox>& around, Partition& p) {
+    OGRLayer* olayer = orientation_layer(src);
+    if (!olayer) return;
+    const Reprojector proj = reprojector(olayer, src.working_wkt, src.what);
+    int matched = 0;
+    filter_layer(olayer, proj, around);
+    olayer->ResetReading();
+    for (auto& feat : *olayer) {
+        if (!feat->GetGeometryRef()) continue;
+        std::unique_ptr<OGRGeometry> c(feat->GetGeometryRef()->clone());
+        proj.apply(c.get());
+        require_finite(c.get(), src.what, "orientation line " + std::to_string(feat->GetFID()));
+        std::vector<LabelledLine> ls;
+        add_lines(c.get(), LineKind::Other, ls);
+        for (const auto& l : ls)
+            if (orient_face(l, p.faces)) ++matched;
+    }
+    p.notes.push_back("orientation of " + std::to_string(matched) + " face(s) from layer '" + olayer->GetName() +
+                      "'");
+}
+
+// Densities from the --density-layer: each feature's density goes to the faces holding its
+// centroid.
+void read_densities(const PartitionSource& src, const std::string& dens_name, const std::optional<tex::BBox>& around,
+                    Partition& p) {
+    const std::string& what = src.what;
+    const std::string& layer = src.opt.density_layer;
+    OGRLayer* dlayer = src.find_layer(layer, nullptr, "");
+    if (!dlayer) return;
+    const Reprojector proj = reprojector(dlayer, src.working_wkt, what);
+    const int idx = dlayer->GetLayerDefn()->GetFieldIndex(dens_name.c_str());
+    if (idx < 0) throw Error(Code::BadLayer, what + ": layer '" + layer + "' has no field '" + dens_name + "'");
+    filter_layer(dlayer, proj, around);
+    dlayer->ResetReading();
+    for (auto& feat : *dlayer) {
+        if (!feat->GetGeometryRef() || !feat->IsFieldSetAndNotNull(idx)) continue;
+        const double d = feat->GetFieldAsDouble(idx);
+        if (!(d >= 0 && d <= 1))
+            throw Error(Code::BadLayer,
+                        what + ": layer '" + layer + "': density " + std::to_string(d) + " is not in [0, 1]");
+        std::unique_ptr<OGRGeometry> c(feat->GetGeometryRef()->clone());
+        proj.apply(c.get());
+        require_finite(c.get(), what, "feature " + std::to_string(feat->GetFID()) + " of layer '" + layer + "'");
+        OGRPoint centre;
+        c->Centroid(&centre);
+        for (auto& f : p.faces)
+            if (f.region.contains({centre.getX(), centre.getY()})) f.density = d;
+    }
+}
+
+// The polygons of a scree geometry, in order, as regions.
+void add_scree(const OGRGeometry* x, const std::string& what, const std::string& which,
+               std::vector<tex::Region>& scree) {
+    const auto t = wkbFlatten(x->getGeometryType());
+    if (t == wkbMultiPolygon || t == wkbGeometryCollection)
+        for (const auto* part : *x->toGeometryCollection()) add_scree(part, what, which, scree);
+    if (t != wkbPolygon) return;
+    const OGRPolygon* poly = x->toPolygon();
+    std::vector<std::vector<Point>> holes;
+    for (int i = 0; i < poly->getNumInteriorRings(); ++i) holes.push_back(ring_points(poly->getInteriorRing(i)));
+    scree.emplace_back(ring_points(poly->getExteriorRing()), std::move(holes), what + ": " + which);
+}
+
+// The scree areas of the --scree-layer, when given (noted), repaired when invalid.
+void read_scree(const PartitionSource& src, Partition& p) {
+    const std::string& what = src.what;
+    const std::string& layer = src.opt.scree_layer;
+    OGRLayer* slayer = src.find_layer(layer, is_polygon_layer, "polygon");
+    if (!slayer) return;
+    const Reprojector proj = reprojector(slayer, src.working_wkt, what);
+    slayer->ResetReading();
+    for (auto& feat : *slayer) {
+        const OGRGeometry* g0 = feat->GetGeometryRef();
+        if (!g0 || g0->IsEmpty()) continue;
+        const std::string which = "scree area " + std::to_string(feat->GetFID()) + " of layer '" + layer + "'";
+        std::unique_ptr<OGRGeometry> g(g0->clone());
+        proj.apply(g.get());
+        require_finite(g.get(), what, which);
+        if (!g->IsValid()) g.reset(g->MakeValid());
+        if (!g || g->IsEmpty())
+            throw Error(Code::BadGeometry, what + ": " + which + " is invalid and cannot be repaired");
+        add_scree(g.get(), what, which, p.scree);
+    }
+    p.notes.push_back(std::to_string(p.scree.size()) + " scree area(s) from layer '" + layer + "'");
+}
+
+}  // namespace
+
+Partition load_partition(const PartitionOptions& opt, const std::string& working_wkt) {
+    register_gdal();
+    const QuietGdal quiet;
+    const std::string what = "--partition '" + opt.path + "'";
+    const DatasetPtr ds = open_partition(opt.path, what);
+    const PartitionSource src{*ds, what, opt, working_wkt};
+
+    Partition p;
+    p.crs_wkt = working_wkt;
+    OGRLayer* faces = face_layer(src);
+    const Reprojector face_proj = reprojector(faces, working_wkt, what);
+    const FaceFields fields = face_fields(src, faces);
+    read_faces(src, faces, face_proj, fields, p);
+    snap_face_borders(src, p);
 
     // The lines, orientations and densities of every face read, including the parts of the
     // faces beyond the filter box (a face meeting the box is read whole, its attributes too).
     std::optional<tex::BBox> around = opt.filter;
     if (around) around->add(p.bounds());
-
-    // ---- Lines: one layer with a label attribute, or one layer per kind.
-    OGRLayer* lines = find_layer(opt.lines_layer, is_line_layer, "line");
-    std::vector<std::pair<OGRLayer*, LineKind>> per_kind;
-    if (!lines) {
-        for (int i = 0; i < ds->GetLayerCount(); ++i) {
-            OGRLayer* l = ds->GetLayer(i);
-            if (!is_line_layer(l)) continue;
-            const std::string n = lower(l->GetName());
-            if (n.rfind("ridge", 0) == 0 || n.rfind("crete", 0) == 0) per_kind.push_back({l, LineKind::Ridge});
-            else if (n.rfind("valley", 0) == 0 || n.rfind("thalweg", 0) == 0 || n.rfind("talweg", 0) == 0)
-                per_kind.push_back({l, LineKind::Valley});
-            else if (!lines && l->GetLayerDefn()->GetFieldIndex(opt.label_field.c_str()) >= 0)
-                lines = l;
-        }
-    }
-    if (lines) {
-        const Reprojector proj = reprojector(lines, working_wkt, what);
-        const int idx = lines->GetLayerDefn()->GetFieldIndex(opt.label_field.c_str());
-        if (idx < 0)
-            throw Error(Code::BadLayer, what + ": line layer '" + std::string(lines->GetName()) + "' has no label field '" +
-                                            opt.label_field + "' (ridge / valley / other)");
-        filter_layer(lines, proj, around);
-        lines->ResetReading();
-        for (auto& feat : *lines) {
-            OGRGeometry* g = feat->GetGeometryRef();
-            if (!g) continue;
-            LineKind kind;
-            const std::string v = feat->IsFieldSetAndNotNull(idx) ? feat->GetFieldAsString(idx) : "";
-            if (!parse_kind(v, kind))
-                throw Error(Code::BadLayer, what + ": line " + std::to_string(feat->GetFID()) + ": label '" + v +
-                                                "' is not ridge, valley or other");
-            if (kind == LineKind::Other) continue;
-            std::unique_ptr<OGRGeometry> c(g->clone());
-            proj.apply(c.get());
-            require_finite(c.get(), what, "line " + std::to_string(feat->GetFID()));
-            if (keep(c.get(), around)) add_lines(c.get(), kind, p.lines);
-        }
-    } else if (!per_kind.empty()) {
-        for (auto [l, kind] : per_kind) {
-            const Reprojector proj = reprojector(l, working_wkt, what);
-            filter_layer(l, proj, around);
-            l->ResetReading();
-            for (auto& feat : *l) {
-                if (!feat->GetGeometryRef()) continue;
-                std::unique_ptr<OGRGeometry> c(feat->GetGeometryRef()->clone());
-                proj.apply(c.get());
-                require_finite(c.get(), what, "line " + std::to_string(feat->GetFID()) + " of layer '" + l->GetName() + "'");
-                if (keep(c.get(), around)) add_lines(c.get(), kind, p.lines);
-            }
-        }
-    } else {
-        throw Error(Code::BadLayer, what + ": no line layer with a '" + opt.label_field +
-                                        "' field and no 'ridges' / 'valleys' layers: the faces' borders cannot be labelled");
-    }
-
-    // ---- Orientation and density layers.
-    OGRLayer* olayer = find_layer(opt.orientation_layer, is_line_layer, "line");
-    if (!olayer && opt.orientation_layer.empty()) {
-        for (int i = 0; i < ds->GetLayerCount() && !olayer; ++i) {
-            const std::string n = lower(ds->GetLayer(i)->GetName());
-            if (is_line_layer(ds->GetLayer(i)) && n.rfind("orient", 0) == 0) olayer = ds->GetLayer(i);
-        }
-    }
-    if (olayer) {
-        const Reprojector proj = reprojector(olayer, working_wkt, what);
-        int matched = 0;
-        filter_layer(olayer, proj, around);
-        olayer->ResetReading();
-        for (auto& feat : *olayer) {
-            if (!feat->GetGeometryRef()) continue;
-            std::unique_ptr<OGRGeometry> c(feat->GetGeometryRef()->clone());
-            proj.apply(c.get());
-            require_finite(c.get(), what, "orientation line " + std::to_string(feat->GetFID()));
-            std::vector<LabelledLine> ls;
-            add_lines(c.get(), LineKind::Other, ls);
-            for (const auto& l : ls) {
-                const Point a = l.points.front(), b = l.points.back();
-                const Point mid = (a + b) / 2;
-                for (auto& f : p.faces)
-                    if (!f.orientation && f.region.contains(mid)) {
-                        f.orientation = std::atan2(b.y - a.y, b.x - a.x);
-                        ++matched;
-                        break;
-                    }
-            }
-        }
-        p.notes.push_back("orientation of " + std::to_string(matched) + " face(s) from layer '" + olayer->GetName() + "'");
-    }
-    OGRLayer* dlayer = find_layer(opt.density_layer, nullptr, "");
-    if (dlayer) {
-        const Reprojector proj = reprojector(dlayer, working_wkt, what);
-        const int idx = dlayer->GetLayerDefn()->GetFieldIndex(dens_name.c_str());
-        if (idx < 0) throw Error(Code::BadLayer, what + ": layer '" + opt.density_layer + "' has no field '" + dens_name + "'");
-        filter_layer(dlayer, proj, around);
-        dlayer->ResetReading();
-        for (auto& feat : *dlayer) {
-            if (!feat->GetGeometryRef() || !feat->IsFieldSetAndNotNull(idx)) continue;
-            const double d = feat->GetFieldAsDouble(idx);
-            if (!(d >= 0 && d <= 1))
-                throw Error(Code::BadLayer, what + ": layer '" + opt.density_layer + "': density " + std::to_string(d) + " is not in [0, 1]");
-            std::unique_ptr<OGRGeometry> c(feat->GetGeometryRef()->clone());
-            proj.apply(c.get());
-            require_finite(c.get(), what, "feature " + std::to_string(feat->GetFID()) + " of layer '" + opt.density_layer + "'");
-            OGRPoint centre;
-            c->Centroid(&centre);
-            for (auto& f : p.faces)
-                if (f.region.contains({centre.getX(), centre.getY()})) f.density = d;
-        }
-    }
-    if (OGRLayer* slayer = find_layer(opt.scree_layer, is_polygon_layer, "polygon")) {
-        const Reprojector proj = reprojector(slayer, working_wkt, what);
-        slayer->ResetReading();
-        for (auto& feat : *slayer) {
-            const OGRGeometry* g0 = feat->GetGeometryRef();
-            if (!g0 || g0->IsEmpty()) continue;
-            const std::string which = "scree area " + std::to_string(feat->GetFID()) + " of layer '" + opt.scree_layer + "'";
-            std::unique_ptr<OGRGeometry> g(g0->clone());
-            proj.apply(g.get());
-            require_finite(g.get(), what, which);
-            if (!g->IsValid()) g.reset(g->MakeValid());
-            if (!g || g->IsEmpty()) throw Error(Code::BadGeometry, what + ": " + which + " is invalid and cannot be repaired");
-            std::function<void(const OGRGeometry*)> add = [&](const OGRGeometry* x) {
-                const auto t = wkbFlatten(x->getGeometryType());
-                if (t == wkbMultiPolygon || t == wkbGeometryCollection)
-                    for (const auto* part : *x->toGeometryCollection()) add(part);
-                if (t != wkbPolygon) return;
-                const OGRPolygon* poly = x->toPolygon();
-                std::vector<std::vector<Point>> holes;
-                for (int i = 0; i < poly->getNumInteriorRings(); ++i) holes.push_back(ring_points(poly->getInteriorRing(i)));
-                p.scree.emplace_back(ring_points(poly->getExteriorRing()), std::move(holes), what + ": " + which);
-            };
-            add(g.get());
-        }
-        p.notes.push_back(std::to_string(p.scree.size()) + " scree area(s) from layer '" + opt.scree_layer + "'");
-    }
+    read_lines(src, around, p);
+    read_orientations(src, around, p);
+    read_densities(src, fields.dens_name, around, p);
+    read_scree(src, p);
     label_boundaries(p, opt.snap);
     return p;
 }

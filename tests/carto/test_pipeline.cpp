@@ -16,7 +16,6 @@
 #include "carto/raster.hpp"
 #include "libtex/tex.hpp"
 
-#include "sanitized.hpp"
 #include "scratch.hpp"
 
 using namespace carto;
@@ -313,8 +312,8 @@ TEST(Pipeline, EditingElevationInAWindowChangesOnlyNearby) {
         return n;
     };
     EXPECT_GT(changed_faces(150, "high-ridges"), 0);
-    // The wider radius too, in the normal pass (under the sanitizers each radius costs 20 s).
-    if (!rh_test::sanitized()) EXPECT_GT(changed_faces(400, "high-ridges"), 0);
+    // The wider radius too.
+    EXPECT_GT(changed_faces(400, "high-ridges"), 0);
     // print also reads the fall line and the shade, averaged over 1 mm on paper (10 m).
     EXPECT_GT(changed_faces(150, "print"), 0);
     std::filesystem::remove(edited_dem);
@@ -358,9 +357,8 @@ TEST(Pipeline, HatchingProgressRisesWhicheverThreadFinishesFirst) {
     Options o = sample_options("");
     o.custom_style = cheap;
     o.threads = 2;
-    // Before the fix it failed within 12, 40 and 83 rounds; under the sanitizers every round
-    // is several times slower, and 40 rounds keep the test under half a minute there.
-    const int rounds = rh_test::sanitized() ? 40 : 200;
+    // Before the fix it failed within 12, 40 and 83 rounds.
+    const int rounds = 200;
     for (int round = 0; round < rounds; ++round) {
         std::vector<double> fractions;
         hatch(sample(), o, [&](double f, const std::string& stage) {
@@ -378,12 +376,9 @@ TEST_P(EveryStyleKind, TwoHalvesGiveTheSameHatchesAsTheWhole) {
     const Drawing whole = hatch(sample(), o);
     const tex::BBox b = sample().partition.bounds();
     // Split in the middle, and exactly through the anchor of one face: that face goes to the
-    // tile whose window starts there (half-open windows), and only to it. Under the sanitizers
-    // the second split only (the same code on other windows; 12.9 s there for print's five
-    // drawings).
+    // tile whose window starts there (half-open windows), and only to it.
     const RockFace& f0 = sample().partition.faces.front();
     std::vector<double> splits = {b.center().x, face_anchor(f0).x};
-    if (rh_test::sanitized()) splits.erase(splits.begin());
     for (const double mid : splits) {
         SCOPED_TRACE(mid);
         o.window = tex::BBox{b.xmin - 1, b.ymin - 1, mid, b.ymax + 1};
@@ -777,9 +772,9 @@ TEST(Pipeline, PrintRefusesAToneCurveAboveItself) {
 }
 
 TEST(Pipeline, StylesAndParameters) {
-    // The seven rock styles of Fig. 5.4, print (the default), aretes (crest ornaments), then
-    // the two terrain styles.
-    EXPECT_EQ(styles().size(), 11u);
+    // The seven rock styles of Fig. 5.4, print (the default), aretes (crest ornaments), rock
+    // (structure first, no drawn outline), then the two terrain styles.
+    EXPECT_EQ(styles().size(), 12u);
     EXPECT_EQ(std::count_if(styles().begin(), styles().end(), [](const StyleInfo& s) { return s.crest_ornament; }), 1);
     EXPECT_EQ(std::count_if(styles().begin(), styles().end(), [](const StyleInfo& s) { return s.terrain; }), 2);
     EXPECT_EQ(default_style(), "print");
@@ -822,4 +817,68 @@ TEST(Fields, FaceWiseRasterAndClosedFormFieldsDriveAStyle) {
         double e = std::fmod(std::abs(std::atan2(d.y, d.x) - theta), M_PI);
         EXPECT_LT(std::min(e, M_PI - e), 1e-6);  // no jitter: exactly along the field
     }
+}
+
+// The rock style has no drawn outline: where no face lies across a border and no ridge lies
+// on it, fill and cross strokes end at least fray_min inside it, spread over the band up to
+// fray_max; the same drawing on any number of threads.
+TEST(Pipeline, TheRockStyleDrawsNoOutline) {
+    Options o = sample_options("rock");
+    o.threads = 1;
+    const Drawing d = hatch(sample(), o);
+    o.threads = 2;
+    const Drawing d2 = hatch(sample(), o);
+    const Partition& part = sample().partition;
+    const double mm = o.scale / 1000;
+    // The outer border: segments with no face across, and no ridge or valley on them.
+    std::vector<std::pair<Point, Point>> rim;
+    for (const auto& f : part.faces)
+        for (const auto& s : f.boundary)
+            if (s.neighbor < 0 && s.kind == LineKind::Other) rim.push_back({s.a, s.b});
+    ASSERT_GT(rim.size(), 100u);
+    // The rim's segments by 2 mm cells (each in the cells its box, grown by 2 mm, covers).
+    const double cell = 2 * mm;
+    std::map<std::pair<long long, long long>, std::vector<std::size_t>> cells;
+    for (std::size_t k = 0; k < rim.size(); ++k) {
+        const auto& [a, b] = rim[k];
+        for (long long x = (long long)std::floor((std::min(a.x, b.x) - cell) / cell);
+             x <= (long long)std::floor((std::max(a.x, b.x) + cell) / cell); ++x)
+            for (long long y = (long long)std::floor((std::min(a.y, b.y) - cell) / cell);
+                 y <= (long long)std::floor((std::max(a.y, b.y) + cell) / cell); ++y)
+                cells[{x, y}].push_back(k);
+    }
+    auto to_rim = [&](const Point& p) {
+        double best = 1e300;
+        const auto it = cells.find({(long long)std::floor(p.x / cell), (long long)std::floor(p.y / cell)});
+        if (it == cells.end()) return best;
+        for (std::size_t k : it->second) {
+            const auto& [a, b] = rim[k];
+            const Point ab = b - a;
+            const double t = std::clamp(tex::dot(p - a, ab) / std::max(tex::dot(ab, ab), 1e-300), 0.0, 1.0);
+            best = std::min(best, tex::distance(p, a + ab * t));
+        }
+        return best;
+    };
+    std::size_t ends = 0, shallow = 0, deep = 0, too_close = 0;
+    for (std::size_t k = 0; k < d.faces.size(); ++k) {
+        ASSERT_EQ(d.faces[k].hatches.size(), d2.faces[k].hatches.size());
+        for (std::size_t i = 0; i < d.faces[k].hatches.size(); ++i) {
+            const Hatch& h = d.faces[k].hatches[i];
+            ASSERT_EQ(h.points, d2.faces[k].hatches[i].points);
+            if (h.family != Family::Fill && h.family != Family::Cross) continue;
+            for (const Point& e : {h.points.front(), h.points.back()}) {
+                const double dist = to_rim(e);
+                if (dist > 2 * mm) continue;
+                ++ends;
+                too_close += dist < 0.2 * mm - 1e-6;
+                shallow += dist >= 0.2 * mm - 1e-6 && dist < 0.85 * mm;
+                deep += dist >= 0.85 * mm && dist <= 1.5 * mm + 1e-6;
+            }
+        }
+    }
+    ASSERT_GT(ends, 1000u);
+    EXPECT_LT(double(too_close) / double(ends), 0.01) << too_close << " of " << ends;
+    // Ragged: the ends spread over the band (the rest, farther than 1.5 mm, end on their own).
+    EXPECT_GT(double(shallow) / double(ends), 0.2) << shallow << " of " << ends;
+    EXPECT_GT(double(deep) / double(ends), 0.2) << deep << " of " << ends;
 }

@@ -157,6 +157,29 @@ TEST(Tiles, MergedTilesAreTheWholeRunBitForBit) {
     }
 }
 
+// The rock style reads more than a face's border: cliff tops from the slope field on a global
+// lattice, and the faces across the border (which keep strokes from being drawn back there).
+TEST(Tiles, TheRockStyleTiledIsTheWholeRunBitForBit) {
+    TempDir dir;
+    Options o = sample_options();
+    o.style = "rock";
+    const Drawing whole = hatch(prepare(o), o);
+    const Features expected = features(whole);
+    std::size_t cliff_strokes = 0;
+    for (const auto& f : whole.faces)
+        for (const auto& h : f.hatches) cliff_strokes += h.family == Family::Ridge;
+    ASSERT_GT(cliff_strokes, 500u);
+    std::vector<std::string> parts;
+    const auto tiles = tile_grid(raster_info(o.dem, "--dem"), 450);
+    for (std::size_t i = 0; i < tiles.size(); ++i) {
+        parts.push_back(dir / ("rock" + std::to_string(i) + ".gpkg"));
+        run_tile(o, tiles[i], parts.back());
+    }
+    const std::string merged = dir / "rock.gpkg";
+    EXPECT_EQ(merge_gpkg(parts, merged), expected.size());
+    EXPECT_TRUE(features(read_gpkg(merged, o.scale)) == expected);
+}
+
 TEST(Tiles, ATileReadsOnlyTheDemNearItsFaces) {
     TempDir dir;
     Options o = sample_options();

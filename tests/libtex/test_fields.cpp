@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <set>
 
 #include "helpers.hpp"
 
@@ -363,4 +364,35 @@ TEST(AlignToField, TurnsOpenCurvesOntoTheFieldAxis) {
     const auto& w = out.curves[3].points;
     EXPECT_NEAR(std::atan2(w[1].y - w[0].y, w[1].x - w[0].x), -0.1, 1e-12);
     EXPECT_NEAR(distance(w[0], w[1]), 2, 1e-12);
+}
+
+// IsoLines: marching squares on a global lattice.
+TEST(IsoLines, ACircleWithTheHighSideOnTheLeft) {
+    const Field r([](const Point& p) { return std::hypot(p.x, p.y); });
+    const Curves c = IsoLines(r, 5.0, 0.25)(Region::rectangle(-10, -10, 10, 10));
+    ASSERT_EQ(c.curves.size(), 1u);
+    const Curve& ring = c.curves[0];
+    EXPECT_TRUE(ring.closed);
+    for (const Point& p : ring.points) EXPECT_NEAR(std::hypot(p.x, p.y), 5.0, 0.01);
+    // Higher values (outside) on the left: the ring runs clockwise.
+    EXPECT_LT(signed_area(ring.points), 0);
+    EXPECT_NEAR(-signed_area(ring.points), pi * 25, 0.2);
+}
+
+TEST(IsoLines, TheLinesOfAPartAreThoseOfTheWhole) {
+    const Field f([](const Point& p) { return std::sin(p.x / 3) + std::cos(p.y / 4); });
+    auto points = [](const Curves& c) {
+        std::set<std::pair<double, double>> s;
+        for (const auto& k : c.curves)
+            for (const Point& p : k.points) s.insert({p.x, p.y});
+        return s;
+    };
+    const auto whole = points(IsoLines(f, 0.3, 0.5)(Region::rectangle(-20, -20, 20, 20)));
+    const auto part = points(IsoLines(f, 0.3, 0.5)(Region::rectangle(-3.3, 1.7, 8.1, 12.9)));
+    ASSERT_FALSE(part.empty());
+    for (const auto& p : part) EXPECT_TRUE(whole.count(p)) << p.first << " " << p.second;
+    // NaN corners give nothing; bad arguments are refused.
+    EXPECT_TRUE(IsoLines(Field(), 0.0, 1.0)(Region::rectangle(0, 0, 5, 5)).empty());
+    EXPECT_THROW(IsoLines(f, 0.0, 0.0), Error);
+    EXPECT_THROW(IsoLines(f, NAN, 1.0), Error);
 }

@@ -543,3 +543,94 @@ TEST(Merge, CropThroughARegionCorner) {
         }
     }
 }
+
+// FrayedCrop: cut ends drawn back from the border into a band [min, max], except on hard
+// edges and where the `across` field says the drawing goes on beyond the border.
+namespace {
+
+// Horizontal lines every 0.5 across [-5, 15], cut by the square [0, 10]^2.
+Arrangement rows() {
+    Curves c;
+    for (double y = 0.25; y < 10; y += 0.5) c.append(Polyline({{-5, y}, {15, y}}));
+    return Constant(c);
+}
+
+// The rows cross the left and right sides of the rectangle [0, 10] x [-10, 20] (its top and
+// bottom lie farther than any band) at right angles.
+const Region kTall = Region::rectangle(0, -10, 10, 20);
+double to_border(const Point& p) { return std::min(p.x, 10 - p.x); }
+
+}  // namespace
+
+TEST(Merge, FrayedCropDrawsCutEndsBackIntoTheBand) {
+    SetSeed(3);
+    const Region& sq = kTall;
+    const Curves c = FrayedCrop(rows(), 0.5, 2.0)(sq);
+    ASSERT_EQ(c.curves.size(), 20u);
+    std::vector<double> depths;
+    for (const auto& k : c.curves) {
+        for (const Point& p : {k.points.front(), k.points.back()}) {
+            EXPECT_TRUE(sq.contains(p));
+            depths.push_back(to_border(p));
+            EXPECT_GE(depths.back(), 0.5 - 1e-9);
+            EXPECT_LE(depths.back(), 2.0 + 1e-6);
+        }
+    }
+    // Irregular: the ends spread over the band, no two rows end alike.
+    std::sort(depths.begin(), depths.end());
+    EXPECT_LT(depths.front(), 0.8);
+    EXPECT_GT(depths.back(), 1.7);
+    EXPECT_EQ(std::unique(depths.begin(), depths.end()) - depths.begin(), std::ptrdiff_t(depths.size()));
+    // A band of width 0 is a plain crop, moved in by min.
+    for (const auto& k : FrayedCrop(rows(), 1.0, 1.0)(sq).curves)
+        EXPECT_NEAR(distance(k.points.front(), k.points.back()), 8.0, 1e-6);
+}
+
+TEST(Merge, FrayedCropKeepsHardEdgesAndEndsWithDrawingAcross) {
+    SetSeed(3);
+    // The left side labelled ridge: ends there stay on the line.
+    Curves edges = Polyline({{0, 10}, {0, 0}});
+    edges.curves[0].labels.add("ridge");
+    edges.append(Polyline({{0, 0}, {10, 0}, {10, 10}, {0, 10}}));
+    const Region sq = Region::rectangle(0, 0, 10, 10).with_edges(edges);
+    // (The rows nearest the bottom and top sides never get deeper than the band from them:
+    // they go; the others end on the ridge on the left.)
+    const Curves hard = FrayedCrop(rows(), 0.5, 2.0, Field(), {"ridge"})(sq);
+    EXPECT_GE(hard.curves.size(), 12u);
+    for (const auto& k : hard.curves) {
+        EXPECT_NEAR(k.points.front().x, 0.0, 1e-9);
+        EXPECT_GE(10 - k.points.back().x, 0.5 - 1e-9);
+    }
+    // A field with values right of x = 10 (another face there): those ends stay too.
+    const Field across([](const Point& p) { return p.x > 10 ? 1.0 : NAN; });
+    for (const auto& k : FrayedCrop(rows(), 0.5, 2.0, across)(kTall).curves) {
+        EXPECT_GE(k.points.front().x, 0.5 - 1e-9);
+        EXPECT_NEAR(k.points.back().x, 10.0, 1e-9);
+    }
+}
+
+TEST(Merge, FrayedCropIsKeyedBySeedAndGeometryOnly) {
+    const Region& sq = kTall;
+    auto draw = [&](std::uint64_t seed, unsigned threads) {
+        SetSeed(seed);
+        SetThreads(threads);
+        const Curves c = MapToFaces([](const Face& f) { return FrayedCrop(rows(), 0.5, 2.0)(ToRegion(f)); },
+                                    GridPartition(StripesProperties(0, 5), StripesProperties(pi / 2, 5), CROP))(sq);
+        SetThreads(0);
+        return ToSVG(c, 10.0);
+    };
+    EXPECT_EQ(draw(5, 1), draw(5, 2));
+    EXPECT_NE(draw(5, 1), draw(6, 1));
+    // Curves that do not reach the border are left as they are; a curve shorter than its
+    // cuts goes.
+    SetSeed(1);
+    Curves c = Polyline({{2, 2}, {4, 2}});
+    c.append(Polyline({{-1, 5}, {0.6, 5}}));
+    // One running along the left side, 0.5 inside it: never 1 deep, it goes.
+    c.append(Polyline({{0.5, 1}, {0.5, 8}}));
+    const Curves out = FrayedCrop(Constant(c), 1.0, 1.5)(sq);
+    ASSERT_EQ(out.curves.size(), 1u);
+    EXPECT_EQ(out.curves[0].points, (std::vector<Point>{{2, 2}, {4, 2}}));
+    EXPECT_THROW(FrayedCrop(rows(), 2.0, 1.0), Error);
+    EXPECT_THROW(FrayedCrop(rows(), -1.0, 1.0), Error);
+}

@@ -27,7 +27,7 @@ def load(name):
 def test_one_script_per_iteration():
     # One script per built-in style; what they share lives in modules named _*.py, which
     # are not styles (they define no style()).
-    assert len(SCRIPTS) == 9
+    assert len(SCRIPTS) == 10
     assert sorted(p.name for p in STYLES.glob("*.py") if not p.name.startswith("_")) == sorted(SCRIPTS.values())
     for shared in STYLES.glob("_*.py"):
         assert not re.search(r"^def style\(", shared.read_text(), re.M), shared.name

@@ -17,6 +17,10 @@ using tex::Arrangement;
 // Parameter lists (defaults follow App. E at 1:10000).
 std::vector<StyleParam> fill_params(double length_mm, double jitter);
 extern const std::vector<StyleParam> kTriangles, kCoarse, kPeaks, kBalanced, kHigh, kCross, kTone, kCrest;
+// The band inside the rock's edge where fill strokes end (frayed).
+extern const std::vector<StyleParam> kFray;
+// Cliff bands: where the slope passes cliff_slope, their tops and the strokes hanging from them.
+extern const std::vector<StyleParam> kCliff;
 // print's tone cells: kCoarse's parameters, 2 mm wide (3 mm cells, 150 m at 1:50000, let the
 // ink of a block follow its cell more than its own shade: rho 0.77 on the sample there).
 extern const std::vector<StyleParam> kToneCells;
@@ -93,6 +97,27 @@ double tone_coverage(const ParamValues& p, double shade);
 // tilting them).
 Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const FaceReading& face,
                            const tex::Region& region, const tex::Curves& spent);
+
+// The tops of the cliff bands in the face `region`: the level line slope = cliff_slope of
+// the slope field (tex::IsoLines on a lattice of a quarter of crest_smoothing, the same in a
+// tile as in the whole), where the ground falls into the band (the steeper side lower),
+// smoothed at crest_smoothing, pieces shorter than cliff_min_length dropped, cut to the
+// face; labelled "ridge" (drawn as structure lines).
+tex::Curves cliff_tops(const ControlFields& f, const ParamValues& p, const tex::Region& region);
+// Strokes hanging from cliff tops into their bands: every crest_spacing along each top, one
+// stroke down the fall line (read half a stroke below the top), cliff_length x a
+// golden-ratio share 0.35 .. 1, shorter near the top's ends, a third of them kept on lit
+// rock and all in full shade: cliff bands read as rows of strokes across the slope, dense in
+// shadow. Labelled "ridge".
+tex::Curves cliff_strokes(const ControlFields& f, const ParamValues& p, const FaceReading& face,
+                          const tex::Curves& tops);
+// Throws a usage error unless 0 <= fray_min <= fray_max.
+void check_fray(const ParamValues& p);
+// The arrangement a, cut to the face, its strokes drawn back from the rock's edge by a
+// random length in [fray_min, fray_max] (tex::FrayedCrop): where no face lies across the
+// border (the density field has no value there) and no ridge or cliff lies on it, strokes
+// end irregularly in a band inside the border instead of drawing it.
+Arrangement frayed(const ControlFields& f, const ParamValues& p, Arrangement a);
 
 // (f) the valleys the face owns (a valley between two faces is drawn once).
 Arrangement valleys();

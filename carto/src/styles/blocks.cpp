@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "carto/error.hpp"
@@ -75,6 +76,15 @@ const std::vector<StyleParam> kCrest = {
     {"crest_length", 0.8, "mm", "longest shadow-side stroke on low ground"},
     {"crest_height_gain", 0.5, "ratio", "shadow-side strokes grow by this fraction on the highest ground"},
     {"crest_smoothing", 0.8, "mm", "crest lines are drawn smooth at this length (shorter bends and steps go)"},
+};
+const std::vector<StyleParam> kFray = {
+    {"fray_min", 0.2, "mm", "strokes end at least this far inside the rock's edge (where nothing lies across it)"},
+    {"fray_max", 1.5, "mm", "and at most this far: they end irregularly in the band between"},
+};
+const std::vector<StyleParam> kCliff = {
+    {"cliff_slope", 100.0, "%", "cliff bands are where the slope passes this (percent; 100: 45 degrees)"},
+    {"cliff_length", 1.2, "mm", "longest stroke hanging from a cliff top"},
+    {"cliff_min_length", 2.0, "mm", "cliff tops shorter than this are not drawn"},
 };
 const std::vector<StyleParam> kCross = {
     {"roughness_min", 0.01, "ratio", "roughness (0..1) below which no cross hatching is drawn"},
@@ -195,6 +205,34 @@ constexpr double kCrestEndTaper = 0.3;
 // line runs nearly along the crest (a spur falling away), the line is drawn alone; a stroke
 // turned off the fall line there would cross the fill strokes and read as a net.
 constexpr double kCrestStrokeMinCos = 0.5;
+// The share of the strokes hanging from a cliff top kept on fully lit rock (all in full shade).
+constexpr double kLitCliffStrokes = 0.33;
+
+// The direction of a stroke hanging from a line at `foot` into the side `n` (unit normal):
+// the fall line read half the longest stroke down that side (on the line itself it averages
+// two opposite slopes), the face's orientation when not following it or where it reads NaN;
+// none where it runs within 60 degrees of the line.
+std::optional<Point> hanging_direction(const ControlFields& f, const FaceReading& face, bool follow,
+                                       const Point& foot, const Point& n, double longest) {
+    double angle = face.theta;
+    if (follow) {
+        const double local = f.fall_line(foot + n * (0.5 * longest));
+        if (!std::isnan(local)) angle = local;
+    }
+    Point d = dir(angle);
+    if (dot(d, n) < 0) d = -d;
+    if (dot(d, n) < kCrestStrokeMinCos) return std::nullopt;
+    return d;
+}
+
+// The length of stroke k hanging from a line, `base` for the longest: a golden-ratio share
+// kShortestCrestStroke .. 1 of it, shorter within `longest` of the line's nearer end
+// (`to_end` from stroke k's foot).
+double hanging_length(double base, long long k, double spacing, double to_end, double longest) {
+    const double from_end = std::min((double(k) + 0.5) * spacing, to_end);
+    const double taper = std::min(1.0, kCrestEndTaper + from_end / longest);
+    return base * (kShortestCrestStroke + (1 - kShortestCrestStroke) * ThinRank(k)) * taper;
+}
 }  // namespace
 
 Arrangement crest_lines(const ParamValues& p) {
@@ -221,23 +259,13 @@ Arrangement crest_strokes(const ControlFields& f, const ParamValues& p, const Fa
         const bool follow = p.at("follow_fall_line") > 0;
         auto hang = [&](const Point& foot, const Point& t, long long k, double to_end) -> Curves {
             const Point n = Point{-t.y, t.x} * side;  // into the face
-            // The fall line on the crest itself averages two opposite slopes: read it a little
-            // down the face instead.
-            double angle = face.theta;
-            if (follow) {
-                const double local = f.fall_line(foot + n * (0.5 * longest));
-                if (!std::isnan(local)) angle = local;
-            }
-            Point d = dir(angle);
-            if (dot(d, n) < 0) d = -d;
-            if (dot(d, n) < kCrestStrokeMinCos) return Nothing();
+            const std::optional<Point> d = hanging_direction(f, face, follow, foot, n, longest);
+            if (!d) return Nothing();
             double h = f.height(foot);
             if (std::isnan(h)) h = face.height;
-            const double from_end = std::min((double(k) + 0.5) * spacing, to_end);
-            const double taper = std::min(1.0, kCrestEndTaper + from_end / longest);
-            const double len = longest * (1 + p.at("crest_height_gain") * clamp01(h)) *
-                               (kShortestCrestStroke + (1 - kShortestCrestStroke) * ThinRank(k)) * taper;
-            return Labelled(tex::Polyline({foot, foot + d * len}), "ridge");
+            const double base = longest * (1 + p.at("crest_height_gain") * clamp01(h));
+            const double len = hanging_length(base, k, spacing, to_end, longest);
+            return Labelled(tex::Polyline({foot, foot + *d * len}), "ridge");
         };
         // The feet on the crest line as crest_lines draws it.
         return MapAlong(Smoothed(ToCurve(e), p.at("crest_smoothing")), spacing, hang);
@@ -323,6 +351,77 @@ Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const F
         return out;
     };
     return MapToFaces(hatch_cell, grid);
+}
+
+tex::Curves cliff_tops(const ControlFields& f, const ParamValues& p, const Region& region) {
+    const double step = p.at("crest_smoothing"), cell = step / 4, min_length = p.at("cliff_min_length");
+    const Curves levels = IsoLines(f.slope, p.at("cliff_slope"), cell)(region);
+    Curves tops;
+    for (const Curve& c : levels.curves) {
+        // Runs of the line along which the band (on its left) lies lower: a cliff's top.
+        std::vector<Point> pts = c.points;
+        if (c.closed) pts.push_back(pts.front());
+        std::vector<Point> run;
+        auto flush = [&] {
+            double length = 0;
+            for (std::size_t i = 0; i + 1 < run.size(); ++i) length += distance(run[i], run[i + 1]);
+            if (run.size() >= 2 && length >= min_length) {
+                Curves piece = Smoothed(tex::Polyline(run), step);
+                for (auto& k : piece.curves) k.labels.add("ridge");
+                tops.append(std::move(piece));
+            }
+            run.clear();
+        };
+        for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+            const Point a = pts[i], b = pts[i + 1];
+            const double l = distance(a, b);
+            bool top = false;
+            if (l > 0) {
+                const Point mid = (a + b) / 2, left{-(b - a).y / l, (b - a).x / l};
+                const double into = f.height(mid + left * cell), out = f.height(mid - left * cell);
+                top = into < out;  // NaN: not a top
+            }
+            if (top) {
+                if (run.empty()) run.push_back(a);
+                run.push_back(b);
+            } else {
+                flush();
+            }
+        }
+        flush();
+    }
+    return apply_mask(tops, region, CROP);
+}
+
+tex::Curves cliff_strokes(const ControlFields& f, const ParamValues& p, const FaceReading& face, const Curves& tops) {
+    const double longest = p.at("cliff_length"), spacing = p.at("crest_spacing");
+    const bool follow = p.at("follow_fall_line") > 0;
+    auto hang = [&](const Point& foot, const Point& t, long long k, double to_end) -> Curves {
+        const Point n{-t.y, t.x};  // into the band: the line runs with the band on its left
+        const std::optional<Point> d = hanging_direction(f, face, follow, foot, n, longest);
+        if (!d) return Nothing();
+        // Dense in shade, sparse on lit rock: stroke k is kept when its golden-ratio rank is
+        // under the shade (from a third of them on fully lit ground).
+        double shade = f.shade(foot + n * (0.5 * longest));
+        if (std::isnan(shade)) shade = face.density;
+        if (ThinRank(k) > kLitCliffStrokes + (1 - kLitCliffStrokes) * std::clamp(shade, 0.0, 1.0)) return Nothing();
+        return Labelled(tex::Polyline({foot, foot + *d * hanging_length(longest, k, spacing, to_end, longest)}),
+                        "ridge");
+    };
+    return MapAlong(tops, spacing, hang);
+}
+
+void check_fray(const ParamValues& p) {
+    if (!(p.at("fray_min") >= 0) || !(p.at("fray_max") >= p.at("fray_min"))) {
+        std::ostringstream m;
+        m << "style: --param fray_min=" << p.at("fray_min") / p.at(kGroundPerMm) << " and fray_max="
+          << p.at("fray_max") / p.at(kGroundPerMm) << " must satisfy 0 <= fray_min <= fray_max";
+        throw Error(Code::Usage, m.str());
+    }
+}
+
+Arrangement frayed(const ControlFields& f, const ParamValues& p, Arrangement a) {
+    return FrayedCrop(std::move(a), p.at("fray_min"), p.at("fray_max"), f.density, {"ridge", "cliff"});
 }
 
 Arrangement valleys() {

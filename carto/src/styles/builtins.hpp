@@ -24,5 +24,6 @@ Builtin high_ridges();
 Builtin bidirectional();
 Builtin aretes();
 Builtin print();
+Builtin rock();
 
 }  // namespace carto::blocks

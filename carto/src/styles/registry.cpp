@@ -19,7 +19,7 @@ const std::vector<blocks::Builtin>& builtins() {
     static const std::vector<blocks::Builtin> all = {
         blocks::noisy(),       blocks::ridge_triangles_style(), blocks::density_cells(), blocks::fine_ridges(),
         blocks::balanced(),    blocks::high_ridges(),           blocks::bidirectional(),
-        blocks::print(),       blocks::aretes(),
+        blocks::print(),       blocks::aretes(),                blocks::rock(),
     };
     return all;
 }

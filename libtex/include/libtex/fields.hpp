@@ -181,6 +181,15 @@ VectorField Gradient(Field f, double h);
 // once per curve (thesis 5.3.2): strokes laid out by any partition bend with the field.
 Arrangement AlignToField(Arrangement a, Field angle);
 
+// The level set f = level as curves, by marching squares on the lattice of the points
+// (i cell, j cell) of the plane: a global lattice, so the lines in a region are those of the
+// plane whatever region they are drawn in (the same in a tile as in the whole). Each line
+// runs with the values above `level` on its left; a lattice square with a NaN corner gives
+// none, and a saddle is decided by the mean of its corners. Evaluated on a region: the
+// lines through the squares meeting its bounding box, not cut to it (crop them). Throws
+// tex::Error naming IsoLines for a cell that is not positive or a level that is not finite.
+Arrangement IsoLines(Field f, double level, double cell);
+
 // ---- Controlled arrangements and mappers (thesis 5.3.1, 5.3.2) ----
 
 namespace detail {

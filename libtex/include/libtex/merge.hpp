@@ -1,7 +1,11 @@
 // Merging operators (thesis 3.5, table 3.5).
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include "libtex/arrangement.hpp"
+#include "libtex/fields.hpp"
 #include "libtex/partitions.hpp"
 
 namespace tex {
@@ -23,6 +27,17 @@ Arrangement Outside(Arrangement a1, Arrangement a2, Border b);
 // lying wholly inside / meeting the inside. A region's own outline as the mask, so it costs
 // one crop, not a planar map of the outline (Inside(a, outline, b) means the same).
 Arrangement Crop(Arrangement a, Border b);
+// a evaluated on the region and cut to it (CROP), then every end of an open curve on the
+// region's rim (within `min` of it) drawn back along the curve to a random depth in
+// [min, max] from the rim, so that the curves end irregularly in a band inside the rim
+// instead of drawing it (rock drawing has no outline); a curve that never gets that deep
+// goes, so the band also thins out. The rim is the border less its edges labelled one of
+// `hard` (a structure line drawn there) and less where `across` has a value just beyond it
+// (another face goes on there); the default `across` (NaN everywhere) leaves all of it. The
+// depths are keyed by the end point, the operator's stream and the seed: the same on any
+// thread and in any tiling.
+Arrangement FrayedCrop(Arrangement a, double min, double max, Field across = Field(),
+                       std::vector<std::string> hard = {});
 // The region itself as an arrangement: its boundary, as the labelled edges of the face it
 // comes from when it has them (Region::with_edges), else its rings.
 Arrangement Outline();

@@ -529,27 +529,225 @@ bool crop_by_crossings(const Curves& src, const Curves& mask, const detail::Segm
     return true;
 }
 
-Curves mask_core(const Curves& subject, const Curves& mask, MaskSide side, Border b) {
-    const LabelId in = inside_marker();
-    const bool keep_whole = (b == Border::KEEP_INSIDE || b == Border::KEEP_OUTSIDE);
-    const bool want_in = side == MaskSide::Inside;
-    const Status wanted = want_in ? Status::In : Status::Out;
+// ---- The steps of mask_core
 
+Curves mask_core(const Curves& subject, const Curves& mask, MaskSide side, Border b);
+
+// The mask's segments, each knowing on which of its sides the mask's inside lies.
+std::vector<detail::Seg> inside_marked_segments(const Curves& mask, LabelId in) {
     std::vector<detail::Seg> mask_segs = detail::curve_segments(mask);
     for (auto& sg : mask_segs) {
         const Curve& mc = mask.curves[sg.owner];
         sg.in_left = mc.left.has(in);
         sg.in_right = mc.right.has(in);
     }
-    const detail::SegmentGrid grid(std::move(mask_segs));
+    return mask_segs;
+}
+
+// CROP of open polylines by their crossings with the mask alone (counted); false when that
+// cannot decide.
+bool crop_polylines_fast(const Curves& subject, const detail::SegmentGrid& grid, Status wanted, Curves& fast) {
+    if (!crop_open_polylines(subject, grid, wanted, fast)) return false;
+    ++detail::g_fast_crops;
+    ++detail::g_polyline_crops;
+    return true;
+}
+
+// CROP by the crossings with the mask (counted), the curves that meet the mask degenerately
+// cropped on the exact path; false when the crossings cannot decide.
+bool crop_by_crossings_fast(const Curves& src, const Curves& mask, const detail::SegmentGrid& grid,
+                            const std::vector<Run>& runs, MaskSide side, Border b, Status wanted, Curves& fast) {
+    std::vector<char> hard;
+    if (!crop_by_crossings(src, mask, grid, runs, b, wanted, fast, hard)) return false;
+    ++detail::g_fast_crops;
+    Curves rest;  // the curves that meet the mask degenerately: exact path
+    for (std::size_t i = 0; i < src.curves.size(); ++i)
+        if (hard[i]) rest.curves.push_back(src.curves[i]);
+    if (!rest.curves.empty()) {
+        detail::ExactCropScope exact;
+        Curves cut = mask_core(rest, mask, side, b);
+        for (auto& c : cut.curves) fast.curves.push_back(std::move(c));
+    }
+    return true;
+}
+
+// Where the subject's runs lie: a far run located at once by one point; the near runs, with
+// the mask curves they need, in one exact planar map whose faces are classified.
+struct JointMap {
+    std::vector<Status> run_status;        // of the far runs (Unknown for the near ones)
+    Curves joint;                          // the near runs, then the mask curves included
+    std::vector<std::uint32_t> joint_run;  // the run of each subject curve of `joint`
+    std::size_t n_subject = 0;             // curves of `joint` from the subject
+    MapPtr jm;                             // none without near runs
+    std::vector<Status> status;            // of jm's faces
+};
+
+// Locates the runs of `src` against the mask.
+JointMap joint_map(const Curves& src, const Curves& mask, const detail::SegmentGrid& grid, const std::vector<Run>& runs,
+                   const std::vector<char>& included) {
+    JointMap j;
+    j.run_status.assign(runs.size(), Status::Unknown);
+    for (std::uint32_t r = 0; r < runs.size(); ++r) {
+        if (!runs[r].near) {
+            j.run_status[r] =
+                grid.locate(runs[r].pts.front()) == detail::SegmentGrid::Where::In ? Status::In : Status::Out;
+            continue;
+        }
+        const Curve& c = src.curves[runs[r].curve];
+        Curve jc;
+        jc.points = runs[r].pts;
+        jc.closed = runs[r].closed;
+        jc.labels = c.labels;
+        jc.left = c.left;
+        jc.right = c.right;
+        j.joint.curves.push_back(std::move(jc));
+        j.joint_run.push_back(r);
+    }
+    j.n_subject = j.joint.curves.size();
+    if (j.n_subject > 0) {
+        for (std::size_t m = 0; m < mask.curves.size(); ++m)
+            if (included[m]) j.joint.curves.push_back(mask.curves[m]);
+        j.jm = PlanarMap::induce(j.joint);
+        j.status = classify_faces(*j.jm, j.n_subject);
+    }
+    return j;
+}
+
+// KEEP modes: whole edges, kept by the status of all their pieces (KEEP_INSIDE) or of any
+// one (KEEP_OUTSIDE); a piece lying on the mask boundary counts for both sides.
+void keep_whole_edges(const Curves& src, const std::vector<Run>& runs, const JointMap& j, Border b, Status wanted,
+                      Curves& out) {
+    std::vector<char> any(src.curves.size(), 0), all(src.curves.size(), 1), seen(src.curves.size(), 0);
+    auto note = [&](std::uint32_t curve, bool ok) {
+        seen[curve] = 1;
+        any[curve] |= ok;
+        all[curve] &= ok;
+    };
+    for (std::uint32_t r = 0; r < runs.size(); ++r)
+        if (!runs[r].near) note(runs[r].curve, j.run_status[r] == wanted);
+    if (j.jm)
+        for (const EdgeRec& e : j.jm->edges()) {
+            bool on_mask = false;
+            for (const auto& s : e.sources) on_mask |= s.curve >= j.n_subject;
+            const bool ok = on_mask ? (j.status[e.left] == wanted || j.status[e.right] == wanted)
+                                    : j.status[e.left] == wanted;
+            for (const auto& s : e.sources)
+                if (s.curve < j.n_subject) note(runs[j.joint_run[s.curve]].curve, ok);
+        }
+    for (std::size_t i = 0; i < src.curves.size(); ++i) {
+        const bool keep = b == Border::KEEP_INSIDE ? (seen[i] && all[i]) : any[i];
+        if (keep) out.curves.push_back(src.curves[i]);
+    }
+}
+
+// The kept pieces of each curve, per curve and in its direction.
+using CurvePieces = std::vector<std::vector<std::vector<Point>>>;
+
+// The far runs kept, as pieces of their curves (a closed run closed by its first point).
+void add_far_pieces(const std::vector<Run>& runs, const JointMap& j, Status wanted, CurvePieces& pieces) {
+    for (std::uint32_t r = 0; r < runs.size(); ++r)
+        if (!runs[r].near && j.run_status[r] == wanted) {
+            std::vector<Point> p = runs[r].pts;
+            if (runs[r].closed) p.push_back(p.front());
+            pieces[runs[r].curve].push_back(std::move(p));
+        }
+}
+
+// A kept edge of the joint map as a curve with the labels of the piece's own side: the
+// subject's for a piece of it (lying on the mask or not), the mask's for a piece of the
+// mask's boundary alone.
+Curve joint_edge_piece(const JointMap& j, std::size_t ei, bool on_subject) {
+    const EdgeRec& e = j.jm->edges()[ei];
+    Curve c = j.jm->edge_curve(int(ei));
+    c.labels = Labels{};
+    c.left = Labels{};
+    c.right = Labels{};
+    for (const auto& src_ref : e.sources) {
+        if ((src_ref.curve < j.n_subject) != on_subject) continue;
+        const Curve& from = j.joint.curves[src_ref.curve];
+        c.labels.merge(from.labels);
+        c.left.merge(src_ref.forward ? from.left : from.right);
+        c.right.merge(src_ref.forward ? from.right : from.left);
+    }
+    return strip(std::move(c));
+}
+
+// The kept edges of the joint map: an edge of one subject curve alone as a piece of that
+// curve, the others (on the mask or shared by several curves) as loose curves.
+void add_joint_pieces(const std::vector<Run>& runs, const JointMap& j, Border b, Status wanted, LabelId in,
+                      CurvePieces& pieces, Curves& loose) {
+    for (std::size_t ei = 0; ei < j.jm->edges().size(); ++ei) {
+        const EdgeRec& e = j.jm->edges()[ei];
+        bool on_mask = false, on_subject = false, mask_bounded = false;
+        for (const auto& s : e.sources) {
+            if (s.curve >= j.n_subject) {
+                on_mask = true;
+                const Curve& mc = j.joint.curves[s.curve];
+                mask_bounded |= mc.left.has(in) || mc.right.has(in);
+            } else {
+                on_subject = true;
+            }
+        }
+        bool keep = false;
+        if (on_subject)
+            keep = on_mask ? (j.status[e.left] == wanted || j.status[e.right] == wanted) : j.status[e.left] == wanted;
+        if (keep && !on_mask && e.sources.size() == 1) {
+            std::vector<Point> p = e.points;
+            if (!e.sources[0].forward) std::reverse(p.begin(), p.end());
+            pieces[runs[j.joint_run[e.sources[0].curve]].curve].push_back(std::move(p));
+            continue;
+        }
+        if (!keep && on_mask && b == Border::CROP_ADD_BOUNDARY) keep = mask_bounded;
+        if (!keep) continue;
+        loose.curves.push_back(joint_edge_piece(j, ei, on_subject));
+    }
+}
+
+// CROP: the kept pieces of each curve, in its direction, then joined where the mask
+// does not cut them; the loose pieces and (CROP_ADD_BOUNDARY) the mask's boundaries after.
+void crop_pieces(const Curves& src, const Curves& mask, const detail::SegmentGrid& grid, const std::vector<Run>& runs,
+                 const std::vector<char>& included, const JointMap& j, Border b, Status wanted, LabelId in,
+                 Curves& out) {
+    CurvePieces pieces(src.curves.size());
+    Curves loose;  // pieces on the mask or shared by several curves
+    add_far_pieces(runs, j, wanted, pieces);
+    if (j.jm) add_joint_pieces(runs, j, b, wanted, in, pieces, loose);
+    if (j.jm && b == Border::CROP_ADD_BOUNDARY)  // the boundaries that met no subject curve
+        for (std::size_t m = 0; m < mask.curves.size(); ++m)
+            if (!included[m] && (mask.curves[m].left.has(in) || mask.curves[m].right.has(in)))
+                loose.curves.push_back(strip(mask.curves[m]));
+    for (std::size_t i = 0; i < src.curves.size(); ++i)
+        if (!pieces[i].empty()) stitch(pieces[i], src.curves[i], grid, out);
+    for (auto& c : loose.curves) out.curves.push_back(std::move(c));
+    if (!j.jm && b == Border::CROP_ADD_BOUNDARY)
+        for (const Curve& mc : mask.curves)
+            if (mc.left.has(in) || mc.right.has(in)) out.curves.push_back(strip(mc));
+}
+
+// Distinct exact points of the planar map may round to the same doubles: no piece keeps
+// a repeated point (a zero-length segment), none is left with fewer than two points.
+void drop_repeated_points(Curves& out) {
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < out.curves.size(); ++i) {
+        Curve& c = out.curves[i];
+        c.points = clean_points(c);
+        if (c.points.size() < 2) continue;
+        if (kept != i) out.curves[kept] = std::move(c);
+        ++kept;
+    }
+    out.curves.resize(kept);
+}
+
+Curves mask_core(const Curves& subject, const Curves& mask, MaskSide side, Border b) {
+    const LabelId in = inside_marker();
+    const bool keep_whole = (b == Border::KEEP_INSIDE || b == Border::KEEP_OUTSIDE);
+    const bool want_in = side == MaskSide::Inside;
+    const Status wanted = want_in ? Status::In : Status::Out;
+    const detail::SegmentGrid grid(inside_marked_segments(mask, in));
 
     if (b == Border::CROP && !detail::exact_crops_only() && !detail::g_general_only) {
         Curves fast;
-        if (crop_open_polylines(subject, grid, wanted, fast)) {
-            ++detail::g_fast_crops;
-            ++detail::g_polyline_crops;
-            return fast;
-        }
+        if (crop_polylines_fast(subject, grid, wanted, fast)) return fast;
     }
 
     // KEEP modes decide on the edges of the subject's own planar map; CROP on its curves.
@@ -562,148 +760,18 @@ Curves mask_core(const Curves& subject, const Curves& mask, MaskSide side, Borde
     const std::vector<char> included = mask_curves_needed(mask, grid, runs, touched, keep_whole);
     if (!keep_whole && !detail::exact_crops_only()) {
         Curves fast;
-        std::vector<char> hard;
-        if (crop_by_crossings(src, mask, grid, runs, b, wanted, fast, hard)) {
-            ++detail::g_fast_crops;
-            Curves rest;  // the curves that meet the mask degenerately: exact path
-            for (std::size_t i = 0; i < src.curves.size(); ++i)
-                if (hard[i]) rest.curves.push_back(src.curves[i]);
-            if (!rest.curves.empty()) {
-                detail::ExactCropScope exact;
-                Curves cut = mask_core(rest, mask, side, b);
-                for (auto& c : cut.curves) fast.curves.push_back(std::move(c));
-            }
-            return fast;
-        }
+        if (crop_by_crossings_fast(src, mask, grid, runs, side, b, wanted, fast)) return fast;
     }
 
-    std::vector<Status> run_status(runs.size(), Status::Unknown);
-    Curves joint;
-    std::vector<std::uint32_t> joint_run;
-    for (std::uint32_t r = 0; r < runs.size(); ++r) {
-        if (!runs[r].near) {
-            run_status[r] = grid.locate(runs[r].pts.front()) == detail::SegmentGrid::Where::In ? Status::In : Status::Out;
-            continue;
-        }
-        const Curve& c = src.curves[runs[r].curve];
-        Curve jc;
-        jc.points = runs[r].pts;
-        jc.closed = runs[r].closed;
-        jc.labels = c.labels;
-        jc.left = c.left;
-        jc.right = c.right;
-        joint.curves.push_back(std::move(jc));
-        joint_run.push_back(r);
-    }
-    const std::size_t n_subject = joint.curves.size();
-    MapPtr jm;
-    std::vector<Status> status;
-    if (n_subject > 0) {
-        for (std::size_t m = 0; m < mask.curves.size(); ++m)
-            if (included[m]) joint.curves.push_back(mask.curves[m]);
-        jm = PlanarMap::induce(joint);
-        status = classify_faces(*jm, n_subject);
-    }
-
+    const JointMap j = joint_map(src, mask, grid, runs, included);
     Curves out;
     out.points = subject.points;
     if (keep_whole) {
-        // Whole edges, kept by the status of all their pieces (KEEP_INSIDE) or of any one
-        // (KEEP_OUTSIDE); a piece lying on the mask boundary counts for both sides.
-        std::vector<char> any(src.curves.size(), 0), all(src.curves.size(), 1), seen(src.curves.size(), 0);
-        auto note = [&](std::uint32_t curve, bool ok) {
-            seen[curve] = 1;
-            any[curve] |= ok;
-            all[curve] &= ok;
-        };
-        for (std::uint32_t r = 0; r < runs.size(); ++r)
-            if (!runs[r].near) note(runs[r].curve, run_status[r] == wanted);
-        if (jm)
-            for (const EdgeRec& e : jm->edges()) {
-                bool on_mask = false;
-                for (const auto& s : e.sources) on_mask |= s.curve >= n_subject;
-                const bool ok = on_mask ? (status[e.left] == wanted || status[e.right] == wanted)
-                                        : status[e.left] == wanted;
-                for (const auto& s : e.sources)
-                    if (s.curve < n_subject) note(runs[joint_run[s.curve]].curve, ok);
-            }
-        for (std::size_t i = 0; i < src.curves.size(); ++i) {
-            const bool keep = b == Border::KEEP_INSIDE ? (seen[i] && all[i]) : any[i];
-            if (keep) out.curves.push_back(src.curves[i]);
-        }
+        keep_whole_edges(src, runs, j, b, wanted, out);
         return out;
     }
-
-    // CROP: the kept pieces of each curve, in its direction, then joined where the mask
-    // does not cut them.
-    std::vector<std::vector<std::vector<Point>>> pieces(src.curves.size());
-    Curves loose;  // pieces on the mask or shared by several curves
-    for (std::uint32_t r = 0; r < runs.size(); ++r)
-        if (!runs[r].near && run_status[r] == wanted) {
-            std::vector<Point> p = runs[r].pts;
-            if (runs[r].closed) p.push_back(p.front());
-            pieces[runs[r].curve].push_back(std::move(p));
-        }
-    if (jm)
-        for (std::size_t ei = 0; ei < jm->edges().size(); ++ei) {
-            const EdgeRec& e = jm->edges()[ei];
-            bool on_mask = false, on_subject = false, mask_bounded = false;
-            for (const auto& s : e.sources) {
-                if (s.curve >= n_subject) {
-                    on_mask = true;
-                    const Curve& mc = joint.curves[s.curve];
-                    mask_bounded |= mc.left.has(in) || mc.right.has(in);
-                } else {
-                    on_subject = true;
-                }
-            }
-            bool keep = false;
-            if (on_subject)
-                keep = on_mask ? (status[e.left] == wanted || status[e.right] == wanted) : status[e.left] == wanted;
-            if (keep && !on_mask && e.sources.size() == 1) {
-                std::vector<Point> p = e.points;
-                if (!e.sources[0].forward) std::reverse(p.begin(), p.end());
-                pieces[runs[joint_run[e.sources[0].curve]].curve].push_back(std::move(p));
-                continue;
-            }
-            if (!keep && on_mask && b == Border::CROP_ADD_BOUNDARY) keep = mask_bounded;
-            if (!keep) continue;
-            // The labels of the piece's own side: the subject's for a piece of it (lying on
-            // the mask or not), the mask's for a piece of the mask's boundary alone.
-            Curve c = jm->edge_curve(int(ei));
-            c.labels = Labels{};
-            c.left = Labels{};
-            c.right = Labels{};
-            for (const auto& src_ref : e.sources) {
-                if ((src_ref.curve < n_subject) != on_subject) continue;
-                const Curve& from = joint.curves[src_ref.curve];
-                c.labels.merge(from.labels);
-                c.left.merge(src_ref.forward ? from.left : from.right);
-                c.right.merge(src_ref.forward ? from.right : from.left);
-            }
-            loose.curves.push_back(strip(std::move(c)));
-        }
-    if (jm && b == Border::CROP_ADD_BOUNDARY)  // the boundaries that met no subject curve
-        for (std::size_t m = 0; m < mask.curves.size(); ++m)
-            if (!included[m] && (mask.curves[m].left.has(in) || mask.curves[m].right.has(in)))
-                loose.curves.push_back(strip(mask.curves[m]));
-    for (std::size_t i = 0; i < src.curves.size(); ++i)
-        if (!pieces[i].empty()) stitch(pieces[i], src.curves[i], grid, out);
-    for (auto& c : loose.curves) out.curves.push_back(std::move(c));
-    if (!jm && b == Border::CROP_ADD_BOUNDARY)
-        for (const Curve& mc : mask.curves)
-            if (mc.left.has(in) || mc.right.has(in)) out.curves.push_back(strip(mc));
-    // Distinct exact points of the planar map may round to the same doubles: no piece keeps
-    // a repeated point (a zero-length segment), none is left with fewer than two points.
-    std::size_t kept = 0;
-    for (std::size_t i = 0; i < out.curves.size(); ++i) {
-        Curve& c = out.curves[i];
-        c.points = clean_points(c);
-        if (c.points.size() < 2) continue;
-        if (kept != i) out.curves[kept] = std::move(c);
-        ++kept;
-    }
-    out.curves.resize(kept);
+    crop_pieces(src, mask, grid, runs, included, j, b, wanted, in, out);
+    drop_repeated_points(out);
     return out;
 }
 

@@ -165,6 +165,10 @@ struct BuildScratch {
     std::vector<std::vector<Side>> outer_cycle;
     bool busy = false;
 
+    // A chain's half-edges, front and back.
+    int hs_front(const Chain& ch) const { return chain_hs[ch.hs_begin]; }
+    int hs_back(const Chain& ch) const { return chain_hs[ch.hs_end - 1]; }
+
     // Frees each vector grown beyond kKeepElements.
     template <class... V>
     static void trim(V&... v) {
@@ -290,108 +294,115 @@ bool ccw_before(const Point& p, const Point& a, const Point& b) {
     return CGAL::orientation(ik(p), ik(a), ik(b)) == CGAL::LEFT_TURN;
 }
 
-// Returns false when the drawing is not clean; `many_crossings` then tells whether at least
-// a tenth of the segments cross another one, to choose the CGAL traits.
-//
-// With `known` (detail::induce_clean_complex), the caller vouches that the drawing is clean
-// and names the vertex of each segment end: the exact check and the sort of the ends that
-// finds equal points are skipped, and the vertices are numbered in the same order (first
-// appearance), so the graph is the one the check and the sort would have produced.
-bool build_directly(const Curves& input, BuildScratch& sc, bool& many_crossings,
-                    const detail::KnownVertices* known = nullptr) {
-    RawGraph& g = sc.g;
-    std::vector<detail::Seg>& segs = sc.segs;
-    detail::curve_segments(input, segs);
-    if (segs.empty()) return false;
-    if (known && known->ends.size() != segs.size()) return false;  // a segment left out
+// The phases of build_directly, in their order. Each reads and fills the vectors of the
+// scratch (the raw graph `sc.g` above all).
+namespace direct {
+
+// The grid index of the segments, built the first time a phase needs it (at most once per
+// map).
+const detail::SegmentGrid& lazy_grid(std::optional<detail::SegmentGrid>& grid_store,
+                                     const std::vector<detail::Seg>& segs) {
+    if (!grid_store) grid_store.emplace(segs);
+    return *grid_store;
+}
+
+// Clean: two segments meet only at a common end point, without overlapping. Otherwise,
+// count the segments that cross another one (not overlaps) to choose the CGAL traits, and
+// stop (false, with `many_crossings`) as soon as a tenth of them do.
+bool is_clean(BuildScratch& sc, std::optional<detail::SegmentGrid>& grid_store, bool& many_crossings) {
+    const std::vector<detail::Seg>& segs = sc.segs;
     // The grid index pays off from a few dozen segments on; the maps of small cells (a
     // polygon and a few chords) compare every pair directly, and build the grid only if
     // they need it to place their pieces.
     constexpr std::size_t kSmall = 48;
-    std::optional<detail::SegmentGrid> grid_store;
-    auto grid = [&]() -> const detail::SegmentGrid& {
-        if (!grid_store) grid_store.emplace(segs);
-        return *grid_store;
-    };
-    // Clean: two segments meet only at a common end point, without overlapping. Otherwise,
-    // count the segments that cross another one (not overlaps) to choose the CGAL traits.
     bool clean = true;
-    if (!known) {
-        const std::size_t enough = segs.size() / 10 + 1;
-        std::size_t crossings = 0;
-        // Each segment's box once: most pairs are told apart by their boxes alone.
-        std::vector<BBox>& boxes = sc.boxes;
-        boxes.assign(segs.size(), BBox{});
-        for (std::size_t i = 0; i < segs.size(); ++i) {
-            boxes[i].add(segs[i].a);
-            boxes[i].add(segs[i].b);
-        }
-        for (std::uint32_t i = 0; i < segs.size(); ++i) {
-            const detail::Seg& s = segs[i];
-            const BBox& b = boxes[i];
-            bool crossing = false;
-            auto visit = [&](std::uint32_t j) {
-                if (crossing || j <= i) return;
-                const detail::Seg& t = segs[j];
-                const BBox& tb = boxes[j];
-                if (tb.xmax < b.xmin || tb.xmin > b.xmax || tb.ymax < b.ymin || tb.ymin > b.ymax) return;
-                const bool sa = s.a == t.a || s.a == t.b, sb = s.b == t.a || s.b == t.b;
-                if (sa && sb) {
-                    clean = false;  // the same segment twice
-                } else if (sa || sb) {
-                    const Point& p = sa ? s.a : s.b;           // shared
-                    const Point& q = sa ? s.b : s.a;           // s's other end
-                    const Point& r = (t.a == p) ? t.b : t.a;   // t's other end
-                    if (CGAL::orientation(ik(p), ik(q), ik(r)) == CGAL::COLLINEAR && dot(q - p, r - p) > 0)
-                        clean = false;
-                } else if (detail::segments_touch(s.a, s.b, t.a, t.b)) {
+    const std::size_t enough = segs.size() / 10 + 1;
+    std::size_t crossings = 0;
+    // Each segment's box once: most pairs are told apart by their boxes alone.
+    std::vector<BBox>& boxes = sc.boxes;
+    boxes.assign(segs.size(), BBox{});
+    for (std::size_t i = 0; i < segs.size(); ++i) {
+        boxes[i].add(segs[i].a);
+        boxes[i].add(segs[i].b);
+    }
+    for (std::uint32_t i = 0; i < segs.size(); ++i) {
+        const detail::Seg& s = segs[i];
+        const BBox& b = boxes[i];
+        bool crossing = false;
+        auto visit = [&](std::uint32_t j) {
+            if (crossing || j <= i) return;
+            const detail::Seg& t = segs[j];
+            const BBox& tb = boxes[j];
+            if (tb.xmax < b.xmin || tb.xmin > b.xmax || tb.ymax < b.ymin || tb.ymin > b.ymax) return;
+            const bool sa = s.a == t.a || s.a == t.b, sb = s.b == t.a || s.b == t.b;
+            if (sa && sb) {
+                clean = false;  // the same segment twice
+            } else if (sa || sb) {
+                const Point& p = sa ? s.a : s.b;           // shared
+                const Point& q = sa ? s.b : s.a;           // s's other end
+                const Point& r = (t.a == p) ? t.b : t.a;   // t's other end
+                if (CGAL::orientation(ik(p), ik(q), ik(r)) == CGAL::COLLINEAR && dot(q - p, r - p) > 0)
                     clean = false;
-                    crossing = CGAL::orientation(ik(s.a), ik(s.b), ik(t.a)) != CGAL::COLLINEAR ||
-                               CGAL::orientation(ik(s.a), ik(s.b), ik(t.b)) != CGAL::COLLINEAR;
-                }
-            };
-            if (segs.size() <= kSmall) {
-                for (std::uint32_t j = i + 1; j < segs.size() && !crossing; ++j) visit(j);
-            } else {
-                grid().for_each_in(b, visit);
+            } else if (detail::segments_touch(s.a, s.b, t.a, t.b)) {
+                clean = false;
+                crossing = CGAL::orientation(ik(s.a), ik(s.b), ik(t.a)) != CGAL::COLLINEAR ||
+                           CGAL::orientation(ik(s.a), ik(s.b), ik(t.b)) != CGAL::COLLINEAR;
             }
-            if (crossing && ++crossings >= enough) {
-                many_crossings = true;
-                return false;
-            }
+        };
+        if (segs.size() <= kSmall) {
+            for (std::uint32_t j = i + 1; j < segs.size() && !crossing; ++j) visit(j);
+        } else {
+            lazy_grid(grid_store, segs).for_each_in(b, visit);
+        }
+        if (crossing && ++crossings >= enough) {
+            many_crossings = true;
+            return false;
         }
     }
-    if (!clean) return false;
-    // Vertices (numbered in the order their points first appear), segments. `slot(k, e)` is
-    // where the vertex id of end e of segment k is kept, shared by every end at that vertex.
+    return clean;
+}
+
+// The half-edges and curve data of every segment, and its two vertices, numbered in the
+// order their points first appear. `slot(k, e)` is where the vertex id of end e of segment
+// k is kept, shared by every end at that vertex.
+template <class Slot>
+void number_segments(const std::vector<detail::Seg>& segs, RawGraph& g, Slot&& slot) {
     const std::size_t ns = segs.size();
-    auto number = [&](auto&& slot) {
-        g.he.resize(2 * ns);
-        g.data_start.resize(ns + 1);
-        g.data.resize(ns);
-        g.vpt.reserve(2 * ns);
-        for (std::size_t k = 0; k < ns; ++k) {
-            int uv[2];
-            for (std::uint32_t e = 0; e < 2; ++e) {
-                int& v = slot(k, e);
-                if (v < 0) {
-                    v = int(g.vpt.size());
-                    g.vpt.push_back(e ? segs[k].b : segs[k].a);
-                }
-                uv[e] = v;
+    g.he.resize(2 * ns);
+    g.data_start.resize(ns + 1);
+    g.data.resize(ns);
+    g.vpt.reserve(2 * ns);
+    for (std::size_t k = 0; k < ns; ++k) {
+        int uv[2];
+        for (std::uint32_t e = 0; e < 2; ++e) {
+            int& v = slot(k, e);
+            if (v < 0) {
+                v = int(g.vpt.size());
+                g.vpt.push_back(e ? segs[k].b : segs[k].a);
             }
-            const bool l2r = left_to_right(segs[k].a, segs[k].b);
-            g.he[2 * k] = {uv[0], uv[1], -1, -1, l2r};
-            g.he[2 * k + 1] = {uv[1], uv[0], -1, -1, !l2r};
-            g.data_start[k] = std::uint32_t(k);
-            g.data[k] = (segs[k].owner << 1) | (l2r ? 1u : 0u);
+            uv[e] = v;
         }
-    };
+        const bool l2r = left_to_right(segs[k].a, segs[k].b);
+        g.he[2 * k] = {uv[0], uv[1], -1, -1, l2r};
+        g.he[2 * k + 1] = {uv[1], uv[0], -1, -1, !l2r};
+        g.data_start[k] = std::uint32_t(k);
+        g.data[k] = (segs[k].owner << 1) | (l2r ? 1u : 0u);
+    }
+}
+
+// Vertices (numbered in the order their points first appear) and segments: the ends at
+// one vertex are those the caller names alike (`known`), or else those with equal points.
+void number_vertices(BuildScratch& sc, const detail::KnownVertices* known) {
+    RawGraph& g = sc.g;
+    const std::vector<detail::Seg>& segs = sc.segs;
+    const std::size_t ns = segs.size();
     if (known) {
         // Vertices named by the caller.
         std::vector<int>& id = sc.ids;
         id.assign(known->count, -1);
-        number([&](std::size_t k, std::uint32_t e) -> int& { return id[std::size_t(known->ends[k][e])]; });
+        number_segments(segs, g, [&](std::size_t k, std::uint32_t e) -> int& {
+            return id[std::size_t(known->ends[k][e])];
+        });
     } else {
         auto end_point = [&](std::uint32_t k) -> const Point& { return (k & 1u) ? segs[k >> 1].b : segs[k >> 1].a; };
         // The ends sorted by point, then by index.
@@ -405,12 +416,18 @@ bool build_directly(const Curves& input, BuildScratch& sc, bool& many_crossings,
             first[ends[i].k] = (i > 0 && ends[i].p == ends[i - 1].p) ? first[ends[i - 1].k] : ends[i].k;
         std::vector<int>& id = sc.ids;
         id.assign(2 * ns, -1);
-        number([&](std::size_t k, std::uint32_t e) -> int& { return id[first[2 * k + e]]; });
+        number_segments(segs, g, [&](std::size_t k, std::uint32_t e) -> int& { return id[first[2 * k + e]]; });
     }
     g.data_start[ns] = std::uint32_t(ns);
+}
+
+// The ends of open curves: the first and last segment kept of each (segments of a curve
+// are consecutive).
+void mark_open_ends(const Curves& input, BuildScratch& sc) {
+    RawGraph& g = sc.g;
+    const std::vector<detail::Seg>& segs = sc.segs;
+    const std::size_t ns = segs.size();
     const std::size_t nv = g.vpt.size();
-    // The ends of open curves: the first and last segment kept of each (segments of a curve
-    // are consecutive).
     g.vend.assign(nv, 0);
     for (std::size_t k = 0; k < ns; ++k) {
         const std::uint32_t owner = segs[k].owner;
@@ -418,30 +435,44 @@ bool build_directly(const Curves& input, BuildScratch& sc, bool& many_crossings,
         if (k == 0 || segs[k - 1].owner != owner) g.vend[std::size_t(g.he[2 * k].source)] = 1;
         if (k + 1 == ns || segs[k + 1].owner != owner) g.vend[std::size_t(g.he[2 * k].target)] = 1;
     }
-    // Connected pieces of the drawing.
+}
+
+// Connected pieces of the drawing: the piece of each vertex (sc.comp), numbered in the
+// order of their first vertex; returns their number.
+int connected_pieces(BuildScratch& sc) {
+    const RawGraph& g = sc.g;
+    const std::size_t ns = sc.segs.size();
+    const std::size_t nv = g.vpt.size();
     std::vector<int>& comp = sc.comp;
     comp.resize(nv);
     int ncomp = 0;
-    {
-        std::vector<int>& parent = sc.parent;
-        parent.resize(nv);
-        std::iota(parent.begin(), parent.end(), 0);
-        auto find = [&](int x) {
-            while (parent[x] != x) x = parent[x] = parent[parent[x]];
-            return x;
-        };
-        for (std::size_t k = 0; k < ns; ++k) {
-            const int a = find(g.he[2 * k].source), b = find(g.he[2 * k].target);
-            if (a != b) parent[a] = b;
-        }
-        std::vector<int>& id = sc.ids;
-        id.assign(nv, -1);
-        for (std::size_t v = 0; v < nv; ++v) {
-            int& c = id[find(int(v))];
-            if (c < 0) c = ncomp++;
-            comp[v] = c;
-        }
+    std::vector<int>& parent = sc.parent;
+    parent.resize(nv);
+    std::iota(parent.begin(), parent.end(), 0);
+    auto find = [&](int x) {
+        while (parent[x] != x) x = parent[x] = parent[parent[x]];
+        return x;
+    };
+    for (std::size_t k = 0; k < ns; ++k) {
+        const int a = find(g.he[2 * k].source), b = find(g.he[2 * k].target);
+        if (a != b) parent[a] = b;
     }
+    std::vector<int>& id = sc.ids;
+    id.assign(nv, -1);
+    for (std::size_t v = 0; v < nv; ++v) {
+        int& c = id[find(int(v))];
+        if (c < 0) c = ncomp++;
+        comp[v] = c;
+    }
+    return ncomp;
+}
+
+// The outgoing half-edges of each vertex, in counter-clockwise order (sc.pos: the place of
+// each half-edge in that order). No vertex is isolated and no two have the same point, so
+// every rank and isolation flag is zero.
+void sort_around_vertices(BuildScratch& sc) {
+    RawGraph& g = sc.g;
+    const std::size_t nv = g.vpt.size();
     g.vrank.assign(nv, 0);
     g.visolated.assign(nv, 0);
     g.vout_start.assign(nv + 1, 0);
@@ -461,15 +492,27 @@ bool build_directly(const Curves& input, BuildScratch& sc, bool& many_crossings,
         std::sort(b, e, [&](int x, int y) { return ccw_before(p, g.vpt[g.he[x].target], g.vpt[g.he[y].target]); });
         for (int i = g.vout_start[v]; i < g.vout_start[v + 1]; ++i) pos[g.vout[i]] = i;
     }
-    // The face on the left of u -> v goes on along the edge leaving v just clockwise of v -> u.
+}
+
+// The next half-edge of each: the face on the left of u -> v goes on along the edge leaving
+// v just clockwise of v -> u.
+void link_next(BuildScratch& sc) {
+    RawGraph& g = sc.g;
+    const std::vector<int>& pos = sc.pos;
     for (std::size_t h = 0; h < g.he.size(); ++h) {
         const int v = g.he[h].target;
         const int twin = int(h ^ 1);
         const int s = g.vout_start[v], n = g.vout_start[v + 1] - s;
         g.he[h].next = g.vout[s + (pos[twin] - s + n - 1) % n];
     }
-    // Cycles. In each connected piece, the outer one lies left of the most counter-clockwise
-    // edge leaving the piece's lexicographically smallest vertex.
+}
+
+// Cycles. In each connected piece, the outer one lies left of the most counter-clockwise
+// edge leaving the piece's lexicographically smallest vertex.
+void trace_cycles(BuildScratch& sc, int ncomp) {
+    const RawGraph& g = sc.g;
+    const std::vector<int>& comp = sc.comp;
+    const std::size_t nv = g.vpt.size();
     std::vector<int>& v0 = sc.v0;
     v0.assign(std::size_t(ncomp), -1);
     for (std::size_t v = 0; v < nv; ++v) {
@@ -507,9 +550,20 @@ bool build_directly(const Curves& input, BuildScratch& sc, bool& many_crossings,
         } while (cur != int(h));
         cycle_outer.push_back(outer);
     }
-    // Faces: one per inner cycle, plus the unbounded face. Each piece's outer cycle is a hole
-    // of the face holding the piece: the face below the first segment of another piece met
-    // by a ray going up from the piece's smallest vertex (exact predicates).
+}
+
+// Faces: one per inner cycle, plus the unbounded face. Each piece's outer cycle is a hole
+// of the face holding the piece: the face below the first segment of another piece met
+// by a ray going up from the piece's smallest vertex (exact predicates).
+void assign_faces(BuildScratch& sc, int ncomp, std::optional<detail::SegmentGrid>& grid_store) {
+    RawGraph& g = sc.g;
+    const std::vector<int>& comp = sc.comp;
+    const std::vector<int>& v0 = sc.v0;
+    const std::vector<int>& cycle = sc.cycle;
+    const std::vector<int>& cycle_start = sc.cycle_start;
+    const std::vector<char>& cycle_outer = sc.cycle_outer;
+    const std::size_t ns = sc.segs.size();
+    const std::size_t nv = g.vpt.size();
     std::vector<int>& face_of_cycle = sc.face_of_cycle;
     face_of_cycle.assign(cycle_start.size(), -1);
     g.faces.emplace_back();
@@ -528,7 +582,7 @@ bool build_directly(const Curves& input, BuildScratch& sc, bool& many_crossings,
         // pieces): the unbounded face is the only face.
         if (ncomp == 1 || nv == ns + std::size_t(ncomp)) return holder[c] = 0;
         bool on = false;
-        const int k = grid().first_above(g.vpt[v0[c]], [&](std::uint32_t i) {
+        const int k = lazy_grid(grid_store, sc.segs).first_above(g.vpt[v0[c]], [&](std::uint32_t i) {
             return comp[g.he[2 * i].source] != c;
         }, on);
         if (k < 0) return holder[c] = 0;
@@ -544,6 +598,31 @@ bool build_directly(const Curves& input, BuildScratch& sc, bool& many_crossings,
         g.faces[f].inner.push_back(cycle_start[c]);
     }
     for (std::size_t h = 0; h < g.he.size(); ++h) g.he[h].face = face_of_cycle[cycle[h]];
+}
+
+}  // namespace direct
+
+// Returns false when the drawing is not clean; `many_crossings` then tells whether at least
+// a tenth of the segments cross another one, to choose the CGAL traits.
+//
+// With `known` (detail::induce_clean_complex), the caller vouches that the drawing is clean
+// and names the vertex of each segment end: the exact check and the sort of the ends that
+// finds equal points are skipped, and the vertices are numbered in the same order (first
+// appearance), so the graph is the one the check and the sort would have produced.
+bool build_directly(const Curves& input, BuildScratch& sc, bool& many_crossings,
+                    const detail::KnownVertices* known = nullptr) {
+    detail::curve_segments(input, sc.segs);
+    if (sc.segs.empty()) return false;
+    if (known && known->ends.size() != sc.segs.size()) return false;  // a segment left out
+    std::optional<detail::SegmentGrid> grid;  // built on first use (direct::lazy_grid)
+    if (!known && !direct::is_clean(sc, grid, many_crossings)) return false;
+    direct::number_vertices(sc, known);
+    direct::mark_open_ends(input, sc);
+    const int ncomp = direct::connected_pieces(sc);
+    direct::sort_around_vertices(sc);
+    direct::link_next(sc);
+    direct::trace_cycles(sc, ncomp);
+    direct::assign_faces(sc, ncomp, grid);
     return true;
 }
 
@@ -551,8 +630,28 @@ bool build_directly(const Curves& input, BuildScratch& sc, bool& many_crossings,
 
 enum class Way { Any, CgalCaching, CgalNonCaching };
 
+// Builds a PlanarMap in steps, one function each, run in the order of `build`: the raw graph
+// of segments (direct or CGAL), the ends of open curves, then the common step's eight
+// steps. The steps share the thread's scratch; the last ones fill the map's tables.
 struct PlanarMapBuilder {
     static MapPtr build(const Curves& curves, Way way, const detail::KnownVertices* known = nullptr);
+
+private:
+    using PointLabels = std::unordered_map<Point, Labels, PointHash>;
+
+    static void build_raw_graph(const Curves& input, Way way, const detail::KnownVertices* known, BuildScratch& sc);
+    static void collect_curve_ends(const Curves& input, BuildScratch& sc);
+    static void mark_breaks(const PointLabels& point_labels, BuildScratch& sc);                     // 1
+    static void walk_chains(BuildScratch& sc);                                                      // 2
+    static void orient_chains(BuildScratch& sc);                                                    // 3
+    static void number_vertices(const PointLabels& point_labels, BuildScratch& sc, PlanarMap& pm);  // 4
+    static void number_edges(BuildScratch& sc, PlanarMap& pm);                                      // 5
+    static void number_faces(BuildScratch& sc, PlanarMap& pm);                                      // 6
+    static void fill_edge_records(const Curves& input, BuildScratch& sc, PlanarMap& pm);            // 6
+    static void vertex_incidences(const BuildScratch& sc, PlanarMap& pm);                           // 7
+    static void fill_face_records(BuildScratch& sc, PlanarMap& pm);                                 // 8
+    static std::pair<int, std::vector<Side>> boundary_cycle(const BuildScratch& sc, int start);
+    static std::uint64_t face_key(const std::vector<EdgeRec>& edges, const FaceRec& rec);
 };
 
 MapPtr PlanarMap::induce(const Curves& curves) { return PlanarMapBuilder::build(curves, Way::Any); }
@@ -574,11 +673,30 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way, const detail::Known
     auto map = std::make_shared<PlanarMap>();
     PlanarMap& pm = *map;
 
-    std::unordered_map<Point, Labels, PointHash> point_labels;
+    PointLabels point_labels;
     for (const auto& lp : input.points) point_labels[lp.point].merge(lp.labels);
 
     ScratchLease lease;
     BuildScratch& sc = *lease;
+    build_raw_graph(input, way, known, sc);
+    collect_curve_ends(input, sc);
+    mark_breaks(point_labels, sc);          // 1
+    walk_chains(sc);                        // 2
+    orient_chains(sc);                      // 3
+    number_vertices(point_labels, sc, pm);  // 4
+    number_edges(sc, pm);                   // 5
+    number_faces(sc, pm);                   // 6
+    fill_edge_records(input, sc, pm);       // 6
+    vertex_incidences(sc, pm);              // 7
+    fill_face_records(sc, pm);              // 8
+    return map;
+}
+
+// The raw graph of segments: traced directly when the drawing is clean (and `way` allows
+// it), else through CGAL's arrangement with the traits `way` asks for, or that suit the
+// number of crossings.
+void PlanarMapBuilder::build_raw_graph(const Curves& input, Way way, const detail::KnownVertices* known,
+                                       BuildScratch& sc) {
     RawGraph& g = sc.g;
     g.clear();
     bool many_crossings = false;
@@ -594,11 +712,12 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way, const detail::Known
         if (caching) build_with_cgal<Caching>(input, g);
         else build_with_cgal<NonCaching>(input, g);
     }
-    const std::size_t nv = g.vpt.size();
-    const std::size_t nh = g.he.size();
+}
 
-    // The end points of open curves: vertices whatever their degree, like labelled points
-    // (the direct way marked them in the graph).
+// The end points of open curves: vertices whatever their degree, like labelled points
+// (the direct way marked them in the graph; then sc.curve_ends stays empty).
+void PlanarMapBuilder::collect_curve_ends(const Curves& input, BuildScratch& sc) {
+    const RawGraph& g = sc.g;
     std::vector<Point>& ends = sc.curve_ends;
     ends.clear();
     for (const Curve& c : input.curves) {
@@ -620,38 +739,47 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way, const detail::Known
         }
     }
     std::sort(ends.begin(), ends.end());
+}
+
+// 1. Break vertices: curve ends, labelled points, degree other than two, and points
+//    where the set of source curves changes.
+void PlanarMapBuilder::mark_breaks(const PointLabels& point_labels, BuildScratch& sc) {
+    const RawGraph& g = sc.g;
+    const std::size_t nv = g.vpt.size();
+    const std::vector<Point>& ends = sc.curve_ends;
     auto is_end = [&](int v) {
         if (!g.vend.empty()) return g.vend[std::size_t(v)] != 0;
         return std::binary_search(ends.begin(), ends.end(), g.vpt[v]);
     };
-
-    // 1. Break vertices: curve ends, labelled points, degree other than two, and points
-    //    where the set of source curves changes.
     std::vector<char>& is_break = sc.is_break;
     is_break.assign(nv, 0);
-    {
-        std::vector<std::uint32_t>& ids_a = sc.ids_a;
-        std::vector<std::uint32_t>& ids_b = sc.ids_b;
-        auto ids = [&](int h, std::vector<std::uint32_t>& out) {
-            out.clear();
-            g.for_data(h, [&](std::uint32_t d) { out.push_back(d >> 1); });
-            std::sort(out.begin(), out.end());
-            out.erase(std::unique(out.begin(), out.end()), out.end());
-        };
-        for (std::size_t v = 0; v < nv; ++v) {
-            bool brk = g.visolated[v] || g.degree(int(v)) != 2 || is_end(int(v)) ||
-                       (!point_labels.empty() && point_labels.count(g.vpt[v]));
-            if (!brk) {
-                ids(g.vout[g.vout_start[v]], ids_a);
-                ids(g.vout[g.vout_start[v] + 1], ids_b);
-                brk = ids_a != ids_b;
-            }
-            is_break[v] = brk;
+    std::vector<std::uint32_t>& ids_a = sc.ids_a;
+    std::vector<std::uint32_t>& ids_b = sc.ids_b;
+    auto ids = [&](int h, std::vector<std::uint32_t>& out) {
+        out.clear();
+        g.for_data(h, [&](std::uint32_t d) { out.push_back(d >> 1); });
+        std::sort(out.begin(), out.end());
+        out.erase(std::unique(out.begin(), out.end()), out.end());
+    };
+    for (std::size_t v = 0; v < nv; ++v) {
+        bool brk = g.visolated[v] || g.degree(int(v)) != 2 || is_end(int(v)) ||
+                   (!point_labels.empty() && point_labels.count(g.vpt[v]));
+        if (!brk) {
+            ids(g.vout[g.vout_start[v]], ids_a);
+            ids(g.vout[g.vout_start[v] + 1], ids_b);
+            brk = ids_a != ids_b;
         }
+        is_break[v] = brk;
     }
+}
 
-    // 2. Chains: walk from every break vertex along degree-two vertices; what is left are
-    //    closed curves meeting nothing, which start at their smallest point.
+// 2. Chains: walk from every break vertex along degree-two vertices; what is left are
+//    closed curves meeting nothing, which start at their smallest point (made a break).
+void PlanarMapBuilder::walk_chains(BuildScratch& sc) {
+    const RawGraph& g = sc.g;
+    const std::size_t nv = g.vpt.size();
+    const std::size_t nh = g.he.size();
+    std::vector<char>& is_break = sc.is_break;
     std::vector<Chain>& chains = sc.chains;
     chains.clear();
     chains.reserve(nh / 2);
@@ -673,9 +801,6 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way, const detail::Known
         ch.hs_end = chain_hs.size();
         chains.push_back(std::move(ch));
     };
-    // A chain's half-edges, front and back.
-    auto hs_front = [&](const Chain& ch) { return chain_hs[ch.hs_begin]; };
-    auto hs_back = [&](const Chain& ch) { return chain_hs[ch.hs_end - 1]; };
     for (std::size_t v = 0; v < nv; ++v) {
         if (!is_break[v]) continue;
         for (int i = g.vout_start[v]; i < g.vout_start[v + 1]; ++i)
@@ -691,8 +816,13 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way, const detail::Known
         is_break[g.he[start].source] = 1;
         walk(start);
     }
+}
 
-    // 3. Orient each chain like its first source curve; its polyline.
+// 3. Orient each chain like its first source curve; its polyline.
+void PlanarMapBuilder::orient_chains(BuildScratch& sc) {
+    const RawGraph& g = sc.g;
+    std::vector<Chain>& chains = sc.chains;
+    std::vector<int>& chain_hs = sc.chain_hs;
     auto by_curve = [](const EdgeSource& a, const EdgeSource& b) {
         return a.curve < b.curve || (a.curve == b.curve && a.forward > b.forward);
     };
@@ -724,8 +854,13 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way, const detail::Known
         ch.canon_reversed = std::lexicographical_compare(ch.points.rbegin(), ch.points.rend(), ch.points.begin(),
                                                          ch.points.end());
     }
+}
 
-    // 4. Vertices: the break vertices, in the order of their points.
+// 4. Vertices: the break vertices, in the order of their points.
+void PlanarMapBuilder::number_vertices(const PointLabels& point_labels, BuildScratch& sc, PlanarMap& pm) {
+    const RawGraph& g = sc.g;
+    const std::size_t nv = g.vpt.size();
+    const std::vector<char>& is_break = sc.is_break;
     std::vector<int>& breaks = sc.breaks;
     breaks.clear();
     breaks.reserve(nv);
@@ -748,11 +883,19 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way, const detail::Known
             if (it != point_labels.end()) rec.labels = it->second;
         }
     }
+}
 
-    // 5. Edges: chains ordered by their end vertices, then by their polylines.
+// 5. Edges: chains ordered by their end vertices, then by their polylines; each half-edge
+//    as a side of its edge.
+void PlanarMapBuilder::number_edges(BuildScratch& sc, PlanarMap& pm) {
+    const RawGraph& g = sc.g;
+    const std::size_t nh = g.he.size();
+    std::vector<Chain>& chains = sc.chains;
+    const std::vector<int>& chain_hs = sc.chain_hs;
+    const std::vector<int>& vid = sc.vid;
     for (auto& ch : chains) {
-        ch.source = vid[g.he[hs_front(ch)].source];
-        ch.target = vid[g.he[hs_back(ch)].target];
+        ch.source = vid[g.he[sc.hs_front(ch)].source];
+        ch.target = vid[g.he[sc.hs_back(ch)].target];
     }
     std::vector<int>& order = sc.order;
     order.resize(chains.size());
@@ -785,28 +928,37 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way, const detail::Known
             side_of[h] = 2 * eid[k];
             side_of[h ^ 1] = 2 * eid[k] + 1;
         }
+}
 
-    // 6. Faces: boundary cycles as sides of edges, ordered by their smallest side.
-    auto cycle_of = [&](int start) {
-        std::vector<Side> cycle;
-        cycle.reserve(8);  // most faces have a few sides: one allocation, not four
-        int best = INT_MAX;
-        std::size_t best_at = 0;
-        int cur = start;
-        do {
-            if (is_break[g.he[cur].source]) {
-                const int d = side_of[cur];
-                if (d < best) {
-                    best = d;
-                    best_at = cycle.size();
-                }
-                cycle.push_back({d / 2, (d & 1) == 0});
+// The boundary cycle through half-edge `start`, as sides of edges from its smallest side,
+// with that side's number (2 * edge id, plus one against the edge).
+std::pair<int, std::vector<Side>> PlanarMapBuilder::boundary_cycle(const BuildScratch& sc, int start) {
+    const RawGraph& g = sc.g;
+    const std::vector<char>& is_break = sc.is_break;
+    const std::vector<int>& side_of = sc.side_of;
+    std::vector<Side> cycle;
+    cycle.reserve(8);  // most faces have a few sides: one allocation, not four
+    int best = INT_MAX;
+    std::size_t best_at = 0;
+    int cur = start;
+    do {
+        if (is_break[g.he[cur].source]) {
+            const int d = side_of[cur];
+            if (d < best) {
+                best = d;
+                best_at = cycle.size();
             }
-            cur = g.he[cur].next;
-        } while (cur != start);
-        std::rotate(cycle.begin(), cycle.begin() + std::ptrdiff_t(best_at), cycle.end());
-        return std::make_pair(best, std::move(cycle));
-    };
+            cycle.push_back({d / 2, (d & 1) == 0});
+        }
+        cur = g.he[cur].next;
+    } while (cur != start);
+    std::rotate(cycle.begin(), cycle.begin() + std::ptrdiff_t(best_at), cycle.end());
+    return std::make_pair(best, std::move(cycle));
+}
+
+// 6. Faces: boundary cycles as sides of edges, ordered by their smallest side.
+void PlanarMapBuilder::number_faces(BuildScratch& sc, PlanarMap& pm) {
+    const RawGraph& g = sc.g;
     const std::size_t nf = g.faces.size();
     std::vector<std::pair<int, int>>& fs = sc.fs;  // (key, raw face)
     fs.resize(nf);
@@ -815,7 +967,7 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way, const detail::Known
     outer_cycle.resize(nf);
     for (std::size_t f = 0; f < nf; ++f) {
         int key = -1;
-        if (!g.faces[f].unbounded) std::tie(key, outer_cycle[f]) = cycle_of(g.faces[f].outer);
+        if (!g.faces[f].unbounded) std::tie(key, outer_cycle[f]) = boundary_cycle(sc, g.faces[f].outer);
         fs[f] = {key, int(f)};
     }
     std::sort(fs.begin(), fs.end());
@@ -823,14 +975,23 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way, const detail::Known
     fid.resize(nf);
     for (std::size_t i = 0; i < nf; ++i) fid[fs[i].second] = int(i);
     pm.faces_.resize(nf);
+}
 
+// 6, continued. Edge records: ends, faces on each side, sources and their labels, key,
+// polyline (moved out of the chain).
+void PlanarMapBuilder::fill_edge_records(const Curves& input, BuildScratch& sc, PlanarMap& pm) {
+    const RawGraph& g = sc.g;
+    std::vector<Chain>& chains = sc.chains;
+    const std::vector<int>& eid = sc.eid;
+    const std::vector<int>& fid = sc.fid;
+    std::vector<std::vector<EdgeSource>>& chain_sources = sc.chain_sources;
     for (std::size_t k = 0; k < chains.size(); ++k) {
         Chain& ch = chains[k];
         EdgeRec& rec = pm.edges_[eid[k]];
         rec.source = ch.source;
         rec.target = ch.target;
-        rec.left = fid[g.he[hs_front(ch)].face];
-        rec.right = fid[g.he[hs_front(ch) ^ 1].face];
+        rec.left = fid[g.he[sc.hs_front(ch)].face];
+        rec.right = fid[g.he[sc.hs_front(ch) ^ 1].face];
         rec.sources = std::move(chain_sources[k]);
         for (const auto& s : rec.sources) {
             const Curve& c = input.curves[s.curve];
@@ -847,8 +1008,15 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way, const detail::Known
         rec.key = key;
         rec.points = std::move(ch.points);  // the chain is not read after this
     }
+}
 
-    // 7. Vertex incidences, counter-clockwise from the smallest edge id.
+// 7. Vertex incidences, counter-clockwise from the smallest edge id.
+void PlanarMapBuilder::vertex_incidences(const BuildScratch& sc, PlanarMap& pm) {
+    const RawGraph& g = sc.g;
+    const std::size_t nf = g.faces.size();
+    const std::vector<int>& breaks = sc.breaks;
+    const std::vector<int>& side_of = sc.side_of;
+    const std::vector<int>& fid = sc.fid;
     for (std::size_t i = 0; i < breaks.size(); ++i) {
         const int v = breaks[i];
         VertexRec& rec = pm.vertices_[i];
@@ -872,12 +1040,19 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way, const detail::Known
             if (std::find(rec.faces.begin(), rec.faces.end(), f) == rec.faces.end()) rec.faces.push_back(f);
         }
     }
+}
 
-    // 8. Face records: cycles, incidences, labels rebuilt from the side labels.
+// 8. Face records: cycles, incidences, labels rebuilt from the side labels, key.
+void PlanarMapBuilder::fill_face_records(BuildScratch& sc, PlanarMap& pm) {
+    const RawGraph& g = sc.g;
+    const std::size_t nf = g.faces.size();
+    const std::vector<std::pair<int, int>>& fs = sc.fs;
+    std::vector<std::vector<Side>>& outer_cycle = sc.outer_cycle;
+    const std::vector<int>& vid = sc.vid;
     std::vector<int>& edge_seen = sc.edge_seen;
     std::vector<int>& vertex_seen = sc.vertex_seen;
-    edge_seen.assign(chains.size(), -1);
-    vertex_seen.assign(breaks.size(), -1);
+    edge_seen.assign(sc.chains.size(), -1);
+    vertex_seen.assign(sc.breaks.size(), -1);
     for (std::size_t i = 0; i < nf; ++i) {
         const RawGraph::RawFace& rf = g.faces[fs[i].second];
         const int f = int(i);
@@ -887,7 +1062,7 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way, const detail::Known
         rec.cycles.reserve(rf.inner.size() + (rf.unbounded ? 0 : 1));
         if (!rf.unbounded) rec.cycles.push_back(std::move(outer_cycle[std::size_t(fs[i].second)]));
         std::vector<std::pair<int, std::vector<Side>>> holes;
-        for (int h : rf.inner) holes.push_back(cycle_of(h));
+        for (int h : rf.inner) holes.push_back(boundary_cycle(sc, h));
         std::sort(holes.begin(), holes.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
         for (auto& h : holes) rec.cycles.push_back(std::move(h.second));
         std::size_t sides = 0;
@@ -912,41 +1087,43 @@ MapPtr PlanarMapBuilder::build(const Curves& input, Way way, const detail::Known
         for (int iv : rf.isolated) isolated.push_back(vid[iv]);
         std::sort(isolated.begin(), isolated.end());
         rec.vertices.insert(rec.vertices.end(), isolated.begin(), isolated.end());
-
-        // Key: the outer ring read from its lexicographically smallest point, so that the
-        // same face gets the same key in any map and whatever its numbering.
-        // (The ring is walked in place: cycle_points would copy it first.)
-        std::uint64_t key = 0x46414345ULL;
-        if (!rec.unbounded && !rec.cycles.empty()) {
-            const std::vector<Side>& outer = rec.cycles[0];
-            // Point k of side i (its polyline without its last point, in the side's direction).
-            auto side_len = [&](const Side& sd) { return pm.edges_[sd.edge].points.size() - 1; };
-            auto side_point = [&](const Side& sd, std::size_t k) -> const Point& {
-                const std::vector<Point>& p = pm.edges_[sd.edge].points;
-                return sd.left ? p[k] : p[p.size() - 1 - k];
-            };
-            std::size_t best_side = 0, best_k = 0;
-            for (std::size_t i = 0; i < outer.size(); ++i)
-                for (std::size_t k = 0, n = side_len(outer[i]); k < n; ++k)
-                    if (side_point(outer[i], k) < side_point(outer[best_side], best_k)) {
-                        best_side = i;
-                        best_k = k;
-                    }
-            std::size_t i = best_side, k = best_k;
-            for (std::size_t done = 0; done < outer.size() + 1; ++done) {
-                const std::size_t n = side_len(outer[i]);
-                // The first side is read from best_k, and read again up to best_k at the end.
-                const std::size_t stop = (done == outer.size()) ? best_k : n;
-                for (; k < stop; ++k) key = hash_point(key, side_point(outer[i], k));
-                if (done == outer.size()) break;
-                i = (i + 1) % outer.size();
-                k = 0;
-            }
-        }
-        rec.key = key;
+        rec.key = face_key(pm.edges_, rec);
     }
     if (pm.unbounded_ < 0) pm.unbounded_ = 0;
-    return map;
+}
+
+// Key of a face record: its outer ring read from its lexicographically smallest point, so
+// that the same face gets the same key in any map and whatever its numbering.
+// (The ring is walked in place: cycle_points would copy it first.)
+std::uint64_t PlanarMapBuilder::face_key(const std::vector<EdgeRec>& edges, const FaceRec& rec) {
+    std::uint64_t key = 0x46414345ULL;
+    if (!rec.unbounded && !rec.cycles.empty()) {
+        const std::vector<Side>& outer = rec.cycles[0];
+        // Point k of side i (its polyline without its last point, in the side's direction).
+        auto side_len = [&](const Side& sd) { return edges[sd.edge].points.size() - 1; };
+        auto side_point = [&](const Side& sd, std::size_t k) -> const Point& {
+            const std::vector<Point>& p = edges[sd.edge].points;
+            return sd.left ? p[k] : p[p.size() - 1 - k];
+        };
+        std::size_t best_side = 0, best_k = 0;
+        for (std::size_t i = 0; i < outer.size(); ++i)
+            for (std::size_t k = 0, n = side_len(outer[i]); k < n; ++k)
+                if (side_point(outer[i], k) < side_point(outer[best_side], best_k)) {
+                    best_side = i;
+                    best_k = k;
+                }
+        std::size_t i = best_side, k = best_k;
+        for (std::size_t done = 0; done < outer.size() + 1; ++done) {
+            const std::size_t n = side_len(outer[i]);
+            // The first side is read from best_k, and read again up to best_k at the end.
+            const std::size_t stop = (done == outer.size()) ? best_k : n;
+            for (; k < stop; ++k) key = hash_point(key, side_point(outer[i], k));
+            if (done == outer.size()) break;
+            i = (i + 1) % outer.size();
+            k = 0;
+        }
+    }
+    return key;
 }
 
 std::vector<Point> PlanarMap::cycle_points(int face, std::size_t cycle) const {

@@ -239,6 +239,344 @@ int TiledMap::block_reach() const {
     return int(d_->reach);
 }
 
+namespace {
+
+// ---- The steps of TiledMap::Convert
+
+// The copies (i, j0..j1) of element e: the copies of one column of the lattice whose box can
+// meet the region's box.
+struct CopyColumn {
+    std::size_t e;
+    long long i, j0, j1;
+};
+
+// What the first pass finds in a column: how many curves it keeps, the curves that cross the
+// border (cut after the pass, all at once) and the points kept.
+struct ColumnResult {
+    std::size_t count = 0;
+    std::vector<Curve> kept, partial;  // kept: only with a ghost
+    std::vector<LabeledPoint> points;
+};
+
+// The columns of copies of every element whose box can meet the region's box `rb`: the
+// translations t with (box + t) meeting rb form the box [rb.xmin - box.xmax, rb.xmax -
+// box.xmin] x ...; its corners in lattice coordinates bound i and j. A ghost mapper may move
+// an element by up to its own size, so its copies are looked for that much further.
+std::vector<CopyColumn> copy_columns(const TiledMap& m, const BBox& rb, bool ghost) {
+    std::vector<CopyColumn> items;
+    double copies = 0;
+    for (std::size_t e = 0; e < m.elements().size(); ++e) {
+        const BBox& eb = m.elements()[e].box;
+        if (eb.empty()) continue;
+        const double margin = ghost ? std::max(eb.width(), eb.height()) : 0.0;
+        const ShiftRange sr = shifts_meeting(m, eb, rb, margin);
+        copies += sr.count();
+        if (copies > kMaxCopies) throw Error("TiledMap", "the region holds too many periods to convert");
+        for (long long i = sr.i0; i <= sr.i1; ++i) items.push_back({e, i, sr.j0, sr.j1});
+    }
+    return items;
+}
+
+// Where the curves kept from a column go, counted in n: the first pass (dest == nullptr)
+// only counts them, or keeps them in the column's result with a ghost mapper (which is not
+// run twice); the second pass writes them to the column's slice of the output, `dest`.
+struct ColumnSink {
+    ColumnSink(Curve* dest, ColumnResult& res, bool ghost) : dest(dest), res(res), ghost(ghost) {}
+    Curve* dest;
+    ColumnResult& res;
+    bool ghost;
+    std::size_t n = 0;
+    bool first() const { return dest == nullptr; }
+    void keep(Curve&& c) {
+        if (dest) dest[n] = std::move(c);
+        else if (ghost) res.kept.push_back(std::move(c));
+        ++n;
+    }
+};
+
+// The copies of a column over region r with border mode b, in either pass of Convert: each
+// copy kept whole, dropped, or (CROP) its curves across the border set aside to be cut.
+class ColumnConverter {
+public:
+    ColumnConverter(const TiledMap& m, const GhostMapper& ghost, const Region& r, Border b)
+        : m_(m),
+          ghost_(ghost),
+          r_(r),
+          rb_(r.bbox()),
+          b_(b),
+          has_ghost_(static_cast<bool>(ghost)),
+          rect_(is_axis_rectangle(r)),
+          keep_cells_(!has_ghost_ && !m.cells().empty() && (b == Border::KEEP_INSIDE || b == Border::KEEP_OUTSIDE)),
+          crop_(b == Border::CROP || b == Border::CROP_ADD_BOUNDARY) {}
+
+    bool ghost() const { return has_ghost_; }
+
+    // Converts the copies of a column; dest == nullptr: first pass (fills `res`); else the
+    // column's slice of the output.
+    void run(const CopyColumn& it, ColumnResult& res, Curve* dest) const {
+        const TiledMap::Element& el = m_.elements()[it.e];
+        ColumnSink sink(dest, res, has_ghost_);
+        if (el.continues && !keep_cells_) {
+            run_line(it, el, sink);
+        } else {
+            for (long long j = it.j0; j <= it.j1; ++j) run_copy(it, el, j, sink);
+        }
+        if (sink.first()) res.count = sink.n;
+    }
+
+private:
+    // Whether the copy of cell c next to the element's copy (i, j) is kept: KEEP_INSIDE when it
+    // lies inside the region, KEEP_OUTSIDE when it meets it.
+    bool cell_kept(const TiledMap::CellRef& c, long long i, long long j) const {
+        if (c.cell < 0) return false;
+        const TiledMap::CellRing& cell = m_.cells()[std::size_t(c.cell)];
+        const Point s = m_.shift(i + c.di, j + c.dj);
+        BBox cb = cell.box;
+        cb.xmin += s.x; cb.xmax += s.x; cb.ymin += s.y; cb.ymax += s.y;
+        // The cell's own ring, not its box (a tilted cell's box is larger than the cell).
+        std::vector<Point> ring = cell.ring;
+        for (auto& p : ring) p += s;
+        const Overlap o = classify_polygon(ring, cb, r_);
+        return b_ == Border::KEEP_INSIDE ? o == Overlap::Inside : o != Overlap::Disjoint;
+    }
+
+    // A curve moved by s.
+    static Curve translated(const Curve& c, const Point& s) {
+        Curve copy = c;
+        for (auto& p : copy.points) p += s;
+        return copy;
+    }
+
+    // The curves kept from one copy (or one joined line) that was not wholly inside.
+    void keep_partial(Curves& copy, ColumnSink& sink) const {
+        if (crop_) {
+            // Curves inside stay whole; the others are cut below, all at once.
+            for (auto& c : copy.curves) {
+                const Overlap o = classify_box(curve_box(c), r_, rect_);
+                if (o == Overlap::Inside) sink.keep(std::move(c));
+                else if (o == Overlap::Partial && sink.first()) sink.res.partial.push_back(std::move(c));
+            }
+        } else {
+            // KEEP_* keep or drop a copy whole, as the engine keeps or drops whole cells:
+            // KEEP_OUTSIDE when one of its curves meets the region, KEEP_INSIDE when all
+            // lie inside.
+            bool any = false, all = true;
+            for (const auto& c : copy.curves) {
+                const Overlap o = classify_box(curve_box(c), r_, rect_);
+                const bool meets = o == Overlap::Inside || (o == Overlap::Partial && curve_meets(c, r_));
+                const bool inside = o == Overlap::Inside || (o == Overlap::Partial && curve_inside(c, r_));
+                any = any || meets;
+                all = all && inside;
+            }
+            if (b_ == Border::KEEP_OUTSIDE ? any : all)
+                for (auto& c : copy.curves) sink.keep(std::move(c));
+        }
+        if (sink.first())
+            for (auto& p : copy.points)
+                if (r_.contains(p.point)) sink.res.points.push_back(std::move(p));
+    }
+
+    // A line cut at the period: each run of consecutive copies whose boxes meet the
+    // region's box becomes one curve, from the first copy's start to the last one's
+    // end, then kept, cut or dropped as one copy. A ghost mapper sees that whole line
+    // (over the region's box grown by one piece, the margin it may move it by), keyed
+    // by the line (element and i), not by where the region cuts it.
+    void run_line(const CopyColumn& it, const TiledMap::Element& el, ColumnSink& sink) const {
+        const Curve& piece = el.curves.curves.front();
+        const double margin = has_ghost_ ? std::max(el.box.width(), el.box.height()) : 0.0;
+        auto meets_box = [&](long long jj) {
+            BBox cb = el.box.expanded(margin);
+            const Point s = m_.shift(it.i, jj);
+            cb.xmin += s.x; cb.xmax += s.x; cb.ymin += s.y; cb.ymax += s.y;
+            return cb.intersects(rb_);
+        };
+        long long j = it.j0;
+        while (j <= it.j1) {
+            if (!meets_box(j)) {
+                ++j;
+                continue;
+            }
+            long long last = j;
+            while (last + 1 <= it.j1 && meets_box(last + 1)) ++last;
+            Curves line;
+            line.curves.push_back(joined_line(piece, it.i, j, last));
+            keep_line(el, it.i, line, sink);
+            j = last + 1;
+        }
+    }
+
+    // The copies j..last of a line's piece in column i as one curve: the first copy's start,
+    // the inner points of every copy, the last copy's end.
+    Curve joined_line(const Curve& piece, long long i, long long j, long long last) const {
+        Curve c = piece;
+        const Point s0 = m_.shift(i, j), s1 = m_.shift(i, last);
+        c.points.assign(1, piece.points.front() + s0);
+        for (long long jj = j; jj <= last; ++jj)  // the inner points of every piece
+            for (std::size_t k = 1; k + 1 < piece.points.size(); ++k)
+                c.points.push_back(piece.points[k] + m_.shift(i, jj));
+        c.points.push_back(piece.points.back() + s1);
+        return c;
+    }
+
+    // A joined line of column i: through the ghost mapper, else kept whole when inside,
+    // else as a copy across the border.
+    void keep_line(const TiledMap::Element& el, long long i, Curves& line, ColumnSink& sink) const {
+        if (has_ghost_) {
+            TiledElement te;
+            te.curves = std::move(line);
+            te.anchor = el.anchor + m_.shift(i, 0);
+            te.i = i;
+            te.j = 0;
+            te.key = hash_combine(hash_combine(el.key, std::uint64_t(i)), 0x4c494e45ULL);
+            RandomScope scope(te.key);
+            Curves mapped = ghost_(te);
+            keep_partial(mapped, sink);
+        } else if (classify_box(curve_box(line.curves.front()), r_, rect_) == Overlap::Inside) {
+            sink.keep(std::move(line.curves.front()));
+        } else {
+            keep_partial(line, sink);
+        }
+    }
+
+    // The copy (i, j) of an element, moved by s: a partition edge by its cells, else through
+    // the ghost mapper, else by its box.
+    void run_copy(const CopyColumn& it, const TiledMap::Element& el, long long j, ColumnSink& sink) const {
+        const Point s = m_.shift(it.i, j);
+        if (keep_cells_) keep_cell_edge(el, it.i, j, s, sink);
+        else if (has_ghost_) keep_ghost_copy(el, it.i, j, s, sink);
+        else keep_copy(el, s, sink);
+    }
+
+    // A partition edge stays when a cell on one of its sides is kept; the side of a dropped
+    // cell loses its labels (as the planar-map engine does).
+    void keep_cell_edge(const TiledMap::Element& el, long long i, long long j, const Point& s,
+                        ColumnSink& sink) const {
+        const bool l = cell_kept(el.left, i, j), rr = cell_kept(el.right, i, j);
+        if (!l && !rr) return;
+        for (const auto& c : el.curves.curves) {
+            if (sink.first()) {
+                ++sink.n;
+                continue;
+            }
+            Curve copy = translated(c, s);
+            if (!l) copy.left = Labels{};
+            if (!rr) copy.right = Labels{};
+            sink.keep(std::move(copy));
+        }
+        if (sink.first())
+            for (const auto& p : el.curves.points)
+                if (r_.contains(p.point + s)) sink.res.points.push_back({p.point + s, p.labels});
+    }
+
+    // The ghost mapper's image of the copy (i, j) of an element (moved by s), when the copy
+    // moved by up to its size can meet the region's box; then kept as a copy across the border.
+    void keep_ghost_copy(const TiledMap::Element& el, long long i, long long j, const Point& s,
+                         ColumnSink& sink) const {
+        BBox moved = el.box.expanded(std::max(el.box.width(), el.box.height()));
+        moved.xmin += s.x; moved.xmax += s.x; moved.ymin += s.y; moved.ymax += s.y;
+        if (!moved.intersects(rb_)) return;
+        Curves copy = mapped_copy(el, i, j, s);
+        keep_partial(copy, sink);
+    }
+
+    // Runs the ghost mapper on the copy (i, j) of an element (moved by s), keyed by the copy.
+    Curves mapped_copy(const TiledMap::Element& el, long long i, long long j, const Point& s) const {
+        TiledElement te;
+        te.curves = el.curves;
+        te.curves.transform(Affine::translation(s));
+        te.anchor = el.anchor + s;
+        te.i = i;
+        te.j = j;
+        te.key = hash_combine(hash_combine(el.key, std::uint64_t(i)), std::uint64_t(j));
+        RandomScope scope(te.key);
+        return ghost_(te);
+    }
+
+    // A copy of an element (moved by s) by its box: dropped when outside the region, kept
+    // whole when inside, else curve by curve.
+    void keep_copy(const TiledMap::Element& el, const Point& s, ColumnSink& sink) const {
+        BBox cb = el.box;
+        cb.xmin += s.x; cb.xmax += s.x; cb.ymin += s.y; cb.ymax += s.y;
+        const Overlap o = classify_box(cb, r_, rect_);
+        if (o == Overlap::Disjoint) return;
+        if (o == Overlap::Inside) {
+            // The common case: the whole copy is kept as it is.
+            if (sink.first()) {
+                sink.n += el.curves.curves.size();
+                for (const auto& p : el.curves.points) sink.res.points.push_back({p.point + s, p.labels});
+            } else {
+                for (const auto& c : el.curves.curves) sink.keep(translated(c, s));
+            }
+            return;
+        }
+        Curves copy = el.curves;
+        for (auto& c : copy.curves)
+            for (auto& p : c.points) p += s;
+        for (auto& p : copy.points) p.point += s;
+        keep_partial(copy, sink);
+    }
+
+    const TiledMap& m_;
+    const GhostMapper& ghost_;
+    const Region& r_;
+    const BBox& rb_;
+    Border b_;
+    bool has_ghost_, rect_, keep_cells_, crop_;
+};
+
+// The first pass's curves across the border, gathered column by column (its points go to
+// `out`).
+Curves gather_partial(std::vector<ColumnResult>& results, Curves& out) {
+    Curves subject;
+    for (auto& res : results) {
+        for (auto& c : res.partial) subject.curves.push_back(std::move(c));
+        for (auto& p : res.points) out.points.push_back(std::move(p));
+    }
+    return subject;
+}
+
+// The pieces across the border: cut to the region with the pieces of the outline (CROP
+// modes), or the outline whole (CROP_ADD_BOUNDARY, nothing crossing it); none otherwise.
+Curves border_pieces_of(const TiledMap& m, const Curves& subject, const Region& r, Border b) {
+    const bool crop = b == Border::CROP || b == Border::CROP_ADD_BOUNDARY;
+    Curves border_pieces;
+    if (b == Border::CROP_ADD_BOUNDARY && subject.curves.empty()) {
+        // Nothing crosses the outline: it is added whole, inside a single face.
+        border_pieces = r.boundary();
+        for (auto& c : border_pieces.curves)
+            if (c.points.size() >= 2) c.left = m.FaceLabelsAt((c.points[0] + c.points[1]) / 2);
+    } else if (crop) {
+        static const LabelId outline = intern_label("\x01libtex-tiled-outline");
+        border_pieces = detail::crop_to_region(subject, r, b, outline);
+        // A piece of the outline: the labels of the face it bounds on its inner side.
+        detail::label_outline_pieces(border_pieces, outline,
+                                     [&](const Point& probe, const Point&) -> std::optional<Labels> {
+                                         return m.FaceLabelsAt(probe);
+                                     });
+    }
+    return border_pieces;
+}
+
+// The second pass: the output allocated once (with room for `extra` curves after the kept
+// ones), then each column's kept curves written at its offset on the worker threads.
+void write_kept_curves(const ColumnConverter& conv, const std::vector<CopyColumn>& items,
+                       std::vector<ColumnResult>& results, std::size_t extra, Curves& out) {
+    std::vector<std::size_t> offset(items.size() + 1, 0);
+    for (std::size_t k = 0; k < items.size(); ++k) offset[k + 1] = offset[k] + results[k].count;
+    out.curves.reserve(offset.back() + extra);
+    out.curves.resize(offset.back());
+    parallel_for(items.size(), [&](std::size_t k) {
+        if (conv.ghost()) {
+            std::move(results[k].kept.begin(), results[k].kept.end(), out.curves.begin() + std::ptrdiff_t(offset[k]));
+            std::vector<Curve>().swap(results[k].kept);
+        } else if (results[k].count > 0) {
+            conv.run(items[k], results[k], out.curves.data() + offset[k]);
+        }
+    });
+}
+
+}  // namespace
+
 Curves TiledMap::Convert(const Region& r, Border b) const {
     Curves out;
     if (r.empty()) return out;
@@ -247,244 +585,20 @@ Curves TiledMap::Convert(const Region& r, Border b) const {
     // finite element can stand for. They are the engine's, cut where the engine cuts them.
     if (d_->stripes && !ghost && (b == Border::KEEP_INSIDE || b == Border::KEEP_OUTSIDE))
         return StripesPartition(*d_->stripes, b)(r);
-    const BBox& rb = r.bbox();
-    const bool rect = is_axis_rectangle(r);
-    const bool keep_cells = !ghost && !d_->cells.empty() && (b == Border::KEEP_INSIDE || b == Border::KEEP_OUTSIDE);
-    const bool crop = b == Border::CROP || b == Border::CROP_ADD_BOUNDARY;
-
-    // The copies (i, j) of element e whose box can meet the region's box: the translations t
-    // with (box + t) meeting rb form the box [rb.xmin - box.xmax, rb.xmax - box.xmin] x ...;
-    // its corners in lattice coordinates bound i and j. A ghost mapper may move an element
-    // by up to its own size, so its copies are looked for that much further.
-    struct Item {
-        std::size_t e;
-        long long i, j0, j1;
-    };
-    std::vector<Item> items;
-    double copies = 0;
-    for (std::size_t e = 0; e < d_->elements.size(); ++e) {
-        const BBox& eb = d_->elements[e].box;
-        if (eb.empty()) continue;
-        const double margin = ghost ? std::max(eb.width(), eb.height()) : 0.0;
-        const ShiftRange sr = shifts_meeting(*this, eb, rb, margin);
-        copies += sr.count();
-        if (copies > kMaxCopies) throw Error("TiledMap", "the region holds too many periods to convert");
-        for (long long i = sr.i0; i <= sr.i1; ++i) items.push_back({e, i, sr.j0, sr.j1});
-    }
+    const ColumnConverter conv(*this, d_->ghost, r, b);
+    const std::vector<CopyColumn> items = copy_columns(*this, r.bbox(), ghost);
 
     // Two passes, so that the output is allocated once and filled in place (memory bounded
     // by the output): the first counts each item's kept curves and collects the few that
     // cross the border; the second writes the kept curves at their final offsets. With a
     // ghost mapper (which is not run twice) the first pass keeps its curves instead.
-    struct Result {
-        std::size_t count = 0;
-        std::vector<Curve> kept, partial;  // kept: only with a ghost
-        std::vector<LabeledPoint> points;
-    };
-    std::vector<Result> results(items.size());
-    auto cell_kept = [&](const CellRef& c, long long i, long long j) {
-        if (c.cell < 0) return false;
-        const CellRing& cell = d_->cells[std::size_t(c.cell)];
-        const Point s = shift(i + c.di, j + c.dj);
-        BBox cb = cell.box;
-        cb.xmin += s.x; cb.xmax += s.x; cb.ymin += s.y; cb.ymax += s.y;
-        // The cell's own ring, not its box (a tilted cell's box is larger than the cell).
-        std::vector<Point> ring = cell.ring;
-        for (auto& p : ring) p += s;
-        const Overlap o = classify_polygon(ring, cb, r);
-        return b == Border::KEEP_INSIDE ? o == Overlap::Inside : o != Overlap::Disjoint;
-    };
-    auto translated = [](const Curve& c, const Point& s) {
-        Curve copy = c;
-        for (auto& p : copy.points) p += s;
-        return copy;
-    };
-    // dest == nullptr: first pass; else the item's slice of the output.
-    auto run = [&](std::size_t k, Curve* dest) {
-        const Item& it = items[k];
-        const Element& el = d_->elements[it.e];
-        Result& res = results[k];
-        const bool first = dest == nullptr;
-        std::size_t n = 0;
-        auto keep = [&](Curve&& c) {
-            if (dest) dest[n] = std::move(c);
-            else if (ghost) res.kept.push_back(std::move(c));
-            ++n;
-        };
-        // The curves kept from one copy (or one joined line) that was not wholly inside.
-        auto keep_partial = [&](Curves& copy) {
-            if (crop) {
-                // Curves inside stay whole; the others are cut below, all at once.
-                for (auto& c : copy.curves) {
-                    const Overlap o = classify_box(curve_box(c), r, rect);
-                    if (o == Overlap::Inside) keep(std::move(c));
-                    else if (o == Overlap::Partial && first) res.partial.push_back(std::move(c));
-                }
-            } else {
-                // KEEP_* keep or drop a copy whole, as the engine keeps or drops whole cells:
-                // KEEP_OUTSIDE when one of its curves meets the region, KEEP_INSIDE when all
-                // lie inside.
-                bool any = false, all = true;
-                for (const auto& c : copy.curves) {
-                    const Overlap o = classify_box(curve_box(c), r, rect);
-                    const bool meets = o == Overlap::Inside || (o == Overlap::Partial && curve_meets(c, r));
-                    const bool inside = o == Overlap::Inside || (o == Overlap::Partial && curve_inside(c, r));
-                    any = any || meets;
-                    all = all && inside;
-                }
-                if (b == Border::KEEP_OUTSIDE ? any : all)
-                    for (auto& c : copy.curves) keep(std::move(c));
-            }
-            if (first)
-                for (auto& p : copy.points)
-                    if (r.contains(p.point)) res.points.push_back(std::move(p));
-        };
-        if (el.continues && !keep_cells) {
-            // A line cut at the period: each run of consecutive copies whose boxes meet the
-            // region's box becomes one curve, from the first copy's start to the last one's
-            // end, then kept, cut or dropped as one copy. A ghost mapper sees that whole line
-            // (over the region's box grown by one piece, the margin it may move it by), keyed
-            // by the line (element and i), not by where the region cuts it.
-            const Curve& piece = el.curves.curves.front();
-            const double margin = ghost ? std::max(el.box.width(), el.box.height()) : 0.0;
-            long long j = it.j0;
-            while (j <= it.j1) {
-                auto meets_box = [&](long long jj) {
-                    BBox cb = el.box.expanded(margin);
-                    const Point s = shift(it.i, jj);
-                    cb.xmin += s.x; cb.xmax += s.x; cb.ymin += s.y; cb.ymax += s.y;
-                    return cb.intersects(rb);
-                };
-                if (!meets_box(j)) {
-                    ++j;
-                    continue;
-                }
-                long long last = j;
-                while (last + 1 <= it.j1 && meets_box(last + 1)) ++last;
-                Curves line;
-                Curve c = piece;
-                const Point s0 = shift(it.i, j), s1 = shift(it.i, last);
-                c.points.assign(1, piece.points.front() + s0);
-                for (long long jj = j; jj <= last; ++jj)  // the inner points of every piece
-                    for (std::size_t k = 1; k + 1 < piece.points.size(); ++k)
-                        c.points.push_back(piece.points[k] + shift(it.i, jj));
-                c.points.push_back(piece.points.back() + s1);
-                line.curves.push_back(std::move(c));
-                if (ghost) {
-                    TiledElement te;
-                    te.curves = std::move(line);
-                    te.anchor = el.anchor + shift(it.i, 0);
-                    te.i = it.i;
-                    te.j = 0;
-                    te.key = hash_combine(hash_combine(el.key, std::uint64_t(it.i)), 0x4c494e45ULL);
-                    RandomScope scope(te.key);
-                    Curves mapped = d_->ghost(te);
-                    keep_partial(mapped);
-                } else if (classify_box(curve_box(line.curves.front()), r, rect) == Overlap::Inside) {
-                    keep(std::move(line.curves.front()));
-                } else {
-                    keep_partial(line);
-                }
-                j = last + 1;
-            }
-            if (first) res.count = n;
-            return;
-        }
-        for (long long j = it.j0; j <= it.j1; ++j) {
-            const Point s = shift(it.i, j);
-            if (keep_cells) {
-                // A partition edge stays when a cell on one of its sides is kept; the side
-                // of a dropped cell loses its labels (as the planar-map engine does).
-                const bool l = cell_kept(el.left, it.i, j), rr = cell_kept(el.right, it.i, j);
-                if (!l && !rr) continue;
-                for (const auto& c : el.curves.curves) {
-                    if (first) {
-                        ++n;
-                        continue;
-                    }
-                    Curve copy = translated(c, s);
-                    if (!l) copy.left = Labels{};
-                    if (!rr) copy.right = Labels{};
-                    keep(std::move(copy));
-                }
-                if (first)
-                    for (const auto& p : el.curves.points)
-                        if (r.contains(p.point + s)) res.points.push_back({p.point + s, p.labels});
-                continue;
-            }
-            Curves copy;
-            if (ghost) {
-                BBox moved = el.box.expanded(std::max(el.box.width(), el.box.height()));
-                moved.xmin += s.x; moved.xmax += s.x; moved.ymin += s.y; moved.ymax += s.y;
-                if (!moved.intersects(rb)) continue;
-                TiledElement te;
-                te.curves = el.curves;
-                te.curves.transform(Affine::translation(s));
-                te.anchor = el.anchor + s;
-                te.i = it.i;
-                te.j = j;
-                te.key = hash_combine(hash_combine(el.key, std::uint64_t(it.i)), std::uint64_t(j));
-                RandomScope scope(te.key);
-                copy = d_->ghost(te);
-            } else {
-                BBox cb = el.box;
-                cb.xmin += s.x; cb.xmax += s.x; cb.ymin += s.y; cb.ymax += s.y;
-                const Overlap o = classify_box(cb, r, rect);
-                if (o == Overlap::Disjoint) continue;
-                if (o == Overlap::Inside) {
-                    // The common case: the whole copy is kept as it is.
-                    if (first) {
-                        n += el.curves.curves.size();
-                        for (const auto& p : el.curves.points) res.points.push_back({p.point + s, p.labels});
-                    } else {
-                        for (const auto& c : el.curves.curves) keep(translated(c, s));
-                    }
-                    continue;
-                }
-                copy = el.curves;
-                for (auto& c : copy.curves)
-                    for (auto& p : c.points) p += s;
-                for (auto& p : copy.points) p.point += s;
-            }
-            keep_partial(copy);
-        }
-        if (first) res.count = n;
-    };
-    parallel_for(items.size(), [&](std::size_t k) { run(k, nullptr); });
+    std::vector<ColumnResult> results(items.size());
+    parallel_for(items.size(), [&](std::size_t k) { conv.run(items[k], results[k], nullptr); });
     // The pieces across the border (cut, and the outline, before the output is allocated so
     // that it is allocated once).
-    Curves subject;
-    for (auto& res : results) {
-        for (auto& c : res.partial) subject.curves.push_back(std::move(c));
-        for (auto& p : res.points) out.points.push_back(std::move(p));
-    }
-    Curves border_pieces;
-    if (b == Border::CROP_ADD_BOUNDARY && subject.curves.empty()) {
-        // Nothing crosses the outline: it is added whole, inside a single face.
-        border_pieces = r.boundary();
-        for (auto& c : border_pieces.curves)
-            if (c.points.size() >= 2) c.left = FaceLabelsAt((c.points[0] + c.points[1]) / 2);
-    } else if (crop) {
-        static const LabelId outline = intern_label("\x01libtex-tiled-outline");
-        border_pieces = detail::crop_to_region(subject, r, b, outline);
-        // A piece of the outline: the labels of the face it bounds on its inner side.
-        detail::label_outline_pieces(border_pieces, outline, [&](const Point& probe, const Point&) -> std::optional<Labels> {
-            return FaceLabelsAt(probe);
-        });
-    }
-
-    std::vector<std::size_t> offset(items.size() + 1, 0);
-    for (std::size_t k = 0; k < items.size(); ++k) offset[k + 1] = offset[k] + results[k].count;
-    out.curves.reserve(offset.back() + border_pieces.curves.size());
-    out.curves.resize(offset.back());
-    parallel_for(items.size(), [&](std::size_t k) {
-        if (ghost) {
-            std::move(results[k].kept.begin(), results[k].kept.end(), out.curves.begin() + std::ptrdiff_t(offset[k]));
-            std::vector<Curve>().swap(results[k].kept);
-        } else if (results[k].count > 0) {
-            run(k, out.curves.data() + offset[k]);
-        }
-    });
+    const Curves subject = gather_partial(results, out);
+    Curves border_pieces = border_pieces_of(*this, subject, r, b);
+    write_kept_curves(conv, items, results, border_pieces.curves.size(), out);
     for (auto& c : border_pieces.curves) out.curves.push_back(std::move(c));
     return out;
 }

@@ -1,0 +1,236 @@
+// rockhatch.carto, the pipeline the rockhatch command runs: its options and plan, the
+// stages (prepare, hatch, run), the crest ornaments, the writers of its outputs, and the
+// tiled run.
+#include "carto/crest.hpp"
+#include "carto/output.hpp"
+#include "carto/pipeline.hpp"
+#include "carto/plan.hpp"
+#include "carto/raster.hpp"
+#include "carto/tiles.hpp"
+#include "carto_bindings.hpp"
+
+namespace rhpy {
+
+using namespace carto;
+
+// The pipeline: Options, Stats, Prepared, the crest ornaments, Drawing, Plan, and the
+// stages.
+void add_pipeline_bindings(py::module_& m) {
+    py::class_<Options>(m, "Options", "Everything the rockhatch command takes")
+        .def(py::init<>())
+        .def_readwrite("dem", &Options::dem)
+        .def_readwrite("partition", &Options::partition)
+        .def_readwrite("slope", &Options::slope)
+        .def_readwrite("roughness", &Options::roughness)
+        .def_readwrite("style", &Options::style)
+        .def_readwrite("style_file", &Options::style_file, "the style script's path (an input: never written onto)")
+        .def_property(
+            "custom_style", [](const Options& o) { return std::const_pointer_cast<Style>(o.custom_style); },
+            [](Options& o, std::shared_ptr<Style> s) { o.custom_style = std::move(s); })
+        .def_readwrite("params", &Options::params)
+        .def_readwrite("scale", &Options::scale)
+        .def_readwrite("relief_radius", &Options::relief_radius)
+        .def_readwrite("seed", &Options::seed)
+        .def_readwrite("threads", &Options::threads)
+        .def_readwrite("outputs", &Options::outputs)
+        .def_readwrite("overwrite", &Options::overwrite)
+        .def_readwrite("png_pixels", &Options::png_pixels)
+        .def_readwrite("spatial_index", &Options::spatial_index)
+        .def_readwrite("window", &Options::window)
+        .def_readwrite("crest_ornament", &Options::crest_ornament,
+                       "'default' (the project's exemplar) or an SVG file: draw the ridges as crest ornaments; None: no crests")
+        .def_readwrite("crest_height_mm", &Options::crest_height_mm, "height of the crest band, mm on paper (None: 2)");
+    py::class_<Stats>(m, "Stats")
+        .def_readonly("faces", &Stats::faces)
+        .def_readonly("hatches", &Stats::hatches)
+        .def_readonly("seconds", &Stats::seconds)
+        .def_readonly("crs", &Stats::crs)
+        .def_readonly("notes", &Stats::notes)
+        .def_readonly("crests", &Stats::crests, "ridge lines drawn with a crest ornament")
+        .def("__repr__", [](const Stats& s) {
+            return "Stats(faces=" + std::to_string(s.faces) + ", hatches=" + std::to_string(s.hatches) + ")";
+        });
+    py::class_<Prepared>(m, "Prepared", "The inputs read and prepared: terrain in the working CRS and the partition")
+        .def_property_readonly("terrain", [](const Prepared& p) { return share(p.terrain); })
+        .def_readonly("partition", &Prepared::partition)
+        .def_property_readonly("relief", [](const Prepared& p) { return std::make_shared<Raster>(p.relief); })
+        .def_readonly("notes", &Prepared::notes);
+    py::class_<FaceHatches>(m, "FaceHatches")
+        .def_readonly("face_id", &FaceHatches::face_id)
+        .def_readonly("hatches", &FaceHatches::hatches);
+    py::class_<CrestOrnament>(m, "CrestOrnament", "One ridge's crest ornament: closed rings (outer counter-clockwise, holes clockwise)")
+        .def_readonly("ridge", &CrestOrnament::ridge, "index of the ridge in Partition.lines")
+        .def_readonly("id", &CrestOrnament::id,
+                      "the ridge's key (ridge_key, from its points): the ridge_id written, the same in tiled and whole runs")
+        .def_readonly("rings", &CrestOrnament::rings);
+    py::class_<CrestResult>(m, "CrestResult")
+        .def_readonly("ornaments", &CrestResult::ornaments)
+        .def_readonly("notes", &CrestResult::notes);
+    m.def("default_crest_svg", &default_crest_svg, "the project's crest exemplar as SVG text");
+    m.def(
+        "draw_crests",
+        [](const Partition& p, const std::string& exemplar, double band_height, std::uint64_t seed,
+           const std::optional<tex::BBox>& window) {
+            const CrestExemplar ex = load_crest_exemplar(exemplar);
+            py::gil_scoped_release release;
+            return draw_crests(p, ex, band_height, seed, window);
+        },
+        py::arg("partition"), py::arg("exemplar") = std::string(kDefaultCrest), py::arg("band_height"),
+        py::arg("seed") = 0, py::arg("window") = py::none(),
+        R"(Crest ornaments of the partition's ridge lines.
+
+Parameters
+----------
+partition : Partition
+    Its lines labelled ridge are drawn.
+exemplar : str
+    'default' (the project's exemplar) or the path of an SVG file of polygons.
+band_height : float
+    Height of the band centred on each ridge, in ground units.
+seed : int
+    Each ridge's pattern is keyed by this seed and the ridge's own points.
+window : BBox, optional
+    Only the ridges whose anchor (the smaller of their two end points) lies in it,
+    half-open (as the tiles of a tiled run own them).
+
+Returns
+-------
+CrestResult
+    One ornament per ridge drawn, and a note counting the ridges skipped (shorter than the
+    band, or too tight for it).)");
+    py::class_<Drawing>(m, "Drawing", "Hatches of every face, in the working CRS")
+        .def_readonly("faces", &Drawing::faces)
+        .def_readonly("crests", &Drawing::crests, "the crest ornaments, or None when not asked")
+        .def_readonly("crs", &Drawing::crs_wkt)
+        .def_readonly("style", &Drawing::style)
+        .def_readonly("scale", &Drawing::scale)
+        .def_readonly("bounds", &Drawing::bounds)
+        .def("hatch_count", [](const Drawing& d) {
+            std::size_t n = 0;
+            for (const auto& f : d.faces) n += f.hatches.size();
+            return n;
+        });
+    py::enum_<PlanFor>(m, "PlanFor").value("RUN", PlanFor::Run).value("DRAWING", PlanFor::Drawing);
+    py::class_<Plan>(m, "Plan",
+                     "The options of a run resolved once: the style, the rock style and their parameters in ground "
+                     "units, the crest band, the outputs")
+        .def_property_readonly("options", [](const Plan& p) { return p.options; })
+        .def_property_readonly("style", [](const Plan& p) { return p.style.info; })
+        .def_property_readonly("rock", [](const Plan& p) { return p.rock; })
+        .def_readonly("rock_params", &Plan::rock_params)
+        .def_readonly("terrain_params", &Plan::terrain_params)
+        .def_readonly("crest_band", &Plan::crest_band, "ground units; None when the run draws no crest ornaments")
+        .def_property_readonly("outputs", [](const Plan& p) {
+            std::vector<std::string> out;
+            for (const auto& o : p.outputs) out.push_back(o.path);
+            return out;
+        });
+    m.def("make_plan", &make_plan, py::arg("options"), py::arg("use") = PlanFor::Run,
+          "the run plan of the options, every option checked (RockhatchError naming the bad one); DRAWING: "
+          "--dem, --partition and -o are not required");
+    m.def(
+        "prepare", [](const Options& o, const py::object& cb) { return prepare(o, to_progress(cb)); }, py::arg("options"),
+        py::arg("progress") = py::none(), py::call_guard<py::gil_scoped_release>());
+    m.def(
+        "hatch", [](const Prepared& p, const Options& o, const py::object& cb) { return hatch(p, o, to_progress(cb)); },
+        py::arg("prepared"), py::arg("options"), py::arg("progress") = py::none(),
+        py::call_guard<py::gil_scoped_release>(), "hatches the faces (in parallel; Python styles take turns on the GIL)");
+    m.def(
+        "run", [](const Options& o, const py::object& cb) { return run(o, to_progress(cb)); }, py::arg("options"),
+        py::arg("progress") = py::none(), py::call_guard<py::gil_scoped_release>(),
+        "everything the rockhatch command does: make the plan, prepare, hatch, write");
+}
+
+// The outputs: the writers (GeoPackage, SVG, PNG), reading a drawing back, and the checks
+// that an output overwrites no input.
+void add_output_bindings(py::module_& m) {
+    m.def(
+        "write_gpkg",
+        [](const Drawing& d, const std::string& path, bool spatial_index, const py::object& cb) {
+            const Progress p = to_progress(cb);
+            write_gpkg(d, path, spatial_index, [&p](double f) { return !p || p(f, "writing"); });
+        },
+        py::arg("drawing"), py::arg("path"), py::arg("spatial_index") = true, py::arg("progress") = py::none(),
+        py::call_guard<py::gil_scoped_release>());
+    m.def("write_svg", &write_svg, py::arg("drawing"), py::arg("path"), py::call_guard<py::gil_scoped_release>());
+    m.def(
+        "merge_gpkg",
+        [](const std::vector<std::string>& parts, const std::string& path, bool spatial_index, const py::object& cb) {
+            const Progress p = to_progress(cb);
+            return merge_gpkg(parts, path, spatial_index, [&p](double f) { return !p || p(f, "merging"); });
+        },
+        py::arg("parts"), py::arg("path"), py::arg("spatial_index") = true, py::arg("progress") = py::none(),
+        py::call_guard<py::gil_scoped_release>(),
+        "merges hatch GeoPackages (tiles) into one, in order, features copied bit for bit; returns the hatch count");
+    m.def("read_gpkg", &read_gpkg, py::arg("path"), py::arg("scale"), py::call_guard<py::gil_scoped_release>(),
+          "a hatch GeoPackage read back as a Drawing");
+    m.def(
+        "write_png",
+        [](const Drawing& d, const std::string& path, int pixels, const Raster* hillshade) {
+            write_png(d, path, pixels, hillshade);
+        },
+        py::arg("drawing"), py::arg("path"), py::arg("pixels") = 1600, py::arg("hillshade") = nullptr,
+        py::call_guard<py::gil_scoped_release>());
+    m.def("check_output", &check_output, py::arg("path"), py::arg("overwrite"), py::arg("what") = "-o");
+    m.def(
+        "check_outputs",
+        [](const std::vector<std::pair<std::string, std::string>>& inputs,
+           const std::vector<std::pair<std::string, std::string>>& outputs, bool overwrite) {
+            auto args = [](const std::vector<std::pair<std::string, std::string>>& v) {
+                std::vector<FileArg> out;
+                for (const auto& [what, path] : v) out.push_back({what, path});
+                return out;
+            };
+            check_outputs(args(inputs), args(outputs), overwrite);
+        },
+        py::arg("inputs"), py::arg("outputs"), py::arg("overwrite"),
+        "inputs and outputs as (name, path) pairs: raises RockhatchError (code 9) when an output exists without "
+        "overwrite, is one of the inputs or another output (however spelt: ./x, a/../x, links)");
+    m.def("check_files", &check_files, py::arg("options"),
+          "the outputs of a run against the files it reads (check_outputs); run does it first");
+}
+
+// The tiled run: a raster's grid, the working grid, its windows, the tiles.
+void add_tile_bindings(py::module_& m) {
+    py::class_<RasterInfo>(m, "RasterInfo", "A raster's grid and CRS, without its cells")
+        .def_readonly("width", &RasterInfo::width)
+        .def_readonly("height", &RasterInfo::height)
+        .def_readonly("geotransform", &RasterInfo::gt)
+        .def_readonly("crs", &RasterInfo::crs_wkt)
+        .def("bounds", &RasterInfo::bounds);
+    m.def("raster_info", &raster_info, py::arg("path"), py::arg("what") = "raster");
+    py::class_<WorkingGrid>(m, "WorkingGrid",
+                            "The grid a DEM is worked on: its own, or for a geographic DEM its UTM reprojection")
+        .def_readonly("source", &WorkingGrid::source)
+        .def_readonly("grid", &WorkingGrid::grid)
+        .def_readonly("epsg", &WorkingGrid::epsg)
+        .def_property_readonly("reprojected", &WorkingGrid::reprojected)
+        .def_property_readonly("note", &WorkingGrid::note);
+    m.def("working_grid", &working_grid, py::arg("dem"));
+    m.def(
+        "read_working_window",
+        [](const std::string& path, const std::string& what, const WorkingGrid& g, const tex::BBox& box, int halo) {
+            return std::make_shared<Raster>(read_working_window(path, what, g, box, halo));
+        },
+        py::arg("path"), py::arg("what"), py::arg("grid"), py::arg("box"), py::arg("halo") = 0,
+        py::call_guard<py::gil_scoped_release>(),
+        "the cells of the working grid a box touches (grown by `halo` cells), read from a raster on the DEM's grid");
+    py::class_<TileReport>(m, "TileReport", "What one tile of a tiled run read and drew")
+        .def_readonly("faces", &TileReport::faces)
+        .def_readonly("context_faces", &TileReport::context_faces)
+        .def_readonly("hatches", &TileReport::hatches)
+        .def_readonly("dem_cells", &TileReport::dem_cells)
+        .def_readonly("seconds", &TileReport::seconds);
+    m.def("tile_grid", &tile_grid, py::arg("dem"), py::arg("size"),
+          "square tiles of side `size` covering the DEM from its north-west corner, row by row (outer tiles reach "
+          "beyond it)");
+    m.def("check_tiled_rasters", &check_tiled_rasters, py::arg("options"),
+          "refuses a --slope or --roughness raster a tile cannot read as the whole run does (another grid in "
+          "another CRS than the DEM's working CRS)");
+    m.def("run_tile", py::overload_cast<const Options&, const tex::BBox&, const std::string&>(&run_tile),
+          py::arg("options"), py::arg("tile"), py::arg("out"),
+          py::call_guard<py::gil_scoped_release>(),
+          "hatches the faces whose anchor lies in the half-open box `tile` into the GeoPackage `out`");
+}
+
+}  // namespace rhpy

@@ -1,0 +1,187 @@
+// FrayedCrop: a crop whose cut ends are drawn back irregularly from the region's border, so
+// that the border is not drawn by the ends of the curves (rock drawing has no outline).
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "libtex/error.hpp"
+#include "libtex/merge.hpp"
+#include "libtex/random.hpp"
+
+namespace tex {
+namespace {
+
+constexpr std::uint64_t kFrayTag = 0x46524159ULL;
+
+// The segments of a region's boundary, each marked "rim" when the drawing ends there: not
+// labelled one of the hard labels, and no value of `across` just beyond it (outside is on
+// the right of every ring). Bucketed on a grid for distance queries near the border.
+class BorderIndex {
+public:
+    BorderIndex(const Region& r, const std::vector<std::string>& hard, const Field& across, double probe) {
+        const Curves edges = r.boundary();
+        for (const Curve& c : edges.curves) {
+            bool h = false;
+            for (const auto& l : hard) h = h || c.labels.has(l);
+            const std::size_t n = c.points.size();
+            for (std::size_t i = 0; i + 1 < n + (c.closed ? 1 : 0); ++i) {
+                const Point a = c.points[i], b = c.points[(i + 1) % n];
+                const double l = distance(a, b);
+                bool rim = !h && l > 0;
+                if (rim) {
+                    const Point right{(b - a).y / l, -(b - a).x / l};
+                    rim = std::isnan(across((a + b) / 2 + right * probe));
+                }
+                segs_.push_back({a, b, rim});
+            }
+        }
+        box_ = r.bbox();
+        const double side = std::max(box_.width(), box_.height());
+        cells_ = std::max(1, std::min(256, int(std::sqrt(double(segs_.size())))));
+        cell_ = side > 0 ? side / cells_ : 1.0;
+        buckets_.resize(std::size_t(cells_) * std::size_t(cells_));
+        for (std::size_t k = 0; k < segs_.size(); ++k) {
+            const Seg& s = segs_[k];
+            const int x0 = col(std::min(s.a.x, s.b.x)), x1 = col(std::max(s.a.x, s.b.x));
+            const int y0 = row(std::min(s.a.y, s.b.y)), y1 = row(std::max(s.a.y, s.b.y));
+            for (int y = y0; y <= y1; ++y)
+                for (int x = x0; x <= x1; ++x)
+                    buckets_[std::size_t(y) * std::size_t(cells_) + std::size_t(x)].push_back(k);
+        }
+    }
+
+    // The distance from p to the nearest segment within `limit` (+inf when none), and
+    // whether that segment is rim.
+    std::pair<double, bool> nearest(const Point& p, double limit) const {
+        const int r = int(std::ceil(limit / cell_));
+        const int x = col(p.x), y = row(p.y);
+        double best = limit;
+        bool rim = false, found = false;
+        for (int yy = std::max(0, y - r); yy <= std::min(cells_ - 1, y + r); ++yy)
+            for (int xx = std::max(0, x - r); xx <= std::min(cells_ - 1, x + r); ++xx)
+                for (std::size_t k : buckets_[std::size_t(yy) * std::size_t(cells_) + std::size_t(xx)]) {
+                    const double d = distance_to(p, segs_[k]);
+                    if (d < best || (d == best && !found)) {
+                        best = d;
+                        rim = segs_[k].rim;
+                        found = true;
+                    }
+                }
+        return {found ? best : INFINITY, rim};
+    }
+
+    // The distance from p to the nearest rim segment, up to `limit` (limit when none nearer).
+    double to_rim(const Point& p, double limit) const {
+        const int r = int(std::ceil(limit / cell_));
+        const int x = col(p.x), y = row(p.y);
+        double best = limit;
+        for (int yy = std::max(0, y - r); yy <= std::min(cells_ - 1, y + r); ++yy)
+            for (int xx = std::max(0, x - r); xx <= std::min(cells_ - 1, x + r); ++xx)
+                for (std::size_t k : buckets_[std::size_t(yy) * std::size_t(cells_) + std::size_t(xx)])
+                    if (segs_[k].rim) best = std::min(best, distance_to(p, segs_[k]));
+        return best;
+    }
+
+private:
+    struct Seg {
+        Point a, b;
+        bool rim;
+    };
+    static double distance_to(const Point& p, const Seg& s) {
+        const Point ab = s.b - s.a;
+        const double l2 = dot(ab, ab);
+        const double t = l2 > 0 ? std::clamp(dot(p - s.a, ab) / l2, 0.0, 1.0) : 0.0;
+        return distance(p, s.a + ab * t);
+    }
+    int col(double x) const { return std::clamp(int((x - box_.xmin) / cell_), 0, cells_ - 1); }
+    int row(double y) const { return std::clamp(int((y - box_.ymin) / cell_), 0, cells_ - 1); }
+
+    std::vector<Seg> segs_;
+    BBox box_;
+    int cells_ = 1;
+    double cell_ = 1;
+    std::vector<std::vector<std::size_t>> buckets_;
+};
+
+// The polyline pts from its start drawn back to the first point at least `depth` from the rim
+// (sampled every depth / 4 along it, then bisected); empty when it never gets that far.
+std::vector<Point> draw_back(std::vector<Point> pts, double depth, const BorderIndex& border) {
+    const double step = depth / 4;
+    auto far_enough = [&](const Point& q) { return border.to_rim(q, depth) >= depth; };
+    for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+        const Point a = pts[i], b = pts[i + 1];
+        const double l = distance(a, b);
+        const int n = std::max(1, int(std::ceil(l / step)));
+        double lo = 0;
+        for (int k = 1; k <= n; ++k) {
+            const double t = double(k) / n;
+            if (!far_enough(a + (b - a) * t)) {
+                lo = t;
+                continue;
+            }
+            // The first sample far enough: bisect between the last one too close and it.
+            double hi = t;
+            for (int it = 0; it < 30; ++it) {
+                const double m = (lo + hi) / 2;
+                (far_enough(a + (b - a) * m) ? hi : lo) = m;
+            }
+            pts[i] = a + (b - a) * hi;
+            pts.erase(pts.begin(), pts.begin() + std::ptrdiff_t(i));
+            return pts;
+        }
+    }
+    return {};
+}
+
+}  // namespace
+
+Arrangement FrayedCrop(Arrangement a, double min, double max, Field across, std::vector<std::string> hard) {
+    if (!(min >= 0) || !(max >= min) || !std::isfinite(max))
+        throw Error("FrayedCrop", "the band must be 0 <= min <= max (got " + std::to_string(min) + ", " +
+                                      std::to_string(max) + ")");
+    // The stream is fixed now, when the operator is created (random.hpp, "Streams").
+    const std::uint64_t stream = NextStream();
+    return Arrangement([a = std::move(a), min, max, across = std::move(across), hard = std::move(hard),
+                        stream](const Region& r) {
+        Curves in = apply_mask(a(r), r, CROP);
+        if (in.curves.empty()) return in;
+        const double eps = 1e-7 * std::max({r.bbox().width(), r.bbox().height(), 1.0});
+        // Another face across is looked for a little beyond the border.
+        const BorderIndex border(r, hard, across, 4 * eps + 0.05 * max);
+        const std::uint64_t key = hash_combine(hash_combine(kFrayTag, stream), GetSeed());
+        // An end within `min` of the border whose nearest border is rim is drawn back to a
+        // depth in [min, max] from the rim (0: it stays).
+        const double near = std::max(eps, min);
+        auto depth_at = [&](const Point& p) -> double {
+            const auto [d, rim] = border.nearest(p, near);
+            if (!rim || !(d <= near)) return 0.0;
+            return min + (max - min) * unit_from_hash(hash_point(key, p));
+        };
+        Curves out;
+        out.points = std::move(in.points);
+        out.origin = std::move(in.origin);
+        for (Curve& c : in.curves) {
+            if (c.closed || c.points.size() < 2) {
+                out.curves.push_back(std::move(c));
+                continue;
+            }
+            const double head = depth_at(c.points.front());
+            const double tail = depth_at(c.points.back());
+            std::vector<Point> pts = std::move(c.points);
+            if (head > 0) pts = draw_back(std::move(pts), head, border);
+            if (tail > 0 && pts.size() >= 2) {
+                std::reverse(pts.begin(), pts.end());
+                pts = draw_back(std::move(pts), tail, border);
+                std::reverse(pts.begin(), pts.end());
+            }
+            if (pts.size() < 2) continue;
+            c.points = std::move(pts);
+            out.curves.push_back(std::move(c));
+        }
+        return out;
+    });
+}
+
+}  // namespace tex
