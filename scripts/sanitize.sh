@@ -1,22 +1,23 @@
 #!/usr/bin/env bash
 # The test suite under AddressSanitizer + UndefinedBehaviorSanitizer (clang's), in a second
 # build folder: every C++ test (ctest, the gallery's included), then the Python tests with the
-# instrumented module loaded into Debian's interpreter (every test, none skipped). scripts/test.sh
-# runs it after the normal tests.
+# instrumented module loaded into Debian's interpreter (every test, none skipped). A separate
+# pass: .ci/run runs it after scripts/test.sh.
 #
 #   scripts/sanitize.sh                   configure + build build-asan, run the tests
 #   RH_ASAN_BUILD_DIR=dir scripts/sanitize.sh
 #   RH_SANITIZE_PYTEST=0 scripts/sanitize.sh   C++ tests only
-#   scripts/sanitize.sh --build-only      configure + build, no test (scripts/test.sh runs it
-#                                         beside the normal tests)
+#   scripts/sanitize.sh --build-only      configure + build, no test
 #
 # A finding fails the test that meets it: UBSan does not recover (-fno-sanitize-recover),
 # ASan aborts at the first error, LeakSanitizer fails a C++ test that leaks. Findings in
 # third-party code only are suppressed in scripts/sanitizers/*.supp (one comment each).
 #
-# Under RH_SANITIZED=1 (set below) the slowest tests check their property on less work, each
-# cut version still able to fail (tests/common/sanitized.hpp, tests/python/conftest.py:
-# one_under_sanitizers); the normal pass runs their full versions.
+# Every test runs on the same data as in the normal pass. RH_SANITIZED=1 (set below) is read
+# only where a test cannot do the same thing under ASan at all (tests/python/conftest.py:
+# SANITIZED): test_bad_inputs limits memory through ASan's allocator, not an address-space
+# limit (ASan's shadow memory exceeds any), and test_qgis_plugin's cancel test allows 30 s, not
+# 3, for the face in flight to finish.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 ROOT="$PWD"
@@ -73,8 +74,7 @@ ctest_rc=$?
 ctested=$(date +%s)
 
 # The Python tests under ASan, JOBS at a time (pytest-xdist): every test, the Dask tiled runs,
-# the QGIS algorithms and the real-DEM tests included; the costliest of those run on less data
-# there (RH_SANITIZED=1: conftest.real_dem_file, test_tiles' dem and size).
+# the QGIS algorithms and the real-DEM tests included, on the same data as the normal pass.
 pytest_rc=0
 if [ "${RH_SANITIZE_PYTEST:-1}" != 0 ]; then
   # Debian's interpreter is not instrumented: the ASan runtime must be loaded first

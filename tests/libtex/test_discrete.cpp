@@ -10,7 +10,6 @@
 #include <cstdio>
 #include <fstream>
 
-#include "sanitized.hpp"
 #include "helpers.hpp"
 #include "libtex/discrete.hpp"
 #include "libtex/random.hpp"
@@ -54,10 +53,7 @@ PairReport all_pairs(const std::vector<Region>& a, const std::vector<Region>& b,
     for (const auto& r : a) pa.push_back(to_bg(r));
     for (const auto& r : b) pb.push_back(to_bg(r));
     PairReport rep;
-    // Under the sanitizers every third member of a is checked against all of b (the pair
-    // loops of the figures take minutes there); the normal pass checks every pair.
-    const std::size_t stride = rh_test::sanitized() ? 3 : 1;
-    for (std::size_t i = 0; i < a.size(); i += stride)
+    for (std::size_t i = 0; i < a.size(); ++i)
         for (std::size_t j = same_set ? i + 1 : 0; j < b.size(); ++j) {
             if (!a[i].bbox().expanded(reach).intersects(b[j].bbox())) continue;
             if (bg::intersects(pa[i], pb[j])) {

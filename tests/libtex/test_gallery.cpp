@@ -18,7 +18,6 @@
 #include "gallery.hpp"
 #include "gallery_teasers.hpp"
 #include "helpers.hpp"
-#include "sanitized.hpp"
 
 using namespace tex;
 
@@ -69,10 +68,6 @@ std::map<std::string, std::string> golden_lines() {
 }
 
 TEST(Golden, EveryExampleDrawsItsGoldenBytes) {
-    // Under the sanitizers every example's own test below compares its drawing with its golden
-    // line instead (the same check, without drawing the whole gallery once more).
-    if (rh_test::sanitized() && !std::getenv("RH_UPDATE_GOLDEN"))
-        GTEST_SKIP() << "RH_SANITIZED=1: Gallery/GalleryTest.* check the golden bytes example by example";
     const std::string path = RH_GALLERY_GOLDEN;
     const std::uint64_t seed = GetSeed();
     SetSeed(0);
@@ -100,25 +95,6 @@ TEST(Golden, EveryExampleDrawsItsGoldenBytes) {
 TEST_P(GalleryTest, SameBytesWithOneOrTwoThreadsAndAcrossRuns) {
     const auto& e = gallery::find(GetParam());
     const unsigned saved = GetThreads();
-    if (rh_test::sanitized()) {
-        // Under the sanitizers (each render costs ten times more): one render, on two threads
-        // (the parallel path, where a lifetime error between threads would show), against its
-        // golden bytes (Golden.* is skipped there). The one-thread render, the second run and
-        // the other seed are left to the normal pass, which checks that all three give the
-        // same bytes: with the golden line, the two-thread drawing here is the one-thread one.
-        const std::uint64_t seed = GetSeed();
-        SetSeed(0);
-        SetThreads(2);
-        const std::string two = render(e);
-        SetThreads(saved);
-        SetSeed(seed);
-        EXPECT_GT(two.size(), 2000u) << "the drawing is nearly empty";
-        const auto want = golden_lines();
-        const auto w = want.find(e.name);
-        ASSERT_NE(w, want.end()) << "no golden line for " << e.name << " in " << RH_GALLERY_GOLDEN;
-        EXPECT_EQ(w->second, golden_line(e.name, two)) << e.name << ": the drawing changed";
-        return;
-    }
     SetThreads(1);
     const std::string one = render(e);
     SetThreads(2);
@@ -1658,11 +1634,8 @@ TEST(FastCrop, SameMapsAsTheExactPathOnTheGallery) {
     const std::uint64_t seed = GetSeed();
     SetThreads(1);  // the exact-only switch is per thread
     SetSeed(0);
-    // Under the sanitizers four of the eight examples (one of each kind of cut, teaser_b's
-    // rounded crossing among them): the eight take minutes there.
     std::vector<const char*> names = {"combine_e", "combine_g", "nonregular_b", "nonregular_c",
                                       "teapot",    "teaser_b",  "teaser_g",     "teaser_h"};
-    if (rh_test::sanitized()) names = {"combine_e", "nonregular_c", "teaser_b", "teaser_h"};
     for (const char* name : names) {
         SCOPED_TRACE(name);
         const auto& e = gallery::find(name);

@@ -141,8 +141,7 @@ def test_every_ridge_of_the_real_dem_is_one_valid_polygon(real_dem_file):
     polygon GEOS finds valid (its outer ring and the holes inside it); the ridges skipped
     because no pattern fits them are few, and short branches cut back where ridges meet are
     counted apart, all in the note; ornaments of different ridges seldom meet (118 of 596
-    pairs did before the ends were cut back at nodes, 5 of 518 since). Under the sanitizers, on
-    the DEM's middle quarter (conftest.real_dem_file), with the same shares."""
+    pairs did before the ends were cut back at nodes, 5 of 518 since)."""
     part = carto.prepare(str(real_dem_file), "auto").partition
     ridges = sum(1 for line in part.lines if line.kind == carto.LineKind.RIDGE)
     r = carto.draw_crests(part, "default", 20.0)

@@ -9,8 +9,7 @@ import sys
 import time
 
 import pytest
-from conftest import (SAMPLE, SAMPLE_SW_QUARTER, SANITIZED, finished_tiles, half_under_sanitizers, one_under_sanitizers,
-                      python_env)
+from conftest import SAMPLE, SAMPLE_SW_QUARTER, finished_tiles, python_env
 
 from osgeo import gdal, ogr
 
@@ -72,7 +71,7 @@ def sample_whole(tmp_path_factory):
     return whole_run(["--dem", DEM, "--partition", FACES, "--seed", "3"], tmp_path_factory.mktemp("whole") / "w.gpkg")
 
 
-@pytest.mark.parametrize("tile_size,workers", one_under_sanitizers([(600, 2), (1700, 1)]))
+@pytest.mark.parametrize("tile_size,workers", [(600, 2), (1700, 1)])
 def test_tiled_run_equals_the_whole_run(tmp_path, sample_whole, tile_size, workers):
     out = tmp_path / "tiled.gpkg"
     calls = []
@@ -94,7 +93,7 @@ def test_tiled_run_equals_the_whole_run(tmp_path, sample_whole, tile_size, worke
         assert ds.ExecuteSQL(f"SELECT HasSpatialIndex('{name}', 'geom')").GetNextFeature().GetField(0) == 1
 
 
-@pytest.mark.parametrize("tile_size", one_under_sanitizers([500, 1300]))
+@pytest.mark.parametrize("tile_size", [500, 1300])
 def test_crest_ornaments_tiled_equal_the_whole_run(tmp_path, tile_size):
     # Each ridge is drawn by the tile holding its anchor, with the ridges around it read so
     # that ends are cut back where ridges meet as in the whole run: the same crest polygons,
@@ -312,17 +311,15 @@ def test_partial_tile_files_are_never_merged(tmp_path, sample_whole):
 
 def test_tiled_equals_whole_on_chamonix(tmp_path, rockhatch_exe, real_dem_file):
     # Chamonix.tif is in degrees, with NoData: both runs work on its UTM 32N reprojection,
-    # the tiles reading it window by window. (Under the sanitizers, its middle quarter, in
-    # tiles of half the size: as many tiles.)
+    # the tiles reading it window by window.
     faces = tmp_path / "faces.gpkg"
     r = subprocess.run([str(rockhatch_exe), "partition", "--dem", str(real_dem_file), "-o", str(faces), "-q"],
                        capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr
     args = ["--dem", str(real_dem_file), "--partition", str(faces), "--scale", "25000"]
     expected = whole_run(args, tmp_path / "whole.gpkg")
-    assert len(expected) > (20000 if SANITIZED else 100000)
-    s = tiles.run(real_dem_file, faces, 1250 if SANITIZED else 2500, [tmp_path / "tiled.gpkg"], scale=25000,
-                  workers=2)
+    assert len(expected) > 100000
+    s = tiles.run(real_dem_file, faces, 2500, [tmp_path / "tiled.gpkg"], scale=25000, workers=2)
     assert s.tiles > 20
     assert features(tmp_path / "tiled.gpkg") == expected
 
@@ -330,9 +327,9 @@ def test_tiled_equals_whole_on_chamonix(tmp_path, rockhatch_exe, real_dem_file):
 SW_QUARTER = ",".join(map(str, SAMPLE_SW_QUARTER))
 
 
-@pytest.mark.parametrize("style,params,faces,window", one_under_sanitizers([
-    # In the user's --window (the sample's south-west quarter; first, the one the sanitizers
-    # run): the tiles draw the window's elements and frame them as the whole run does.
+@pytest.mark.parametrize("style,params,faces,window", [
+    # In the user's --window (the sample's south-west quarter): the tiles draw the window's
+    # elements and frame them as the whole run does.
     ("scree", [], FACES, SW_QUARTER),
     ("scree", [], FACES, None),
     # A contour interval of 5 m gives tiles of about 230 m: the 600 m tiles read windows of the
@@ -340,7 +337,7 @@ SW_QUARTER = ",".join(map(str, SAMPLE_SW_QUARTER))
     # TerrainStyles.WindowsTogetherDrawTheWholeRunsElements).
     ("slope-hachures", ["interval=5"], FACES, None),
     ("slope-hachures", ["interval=5"], "none", None),  # no rock at all
-]))
+])
 def test_terrain_styles_tiled_equal_the_whole_run(tmp_path, style, params, faces, window):
     # The terrain elements are thrown over one grid of tiles of the working CRS, in colour
     # phases: a map tile draws the elements of the grid's tiles whose centre it holds, after
@@ -437,18 +434,16 @@ def test_bad_input_is_refused_before_any_work(tmp_path, args, code, words):
     assert not (tmp_path / "o.gpkg").exists()
 
 
-def test_a_geographic_dem_is_tiled_as_the_whole_run_reprojects_it(tmp_path, rockhatch_exe,
-                                                                  quarter_under_sanitizers):
+def test_a_geographic_dem_is_tiled_as_the_whole_run_reprojects_it(tmp_path, rockhatch_exe):
     # The sample in degrees (with NoData corners): tiles of the UTM grid the whole run works
     # on, each warped alone from the DEM, give the whole run's hatches bit for bit; so does
-    # the partition extracted tile by tile. Under the sanitizers, the sample's south-west
-    # quarter warped, in tiles of half the size.
+    # the partition extracted tile by tile.
     dem = tmp_path / "geo.tif"
-    gdal.Warp(str(dem), quarter_under_sanitizers, dstSRS="EPSG:4326", dstNodata=-9999)
+    gdal.Warp(str(dem), DEM, dstSRS="EPSG:4326", dstNodata=-9999)
     whole = whole_run(["--dem", str(dem), "--partition", FACES, "--seed", "3"], tmp_path / "w.gpkg")
     assert len(whole) > 1000
     out = tmp_path / "tiled.gpkg"
-    s = tiles.run(dem, FACES, half_under_sanitizers(700), [out], seed=3, workers=2)
+    s = tiles.run(dem, FACES, 700, [out], seed=3, workers=2)
     assert s.tiles >= 9
     assert features(out) == whole
     assert ogr.Open(str(out)).GetLayer(0).GetSpatialRef().GetAuthorityCode(None) == "32632"
@@ -456,7 +451,7 @@ def test_a_geographic_dem_is_tiled_as_the_whole_run_reprojects_it(tmp_path, rock
                        capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr
     work = tmp_path / "work"
-    s = tiles.run(dem, "auto", half_under_sanitizers(900), [tmp_path / "auto.gpkg"], seed=3, workers=2, workdir=work,
+    s = tiles.run(dem, "auto", 900, [tmp_path / "auto.gpkg"], seed=3, workers=2, workdir=work,
                   keep_tiles=True)
     assert s.warnings == []
     assert partition_faces(work / "partition.gpkg") == partition_faces(tmp_path / "p.gpkg")
@@ -506,9 +501,9 @@ def partition_faces(path):
 
 
 @pytest.fixture(scope="module")
-def sample_auto(tmp_path_factory, rockhatch_exe, quarter_under_sanitizers):
+def sample_auto(tmp_path_factory, rockhatch_exe):
     """The whole run with --partition auto, and the whole extraction (rockhatch partition)."""
-    dem = quarter_under_sanitizers
+    dem = DEM
     tmp = tmp_path_factory.mktemp("auto")
     hatches = whole_run(["--dem", dem, "--partition", "auto", "--seed", "3"], tmp / "w.gpkg")
     r = subprocess.run([str(rockhatch_exe), "partition", "--dem", dem, "-o", str(tmp / "faces.gpkg"), "-q"],
@@ -517,16 +512,14 @@ def sample_auto(tmp_path_factory, rockhatch_exe, quarter_under_sanitizers):
     return hatches, partition_faces(tmp / "faces.gpkg")
 
 
-def test_partition_auto_tiled_equals_the_whole_run_with_1_or_2_workers(tmp_path, sample_auto,
-                                                                      quarter_under_sanitizers):
-    dem = quarter_under_sanitizers
+def test_partition_auto_tiled_equals_the_whole_run_with_1_or_2_workers(tmp_path, sample_auto):
+    dem = DEM
     hatches, faces = sample_auto
     outs = {}
-    # Under the sanitizers: two workers only (one worker takes the same path, in one process).
-    for workers in (2,) if SANITIZED else (1, 2):
+    for workers in (1, 2):
         out = tmp_path / f"tiled{workers}.gpkg"
         calls = []
-        s = tiles.run(dem, "auto", half_under_sanitizers(800), [out], seed=3, workers=workers,
+        s = tiles.run(dem, "auto", 800, [out], seed=3, workers=workers,
                       workdir=tmp_path / f"work{workers}", keep_tiles=True,
                       progress=lambda f, stage: calls.append((f, stage)) or True)
         assert s.tiles == 9 and s.partition_faces == len(faces)
@@ -541,14 +534,12 @@ def test_partition_auto_tiled_equals_the_whole_run_with_1_or_2_workers(tmp_path,
         assert fractions == sorted(fractions)
         outs[workers] = out.read_bytes()
     # One or two workers: the same bytes, partition and hatching.
-    if SANITIZED:
-        return
     assert (tmp_path / "work1" / "partition.gpkg").read_bytes() == (tmp_path / "work2" / "partition.gpkg").read_bytes()
     assert outs[1] == outs[2]
 
 
-def test_partition_auto_takes_the_extractions_options(tmp_path, rockhatch_exe, quarter_under_sanitizers):
-    dem = quarter_under_sanitizers
+def test_partition_auto_takes_the_extractions_options(tmp_path, rockhatch_exe):
+    dem = DEM
     # rockhatch partition's tuning options, passed to every extraction tile: the tiled
     # partition is the whole extraction's with the same options, and not the default one.
     opts = ["--min-slope", "90", "--no-ridge-extension", "--min-area=25"]
@@ -557,7 +548,7 @@ def test_partition_auto_takes_the_extractions_options(tmp_path, rockhatch_exe, q
     assert r.returncode == 0, r.stderr
     whole = partition_faces(tmp_path / "whole.gpkg")
     work = tmp_path / "work"
-    s = tiles.run(dem, "auto", half_under_sanitizers(800), [tmp_path / "t.gpkg"], seed=3, workers=2, workdir=work,
+    s = tiles.run(dem, "auto", 800, [tmp_path / "t.gpkg"], seed=3, workers=2, workdir=work,
                   keep_tiles=True, args=opts)
     assert s.partition_faces == len(whole) and s.warnings == []
     assert partition_faces(work / "partition.gpkg") == whole
@@ -566,16 +557,14 @@ def test_partition_auto_takes_the_extractions_options(tmp_path, rockhatch_exe, q
     assert r.returncode == 0 and partition_faces(tmp_path / "default.gpkg") != whole
     # Other extraction options are another job: the finished tiles are not reused.
     with pytest.raises(RockhatchError) as e:
-        tiles.run(dem, "auto", half_under_sanitizers(800), [tmp_path / "t.gpkg"], seed=3, workers=1, workdir=work,
+        tiles.run(dem, "auto", 800, [tmp_path / "t.gpkg"], seed=3, workers=1, workdir=work,
                   overwrite=True, args=["--min-slope", "80"])
     assert e.value.code == 9 and "another job" in str(e.value)
 
 
 def test_partition_auto_warns_where_the_tiles_disagree(tmp_path):
     # A halo too short for the sample's basins: neighbouring tiles place some faces
-    # differently and the merge finds them overlapping; the command says so in one line. (On
-    # the whole sample under the sanitizers too: in its south-west quarter no halo down to
-    # 100 m made tiles of 400 to 650 m disagree.)
+    # differently and the merge finds them overlapping; the command says so in one line.
     r = subprocess.run([sys.executable, "-m", "rockhatch", "tiles", "--dem", DEM, "--partition", "auto",
                         "--tile-size", "1300", "--extract-halo", "300", "--workers", "1", "-q",
                         "-o", str(tmp_path / "o.gpkg")], capture_output=True, text=True, env=python_env(), timeout=300)
@@ -584,40 +573,40 @@ def test_partition_auto_warns_where_the_tiles_disagree(tmp_path):
     assert len(warnings) == 1 and "partition tiles disagree" in warnings[0] and "--extract-halo (now 300)" in warnings[0]
 
 
-def test_partition_auto_other_tiles_same_partition(tmp_path, sample_auto, quarter_under_sanitizers):
-    dem = quarter_under_sanitizers
+def test_partition_auto_other_tiles_same_partition(tmp_path, sample_auto):
+    dem = DEM
     # Tiles of 500 m (25 tiles; every face larger than a tile, or cut by a tile border, comes
     # out once and whole from the tile holding its anchor) and a shorter halo: still the whole
     # extraction on the sample.
     hatches, faces = sample_auto
     out = tmp_path / "t.gpkg"
-    s = tiles.run(dem, "auto", half_under_sanitizers(500), [out], seed=3, workers=2, workdir=tmp_path / "work",
-                  keep_tiles=True, extract_halo=half_under_sanitizers(1000))
+    s = tiles.run(dem, "auto", 500, [out], seed=3, workers=2, workdir=tmp_path / "work",
+                  keep_tiles=True, extract_halo=1000)
     assert s.tiles == 25
     assert max(s.extract_rounds) >= 2  # some tile had to extract again over a larger window
     assert partition_faces(tmp_path / "work" / "partition.gpkg") == faces
     assert features(out) == hatches
 
 
-def test_partition_auto_resumes_in_either_stage(tmp_path, sample_auto, quarter_under_sanitizers):
-    dem = quarter_under_sanitizers
+def test_partition_auto_resumes_in_either_stage(tmp_path, sample_auto):
+    dem = DEM
     hatches, _ = sample_auto
     out, work = tmp_path / "t.gpkg", tmp_path / "work"
     # Stopped while extracting: the finished partition tiles stay.
     with pytest.raises(RockhatchError) as e:
-        tiles.run(dem, "auto", half_under_sanitizers(800), [out], seed=3, workers=1, workdir=work,
+        tiles.run(dem, "auto", 800, [out], seed=3, workers=1, workdir=work,
                   progress=lambda f, stage: not stage.startswith("partition tiles 3/"))
     assert e.value.code == 10 and not out.exists()
     done = {p.name: p.stat().st_mtime_ns for p in work.glob("partition_*.gpkg")}
     assert len(done) >= 3 and not (work / "partition.gpkg").exists()
     # Stopped while hatching: the partition is merged, the extraction is not run again.
     with pytest.raises(RockhatchError) as e:
-        tiles.run(dem, "auto", half_under_sanitizers(800), [out], seed=3, workers=1, workdir=work,
+        tiles.run(dem, "auto", 800, [out], seed=3, workers=1, workdir=work,
                   progress=lambda f, stage: not stage.startswith("tiles 2/"))
     assert e.value.code == 10
     for name, stamp in done.items():
         assert (work / name).stat().st_mtime_ns == stamp
-    s = tiles.run(dem, "auto", half_under_sanitizers(800), [out], seed=3, workers=1, workdir=work)
+    s = tiles.run(dem, "auto", 800, [out], seed=3, workers=1, workdir=work)
     assert s.done_before >= 2 and s.partition_faces == 0  # nothing extracted again
     assert features(out) == hatches
     assert not work.exists()
@@ -655,16 +644,14 @@ def test_partition_auto_on_chamonix_within_the_documented_bound(tmp_path, rockha
     # Chamonix.tif warped to UTM 32N at 30 m, 1:25000, tiles of 3 km, the default halo (4 km):
     # the bound docs/tiles-partition.md states (same face count, no more than 6 faces not bit for
     # bit the whole extraction's, at most 0.05% of the rock area on another face, covered twice
-    # or uncovered). Under the sanitizers, the DEM's middle quarter (about 7 x 8 km) in tiles of
-    # 1.5 km: each tile's halo reaches over most of that quarter (with a halo of 2 km, 82 faces
-    # came out of 83), so there it checks the merge of the tiles' faces more than the bound.
+    # or uncovered).
     dem = tmp_path / "chamonix_utm.tif"
     gdal.Warp(str(dem), str(real_dem_file), dstSRS="EPSG:32632", xRes=30, yRes=30, resampleAlg="bilinear")
     r = subprocess.run([str(rockhatch_exe), "partition", "--dem", str(dem), "--scale", "25000", "-o",
                         str(tmp_path / "whole.gpkg"), "-q"], capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr
     work = tmp_path / "work"
-    tiles.run(dem, "auto", 1500 if SANITIZED else 3000, [tmp_path / "t.gpkg"], scale=25000, workers=2, workdir=work,
+    tiles.run(dem, "auto", 3000, [tmp_path / "t.gpkg"], scale=25000, workers=2, workdir=work,
               keep_tiles=True)
     whole, tiled = partition_faces(tmp_path / "whole.gpkg"), partition_faces(work / "partition.gpkg")
     assert len(tiled) == len(whole)
