@@ -1,14 +1,16 @@
 #!/usr/bin/python3
 """Rock: the structure first, then the tone, and no drawn outline.
 
-The crests (ridge lines and the strokes on their shadow side) and the tops of the cliff
-bands (where the slope passes cliff_slope, with rows of strokes hanging from them down the
-fall line) are drawn first; the fill and cross strokes of print.py take the ink they leave
-under the tone curve. Where rock meets scree, grass or ice, the fill and cross strokes are drawn back from the
-face's border by an irregular length between fray_min and fray_max (libtex's FrayedCrop):
-the rock ends where its strokes end, in a ragged band, not along one smooth line. A border
-with another rock face across it, or with a ridge or cliff on it, keeps its strokes to the
-line.
+The structure lines come first: the crests (the partition's ridges and the crease lines of
+the elevation), drawn wider above walls on their shadow side, with strokes hanging from them
+on that side; the tops of the cliff bands (where the slope passes cliff_slope), with rows of
+strokes hanging down to the band's foot; the couloirs, thin lines the fill strokes keep away
+from. The fill and cross strokes of print.py take the ink the structure leaves under the tone
+curve. Where rock meets scree, grass or ice, the fill and cross strokes are drawn back from
+the face's border by an irregular length between fray_min and fray_max (libtex's
+FrayedCrop): the rock ends where its strokes end, in a ragged band, not along one smooth
+line. A border with another rock face across it, or with a ridge or cliff on it, keeps its
+strokes to the line.
 
 The style is a program over the native style blocks (rockhatch.carto.blocks, the
 built-in style's own, carto/src/styles/rock.cpp) and libtex operators:
@@ -21,15 +23,17 @@ Run on its own, or through the rockhatch command:
 import sys
 
 from rockhatch.carto import params_help
-from rockhatch.carto.blocks import (BALANCED, CLIFF, CREST, CROSS, FRAY, TONE, TONE_CELLS, check_fray, check_tone,
-                                    cliff_strokes, cliff_tops, crest_lines, crest_strokes, frayed, read_face,
-                                    toned_hatching, valleys)
-from rockhatch.tex import CROP, Arrangement, Constant, Crop
+from rockhatch.carto.blocks import (BALANCED, CLIFF, CREST, CROSS, FRAY, STRUCTURE, TONE, TONE_CELLS, check_fray,
+                                    check_tone, cliff_strokes, crest_lines, crest_strokes, frayed, given_cliffs,
+                                    given_first, read_face, shadow_strokes, structure_lines, tapered, toned_hatching,
+                                    valleys)
+from rockhatch.tex import CROP, Apart, Arrangement, Constant, Crop, Labelled
 
 NAME = "rock"
 FIGURE = "after 5.4g"
-TITLE = "rock drawing: crests and cliff tops with strokes hanging from them, the print tone, no drawn outline"
-PARAMS = TONE + TONE_CELLS + BALANCED + CREST + CLIFF + CROSS + FRAY
+TITLE = ("rock drawing: crests, couloirs and cliff tops with strokes hanging from them, the print tone, no drawn "
+         "outline")
+PARAMS = TONE + TONE_CELLS + BALANCED + CREST + CLIFF + STRUCTURE + CROSS + FRAY
 __doc__ += params_help(PARAMS)
 
 
@@ -37,15 +41,28 @@ def style(fields, params):
     check_tone(params)
     check_fray(params)
 
+    def cut(curves, region):
+        return Crop(Constant(curves), CROP)(region)
+
     def draw(region):
         face = read_face(fields, region)
-        spent = Crop(crest_strokes(fields, params, face, region), CROP)(region)
-        spent.append(crest_lines(params)(region))
+        s = given_first(params, structure_lines(fields, params, region), region)
+        # The crests with the strokes hanging from them, the cliff tops and theirs, valleys and couloirs.
+        spent = tapered(fields, params, Labelled(crest_lines(params)(region), "ridgeline"))
+        spent.append(cut(tapered(fields, params, s.ridges), region))
+        spent.append(Crop(crest_strokes(fields, params, face, region), CROP)(region))
+        spent.append(cut(shadow_strokes(fields, params, face, s.ridges), region))
+        cliffs = given_cliffs(fields, region)
+        cliffs.append(s.cliffs)
+        spent.append(cut(cliffs, region))
+        spent.append(cut(cliff_strokes(fields, params, face, cliffs), region))
         spent.append(valleys()(region))
-        tops = cliff_tops(fields, params, region)
-        spent.append(Crop(Constant(cliff_strokes(fields, params, face, tops)), CROP)(region))
-        spent.append(tops)
-        out = frayed(fields, params, toned_hatching(fields, params, face, region, spent))(region)
+        spent.append(cut(s.couloirs, region))
+        # The tone's fill and cross strokes, kept off the couloirs, frayed at the rock's edge.
+        fill = toned_hatching(fields, params, face, region, spent)
+        if params["couloir_gap"] > 0:
+            fill = Apart(fill, s.couloirs, params["couloir_gap"])
+        out = frayed(fields, params, fill)(region)
         out.append(spent)
         return out
 

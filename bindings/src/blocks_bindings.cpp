@@ -49,6 +49,7 @@ void bind_blocks(py::module_& m) {
     m.attr("CROSS") = table(blocks::kCross);
     m.attr("FRAY") = table(blocks::kFray);
     m.attr("CLIFF") = table(blocks::kCliff);
+    m.attr("STRUCTURE") = table(blocks::kStructure);
 
     // ---- What a style reads about its face ----
     py::class_<FaceReading>(m, "FaceReading",
@@ -111,8 +112,25 @@ void bind_blocks(py::module_& m) {
           "coarse jittered cells, each hatched so that its ink follows the tone of its shade under ink_max, "
           "`spent` (crests, valleys) counted");
     m.def("cliff_tops", &blocks::cliff_tops, py::arg("fields"), py::arg("params"), py::arg("region"),
-          "the tops of the cliff bands in the face (the level line slope = cliff_slope where the ground falls "
-          "into the band), smoothed, cut to the face, labelled ridge");
+          "the tops of the cliff bands around the face (the level line slope = cliff_slope where the ground falls "
+          "into the band) over its box grown by structure_margin, smoothed, labelled cliff, uncut");
+    py::class_<blocks::Structure>(m, "Structure", "The structure lines around a face, uncut")
+        .def_readonly("ridges", &blocks::Structure::ridges, "crest lines (labelled ridgeline)")
+        .def_readonly("couloirs", &blocks::Structure::couloirs, "couloir lines (labelled couloir)")
+        .def_readonly("cliffs", &blocks::Structure::cliffs, "cliff tops (labelled cliff)");
+    m.def("structure_margin", &blocks::structure_margin, py::arg("params"),
+          "how far beyond a face's box its structure lines are traced (ground units)");
+    m.def("structure_lines", &blocks::structure_lines, py::arg("fields"), py::arg("params"), py::arg("region"),
+          "the crests and couloirs (crease lines of the elevation) and cliff tops around the face, uncut; "
+          "given ridges, valleys and cliff tops first");
+    m.def("given_first", &blocks::given_first, py::arg("params"), py::arg("structure"), py::arg("region"),
+          "the structure less its crests (couloirs) along a ridge (valley) of the face's border");
+    m.def("given_cliffs", &blocks::given_cliffs, py::arg("fields"), py::arg("region"),
+          "the cliffs on the face's border, each turned with the ground falling on its left, labelled cliff");
+    m.def("tapered", &blocks::tapered, py::arg("fields"), py::arg("params"), py::arg("lines"),
+          "crest lines widened on their shadow side above walls, tapering to their ends");
+    m.def("shadow_strokes", &blocks::shadow_strokes, py::arg("fields"), py::arg("params"), py::arg("face"),
+          py::arg("lines"), "strokes hanging from crest lines on their shadow side down the fall line");
     m.def("cliff_strokes", &blocks::cliff_strokes, py::arg("fields"), py::arg("params"), py::arg("face"),
           py::arg("tops"), "rows of strokes hanging from cliff tops down the fall line");
     m.def("check_fray", &blocks::check_fray, py::arg("params"),

@@ -173,13 +173,13 @@ void add_control_field_bindings(py::module_& m) {
 
     py::class_<ControlFields>(m, "ControlFields", "The control fields a style is applied to")
         .def(py::init([](const py::object& o, const py::object& d, const py::object& h, const py::object& r,
-                         const py::object& sl, const py::object& fl, const py::object& sh) {
-                 return ControlFields{to_field(o),  to_field(d), to_field(h), to_field(r),
-                                      to_field(sl), to_field(fl), to_field(sh)};
+                         const py::object& sl, const py::object& fl, const py::object& sh, const py::object& el) {
+                 return ControlFields{to_field(o),  to_field(d),  to_field(h),  to_field(r),
+                                      to_field(sl), to_field(fl), to_field(sh), to_field(el)};
              }),
              py::arg("orientation"), py::arg("density"), py::arg("height"), py::arg("roughness"),
              py::arg("slope") = py::float_(std::nan("")), py::arg("fall_line") = py::float_(std::nan("")),
-             py::arg("shade") = py::float_(std::nan("")))
+             py::arg("shade") = py::float_(std::nan("")), py::arg("elevation") = py::float_(std::nan("")))
         .def_property(
             "orientation", [](const ControlFields& c) { return c.orientation; },
             [](ControlFields& c, const py::object& o) { c.orientation = to_field(o); }, "hatch direction (radians)")
@@ -202,7 +202,11 @@ void add_control_field_bindings(py::module_& m) {
         .def_property(
             "shade", [](const ControlFields& c) { return c.shade; },
             [](ControlFields& c, const py::object& o) { c.shade = to_field(o); },
-            "1 - hillshade smoothed at map scale (0 lit, 1 in shade)");
+            "1 - hillshade smoothed at map scale (0 lit, 1 in shade)")
+        .def_property(
+            "elevation", [](const ControlFields& c) { return c.elevation; },
+            [](ControlFields& c, const py::object& o) { c.elevation = to_field(o); },
+            "the elevation (metres) smoothed at map scale, where crease lines are read");
 }
 
 }  // namespace rhpy

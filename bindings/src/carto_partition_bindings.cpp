@@ -17,7 +17,8 @@ void add_partition_bindings(py::module_& m) {
     py::enum_<LineKind>(m, "LineKind")
         .value("OTHER", LineKind::Other)
         .value("RIDGE", LineKind::Ridge)
-        .value("VALLEY", LineKind::Valley);
+        .value("VALLEY", LineKind::Valley)
+        .value("CLIFF", LineKind::Cliff);
     py::class_<BoundarySegment>(m, "BoundarySegment", "A segment of a face's border, its label and the face across it")
         .def_readonly("a", &BoundarySegment::a)
         .def_readonly("b", &BoundarySegment::b)

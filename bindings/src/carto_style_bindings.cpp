@@ -44,7 +44,10 @@ void add_hatch_bindings(py::module_& m) {
         .value("VALLEY", Family::Valley)
         .value("CROSS", Family::Cross)
         .value("STONE", Family::Stone)
-        .value("HACHURE", Family::Hachure);
+        .value("HACHURE", Family::Hachure)
+        .value("RIDGELINE", Family::RidgeLine)
+        .value("COULOIR", Family::Couloir)
+        .value("CLIFF", Family::Cliff);
     m.def("family_width_mm", &family_width_mm, py::arg("family"), "stroke width of a hatch family, mm on paper");
     py::class_<Hatch>(m, "Hatch", "One stroke (or closed shape) of a hatch family")
         .def(py::init([](std::vector<Point> pts, bool closed, Family f) { return Hatch{std::move(pts), closed, f}; }),

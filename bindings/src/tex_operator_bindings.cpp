@@ -169,6 +169,8 @@ void add_mapping_bindings(py::module_& m) {
         "ThinRank(k) < keep(its middle), else nothing (golden-ratio ranks: the kept lines are evenly spread at any "
         "fraction, and a smaller fraction keeps a subset); with `owner`, only edges whose middle lies in it");
     m.def("ThinRank", &ThinRank, py::arg("k"), "the rank of line k in ThinLines's order, in [0, 1)");
+    m.def("MovingAverage", &MovingAverage, py::arg("curves"), py::arg("half_window"),
+          "each point the mean of the points up to half_window before and after it (ends kept; closed curves wrap)");
     m.def("Smoothed", &Smoothed, py::arg("curves"), py::arg("step"),
           "each curve drawn smooth at `step`: its points every `step` of length (its last point kept), then three "
           "rounds of corner cutting; the ends stay put, bends and steps shorter than about `step` go");
@@ -210,6 +212,8 @@ void add_merge_bindings(py::module_& m) {
         py::arg("hard") = std::vector<std::string>{},
         "a cut to the region, each end of an open curve on the region's border drawn back by a random length in "
         "[min, max], except on edges labelled one of `hard` and where `across` has a value beyond the border");
+    m.def("Apart", &Apart, py::arg("a"), py::arg("lines"), py::arg("distance"),
+          "the curves of a less their parts within `distance` of the lines (a gap left along them)");
     m.def("Outline", &Outline, "the region evaluated on as an arrangement: its labelled edges, else its rings");
     m.def("Merge", &Merge, py::arg("a1"), py::arg("a2"), "Union's name in the thesis's Chapter 4");
     m.def("Inside", py::overload_cast<Arrangement, Arrangement, Border>(&Inside), py::arg("a1"), py::arg("a2"), py::arg("border"));

@@ -156,6 +156,13 @@ Field shade_field(const Terrain& t, double radius) {
     return raster_field(std::shared_ptr<const Raster>(s), 1.0, -1.0);  // (h - 1) / -1 = 1 - h
 }
 
+Field elevation_field(const Terrain& t, double radius) {
+    auto z = std::make_shared<Raster>(t.elevation);
+    const int k = radius_cells(t.elevation, radius);
+    z->data = box_mean(box_mean(t.elevation.data, z->width, z->height, k), z->width, z->height, k);
+    return raster_field(std::shared_ptr<const Raster>(z));
+}
+
 namespace {
 
 // Sample points inside a face (a lattice of about 400 points, no finer than the cells).

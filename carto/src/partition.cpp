@@ -28,6 +28,7 @@ bool parse_kind(const std::string& raw, LineKind& out) {
     const std::string v = lower(raw);
     if (v == "ridge" || v == "crete" || v == "crête" || v == "arete" || v == "arête") out = LineKind::Ridge;
     else if (v == "valley" || v == "thalweg" || v == "talweg" || v == "couloir") out = LineKind::Valley;
+    else if (v == "cliff" || v == "falaise" || v == "wand") out = LineKind::Cliff;
     else if (v == "other" || v == "" || v == "boundary" || v == "limit") out = LineKind::Other;
     else return false;
     return true;
@@ -451,6 +452,7 @@ const char* kind_name(LineKind k) {
     switch (k) {
         case LineKind::Ridge: return "ridge";
         case LineKind::Valley: return "valley";
+        case LineKind::Cliff: return "cliff";
         default: return "other";
     }
 }
@@ -777,11 +779,34 @@ void snap_face_borders(const PartitionSource& src, Partition& p) {
         throw Error(Code::BadLayer, src.what + ": no face keeps an area once its borders are snapped");
 }
 
-// The line layers: one layer with a label attribute, or one layer per kind.
+// The line layers: one layer with a label attribute, or one layer per kind, or OSM lines.
 struct LineLayers {
     OGRLayer* labelled = nullptr;
     std::vector<std::pair<OGRLayer*, LineKind>> per_kind;
+    OGRLayer* osm = nullptr;
 };
+
+// The OSM `natural` value of a feature: its field, else the key in `other_tags` ("" if none).
+std::string osm_natural(OGRFeature& feat) {
+    const int field = feat.GetFieldIndex("natural");
+    if (field >= 0) return feat.IsFieldSetAndNotNull(field) ? feat.GetFieldAsString(field) : "";
+    const int other = feat.GetFieldIndex("other_tags");
+    if (other < 0 || !feat.IsFieldSetAndNotNull(other)) return "";
+    const std::string tags = feat.GetFieldAsString(other), key = "\"natural\"=>\"";
+    const std::size_t at = tags.find(key);
+    if (at == std::string::npos) return "";
+    const std::size_t from = at + key.size(), to = tags.find('"', from);
+    return to == std::string::npos ? "" : tags.substr(from, to - from);
+}
+
+// The kind an OSM natural value names (false: not a structure line).
+bool osm_kind(const std::string& natural, LineKind& out) {
+    if (natural == "ridge" || natural == "arete") out = LineKind::Ridge;
+    else if (natural == "cliff") out = LineKind::Cliff;
+    else if (natural == "valley") out = LineKind::Valley;
+    else return false;
+    return true;
+}
 
 // Finds the line layers: the one named, else the layers named after a kind and the first
 // other line layer with the label field.
@@ -794,14 +819,36 @@ LineLayers line_layers(const PartitionSource& src) {
             OGRLayer* l = src.ds.GetLayer(i);
             if (!is_line_layer(l)) continue;
             const std::string n = lower(l->GetName());
+            const OGRFeatureDefn* defn = l->GetLayerDefn();
             if (n.rfind("ridge", 0) == 0 || n.rfind("crete", 0) == 0) layers.per_kind.push_back({l, LineKind::Ridge});
             else if (n.rfind("valley", 0) == 0 || n.rfind("thalweg", 0) == 0 || n.rfind("talweg", 0) == 0)
                 layers.per_kind.push_back({l, LineKind::Valley});
-            else if (!lines && l->GetLayerDefn()->GetFieldIndex(src.opt.label_field.c_str()) >= 0)
+            else if (n.rfind("cliff", 0) == 0 || n.rfind("falaise", 0) == 0)
+                layers.per_kind.push_back({l, LineKind::Cliff});
+            else if (!lines && defn->GetFieldIndex(src.opt.label_field.c_str()) >= 0)
                 lines = l;
+            else if (!layers.osm && (defn->GetFieldIndex("natural") >= 0 || defn->GetFieldIndex("other_tags") >= 0))
+                layers.osm = l;
         }
     }
     return layers;
+}
+
+// The ridges, arêtes, cliffs and valleys of an OSM line layer (natural=*); other lines skipped.
+void read_osm_lines(const PartitionSource& src, OGRLayer* lines, const std::optional<tex::BBox>& around,
+                    std::vector<LabelledLine>& out) {
+    const Reprojector proj = reprojector(lines, src.working_wkt, src.what);
+    filter_layer(lines, proj, around);
+    lines->ResetReading();
+    for (auto& feat : *lines) {
+        OGRGeometry* g = feat->GetGeometryRef();
+        LineKind kind;
+        if (!g || !osm_kind(osm_natural(*feat), kind)) continue;
+        std::unique_ptr<OGRGeometry> c(g->clone());
+        proj.apply(c.get());
+        require_finite(c.get(), src.what, "line " + std::to_string(feat->GetFID()));
+        if (keep(c.get(), around)) add_lines(c.get(), kind, out);
+    }
 }
 
 // The ridge and valley lines of a layer labelled by an attribute (other lines are skipped).
@@ -812,7 +859,7 @@ void read_labelled_lines(const PartitionSource& src, OGRLayer* lines, const std:
     const int idx = lines->GetLayerDefn()->GetFieldIndex(src.opt.label_field.c_str());
     if (idx < 0)
         throw Error(Code::BadLayer, what + ": line layer '" + std::string(lines->GetName()) + "' has no label field '" +
-                                        src.opt.label_field + "' (ridge / valley / other)");
+                                        src.opt.label_field + "' (ridge / valley / cliff / other)");
     filter_layer(lines, proj, around);
     lines->ResetReading();
     for (auto& feat : *lines) {
@@ -822,7 +869,7 @@ void read_labelled_lines(const PartitionSource& src, OGRLayer* lines, const std:
         const std::string v = feat->IsFieldSetAndNotNull(idx) ? feat->GetFieldAsString(idx) : "";
         if (!parse_kind(v, kind))
             throw Error(Code::BadLayer, what + ": line " + std::to_string(feat->GetFID()) + ": label '" + v +
-                                            "' is not ridge, valley or other");
+                                            "' is not ridge, valley, cliff or other");
         if (kind == LineKind::Other) continue;
         std::unique_ptr<OGRGeometry> c(g->clone());
         proj.apply(c.get());
@@ -858,6 +905,8 @@ void read_lines(const PartitionSource& src, const std::optional<tex::BBox>& arou
         read_labelled_lines(src, layers.labelled, around, p.lines);
     } else if (!layers.per_kind.empty()) {
         read_per_kind_lines(src, layers.per_kind, around, p.lines);
+    } else if (layers.osm) {
+        read_osm_lines(src, layers.osm, around, p.lines);
     } else {
         throw Error(Code::BadLayer, src.what + ": no line layer with a '" + src.opt.label_field +
                                         "' field and no 'ridges' / 'valleys' layers: the faces' borders cannot be "

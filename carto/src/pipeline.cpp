@@ -169,7 +169,8 @@ ControlFields control_fields(const Prepared& p, const Plan& plan) {
                          raster_field(p.terrain.roughness),
                          raster_field(p.terrain.slope),
                          fall_line,
-                         shade_field(p.terrain, plan.field_smoothing)};
+                         shade_field(p.terrain, plan.field_smoothing),
+                         elevation_field(p.terrain, plan.field_smoothing / 4)};
 }
 
 Drawing hatch(const Prepared& p, const Plan& plan, const std::vector<int>& chosen, const Progress& progress) {

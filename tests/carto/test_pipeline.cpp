@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "carto/blocks.hpp"
 #include "carto/error.hpp"
 #include "carto/pipeline.hpp"
 #include "carto/raster.hpp"
@@ -881,4 +882,111 @@ TEST(Pipeline, TheRockStyleDrawsNoOutline) {
     // Ragged: the ends spread over the band (the rest, farther than 1.5 mm, end on their own).
     EXPECT_GT(double(shallow) / double(ends), 0.2) << shallow << " of " << ends;
     EXPECT_GT(double(deep) / double(ends), 0.2) << deep << " of " << ends;
+}
+
+// The rock style's structure lines: crests on crests and couloirs in couloirs of the DEM, one
+// line across the faces it crosses (traced in each face's grown box, the same points where
+// two boxes overlap), written as their own layers.
+TEST(Pipeline, TheRockStructureLinesFollowTheTerrainAndCrossFaces) {
+    const Options o = sample_options("rock");
+    const Plan plan = make_plan(o, PlanFor::Drawing);
+    const ControlFields f = control_fields(sample(), plan);
+    const ParamValues& p = plan.rock_params;
+    const Partition& part = sample().partition;
+    const double mm = o.scale / 1000;
+    std::size_t ridge_points = 0, on_crest = 0, ridge_in_floor = 0, couloir_points = 0, in_floor = 0,
+                couloir_on_crest = 0, shared = 0;
+    std::vector<blocks::Structure> all;
+    for (std::size_t i = 0; i < part.faces.size(); ++i) all.push_back(blocks::structure_lines(f, p, face_region(part, i)));
+    auto across = [&](const tex::Curve& c, std::size_t i) {
+        const Point t = c.points[std::min(i + 1, c.points.size() - 1)] - c.points[i > 0 ? i - 1 : 0];
+        const double l = tex::norm(t);
+        return Point{-t.y / l * mm, t.x / l * mm};
+    };
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        for (const auto& c : all[i].ridges.curves) {
+            EXPECT_TRUE(c.labels.has("ridgeline"));
+            for (std::size_t k = 0; k < c.points.size(); ++k) {
+                const Point q = c.points[k], n = across(c, k);
+                const double z = f.elevation(q), a = f.elevation(q + n), b = f.elevation(q - n);
+                if (std::isnan(z) || std::isnan(a) || std::isnan(b)) continue;
+                ++ridge_points;
+                on_crest += z > a && z > b;
+                ridge_in_floor += z < a && z < b;
+            }
+        }
+        for (const auto& c : all[i].couloirs.curves) {
+            EXPECT_TRUE(c.labels.has("couloir"));
+            for (std::size_t k = 0; k < c.points.size(); ++k) {
+                const Point q = c.points[k], n = across(c, k);
+                const double z = f.elevation(q), a = f.elevation(q + n), b = f.elevation(q - n);
+                if (std::isnan(z) || std::isnan(a) || std::isnan(b)) continue;
+                ++couloir_points;
+                in_floor += z < a && z < b;
+                couloir_on_crest += z > a && z > b;
+            }
+        }
+    }
+    ASSERT_GT(ridge_points, 200u);
+    ASSERT_GT(couloir_points, 200u);
+    // Higher than the ground 1 mm on either side across the line (a crest), or lower (a couloir
+    // floor), for most points (the rest where the line fades, near its ends); hardly ever the
+    // other way round.
+    EXPECT_GT(double(on_crest) / double(ridge_points), 0.7) << on_crest << " of " << ridge_points;
+    EXPECT_LT(double(ridge_in_floor) / double(ridge_points), 0.03) << ridge_in_floor << " of " << ridge_points;
+    EXPECT_GT(double(in_floor) / double(couloir_points), 0.55) << in_floor << " of " << couloir_points;
+    EXPECT_LT(double(couloir_on_crest) / double(couloir_points), 0.03) << couloir_on_crest << " of " << couloir_points;
+    // Given lines first: the sample's couloirs run along its partition's valleys, and none of
+    // them is drawn within crest_smoothing of a valley on the face's border (less the 1/8 Apart
+    // allows its cuts).
+    const double snap = p.at("crest_smoothing");
+    std::size_t near_before = 0, near_after = 0;
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        auto near_valley = [&](const Point& q) {
+            for (const auto& s : part.faces[i].boundary) {
+                if (s.kind != LineKind::Valley) continue;
+                const Point ab = s.b - s.a;
+                const double t = std::clamp(tex::dot(q - s.a, ab) / std::max(tex::dot(ab, ab), 1e-300), 0.0, 1.0);
+                if (tex::distance(q, s.a + ab * t) < snap * 0.85) return true;  // Apart cuts within snap / 8
+            }
+            return false;
+        };
+        const tex::Region r = face_region(part, i);
+        for (const auto& c : tex::apply_mask(all[i].couloirs, r, tex::CROP).curves)
+            for (const Point& q : c.points) near_before += near_valley(q);
+        for (const auto& c : blocks::given_first(p, all[i], r).couloirs.curves)
+            for (const Point& q : c.points) near_after += near_valley(q);
+    }
+    EXPECT_GT(near_before, 20u);
+    EXPECT_EQ(near_after, 0u);
+    // Where two faces' boxes overlap (away from the grown boxes' edges), their crest lines
+    // are the same points.
+    const double margin = blocks::structure_margin(p);
+    for (std::size_t i = 0; i < all.size(); ++i)
+        for (std::size_t j = i + 1; j < all.size(); ++j) {
+            const tex::BBox both = part.faces[i].region.bbox().intersection(part.faces[j].region.bbox());
+            if (!(both.xmin < both.xmax && both.ymin < both.ymax)) continue;
+            std::vector<Point> mine;
+            for (const auto& c : all[i].ridges.curves)
+                for (const Point& q : c.points)
+                    if (both.contains(q)) mine.push_back(q);
+            for (const auto& c : all[j].ridges.curves)
+                for (const Point& q : c.points) {
+                    if (!both.contains(q)) continue;
+                    double best = 1e300;
+                    for (const Point& m : mine) best = std::min(best, tex::distance(m, q));
+                    EXPECT_LT(best, 1e-6 * mm) << "faces " << i << " " << j;
+                    ++shared;
+                }
+        }
+    EXPECT_GT(shared, 50u) << "margin " << margin;
+    // Written as their own layers by the rock style only.
+    const Drawing d = hatch(sample(), o);
+    std::map<Family, std::size_t> n;
+    for (const auto& fh : d.faces)
+        for (const auto& h : fh.hatches) ++n[h.family];
+    EXPECT_GT(n[Family::RidgeLine], 10u);
+    EXPECT_GT(n[Family::Cliff], 3u);
+    for (const auto& fh : hatch(sample(), sample_options("print")).faces)
+        for (const auto& h : fh.hatches) EXPECT_LT(int(h.family), kRockFamilies);
 }

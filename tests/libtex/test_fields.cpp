@@ -396,3 +396,55 @@ TEST(IsoLines, TheLinesOfAPartAreThoseOfTheWhole) {
     EXPECT_THROW(IsoLines(f, 0.0, 0.0), Error);
     EXPECT_THROW(IsoLines(f, NAN, 1.0), Error);
 }
+
+// Creases: ridge and valley lines of a surface on a global lattice.
+namespace {
+double distance_to_line_x(const Curves& c, double x0) {
+    double worst = 0;
+    for (const auto& k : c.curves)
+        for (const Point& p : k.points) worst = std::max(worst, std::abs(p.x - x0));
+    return worst;
+}
+}  // namespace
+
+TEST(Creases, ARidgeAndAValleyAlongTheirCrestAndFloor) {
+    // A ridge along x = 2.3 (a smooth tent), a valley along x = -4.1, on a gentle tilt in y.
+    const Field ridge([](const Point& p) { return -std::sqrt(1 + (p.x - 2.3) * (p.x - 2.3)) + 0.05 * p.y; });
+    const Field valley([](const Point& p) { return std::sqrt(1 + (p.x + 4.1) * (p.x + 4.1)) + 0.05 * p.y; });
+    const Region box = Region::rectangle(-10, -10, 10, 10);
+    const Curves r = Creases(ridge, CreaseKind::Ridge, 0.5, 0.1)(box);
+    ASSERT_EQ(r.curves.size(), 1u);
+    EXPECT_LT(distance_to_line_x(r, 2.3), 0.05);
+    EXPECT_GT(r.curves[0].points.size(), 30u);  // across the whole box
+    const Curves v = Creases(valley, CreaseKind::Valley, 0.5, 0.1)(box);
+    ASSERT_EQ(v.curves.size(), 1u);
+    EXPECT_LT(distance_to_line_x(v, -4.1), 0.05);
+    // A ridge is no valley, and a plane or a bend weaker than min_bend has none.
+    EXPECT_TRUE(Creases(ridge, CreaseKind::Valley, 0.5, 0.1)(box).empty());
+    EXPECT_TRUE(Creases(Field([](const Point& p) { return 0.3 * p.x - 0.2 * p.y; }), CreaseKind::Ridge, 0.5, 0.01)(box)
+                    .empty());
+    EXPECT_TRUE(Creases(ridge, CreaseKind::Ridge, 0.5, 2.0)(box).empty());
+}
+
+TEST(Creases, ASummitRingIsClosedAndAPartDrawsTheWholesLines) {
+    // A crater rim: a ridge on the circle of radius 6 (bending by 2 across); its flanks are
+    // cones, convex along their contours by slope / radius (under 0.2), below min_bend.
+    const Field rim([](const Point& p) {
+        const double d = std::hypot(p.x, p.y) - 6;
+        return -std::sqrt(0.25 + d * d);
+    });
+    const Curves whole = Creases(rim, CreaseKind::Ridge, 0.4, 0.3)(Region::rectangle(-10, -10, 10, 10));
+    ASSERT_EQ(whole.curves.size(), 1u);
+    EXPECT_TRUE(whole.curves[0].closed);
+    for (const Point& p : whole.curves[0].points) EXPECT_NEAR(std::hypot(p.x, p.y), 6, 0.1);
+    std::set<std::pair<double, double>> all;
+    for (const Point& p : whole.curves[0].points) all.insert({p.x, p.y});
+    const Curves part = Creases(rim, CreaseKind::Ridge, 0.4, 0.3)(Region::rectangle(1.1, -2.7, 9.3, 3.9));
+    ASSERT_FALSE(part.empty());
+    for (const auto& k : part.curves)
+        for (const Point& p : k.points) EXPECT_TRUE(all.count({p.x, p.y})) << p.x << " " << p.y;
+    // NaN gives nothing; bad arguments are refused.
+    EXPECT_TRUE(Creases(Field(), CreaseKind::Ridge, 1.0, 0.0)(Region::rectangle(0, 0, 5, 5)).empty());
+    EXPECT_THROW(Creases(rim, CreaseKind::Ridge, 0.0, 0.1), Error);
+    EXPECT_THROW(Creases(rim, CreaseKind::Ridge, 1.0, -1.0), Error);
+}

@@ -634,3 +634,46 @@ TEST(Merge, FrayedCropIsKeyedBySeedAndGeometryOnly) {
     EXPECT_THROW(FrayedCrop(rows(), 2.0, 1.0), Error);
     EXPECT_THROW(FrayedCrop(rows(), -1.0, 1.0), Error);
 }
+
+// Apart: a gap left along lines.
+TEST(Merge, ApartLeavesAGapAlongTheLines) {
+    // Horizontal strokes across a vertical line at x = 5: each cut in two, the gap the distance
+    // on either side (within distance / 8).
+    Curves strokes;
+    for (int k = 0; k < 5; ++k) strokes.append(Polyline({{0, double(k)}, {10, double(k)}}));
+    strokes.curves[2].labels.add("fill");
+    const Curves line = Polyline({{5, -1}, {5, 6}});
+    const Curves out = Apart(Constant(strokes), line, 1.0)(Region::rectangle(-1, -1, 11, 11));
+    ASSERT_EQ(out.curves.size(), 10u);
+    for (const auto& c : out.curves) {
+        const double near_x = c.points.front().x < 5 ? c.points.back().x : c.points.front().x;
+        EXPECT_NEAR(std::abs(near_x - 5), 1.0, 1.0 / 8);
+        EXPECT_TRUE(c.points.front().x == 0 || c.points.back().x == 10);
+    }
+    EXPECT_TRUE(out.curves[4].labels.has("fill"));
+    // A stroke that never comes near stays as it is; one wholly within the gap goes.
+    const Curves far = Apart(Constant(Polyline({{0, 20}, {10, 20}})), line, 1.0)(Region::rectangle(-1, -1, 11, 30));
+    ASSERT_EQ(far.curves.size(), 1u);
+    EXPECT_EQ(far.curves[0].points, (std::vector<Point>{{0, 20}, {10, 20}}));
+    EXPECT_TRUE(Apart(Constant(Polyline({{4.5, 0}, {5.5, 0}})), line, 1.0)(Region::rectangle(-1, -1, 11, 11)).empty());
+    EXPECT_THROW(Apart(Constant(strokes), line, 0.0), Error);
+}
+
+TEST(Merge, MovingAverageIsLocalAndKeepsTheEnds) {
+    // A zigzag: averaged over 2 points either side, its teeth shrink; a piece of it is averaged
+    // as the whole is, away from the piece's ends.
+    std::vector<Point> zig;
+    for (int i = 0; i < 40; ++i) zig.push_back({double(i), i % 2 ? 1.0 : 0.0});
+    const Curves whole = MovingAverage(Polyline(zig), 2);
+    EXPECT_EQ(whole.curves[0].points.front(), zig.front());
+    EXPECT_EQ(whole.curves[0].points.back(), zig.back());
+    for (std::size_t i = 2; i + 2 < zig.size(); ++i) EXPECT_NEAR(whole.curves[0].points[i].y, 0.5, 0.11);
+    const std::vector<Point> part_in(zig.begin() + 10, zig.begin() + 30);
+    const Curves part = MovingAverage(Polyline(part_in), 2);
+    for (std::size_t i = 2; i + 2 < part_in.size(); ++i)
+        EXPECT_EQ(part.curves[0].points[i], whole.curves[0].points[i + 10]);
+    // A closed square's window wraps round: every corner drawn in towards its two neighbours.
+    const Curves cut = MovingAverage(Polyline({{0, 0}, {4, 0}, {4, 4}, {0, 4}}, true), 1);
+    const std::vector<Point> in{{4.0 / 3, 4.0 / 3}, {8.0 / 3, 4.0 / 3}, {8.0 / 3, 8.0 / 3}, {4.0 / 3, 8.0 / 3}};
+    for (std::size_t i = 0; i < 4; ++i) EXPECT_NEAR(distance(cut.curves[0].points[i], in[i]), 0, 1e-12);
+}

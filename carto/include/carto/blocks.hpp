@@ -105,12 +105,48 @@ Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const F
 // face; labelled "ridge" (drawn as structure lines).
 tex::Curves cliff_tops(const ControlFields& f, const ParamValues& p, const tex::Region& region);
 // Strokes hanging from cliff tops into their bands: every crest_spacing along each top, one
-// stroke down the fall line (read half a stroke below the top), cliff_length x a
-// golden-ratio share 0.35 .. 1, shorter near the top's ends, a third of them kept on lit
-// rock and all in full shade: cliff bands read as rows of strokes across the slope, dense in
-// shadow. Labelled "ridge".
+// stroke down the fall line (read half a stroke below the top), as long as the band is high
+// (to where the slope falls under cliff_slope again, at most cliff_length) x a golden-ratio
+// share 0.35 .. 1, shorter near the top's ends, a third of them kept on lit rock and all in
+// full shade: cliff bands read as rows of strokes across the slope, dense in shadow.
+// Labelled "ridge".
 tex::Curves cliff_strokes(const ControlFields& f, const ParamValues& p, const FaceReading& face,
                           const tex::Curves& tops);
+// The structure lines of the rock (issue 46): crests and couloirs, the crease lines of the
+// elevation (tex::Creases on a lattice of half crest_smoothing, where the slope changes by at
+// least crease_bend across 1 mm on paper), and the cliff tops (cliff_tops). Each is traced
+// over the face's box grown by structure_margin, smoothed locally (tex::MovingAverage over
+// crest_smoothing) and kept when at least crease_min_length (cliff_min_length) long, so that a
+// line crossing several faces is the same line in each and in any tile; crests within
+// crest_smoothing of a cliff top are left to it. Uncut: cut them to the face.
+extern const std::vector<StyleParam> kStructure;
+struct Structure {
+    tex::Curves ridges;    // labelled "ridgeline"
+    tex::Curves couloirs;  // labelled "couloir"
+    tex::Curves cliffs;    // labelled "cliff"
+};
+double structure_margin(const ParamValues& p);
+Structure structure_lines(const ControlFields& f, const ParamValues& p, const tex::Region& region);
+// Given lines come first: the structure less its crests within crest_smoothing of a ridge on
+// the face's border, its couloirs within it of a valley there and its cliff tops within it of
+// a cliff there, pieces left shorter than crease_min_length (cliff_min_length) dropped (the
+// partition's lines are drawn instead).
+Structure given_first(const ParamValues& p, const Structure& s, const tex::Region& region);
+// The cliffs the partition gives on the face's border (edges labelled "cliff"), each turned so
+// that the ground falls on its left as it does below a cliff top, labelled "cliff": those
+// whose band (the lower side) lies in the face, or in no face (then the face above draws it).
+tex::Curves given_cliffs(const ControlFields& f, const tex::Region& region);
+// Crest lines drawn wider where they stand above a wall, on the wall's shadow side: along
+// each line, up to two more strokes beside it (0.05 mm apart, toward the darker side) where
+// the ground falls by at least a third (two thirds) of 150 % over 1 mm on paper on that
+// side, none within 0.7 mm (1.4 mm) of the line's ends: the line tapers from its ends and
+// swells above the walls. Labelled as the lines are; uncut.
+tex::Curves tapered(const ControlFields& f, const ParamValues& p, const tex::Curves& lines);
+// Strokes hanging from crest lines on their shadow side (the side whose shade, read half a
+// stroke away, is darker), every crest_spacing, as crest_strokes hangs them from the
+// partition's ridges, a third of them kept on lit rock. Labelled "ridge"; uncut.
+tex::Curves shadow_strokes(const ControlFields& f, const ParamValues& p, const FaceReading& face,
+                           const tex::Curves& lines);
 // Throws a usage error unless 0 <= fray_min <= fray_max.
 void check_fray(const ParamValues& p);
 // The arrangement a, cut to the face, its strokes drawn back from the rock's edge by a

@@ -47,6 +47,9 @@ Field fall_line_field(const Terrain& t, double radius);
 // 1 - hillshade averaged the same way (0 lit, 1 in full shade): the value a tone curve
 // turns into ink.
 Field shade_field(const Terrain& t, double radius);
+// The elevation averaged twice over the square of half-side `radius` (at least one cell):
+// smooth enough for its second differences to read crests and couloirs, not their raster steps.
+Field elevation_field(const Terrain& t, double radius);
 
 // Fills in the orientation (the mean fall line: downhill aspect weighted by slope) and the
 // density (1 - mean hillshade) of the faces that lack them, from samples inside each face.

@@ -1,6 +1,6 @@
 // The partition of rock areas (seed section 5.4): faces to hatch separately, whose borders
-// are labelled ridge, valley (thalweg) or other, with an optional hatching orientation and
-// density per face.
+// are labelled ridge, valley (thalweg), cliff (the top edge of a cliff band) or other, with an
+// optional hatching orientation and density per face.
 #pragma once
 
 #include <cstdint>
@@ -14,7 +14,7 @@ namespace carto {
 
 using tex::Point;
 
-enum class LineKind { Other = 0, Ridge = 1, Valley = 2 };
+enum class LineKind { Other = 0, Ridge = 1, Valley = 2, Cliff = 3 };
 const char* kind_name(LineKind k);
 
 // One segment of a face's boundary rings with its label and the face across it (-1: none).
@@ -62,7 +62,10 @@ struct PartitionOptions {
     std::string path;                     // OGR dataset (GeoPackage, shapefile, ...)
     std::string faces_layer;              // "" = the first polygon layer
     std::string lines_layer;              // "" = the first line layer (attribute labels)
-    std::string label_field = "kind";     // ridge / valley / other
+    // ridge / valley / cliff / other. Without a line layer that has it, a line layer with OSM's
+    // `natural` tag (a field, or `other_tags` as GDAL's OSM driver writes it) labels the lines:
+    // ridge and arete ridges, cliff cliffs, valley valleys; other values are not labels.
+    std::string label_field = "kind";
     std::string id_field;                 // "" = feature ids
     // Face attributes. "" = the field named "orientation" / "density" when the layer has one;
     // a name given here must exist (a misspelt name is an error, not a silent default).

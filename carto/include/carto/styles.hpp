@@ -29,9 +29,11 @@ namespace carto {
 using Polyline = std::vector<Point>;
 
 // Stone and Hachure are the filled outlines of the terrain styles (scree, slope-hachures):
-// closed rings drawn filled, no stroke.
-enum class Family { Fill = 0, Ridge = 1, Valley = 2, Cross = 3, Stone = 4, Hachure = 5 };
-inline constexpr int kFamilies = 6;
+// closed rings drawn filled, no stroke. RidgeLine, Couloir and Cliff are the structure lines
+// of the rock style (crest lines, couloirs, cliff tops), written only by the styles that draw
+// them, as the terrain families are.
+enum class Family { Fill = 0, Ridge = 1, Valley = 2, Cross = 3, Stone = 4, Hachure = 5, RidgeLine = 6, Couloir = 7, Cliff = 8 };
+inline constexpr int kFamilies = 9;
 // The rock families, always written; the terrain families only when a drawing has them.
 inline constexpr int kRockFamilies = 4;
 // Whether the family's rings are filled (terrain elements) rather than stroked.
@@ -79,6 +81,9 @@ struct ControlFields {
     Field fall_line;
     // 1 - hillshade smoothed at map scale (0 lit .. 1 in shade), the input of a tone curve.
     Field shade;
+    // The elevation (metres) averaged over a quarter millimetre on paper, the surface whose
+    // crease lines (tex::Creases) are the rock's structure.
+    Field elevation;
 };
 
 // Style parameters resolved to ground units (mm x scale / 1000 for "mm" parameters,
@@ -137,7 +142,8 @@ ParamValues resolve_params(const StyleInfo& s, const std::map<std::string, doubl
 // The region a style draws a face in: the face's rings, with its border as labelled edges.
 tex::Region face_region(const Partition& p, std::size_t face);
 
-// The family a stroke's labels name ("valley" before "ridge" before "cross"; else fill).
+// The family a stroke's labels name ("ridgeline", "couloir", "cliff", then "valley" before
+// "ridge" before "cross"; else fill).
 Family family_of(const tex::Labels& labels);
 
 // Ink on the ground of the curves, or of their segments whose middle lies in `within`

@@ -230,7 +230,10 @@ PartitionMerge merge_partition_tiles(const std::vector<std::string>& parts, cons
             const auto* line = g->toLineString();
             LabelledLine l;
             const std::string kind = f->GetFieldAsString("kind");
-            l.kind = kind == "ridge" ? LineKind::Ridge : kind == "valley" ? LineKind::Valley : LineKind::Other;
+            l.kind = kind == "ridge"    ? LineKind::Ridge
+                     : kind == "valley" ? LineKind::Valley
+                     : kind == "cliff"  ? LineKind::Cliff
+                                        : LineKind::Other;
             for (int i = 0; i < line->getNumPoints(); ++i) l.points.push_back({line->getX(i), line->getY(i)});
             lines.insert(line_key(l));  // a border of faces owned by two tiles comes twice
         }

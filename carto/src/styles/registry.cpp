@@ -41,6 +41,9 @@ const char* family_name(Family f) {
         case Family::Cross: return "cross";
         case Family::Stone: return "stone";
         case Family::Hachure: return "hachure";
+        case Family::RidgeLine: return "ridgeline";
+        case Family::Couloir: return "couloir";
+        case Family::Cliff: return "cliff";
     }
     return "?";
 }
@@ -54,6 +57,9 @@ double family_width_mm(Family f) {
         // Filled rings: the outline is not stroked (the width is the PNG preview's minimum).
         case Family::Stone: return 0.0;
         case Family::Hachure: return 0.0;
+        case Family::RidgeLine: return 0.12;
+        case Family::Couloir: return 0.08;
+        case Family::Cliff: return 0.12;
     }
     return 0.1;
 }
@@ -201,7 +207,11 @@ std::vector<Hatch> hatches_from_curves(const tex::Curves& c) {
 
 Family family_of(const tex::Labels& labels) {
     static const tex::LabelId ridge = tex::intern_label("ridge"), valley = tex::intern_label("valley"),
-                              cross = tex::intern_label("cross");
+                              cross = tex::intern_label("cross"), ridgeline = tex::intern_label("ridgeline"),
+                              couloir = tex::intern_label("couloir"), cliff = tex::intern_label("cliff");
+    if (labels.has(ridgeline)) return Family::RidgeLine;
+    if (labels.has(couloir)) return Family::Couloir;
+    if (labels.has(cliff)) return Family::Cliff;
     if (labels.has(valley)) return Family::Valley;
     if (labels.has(ridge)) return Family::Ridge;
     if (labels.has(cross)) return Family::Cross;

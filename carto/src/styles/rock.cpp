@@ -1,11 +1,13 @@
-// Rock: the structure first, then the tone, and no drawn outline. The crests (ridge lines
-// and the strokes on their shadow side) and the tops of the cliff bands (where the slope
-// passes cliff_slope, with rows of strokes hanging from them down the fall line) are drawn
-// first; the fill and cross strokes of the print style take the ink they leave under the
-// tone curve. Where rock meets scree, grass or ice, the fill and cross strokes are drawn back
-// from the face's border by an irregular length (FrayedCrop), so the rock ends where its
-// strokes end, in a ragged band, instead of along one smooth line; a border with rock across
-// it, or a ridge on it, keeps its strokes to the line.
+// Rock: the structure first, then the tone, and no drawn outline. The structure lines come
+// first: the crests (the partition's ridges and the crease lines of the elevation), drawn
+// wider above walls on their shadow side, with strokes hanging from them on that side; the
+// tops of the cliff bands (where the slope passes cliff_slope), with rows of strokes hanging
+// down to the band's foot; the couloirs, thin lines the fill strokes keep away from, so that
+// they read as gaps between the rock ribs. The fill and cross strokes of the print style take
+// the ink the structure leaves under the tone curve. Where rock meets scree, grass or ice,
+// the fill and cross strokes are drawn back from the face's border by an irregular length
+// (FrayedCrop), so the rock ends where its strokes end, in a ragged band, instead of along one
+// smooth line; a border with rock across it, or a ridge on it, keeps its strokes to the line.
 #include "builtins.hpp"
 
 namespace carto::blocks {
@@ -13,20 +15,31 @@ namespace carto::blocks {
 Builtin rock() {
     Builtin b;
     b.info = {"rock", "after 5.4g",
-              "rock drawing: crests and cliff tops with strokes hanging from them, the print tone, no drawn outline",
-              kTone + kToneCells + kBalanced + kCrest + kCliff + kCross + kFray};
+              "rock drawing: crests, couloirs and cliff tops with strokes hanging from them, the print tone, no "
+              "drawn outline",
+              kTone + kToneCells + kBalanced + kCrest + kCliff + kStructure + kCross + kFray};
     b.program = [](const ControlFields& f, const ParamValues& p) {
         check_tone(p);
         check_fray(p);
         return Arrangement([f, p](const tex::Region& r) {
             const FaceReading face = read_face(f, r);
-            tex::Curves spent = tex::Crop(crest_strokes(f, p, face, r), tex::CROP)(r);
-            spent.append(crest_lines(p)(r));
+            const Structure s = given_first(p, structure_lines(f, p, r), r);
+            // The partition's ridges (on the face's border) and the crests around the face, with
+            // the strokes hanging from them; the cliff tops and theirs; valleys and couloirs.
+            tex::Curves spent = tapered(f, p, tex::Labelled(crest_lines(p)(r), "ridgeline"));
+            spent.append(tex::apply_mask(tapered(f, p, s.ridges), r, tex::CROP));
+            spent.append(tex::Crop(crest_strokes(f, p, face, r), tex::CROP)(r));
+            spent.append(tex::apply_mask(shadow_strokes(f, p, face, s.ridges), r, tex::CROP));
+            tex::Curves cliffs = given_cliffs(f, r);
+            cliffs.append(s.cliffs);
+            spent.append(tex::apply_mask(cliffs, r, tex::CROP));
+            spent.append(tex::apply_mask(cliff_strokes(f, p, face, cliffs), r, tex::CROP));
             spent.append(valleys()(r));
-            const tex::Curves tops = cliff_tops(f, p, r);
-            spent.append(tex::apply_mask(cliff_strokes(f, p, face, tops), r, tex::CROP));
-            spent.append(tops);
-            tex::Curves out = frayed(f, p, toned_hatching(f, p, face, r, spent))(r);
+            spent.append(tex::apply_mask(s.couloirs, r, tex::CROP));
+            // The tone's fill and cross strokes, kept off the couloirs, frayed at the rock's edge.
+            Arrangement fill = toned_hatching(f, p, face, r, spent);
+            if (p.at("couloir_gap") > 0) fill = tex::Apart(std::move(fill), s.couloirs, p.at("couloir_gap"));
+            tex::Curves out = frayed(f, p, std::move(fill))(r);
             out.append(spent);
             return out;
         });

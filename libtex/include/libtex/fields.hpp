@@ -190,6 +190,20 @@ Arrangement AlignToField(Arrangement a, Field angle);
 // tex::Error naming IsoLines for a cell that is not positive or a level that is not finite.
 Arrangement IsoLines(Field f, double level, double cell);
 
+// The crease lines of a surface f (height ridges): where it is highest (Ridge) or lowest
+// (Valley) across its sharpest bend, the derivative along the Hessian's eigenvector of the
+// most negative (positive) eigenvalue vanishing, that eigenvalue the stronger of the two and
+// at least min_bend in magnitude (1 / length: the change of slope per unit across the line).
+// The gradient and Hessian are central differences over the nodes of the lattice
+// (i cell, j cell) of the plane, the lines traced across its squares: a global lattice, so a
+// region draws the lines of the plane wherever it lies. Lines are open or closed polylines
+// through crossings of lattice edges, unlabelled, in no particular sense. Evaluated on a
+// region: the lines through the squares meeting its bounding box (read one cell further), not
+// cut to it. Throws tex::Error naming Creases for a cell that is not positive or a negative
+// min_bend.
+enum class CreaseKind { Ridge, Valley };
+Arrangement Creases(Field f, CreaseKind kind, double cell, double min_bend);
+
 // ---- Controlled arrangements and mappers (thesis 5.3.1, 5.3.2) ----
 
 namespace detail {

@@ -48,6 +48,13 @@ double ThinRank(long long k);
 // Fewer than three points are returned as they are.
 std::vector<Point> CutCorners(std::vector<Point> pts, int passes);
 
+// Each point of each curve replaced by the mean of the points up to `half_window` before and
+// after it along the curve (a closed curve's window wraps round; an open curve's shrinks
+// near its ends, which stay where they are). Local: a piece of a curve is smoothed as the
+// whole curve is, away from the piece's own ends, so lines traced on a global lattice and
+// cut to different windows agree where the windows overlap. Labels are kept.
+Curves MovingAverage(const Curves& c, int half_window);
+
 // A curve drawn smooth at the scale `step` (issue 16: a crest line with no stair steps or
 // raster kinks): its points every `step` of length from its first point, its last point
 // kept (one closer than step / 2 to it dropped), then three rounds of corner cutting. Bends

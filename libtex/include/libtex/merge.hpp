@@ -38,6 +38,11 @@ Arrangement Crop(Arrangement a, Border b);
 // thread and in any tiling.
 Arrangement FrayedCrop(Arrangement a, double min, double max, Field across = Field(),
                        std::vector<std::string> hard = {});
+// The curves of a (evaluated on the region) less their parts within `distance` of any of
+// `lines` (a gap left along them, as a couloir is drawn in rock), the cuts placed within
+// distance / 8 of the exact buffer's edge. Throws tex::Error naming Apart for a distance
+// that is not positive.
+Arrangement Apart(Arrangement a, Curves lines, double distance);
 // The region itself as an arrangement: its boundary, as the labelled edges of the face it
 // comes from when it has them (Region::with_edges), else its rings.
 Arrangement Outline();

@@ -8,6 +8,7 @@
 
 #include "libtex/error.hpp"
 #include "libtex/fields.hpp"
+#include "lattice.hpp"
 
 namespace tex {
 namespace {
@@ -32,17 +33,10 @@ Arrangement IsoLines(Field f, double level, double cell) {
         throw Error("IsoLines", "cell must be a positive number (got " + std::to_string(cell) + ")");
     if (!std::isfinite(level)) throw Error("IsoLines", "level must be a finite number");
     return Arrangement([f = std::move(f), level, cell](const Region& r) {
-        const BBox box = r.bbox();
-        const long long i0 = (long long)std::floor(box.xmin / cell), i1 = (long long)std::floor(box.xmax / cell) + 1;
-        const long long j0 = (long long)std::floor(box.ymin / cell), j1 = (long long)std::floor(box.ymax / cell) + 1;
-        const long long nx = i1 - i0 + 1, ny = j1 - j0 + 1;
-        if (nx * ny > 50'000'000) throw Error("IsoLines", "too many lattice nodes for the region (cell too small)");
         // The field at every node of the lattice over the region's box.
-        std::vector<double> v(std::size_t(nx * ny));
-        for (long long j = 0; j < ny; ++j)
-            for (long long i = 0; i < nx; ++i)
-                v[std::size_t(j * nx + i)] = f(Point{double(i0 + i) * cell, double(j0 + j) * cell});
-        auto val = [&](long long i, long long j) { return v[std::size_t((j - j0) * nx + (i - i0))]; };
+        const detail::LatticeWindow w(f, r.bbox(), cell, 0, "IsoLines");
+        const long long i0 = w.i0, i1 = w.i1, j0 = w.j0, j1 = w.j1;
+        auto val = [&](long long i, long long j) { return w.at(i, j); };
         auto node = [&](long long i, long long j) { return Point{double(i) * cell, double(j) * cell}; };
         // Where the level crosses a lattice edge, interpolated from its lower node: the same
         // point from both squares that share the edge.

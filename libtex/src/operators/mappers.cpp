@@ -74,6 +74,24 @@ std::vector<Point> CutCorners(std::vector<Point> pts, int passes) {
     return pts;
 }
 
+Curves MovingAverage(const Curves& c, int half_window) {
+    if (half_window < 0) throw Error("MovingAverage", "the half window must not be negative");
+    Curves out = c;
+    for (Curve& cv : out.curves) {
+        const std::vector<Point>& p = c.curves[std::size_t(&cv - out.curves.data())].points;
+        const long long n = (long long)p.size();
+        for (long long i = 0; i < n; ++i) {
+            long long w = half_window;
+            if (!cv.closed) w = std::min({w, i, n - 1 - i});
+            else w = std::min<long long>(w, (n - 1) / 2);
+            Point sum{0, 0};
+            for (long long k = i - w; k <= i + w; ++k) sum = sum + p[std::size_t(((k % n) + n) % n)];
+            cv.points[std::size_t(i)] = sum * (1.0 / double(2 * w + 1));
+        }
+    }
+    return out;
+}
+
 namespace {
 // The points of a curve in order, a closed one ending on its first point again.
 std::vector<Point> open_points(const Curve& c) {

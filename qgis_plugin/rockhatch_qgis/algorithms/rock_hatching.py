@@ -16,7 +16,8 @@ from .common import Progress, RockhatchAlgorithm
 
 # The GeoPackage layers the pipeline writes, one per hatch family, with the line width a
 # renderer uses when a feature has no width_mm (mm on paper).
-FAMILIES = {"hatch_fill": 0.10, "hatch_ridge": 0.12, "hatch_valley": 0.25, "hatch_cross": 0.08}
+FAMILIES = {"hatch_fill": 0.10, "hatch_ridge": 0.12, "hatch_valley": 0.25, "hatch_cross": 0.08,
+            "hatch_ridgeline": 0.12, "hatch_couloir": 0.08, "hatch_cliff": 0.12}
 # The polygon layer of the crest ornaments (filled black).
 CREST_LAYER = "crest"
 # The polygon layers of the terrain styles (scree, slope-hachures), filled black, no outline.

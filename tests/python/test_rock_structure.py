@@ -1,0 +1,90 @@
+"""The rock style's given structure lines: cliffs labelled in a partition (kind=cliff, or OSM's
+natural=cliff|ridge|arete on a line layer) become cliff borders, drawn as cliff tops with their
+strokes hanging into the face below; other OSM lines are not labels."""
+import math
+import sys
+
+import pytest
+from osgeo import ogr, osr
+
+from bad_inputs import partition_file
+from rockhatch import carto
+
+SOUTH = "POLYGON((1003700 6539000,1004500 6539000,1004500 6539500,1003700 6539500,1003700 6539000))"
+NORTH = "POLYGON((1003700 6539500,1004500 6539500,1004500 6540000,1003700 6540000,1003700 6539500))"
+EDGE = "LINESTRING(1003700 6539500,1004500 6539500)"
+EDGE_Y = 6539500.0
+
+
+def osm_partition(path, tag_field):
+    """Faces, and a line layer as GDAL's OSM driver writes one: `natural` as a field, or in
+    other_tags."""
+    ds = ogr.GetDriverByName("GPKG").CreateDataSource(str(path))
+    srs = osr.SpatialReference()
+    srs.ImportFromEPSG(2154)
+    fl = ds.CreateLayer("faces", srs, ogr.wkbPolygon)
+    for wkt in (SOUTH, NORTH):
+        f = ogr.Feature(fl.GetLayerDefn())
+        f.SetGeometry(ogr.CreateGeometryFromWkt(wkt))
+        fl.CreateFeature(f)
+    ll = ds.CreateLayer("lines", srs, ogr.wkbLineString)
+    ll.CreateField(ogr.FieldDefn(tag_field, ogr.OFTString))
+    lines = [(EDGE, "cliff"), ("LINESTRING(1003700 6539000,1003700 6540000)", "arete"),
+             ("LINESTRING(1004500 6539000,1004500 6540000)", "tree_row")]
+    for wkt, natural in lines:
+        f = ogr.Feature(ll.GetLayerDefn())
+        f.SetField(tag_field, natural if tag_field == "natural" else f'"natural"=>"{natural}","source"=>"survey"')
+        f.SetGeometry(ogr.CreateGeometryFromWkt(wkt))
+        ll.CreateFeature(f)
+    ds = None
+    return path
+
+
+def kinds(partition):
+    out = {}
+    for face in partition.faces:
+        for s in face.boundary:
+            out[s.kind] = out.get(s.kind, 0.0) + math.hypot(s.b.x - s.a.x, s.b.y - s.a.y)
+    return out
+
+
+@pytest.mark.parametrize("tag_field", ["natural", "other_tags"])
+def test_osm_natural_tags_label_the_borders(tmp_path, sample_dir, tag_field):
+    path = osm_partition(tmp_path / "osm.gpkg", tag_field)
+    o = carto.PartitionOptions()
+    o.path = str(path)
+    part = carto.load_partition(o, "EPSG:2154")
+    k = kinds(part)
+    # The shared edge is a cliff (seen from both faces), the west side an arete (a ridge); the
+    # tree row on the east side labels nothing.
+    assert k.get(carto.LineKind.CLIFF, 0) == pytest.approx(2 * 800, rel=1e-6)
+    assert k.get(carto.LineKind.RIDGE, 0) == pytest.approx(1000, rel=1e-6)
+    assert k.get(carto.LineKind.OTHER, 0) == pytest.approx(800 + 800 + 1000, rel=1e-6)
+
+
+def test_a_given_cliff_is_drawn_once_with_its_strokes_in_the_face_below(tmp_path, sample_dir):
+    # The sample is a summit north of the edge: the ground falls south across it.
+    part = partition_file(tmp_path, "p.gpkg", [SOUTH, NORTH], [(EDGE, "cliff")])
+    prepared = carto.prepare(str(sample_dir / "dem.tif"), str(part))
+    assert kinds(prepared.partition).get(carto.LineKind.CLIFF, 0) > 0
+    drawing = carto.hatch(prepared, style="rock")
+    south = next(f.id for f in prepared.partition.faces if f.region.bbox().ymax <= EDGE_Y + 1e-6)
+    on_edge = {}
+    hanging = 0
+    for fh in drawing.faces:
+        for h in fh.hatches:
+            pts = list(h.points)
+            if h.family == carto.Family.CLIFF and all(abs(p.y - EDGE_Y) < 1e-6 for p in pts):
+                on_edge[fh.face_id] = on_edge.get(fh.face_id, 0.0) + sum(
+                    math.hypot(b.x - a.x, b.y - a.y) for a, b in zip(pts, pts[1:]))
+            if h.family == carto.Family.RIDGE and abs(pts[0].y - EDGE_Y) < 1e-6:
+                assert fh.face_id == south
+                assert pts[-1].y < EDGE_Y  # down, into the band
+                hanging += 1
+    assert list(on_edge) == [south]
+    assert on_edge[south] == pytest.approx(800, rel=1e-6)
+    assert hanging > 100
+
+
+if __name__ == "__main__":
+    sys.exit(pytest.main([__file__, "-q"]))
