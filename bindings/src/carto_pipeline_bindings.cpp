@@ -37,6 +37,7 @@ void add_pipeline_bindings(py::module_& m) {
         .def_readwrite("png_pixels", &Options::png_pixels)
         .def_readwrite("spatial_index", &Options::spatial_index)
         .def_readwrite("window", &Options::window)
+        .def_readwrite("mask", &Options::mask, "with partition 'auto': rock only inside this polygon layer")
         .def_readwrite("crest_ornament", &Options::crest_ornament,
                        "'default' (the project's exemplar) or an SVG file: draw the ridges as crest ornaments; None: no crests")
         .def_readwrite("crest_height_mm", &Options::crest_height_mm, "height of the crest band, mm on paper (None: 2)");

@@ -89,7 +89,9 @@ std::vector<Option> options(CommandLine& cl) {
         {"--lines-layer", "NAME", "line layer with the ridge / valley labels (default: the first with the label field, "
                                   "else layers named ridges / valleys)",
          [&](const std::string& v) { o.partition.lines_layer = v; }},
-        {"--label-field", "NAME", "label attribute of the lines: ridge, valley (thalweg) or other (default kind)",
+        {"--mask", "PATH", "with --partition auto: rock only inside these polygons (an OSM layer: natural=bare_rock)",
+         [&](const std::string& v) { o.mask = v; }},
+        {"--label-field", "NAME", "label attribute of the lines: ridge, valley (thalweg), cliff or other (default kind)",
          [&](const std::string& v) { o.partition.label_field = v; }},
         {"--id-field", "NAME", "face id attribute (default: feature ids)", [&](const std::string& v) { o.partition.id_field = v; }},
         {"--orientation-field", "NAME", "face attribute: hatch azimuth in degrees (default orientation)",

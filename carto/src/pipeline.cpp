@@ -106,6 +106,7 @@ Prepared prepare(const Plan& plan, const Progress& progress) {
         eo.raster = dem;
         eo.scale = o.scale;
         eo.what = "--dem '" + o.dem + "'";
+        eo.mask = o.mask;
         p.partition = extract_partition(eo).partition;
     } else {
         p.partition = load_partition(o.partition, dem.crs_wkt);

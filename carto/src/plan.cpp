@@ -47,7 +47,7 @@ void check_files(const Options& o) {
     const std::string crest =
         o.crest_ornament && *o.crest_ornament != kDefaultCrest ? *o.crest_ornament : std::string();
     check_outputs({{"--dem", o.dem}, {"--partition", partition}, {"--slope", o.slope}, {"--roughness", o.roughness},
-                   {"--script", o.style_file}, {"--crest-ornament", crest}},
+                   {"--script", o.style_file}, {"--crest-ornament", crest}, {"--mask", o.mask}},
                   outputs, o.overwrite);
 }
 
@@ -56,6 +56,9 @@ Plan make_plan(const Options& o, PlanFor use) {
     plan.options = o;
     if (!(o.scale > 0) || !std::isfinite(o.scale))
         throw Error(Code::Usage, "--scale: " + std::to_string(o.scale) + " is not a positive number");
+    if (!o.mask.empty() && o.partition.path != "auto")
+        throw Error(Code::Usage, "--mask '" + o.mask + "': a mask only restricts --partition auto (the rock of a "
+                                 "partition file is its faces)");
     plan.style = o.custom_style ? *o.custom_style : builtin_style(o.style.empty() ? default_style() : o.style);
     const ParamValues own = resolve_params(plan.style.info, o.params, o.scale);
     if (plan.terrain_style()) {

@@ -86,5 +86,52 @@ def test_a_given_cliff_is_drawn_once_with_its_strokes_in_the_face_below(tmp_path
     assert hanging > 100
 
 
+def land_cover(path, tagged):
+    """West half bare rock, east half scree (OSM natural=*), or one untagged layer of both."""
+    ds = ogr.GetDriverByName("GPKG").CreateDataSource(str(path))
+    srs = osr.SpatialReference()
+    srs.ImportFromEPSG(2154)
+    layer = ds.CreateLayer("multipolygons", srs, ogr.wkbPolygon)
+    if tagged:
+        layer.CreateField(ogr.FieldDefn("natural", ogr.OFTString))
+    halves = [("POLYGON((1003000 6538800,1004100 6538800,1004100 6541000,1003000 6541000,1003000 6538800))",
+               "bare_rock"),
+              ("POLYGON((1004100 6538800,1005200 6538800,1005200 6541000,1004100 6541000,1004100 6538800))", "scree")]
+    for wkt, natural in halves:
+        f = ogr.Feature(layer.GetLayerDefn())
+        if tagged:
+            f.SetField("natural", natural)
+        f.SetGeometry(ogr.CreateGeometryFromWkt(wkt))
+        layer.CreateFeature(f)
+    ds = None
+    return path
+
+
+def test_mask_keeps_the_rock_of_a_land_cover_layer(tmp_path, sample_dir):
+    dem = str(sample_dir / "dem.tif")
+    everywhere = carto.prepare(dem, "auto")
+    assert max(f.region.bbox().xmax for f in everywhere.partition.faces) > 1004500
+    # OSM land cover: only the bare rock (west of x = 1004100) is rock.
+    west = carto.prepare(dem, "auto", mask=land_cover(tmp_path / "osm.gpkg", True))
+    assert west.partition.faces
+    assert max(f.region.bbox().xmax for f in west.partition.faces) <= 1004100 + 1e-6
+    # An untagged layer: every polygon counts.
+    both = carto.prepare(dem, "auto", mask=land_cover(tmp_path / "plain.gpkg", False))
+    assert max(f.region.bbox().xmax for f in both.partition.faces) > 1004500
+
+
+def test_mask_needs_the_automatic_partition(rockhatch_exe, tmp_path, sample_dir):
+    import subprocess
+    mask = land_cover(tmp_path / "osm.gpkg", True)
+    r = subprocess.run([rockhatch_exe, "--dem", sample_dir / "dem.tif", "--partition", sample_dir / "partition.gpkg",
+                        "--mask", mask, "-o", tmp_path / "out.svg"], capture_output=True, text=True)
+    assert r.returncode == 2
+    assert "--mask" in r.stderr and "--partition auto" in r.stderr
+    assert not (tmp_path / "out.svg").exists()
+    r = subprocess.run([rockhatch_exe, "--dem", sample_dir / "dem.tif", "--partition", "auto", "--mask", mask,
+                        "--style", "rock", "-o", tmp_path / "out.gpkg"], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+
+
 if __name__ == "__main__":
     sys.exit(pytest.main([__file__, "-q"]))

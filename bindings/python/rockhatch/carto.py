@@ -124,7 +124,7 @@ _PARTITION_KEYS = ("faces_layer", "lines_layer", "label_field", "id_field", "ori
 
 def make_options(dem="", partition="", outputs=(), style=None, params=None, scale=10000.0, seed=0, threads=0,
                  overwrite=False, slope="", roughness="", window=None, png_pixels=1600, spatial_index=True,
-                 relief_radius=1000.0, crest_ornament=None, crest_height_mm=None, **partition_options):
+                 relief_radius=1000.0, crest_ornament=None, crest_height_mm=None, mask="", **partition_options):
     """The Options of the rockhatch command from keyword arguments (same names as its
     options, partition layer and field options included; crest_ornament is 'default' or an
     SVG file, crest_height_mm the band height in mm on paper)."""
@@ -139,6 +139,7 @@ def make_options(dem="", partition="", outputs=(), style=None, params=None, scal
     o.overwrite = bool(overwrite)
     o.slope = os.fspath(slope) if slope else ""
     o.roughness = os.fspath(roughness) if roughness else ""
+    o.mask = os.fspath(mask) if mask else ""
     o.style_file = style_file(style)
     if crest_ornament is not None:
         o.crest_ornament = os.fspath(crest_ornament)

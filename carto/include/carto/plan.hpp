@@ -26,6 +26,9 @@ struct Options {
     std::string dem;                     // --dem
     PartitionOptions partition;          // --partition and its layer / field options
     std::string slope, roughness;        // optional rasters (percent, 0..1)
+    // --mask: with --partition auto, rock only inside this polygon layer's polygons (land
+    // cover; an OSM layer counts only its natural=bare_rock polygons).
+    std::string mask;
     std::string style;                   // "" = default style
     // A style defined outside the built-ins (a Python style script); replaces `style`.
     std::shared_ptr<const Style> custom_style;

@@ -64,16 +64,27 @@ std::vector<char> rasterize_mask(const std::string& path, const Raster& grid) {
         if (!ct) throw Error(Code::NoCrs, what + ": cannot reproject the layer to the DEM's CRS");
     }
     std::vector<std::unique_ptr<OGRGeometry>> geoms;
+    // An OSM land-cover layer (natural=* as a field, or in GDAL's other_tags): its bare rock only.
+    const OGRFeatureDefn* defn = layer->GetLayerDefn();
+    const int natural = defn->GetFieldIndex("natural"), other_tags = defn->GetFieldIndex("other_tags");
+    auto is_rock = [&](OGRFeature& f) {
+        if (natural >= 0) return f.IsFieldSetAndNotNull(natural) && std::string(f.GetFieldAsString(natural)) == "bare_rock";
+        if (other_tags >= 0)
+            return f.IsFieldSetAndNotNull(other_tags) &&
+                   std::string(f.GetFieldAsString(other_tags)).find("\"natural\"=>\"bare_rock\"") != std::string::npos;
+        return true;
+    };
     layer->ResetReading();
     for (auto& f : *layer) {
-        if (!f->GetGeometryRef()) continue;
+        if (!f->GetGeometryRef() || !is_rock(*f)) continue;
         std::unique_ptr<OGRGeometry> g(f->GetGeometryRef()->clone());
         if (ct) g->transform(ct.get());
         geoms.push_back(std::move(g));
     }
     if (geoms.empty())
         throw Error(Code::BadLayer,
-                    what + ": layer '" + std::string(layer->GetName()) + "' holds no polygon");
+                    what + ": layer '" + std::string(layer->GetName()) + "' holds no polygon" +
+                        (natural >= 0 || other_tags >= 0 ? " tagged natural=bare_rock" : ""));
     GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
     std::unique_ptr<GDALDataset> ras(
         mem->Create("", grid.width, grid.height, 1, GDT_Byte, nullptr));
