@@ -27,7 +27,7 @@ from rockhatch.carto.blocks import (BALANCED, CLIFF, CREST, CROSS, FRAY, STRUCTU
                                     check_tone, cliff_strokes, crest_lines, crest_strokes, frayed, given_cliffs,
                                     given_first, read_face, shadow_strokes, structure_lines, tapered, toned_hatching,
                                     valleys)
-from rockhatch.tex import CROP, Apart, Arrangement, Constant, Crop, Labelled
+from rockhatch.tex import CROP, Apart, Arrangement, Constant, Crop, Curves, Labelled
 
 NAME = "rock"
 FIGURE = "after 5.4g"
@@ -47,19 +47,23 @@ def style(fields, params):
     def draw(region):
         face = read_face(fields, region)
         s = given_first(params, structure_lines(fields, params, region), region)
-        # The crests with the strokes hanging from them, the cliff tops and theirs, valleys and couloirs.
-        spent = tapered(fields, params, Labelled(crest_lines(params)(region), "ridgeline"))
-        spent.append(cut(tapered(fields, params, s.ridges), region))
-        spent.append(Crop(crest_strokes(fields, params, face, region), CROP)(region))
-        spent.append(cut(shadow_strokes(fields, params, face, s.ridges), region))
+        # The structure lines: crests (the partition's and those around the face), cliff tops,
+        # valleys; then the strokes hanging from them, and the couloirs.
         cliffs = given_cliffs(fields, region)
         cliffs.append(s.cliffs)
-        spent.append(cut(cliffs, region))
+        lines = tapered(fields, params, Labelled(crest_lines(params)(region), "ridgeline"))
+        lines.append(cut(tapered(fields, params, s.ridges), region))
+        lines.append(cut(cliffs, region))
+        lines.append(valleys()(region))
+        spent = Curves()
+        spent.append(lines)
+        spent.append(Crop(crest_strokes(fields, params, face, region), CROP)(region))
+        spent.append(cut(shadow_strokes(fields, params, face, s.ridges), region))
         spent.append(cut(cliff_strokes(fields, params, face, cliffs), region))
-        spent.append(valleys()(region))
         spent.append(cut(s.couloirs, region))
-        # The tone's fill and cross strokes, kept off the couloirs, frayed at the rock's edge.
-        fill = toned_hatching(fields, params, face, region, spent)
+        # The tone's fill and cross strokes: ending at the structure lines (not crossing them),
+        # kept off the couloirs, frayed at the rock's edge.
+        fill = Apart(toned_hatching(fields, params, face, region, spent), lines, params["structure_gap"])
         if params["couloir_gap"] > 0:
             fill = Apart(fill, s.couloirs, params["couloir_gap"])
         out = frayed(fields, params, fill)(region)

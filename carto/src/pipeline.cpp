@@ -203,7 +203,9 @@ Drawing hatch(const Prepared& p, const Plan& plan, const std::vector<int>& chose
         // A style script may call SetSeed (the faces draw from o.seed, see hatch_face): the
         // process's seed and stream numbering come back after it.
         const tex::SavedSeed saved;
-        return style.program(fields, plan.rock_params);
+        ParamValues params = plan.rock_params;
+        params[kDemCell] = std::max(p.terrain.elevation.cell_x(), p.terrain.elevation.cell_y());
+        return style.program(fields, params);
     }();
     std::atomic<std::size_t> done{0};
     std::atomic<bool> cancelled{false};

@@ -937,8 +937,7 @@ TEST(Pipeline, TheRockStructureLinesFollowTheTerrainAndCrossFaces) {
     EXPECT_GT(double(in_floor) / double(couloir_points), 0.55) << in_floor << " of " << couloir_points;
     EXPECT_LT(double(couloir_on_crest) / double(couloir_points), 0.03) << couloir_on_crest << " of " << couloir_points;
     // Given lines first: the sample's couloirs run along its partition's valleys, and none of
-    // them is drawn within crest_smoothing of a valley on the face's border (less the 1/8 Apart
-    // allows its cuts).
+    // them is drawn within crest_smoothing of a valley on the face's border.
     const double snap = p.at("crest_smoothing");
     std::size_t near_before = 0, near_after = 0;
     for (std::size_t i = 0; i < all.size(); ++i) {
@@ -947,7 +946,7 @@ TEST(Pipeline, TheRockStructureLinesFollowTheTerrainAndCrossFaces) {
                 if (s.kind != LineKind::Valley) continue;
                 const Point ab = s.b - s.a;
                 const double t = std::clamp(tex::dot(q - s.a, ab) / std::max(tex::dot(ab, ab), 1e-300), 0.0, 1.0);
-                if (tex::distance(q, s.a + ab * t) < snap * 0.85) return true;  // Apart cuts within snap / 8
+                if (tex::distance(q, s.a + ab * t) < snap * (1 - 1e-9)) return true;
             }
             return false;
         };

@@ -637,8 +637,8 @@ TEST(Merge, FrayedCropIsKeyedBySeedAndGeometryOnly) {
 
 // Apart: a gap left along lines.
 TEST(Merge, ApartLeavesAGapAlongTheLines) {
-    // Horizontal strokes across a vertical line at x = 5: each cut in two, the gap the distance
-    // on either side (within distance / 8).
+    // Horizontal strokes across a vertical line at x = 5: each cut in two, the gap exactly the
+    // distance on either side.
     Curves strokes;
     for (int k = 0; k < 5; ++k) strokes.append(Polyline({{0, double(k)}, {10, double(k)}}));
     strokes.curves[2].labels.add("fill");
@@ -647,7 +647,7 @@ TEST(Merge, ApartLeavesAGapAlongTheLines) {
     ASSERT_EQ(out.curves.size(), 10u);
     for (const auto& c : out.curves) {
         const double near_x = c.points.front().x < 5 ? c.points.back().x : c.points.front().x;
-        EXPECT_NEAR(std::abs(near_x - 5), 1.0, 1.0 / 8);
+        EXPECT_NEAR(std::abs(near_x - 5), 1.0, 1e-9);
         EXPECT_TRUE(c.points.front().x == 0 || c.points.back().x == 10);
     }
     EXPECT_TRUE(out.curves[4].labels.has("fill"));
@@ -656,6 +656,12 @@ TEST(Merge, ApartLeavesAGapAlongTheLines) {
     ASSERT_EQ(far.curves.size(), 1u);
     EXPECT_EQ(far.curves[0].points, (std::vector<Point>{{0, 20}, {10, 20}}));
     EXPECT_TRUE(Apart(Constant(Polyline({{4.5, 0}, {5.5, 0}})), line, 1.0)(Region::rectangle(-1, -1, 11, 11)).empty());
+    // Round the line's end: a stroke passing 0.6 below it (y = -1.6) is cut where it enters the
+    // disc of radius 1 round (5, -1): x = 5 -/+ 0.8.
+    const Curves round = Apart(Constant(Polyline({{0, -1.6}, {10, -1.6}})), line, 1.0)(Region::rectangle(-1, -3, 11, 11));
+    ASSERT_EQ(round.curves.size(), 2u);
+    EXPECT_NEAR(round.curves[0].points.back().x, 4.2, 1e-9);
+    EXPECT_NEAR(round.curves[1].points.front().x, 5.8, 1e-9);
     EXPECT_THROW(Apart(Constant(strokes), line, 0.0), Error);
 }
 

@@ -98,11 +98,12 @@ double tone_coverage(const ParamValues& p, double shade);
 Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const FaceReading& face,
                            const tex::Region& region, const tex::Curves& spent);
 
-// The tops of the cliff bands in the face `region`: the level line slope = cliff_slope of
-// the slope field (tex::IsoLines on a lattice of a quarter of crest_smoothing, the same in a
-// tile as in the whole), where the ground falls into the band (the steeper side lower),
-// smoothed at crest_smoothing, pieces shorter than cliff_min_length dropped, cut to the
-// face; labelled "ridge" (drawn as structure lines).
+// The tops of the cliff bands around the face `region`: the level line slope = cliff_slope
+// of the slope field (tex::IsoLines on a lattice of a quarter of crest_smoothing, or of the
+// DEM's cell when that is coarser: the same in a tile as in the whole), where the ground
+// falls into the band (the steeper side lower, on the line's left), traced over the face's
+// box grown by structure_margin, smoothed locally (tex::MovingAverage over crest_smoothing),
+// pieces shorter than cliff_min_length dropped; labelled "cliff", uncut.
 tex::Curves cliff_tops(const ControlFields& f, const ParamValues& p, const tex::Region& region);
 // Strokes hanging from cliff tops into their bands: every crest_spacing along each top, one
 // stroke down the fall line (read half a stroke below the top), as long as the band is high
@@ -113,8 +114,9 @@ tex::Curves cliff_tops(const ControlFields& f, const ParamValues& p, const tex::
 tex::Curves cliff_strokes(const ControlFields& f, const ParamValues& p, const FaceReading& face,
                           const tex::Curves& tops);
 // The structure lines of the rock (issue 46): crests and couloirs, the crease lines of the
-// elevation (tex::Creases on a lattice of half crest_smoothing, where the slope changes by at
-// least crease_bend across 1 mm on paper), and the cliff tops (cliff_tops). Each is traced
+// elevation (tex::Creases on a lattice of half crest_smoothing, or of half the DEM's cell
+// (kDemCell) when that is coarser, where the slope changes by at least crease_bend across
+// 1 mm on paper), and the cliff tops (cliff_tops). Each is traced
 // over the face's box grown by structure_margin, smoothed locally (tex::MovingAverage over
 // crest_smoothing) and kept when at least crease_min_length (cliff_min_length) long, so that a
 // line crossing several faces is the same line in each and in any tile; crests within

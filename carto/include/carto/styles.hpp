@@ -91,6 +91,9 @@ struct ControlFields {
 // programs that turn the families' stroke widths (mm) into ink on the ground.
 using ParamValues = std::map<std::string, double>;
 inline constexpr const char* kGroundPerMm = "ground_per_mm";
+// Set by the pipeline when it hatches: the DEM's cell (ground units, the larger side), for
+// programs that trace lines on a lattice no finer than the DEM needs.
+inline constexpr const char* kDemCell = "dem_cell";
 
 // A style program: the controlled arrangement (fields) -> arrangement, its parameters
 // bound. The arrangement is evaluated on each face of the partition (a labelled region).

@@ -26,18 +26,20 @@ Builtin rock() {
             const Structure s = given_first(p, structure_lines(f, p, r), r);
             // The partition's ridges (on the face's border) and the crests around the face, with
             // the strokes hanging from them; the cliff tops and theirs; valleys and couloirs.
-            tex::Curves spent = tapered(f, p, tex::Labelled(crest_lines(p)(r), "ridgeline"));
-            spent.append(tex::apply_mask(tapered(f, p, s.ridges), r, tex::CROP));
-            spent.append(tex::Crop(crest_strokes(f, p, face, r), tex::CROP)(r));
-            spent.append(tex::apply_mask(shadow_strokes(f, p, face, s.ridges), r, tex::CROP));
             tex::Curves cliffs = given_cliffs(f, r);
             cliffs.append(s.cliffs);
-            spent.append(tex::apply_mask(cliffs, r, tex::CROP));
+            tex::Curves lines = tapered(f, p, tex::Labelled(crest_lines(p)(r), "ridgeline"));
+            lines.append(tex::apply_mask(tapered(f, p, s.ridges), r, tex::CROP));
+            lines.append(tex::apply_mask(cliffs, r, tex::CROP));
+            lines.append(valleys()(r));
+            tex::Curves spent = lines;
+            spent.append(tex::Crop(crest_strokes(f, p, face, r), tex::CROP)(r));
+            spent.append(tex::apply_mask(shadow_strokes(f, p, face, s.ridges), r, tex::CROP));
             spent.append(tex::apply_mask(cliff_strokes(f, p, face, cliffs), r, tex::CROP));
-            spent.append(valleys()(r));
             spent.append(tex::apply_mask(s.couloirs, r, tex::CROP));
-            // The tone's fill and cross strokes, kept off the couloirs, frayed at the rock's edge.
-            Arrangement fill = toned_hatching(f, p, face, r, spent);
+            // The tone's fill and cross strokes: ending at the structure lines (not crossing
+            // them), kept off the couloirs, frayed at the rock's edge.
+            Arrangement fill = tex::Apart(toned_hatching(f, p, face, r, spent), lines, p.at("structure_gap"));
             if (p.at("couloir_gap") > 0) fill = tex::Apart(std::move(fill), s.couloirs, p.at("couloir_gap"));
             tex::Curves out = frayed(f, p, std::move(fill))(r);
             out.append(spent);

@@ -39,9 +39,10 @@ Arrangement Crop(Arrangement a, Border b);
 Arrangement FrayedCrop(Arrangement a, double min, double max, Field across = Field(),
                        std::vector<std::string> hard = {});
 // The curves of a (evaluated on the region) less their parts within `distance` of any of
-// `lines` (a gap left along them, as a couloir is drawn in rock), the cuts placed within
-// distance / 8 of the exact buffer's edge. Throws tex::Error naming Apart for a distance
-// that is not positive.
+// `lines` (a gap left along them, as a couloir is drawn in rock), cut exactly where they
+// enter that buffer (the union of the capsules round the lines' segments); a curve that
+// never comes near is kept as it is. Throws tex::Error naming Apart for a distance that is
+// not positive.
 Arrangement Apart(Arrangement a, Curves lines, double distance);
 // The region itself as an arrangement: its boundary, as the labelled edges of the face it
 // comes from when it has them (Region::with_edges), else its rings.

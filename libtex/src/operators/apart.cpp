@@ -12,37 +12,92 @@
 namespace tex {
 namespace {
 
-// The segments of the lines, bucketed on a grid of the distance for "is any within d" queries.
+// The segments of the lines, bucketed on a grid of eight times the distance: which stretches
+// of a segment come within the distance of them.
 class NearIndex {
 public:
-    NearIndex(const Curves& lines, double d) : d_(d) {
+    NearIndex(const Curves& lines, double d) : d_(d), bucket_(8 * d) {
         for (const Curve& c : lines.curves) {
             const std::size_t n = c.points.size();
             if (n == 1) add(c.points[0], c.points[0]);
             for (std::size_t i = 0; i + 1 < n + (c.closed && n > 2 ? 1 : 0); ++i) add(c.points[i], c.points[(i + 1) % n]);
         }
     }
-    bool near(const Point& p) const {
-        const long long cx = cell(p.x), cy = cell(p.y);
-        for (long long y = cy - 1; y <= cy + 1; ++y)
-            for (long long x = cx - 1; x <= cx + 1; ++x) {
+    bool empty() const { return segs_.empty(); }
+    // The parameters t in [0, 1] of p + t (q - p) within the distance of a line, as sorted,
+    // merged intervals: the line through p and q meets each segment's capsule (a convex set)
+    // in one interval, the union of its meetings with the two end discs and the band between.
+    std::vector<std::pair<double, double>> near(const Point& p, const Point& q) const {
+        std::vector<std::pair<double, double>> out;
+        const long long x0 = cell(std::min(p.x, q.x) - d_), x1 = cell(std::max(p.x, q.x) + d_);
+        const long long y0 = cell(std::min(p.y, q.y) - d_), y1 = cell(std::max(p.y, q.y) + d_);
+        seen_.clear();
+        const Point v = q - p;
+        for (long long y = y0; y <= y1; ++y)
+            for (long long x = x0; x <= x1; ++x) {
                 const auto it = buckets_.find(key(x, y));
                 if (it == buckets_.end()) continue;
-                for (std::size_t s : it->second)
-                    if (dist2(p, segs_[s].first, segs_[s].second) < d_ * d_) return true;
+                for (std::size_t s : it->second) {
+                    const auto& [a, b] = segs_[s];
+                    if (std::max(a.x, b.x) + d_ < std::min(p.x, q.x) || std::min(a.x, b.x) - d_ > std::max(p.x, q.x) ||
+                        std::max(a.y, b.y) + d_ < std::min(p.y, q.y) || std::min(a.y, b.y) - d_ > std::max(p.y, q.y))
+                        continue;
+                    if (std::find(seen_.begin(), seen_.end(), s) != seen_.end()) continue;
+                    seen_.push_back(s);
+                    double lo = INFINITY, hi = -INFINITY;
+                    capsule(p, v, segs_[s].first, segs_[s].second, lo, hi);
+                    lo = std::max(lo, 0.0);
+                    hi = std::min(hi, 1.0);
+                    if (lo < hi) out.push_back({lo, hi});
+                }
             }
-        return false;
+        std::sort(out.begin(), out.end());
+        std::vector<std::pair<double, double>> merged;
+        for (const auto& iv : out) {
+            if (!merged.empty() && iv.first <= merged.back().second) merged.back().second = std::max(merged.back().second, iv.second);
+            else merged.push_back(iv);
+        }
+        return merged;
     }
 
 private:
-    long long cell(double v) const { return (long long)std::floor(v / d_); }
+    long long cell(double v) const { return (long long)std::floor(v / bucket_); }
     static long long key(long long x, long long y) { return x * 73856093LL ^ y * 19349663LL; }
-    static double dist2(const Point& p, const Point& a, const Point& b) {
-        const Point ab = b - a;
-        const double l2 = dot(ab, ab);
-        const double t = l2 > 0 ? std::clamp(dot(p - a, ab) / l2, 0.0, 1.0) : 0.0;
-        const Point q = a + ab * t - p;
-        return dot(q, q);
+    // Widens [lo, hi] by the t where |p + t v - c| < d.
+    void disc(const Point& p, const Point& v, const Point& c, double& lo, double& hi) const {
+        const Point w = p - c;
+        const double a = dot(v, v), b = 2 * dot(v, w), k = dot(w, w) - d_ * d_;
+        if (a == 0) {
+            if (k < 0) lo = -INFINITY, hi = INFINITY;
+            return;
+        }
+        const double disc = b * b - 4 * a * k;
+        if (disc <= 0) return;
+        const double r = std::sqrt(disc);
+        lo = std::min(lo, (-b - r) / (2 * a));
+        hi = std::max(hi, (-b + r) / (2 * a));
+    }
+    // The t where a linear function f0 + t f1 lies in [a, b], intersected into [lo, hi].
+    static void clip(double f0, double f1, double a, double b, double& lo, double& hi) {
+        if (f1 == 0) {
+            if (f0 < a || f0 > b) lo = INFINITY, hi = -INFINITY;
+            return;
+        }
+        double t0 = (a - f0) / f1, t1 = (b - f0) / f1;
+        if (t0 > t1) std::swap(t0, t1);
+        lo = std::max(lo, t0);
+        hi = std::min(hi, t1);
+    }
+    void capsule(const Point& p, const Point& v, const Point& a, const Point& b, double& lo, double& hi) const {
+        disc(p, v, a, lo, hi);
+        disc(p, v, b, lo, hi);
+        const double l = distance(a, b);
+        if (l == 0) return;
+        const Point u = (b - a) * (1 / l), n{-u.y, u.x};
+        double blo = -INFINITY, bhi = INFINITY;
+        clip(dot(p - a, u), dot(v, u), 0, l, blo, bhi);
+        clip(dot(p - a, n), dot(v, n), -d_, d_, blo, bhi);
+        if (blo < bhi) lo = std::min(lo, blo), hi = std::max(hi, bhi);
     }
     void add(const Point& a, const Point& b) {
         const std::size_t s = segs_.size();
@@ -53,9 +108,10 @@ private:
                 if (v.empty() || v.back() != s) v.push_back(s);
             }
     }
-    double d_;
+    double d_, bucket_;
     std::vector<std::pair<Point, Point>> segs_;
     std::unordered_map<long long, std::vector<std::size_t>> buckets_;
+    mutable std::vector<std::size_t> seen_;
 };
 
 }  // namespace
@@ -63,54 +119,50 @@ private:
 Arrangement Apart(Arrangement a, Curves lines, double distance) {
     if (!(distance > 0) || !std::isfinite(distance))
         throw Error("Apart", "the distance must be positive and finite (got " + std::to_string(distance) + ")");
-    auto index = std::make_shared<const NearIndex>(lines, distance);
-    return Arrangement([a = std::move(a), index, distance](const Region& r) {
-        Curves in = a(r), out;
-        out.points = in.points;
-        out.origin = in.origin;
-        const double step = distance / 8;
-        for (const Curve& c : in.curves) {
+    auto lines_ptr = std::make_shared<const Curves>(std::move(lines));
+    return Arrangement([a = std::move(a), lines_ptr, distance](const Region& r) {
+        Curves in = a(r);
+        // The index is built per evaluation: its query buffer is the thread's own.
+        const NearIndex index(*lines_ptr, distance);
+        if (index.empty()) return in;
+        Curves out;
+        out.points = std::move(in.points);
+        out.origin = std::move(in.origin);
+        for (Curve& c : in.curves) {
             const std::size_t n = c.points.size();
             if (n < 2) {
-                out.curves.push_back(c);
+                out.curves.push_back(std::move(c));
                 continue;
             }
             std::vector<Point> pts = c.points;
             if (c.closed) pts.push_back(pts.front());
             std::vector<std::vector<Point>> pieces;
             std::vector<Point> run;
-            bool was_near = index->near(pts[0]);
-            if (!was_near) run.push_back(pts[0]);
-            auto close_run = [&] {
-                if (run.size() >= 2) pieces.push_back(run);
-                run.clear();
-            };
+            bool cut = false;
             for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
                 const Point p = pts[i], q = pts[i + 1];
-                const int k = std::max(1, int(std::ceil(tex::distance(p, q) / step)));
-                Point prev = p;
-                for (int j = 1; j <= k; ++j) {
-                    const Point s = j == k ? q : p + (q - p) * (double(j) / k);
-                    const bool now_near = index->near(s);
-                    if (now_near != was_near) {
-                        const Point cut = (prev + s) / 2;
-                        if (now_near) {
-                            run.push_back(cut);
-                            close_run();
-                        } else {
-                            run.push_back(cut);
-                        }
+                if (run.empty() && i == 0) run.push_back(p);
+                double from = 0;  // the kept stretch of this segment starts here
+                for (const auto& [t0, t1] : index.near(p, q)) {
+                    cut = true;
+                    if (t0 > from) {
+                        if (run.empty()) run.push_back(p + (q - p) * from);
+                        run.push_back(p + (q - p) * t0);
                     }
-                    if (!now_near && j == k) run.push_back(s);
-                    was_near = now_near;
-                    prev = s;
+                    if (run.size() >= 2) pieces.push_back(run);
+                    run.clear();
+                    from = t1;
+                }
+                if (from < 1) {
+                    if (run.empty()) run.push_back(p + (q - p) * from);
+                    run.push_back(q);
                 }
             }
-            close_run();
-            if (pieces.size() == 1 && c.closed && pieces[0].size() == pts.size()) {
-                out.curves.push_back(c);  // untouched
+            if (!cut) {
+                out.curves.push_back(std::move(c));  // untouched
                 continue;
             }
+            if (run.size() >= 2) pieces.push_back(run);
             for (auto& piece : pieces) {
                 Curve k;
                 k.points = std::move(piece);
