@@ -78,7 +78,8 @@ void add_hatch_bindings(py::module_& m) {
         py::arg("curves"), py::arg("ground_per_mm"), py::arg("within") = py::none(),
         "ink on the ground: length x family stroke width (mm x ground_per_mm) of the curves, or of their segments "
         "whose middle lies in `within`");
-    m.def("area_within", &area_within, py::arg("face"), py::arg("cell"),
+    m.def("area_within", [](const tex::Region& face, const tex::Region& cell) { return face.area_within(cell); },
+          py::arg("face"), py::arg("cell"),
           "area of the face (less its holes) inside the cell, whose outer ring is taken as convex");
     m.def("hatches_from_curves", &hatches_from_curves, py::arg("curves"),
           "libtex curves (an evaluated style) as hatches, their family read from their labels");

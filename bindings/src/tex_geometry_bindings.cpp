@@ -86,6 +86,8 @@ void add_geometry_bindings(py::module_& m) {
         .def_property_readonly("holes", &Region::holes)
         .def("bbox", &Region::bbox)
         .def("area", &Region::area)
+        .def("area_within", &Region::area_within, py::arg("convex"),
+             "the area of the region inside a convex region (its outer ring)")
         .def("contains", &Region::contains, "even-odd test; points on a ring count as inside")
         .def("boundary", &Region::boundary,
              "the boundary as curves, inside on the left: its labelled edges when it has them, else its rings")

@@ -14,6 +14,7 @@
 #include "carto/error.hpp"
 #include "carto/extract.hpp"
 #include "carto/output.hpp"
+#include "carto/progress.hpp"
 
 namespace {
 
@@ -67,7 +68,8 @@ int partition_main(int argc, char** argv) {
     carto::ExtractOptions o;
     std::string out, png;
     int png_size = 1600;
-    bool overwrite = false, quiet = false, open_line = false, fixed_controls = false;
+    bool overwrite = false, quiet = false, fixed_controls = false;
+    carto::ProgressBar bar(false);
     try {
         for (int i = 1; i < argc; ++i) {
             std::string a = argv[i], v;
@@ -116,19 +118,9 @@ int partition_main(int argc, char** argv) {
         if (png_size < 16 || png_size > 20000) throw Error(Code::Usage, "--png-size must be in 16..20000");
         if (!png.empty() && std::filesystem::path(png).extension() != ".png")
             throw Error(Code::Usage, "--png '" + png + "': not a .png file");
-        int last = -1;
-        const carto::ExtractResult r = carto::extract_partition(o, [&](double f, const std::string& stage) {
-            const int pct = int(f * 100 + 0.5);
-            if (!quiet && pct != last) {
-                std::fprintf(stderr, "\rrockhatch partition: %3d%% %-28s", pct, stage.c_str());
-                std::fflush(stderr);
-                open_line = true;
-                last = pct;
-            }
-            return true;
-        });
-        if (open_line) std::fprintf(stderr, "\n");
-        open_line = false;
+        bar = carto::ProgressBar(!quiet, "rockhatch partition: ");
+        const carto::ExtractResult r = carto::extract_partition(o, std::ref(bar));
+        bar.finish();
         carto::write_partition_gpkg(r.partition, out, overwrite, &r.network, fixed_controls);
         if (!png.empty()) carto::write_partition_png(r, png, png_size);
         if (!quiet)
@@ -142,15 +134,15 @@ int partition_main(int argc, char** argv) {
                      r.partition.faces.size(), ridges, valleys, carto::crs_name(r.partition.crs_wkt).c_str());
         return 0;
     } catch (const Error& e) {
-        if (open_line) std::fprintf(stderr, "\n");
+        bar.finish();
         std::fprintf(stderr, "rockhatch partition: %s\n", e.what());
         return e.exit_code();
     } catch (const std::bad_alloc&) {
-        if (open_line) std::fprintf(stderr, "\n");
+        bar.finish();
         std::fprintf(stderr, "rockhatch partition: out of memory: --dem is too large for this machine (crop or coarsen it)\n");
         return 1;
     } catch (const std::exception& e) {
-        if (open_line) std::fprintf(stderr, "\n");
+        bar.finish();
         std::fprintf(stderr, "rockhatch partition: %s\n", e.what());
         return 1;
     }

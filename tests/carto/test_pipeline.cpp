@@ -750,14 +750,14 @@ TEST(Pipeline, AreaWithinCountsOnlyThePartOfTheFaceInTheCell) {
     // its top edge: area 100 - 4 - 4 = 92.
     const tex::Region face({{0, 0}, {10, 0}, {10, 10}, {6, 10}, {6, 8}, {4, 8}, {4, 10}, {0, 10}},
                            {{{1, 1}, {1, 3}, {3, 3}, {3, 1}}});
-    EXPECT_NEAR(area_within(face, tex::Region({{-5, -5}, {20, -5}, {20, 20}, {-5, 20}})), 92, 1e-9);
+    EXPECT_NEAR(face.area_within(tex::Region({{-5, -5}, {20, -5}, {20, 20}, {-5, 20}})), 92, 1e-9);
     // The cell 0..4 x 0..4 holds 16 less the hole: 12.
-    EXPECT_NEAR(area_within(face, tex::Region({{0, 0}, {4, 0}, {4, 4}, {0, 4}})), 12, 1e-9);
+    EXPECT_NEAR(face.area_within(tex::Region({{0, 0}, {4, 0}, {4, 4}, {0, 4}})), 12, 1e-9);
     // A cell over the notch reaching out of the face: 3..7 x 7..10 less the notch, 12 - 4.
-    EXPECT_NEAR(area_within(face, tex::Region({{3, 7}, {7, 7}, {7, 12}, {3, 12}})), 8, 1e-9);
+    EXPECT_NEAR(face.area_within(tex::Region({{3, 7}, {7, 7}, {7, 12}, {3, 12}})), 8, 1e-9);
     // A cell clockwise, and one outside the face.
-    EXPECT_NEAR(area_within(face, tex::Region({{0, 4}, {0, 0}, {4, 0}, {4, 4}})), 12, 1e-9);
-    EXPECT_NEAR(area_within(face, tex::Region({{20, 20}, {21, 20}, {21, 21}, {20, 21}})), 0, 1e-12);
+    EXPECT_NEAR(face.area_within(tex::Region({{0, 4}, {0, 0}, {4, 0}, {4, 4}})), 12, 1e-9);
+    EXPECT_NEAR(face.area_within(tex::Region({{20, 20}, {21, 20}, {21, 21}, {20, 21}})), 0, 1e-12);
 }
 
 TEST(Pipeline, PrintRefusesAToneCurveAboveItself) {

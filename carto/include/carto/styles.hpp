@@ -154,10 +154,6 @@ Family family_of(const tex::Labels& labels);
 // overlaps counted twice. What a tone budget spends.
 double ink_area(const tex::Curves& c, double ground_per_mm, const tex::Region* within = nullptr);
 
-// Area of `face` (its outer ring less its holes) inside `cell`, whose outer ring is taken as
-// convex (a cell of a jittered grid): each ring clipped by the cell (Sutherland-Hodgman).
-// What a tone budget divides a cell's ink by where the cell reaches out of the face.
-double area_within(const tex::Region& face, const tex::Region& cell);
 
 // The strokes of an evaluated style, their family read from their labels.
 std::vector<Hatch> hatches_from_curves(const tex::Curves& c);

@@ -334,7 +334,7 @@ Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const F
         // The tone under the ceiling, less what the crests and valleys already put in this
         // cell (they run along the face's border, where cells reach out of the face: its part
         // counts): the cell's ink, lines included, follows the shade.
-        const double area = area_within(region, box);
+        const double area = region.area_within(box);
         double inside = 0;
         if (area > 0) {
             const BBox bb = box.bbox();

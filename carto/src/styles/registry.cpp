@@ -234,51 +234,6 @@ double ink_area(const tex::Curves& c, double ground_per_mm, const tex::Region* w
     return ink;
 }
 
-namespace {
-
-double ring_area(const std::vector<Point>& ring) {
-    double a = 0;
-    for (std::size_t i = 0, n = ring.size(); i < n; ++i) a += tex::cross(ring[i], ring[(i + 1) % n]);
-    return a / 2;
-}
-
-// The ring clipped by the convex polygon `clip` (Sutherland-Hodgman); its area is exact for a
-// ring of any shape, though the result may run along the clip's edges more than once. Two
-// buffers serve every clip edge (the ring itself is read, not copied): area_within calls this
-// for every face and grid cell, and a vector per edge made it the style's most frequent
-// allocation.
-std::vector<Point> clip_ring(const std::vector<Point>& ring, const std::vector<Point>& clip) {
-    const double side = ring_area(clip) >= 0 ? 1.0 : -1.0;
-    std::vector<Point> cur, out;
-    const std::vector<Point>* in = &ring;
-    for (std::size_t i = 0, n = clip.size(); i < n && !in->empty(); ++i) {
-        const Point a = clip[i], b = clip[(i + 1) % n];
-        auto inside = [&](const Point& q) { return side * tex::cross(b - a, q - a) >= 0; };
-        out.clear();
-        out.reserve(in->size() + 2);
-        for (std::size_t k = 0, m = in->size(); k < m; ++k) {
-            const Point p = (*in)[k], q = (*in)[(k + 1) % m];
-            const bool pin = inside(p), qin = inside(q);
-            if (pin) out.push_back(p);
-            if (pin != qin) {
-                const double dp = tex::cross(b - a, p - a), dq = tex::cross(b - a, q - a);
-                out.push_back(p + (q - p) * (dp / (dp - dq)));
-            }
-        }
-        std::swap(cur, out);
-        in = &cur;
-    }
-    return in == &ring ? ring : cur;
-}
-
-}  // namespace
-
-double area_within(const tex::Region& face, const tex::Region& cell) {
-    double a = std::abs(ring_area(clip_ring(face.outer(), cell.outer())));
-    for (const auto& h : face.holes()) a -= std::abs(ring_area(clip_ring(h, cell.outer())));
-    return std::max(a, 0.0);
-}
-
 std::vector<Hatch> hatch_face(const tex::Arrangement& style, const Partition& p, std::size_t face,
                               std::uint64_t seed) {
     tex::SeedScope scoped_seed(seed);

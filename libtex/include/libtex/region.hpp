@@ -29,6 +29,11 @@ public:
     bool empty() const { return outer_.empty(); }
     const BBox& bbox() const { return bbox_; }
     double area() const;
+    // The area of this region (its outer ring less its holes) inside `convex`, whose outer
+    // ring is taken as convex (a cell of a jittered grid): each ring clipped by it
+    // (Sutherland-Hodgman). What a tone budget divides a cell's ink by where the cell reaches
+    // out of a face.
+    double area_within(const Region& convex) const;
     // Even-odd test over all rings; points on a ring count as inside.
     bool contains(const Point& p) const;
     // The boundary as curves, inside on the left: the labelled edges when the region has
