@@ -1,4 +1,5 @@
 #include "carto/control_fields.hpp"
+#include "carto/partition.hpp"
 
 #include <algorithm>
 #include <cmath>

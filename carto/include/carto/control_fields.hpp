@@ -5,12 +5,13 @@
 
 #include <vector>
 
-#include "carto/partition.hpp"
 #include "carto/raster.hpp"
 #include "carto/terrain.hpp"
 #include "libtex/fields.hpp"
 
 namespace carto {
+
+struct Partition;  // carto/partition.hpp
 
 // libtex's fields: closed forms, grids, face-wise constants and their compositions.
 using Field = tex::Field;

@@ -19,12 +19,15 @@
 #include <vector>
 
 #include "carto/control_fields.hpp"
-#include "carto/partition.hpp"
 #include "carto/terrain.hpp"
 #include "libtex/arrangement.hpp"
 #include "libtex/curves.hpp"
 
 namespace carto {
+
+// The partition (carto/partition.hpp): a style program reads its face as a labelled region, not
+// the partition's types.
+struct Partition;
 
 using Polyline = std::vector<Point>;
 

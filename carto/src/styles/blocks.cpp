@@ -6,12 +6,12 @@
 #include <sstream>
 
 #include "carto/error.hpp"
+#include "hanging.hpp"
 
 namespace carto::blocks {
 using namespace tex;
 
 namespace {
-double clamp01(double v) { return std::clamp(v, 0.0, 1.0); }
 Point dir(double a) { return {std::cos(a), std::sin(a)}; }
 Stripes stripes(double angle, double width, const std::string& label = "") {
     Stripes s = StripesProperties(angle, width);
@@ -104,7 +104,7 @@ const std::vector<StyleParam> kCross = {
 
 FaceReading read_face(const ControlFields& f, const Region& r) {
     FaceReading out;
-    const Point inside = interior_point(r);
+    const Point inside = InteriorPoint(r);
     const double t = f.orientation(inside), d = f.density(inside);
     if (!std::isnan(t)) out.theta = t;
     if (!std::isnan(d)) out.density = d;
@@ -201,25 +201,9 @@ Arrangement ridge_peaks(const ControlFields& f, const ParamValues& p, const Face
     return MapToVertices(shape, StripesPartition(stripes(face.theta, p.at("peak_spacing"))));
 }
 
-namespace {
-// Stroke k hanging from a crest line has (kShortestCrestStroke + (1 - kShortestCrestStroke) x
-// ThinRank(k)) of the longest length: golden-ratio ranks spread the lengths evenly, so the ink
-// fades down the slope from the line instead of ending in a comb's edge.
-constexpr double kShortestCrestStroke = 0.35;
-// Near a ridge's end the strokes shrink, to this fraction of their length at the end itself,
-// growing to their full length (1 - this) x crest_length from it: the fringe tapers with the crest.
-constexpr double kCrestEndTaper = 0.3;
-// A stroke leaves the crest line within 60 degrees of its normal (this cosine): where the fall
-// line runs nearly along the crest (a spur falling away), the line is drawn alone; a stroke
-// turned off the fall line there would cross the fill strokes and read as a net.
-constexpr double kCrestStrokeMinCos = 0.5;
-// The share of the strokes hanging from a cliff top kept on fully lit rock (all in full shade).
-constexpr double kLitCliffStrokes = 0.33;
+// The strokes hanging from lines (hanging.hpp).
+namespace detail {
 
-// The direction of a stroke hanging from a line at `foot` into the side `n` (unit normal):
-// the fall line read half the longest stroke down that side (on the line itself it averages
-// two opposite slopes), the face's orientation when not following it or where it reads NaN;
-// none where it runs within 60 degrees of the line.
 std::optional<Point> hanging_direction(const ControlFields& f, const FaceReading& face, bool follow,
                                        const Point& foot, const Point& n, double longest) {
     double angle = face.theta;
@@ -233,15 +217,12 @@ std::optional<Point> hanging_direction(const ControlFields& f, const FaceReading
     return d;
 }
 
-// The length of stroke k hanging from a line, `base` for the longest: a golden-ratio share
-// kShortestCrestStroke .. 1 of it, shorter within `longest` of the line's nearer end
-// (`to_end` from stroke k's foot).
 double hanging_length(double base, long long k, double spacing, double to_end, double longest) {
     const double from_end = std::min((double(k) + 0.5) * spacing, to_end);
     const double taper = std::min(1.0, kCrestEndTaper + from_end / longest);
     return base * (kShortestCrestStroke + (1 - kShortestCrestStroke) * ThinRank(k)) * taper;
 }
-}  // namespace
+}  // namespace detail
 
 Arrangement crest_lines(const ParamValues& p) {
     const double step = p.at("crest_smoothing");
@@ -382,253 +363,6 @@ Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const F
         return out;
     };
     return MapToFaces(hatch_cell, grid);
-}
-
-namespace {
-// The DEM's cell when the pipeline gave it (0: unknown).
-double dem_cell(const ParamValues& p) {
-    const auto it = p.find(kDemCell);
-    return it == p.end() ? 0.0 : it->second;
-}
-
-// The box of a face grown by the structure margin, as a region to trace lines on.
-Region grown_box(const ParamValues& p, const Region& region) {
-    const BBox b = region.bbox().expanded(structure_margin(p));
-    return Region::rectangle(b.xmin, b.ymin, b.xmax, b.ymax);
-}
-
-// Lines traced on a lattice of `cell`, smoothed over about crest_smoothing, the pieces at
-// least `min_length` long, labelled.
-Curves structure_pieces(const Curves& traced, const ParamValues& p, double cell, double min_length,
-                        const std::string& label) {
-    const int half = std::max(1, int(std::lround(p.at("crest_smoothing") / cell)));
-    Curves out;
-    for (Curve& c : MovingAverage(traced, half).curves) {
-        double length = 0;
-        const std::size_t n = c.points.size();
-        for (std::size_t i = 0; i + 1 < n + (c.closed ? 1 : 0); ++i) length += distance(c.points[i], c.points[(i + 1) % n]);
-        if (n < 2 || length < min_length) continue;
-        c.labels.add(label);
-        out.curves.push_back(std::move(c));
-    }
-    return out;
-}
-
-// The edges of the face's border labelled `label`, as curves.
-Curves border_lines(const Region& region, const std::string& label) {
-    return MapToEdges([label](const Edge& e) { return HasLabel(e, label) ? ToCurve(e) : Nothing(); }, Outline())(region);
-}
-}  // namespace
-
-double structure_margin(const ParamValues& p) {
-    return std::max(p.at("crease_min_length"), p.at("cliff_min_length")) + 2 * p.at("crest_smoothing");
-}
-
-tex::Curves cliff_tops(const ControlFields& f, const ParamValues& p, const Region& region) {
-    const double cell = std::max(p.at("crest_smoothing"), dem_cell(p)) / 4;
-    const Curves levels = IsoLines(f.slope, p.at("cliff_slope"), cell)(grown_box(p, region));
-    Curves runs;
-    for (const Curve& c : levels.curves) {
-        // Runs of the line along which the band (on its left) lies lower: a cliff's top.
-        std::vector<Point> pts = c.points;
-        if (c.closed) pts.push_back(pts.front());
-        std::vector<Point> run;
-        auto flush = [&] {
-            if (run.size() >= 2) runs.append(tex::Polyline(run));
-            run.clear();
-        };
-        for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
-            const Point a = pts[i], b = pts[i + 1];
-            const double l = distance(a, b);
-            bool top = false;
-            if (l > 0) {
-                const Point mid = (a + b) / 2, left{-(b - a).y / l, (b - a).x / l};
-                const double into = f.height(mid + left * cell), out = f.height(mid - left * cell);
-                top = into < out;  // NaN: not a top
-            }
-            if (top) {
-                if (run.empty()) run.push_back(a);
-                run.push_back(b);
-            } else {
-                flush();
-            }
-        }
-        flush();
-    }
-    return structure_pieces(runs, p, cell, p.at("cliff_min_length"), "cliff");
-}
-
-Structure structure_lines(const ControlFields& f, const ParamValues& p, const Region& region) {
-    Structure s;
-    const double cell = std::max(p.at("crest_smoothing"), dem_cell(p)) / 2, snap = p.at("crest_smoothing");
-    const double bend = p.at("crease_bend") / p.at(kGroundPerMm);
-    const Region box = grown_box(p, region);
-    s.cliffs = cliff_tops(f, p, region);
-    // Crests: not along a cliff top (drawn as such).
-    const Curves crests = Creases(f.elevation, CreaseKind::Ridge, cell, bend)(box);
-    s.ridges = structure_pieces(Apart(Constant(crests), s.cliffs, snap)(box), p, cell, p.at("crease_min_length"),
-                                "ridgeline");
-    s.couloirs = structure_pieces(Creases(f.elevation, CreaseKind::Valley, cell, bend)(box), p, cell,
-                                  p.at("crease_min_length"), "couloir");
-    return s;
-}
-
-Structure given_first(const ParamValues& p, const Structure& s, const Region& region) {
-    const double snap = p.at("crest_smoothing");
-    auto apart = [&](const Curves& lines, const std::string& given, double min_length) {
-        const Curves on_border = border_lines(region, given);
-        if (on_border.empty()) return lines;
-        Curves out;
-        for (Curve& c : Apart(Constant(lines), on_border, snap)(region).curves) {
-            double length = 0;
-            for (std::size_t i = 0; i + 1 < c.points.size(); ++i) length += distance(c.points[i], c.points[i + 1]);
-            if (length >= min_length) out.curves.push_back(std::move(c));
-        }
-        return out;
-    };
-    return {apart(s.ridges, "ridge", p.at("crease_min_length")), apart(s.couloirs, "valley", p.at("crease_min_length")),
-            apart(s.cliffs, "cliff", p.at("cliff_min_length"))};
-}
-
-tex::Curves given_cliffs(const ControlFields& f, const Region& region) {
-    Curves out;
-    for (Curve& c : border_lines(region, "cliff").curves) {
-        // Turned so that the ground falls on its left (into the band), by the heights a
-        // step either side of its points.
-        double lower_left = 0;
-        const std::size_t n = c.points.size();
-        for (std::size_t i = 0; i + 1 < n; ++i) {
-            const Point a = c.points[i], b = c.points[i + 1];
-            const double l = distance(a, b);
-            if (l == 0) continue;
-            const Point mid = (a + b) / 2, left{-(b - a).y / l, (b - a).x / l};
-            const double step = std::max(l, 1e-9);
-            const double zl = f.elevation(mid + left * step), zr = f.elevation(mid - left * step);
-            if (!std::isnan(zl) && !std::isnan(zr)) lower_left += (zr - zl) * l;
-        }
-        if (lower_left < 0) std::reverse(c.points.begin(), c.points.end());
-        // Drawn by the face its band lies in (below it), or, where no face lies there, by the
-        // face above it.
-        bool mine = false;
-        for (std::size_t i = 0; i + 1 < n && !mine; ++i) {
-            const Point a = c.points[i], b = c.points[i + 1];
-            const double l = distance(a, b);
-            if (l == 0) continue;
-            const Point below = (a + b) / 2 + Point{-(b - a).y / l, (b - a).x / l} * std::min(0.5 * l, 1.0);
-            mine = region.contains(below) || std::isnan(f.density(below));
-            break;
-        }
-        if (!mine) continue;
-        Curve k;
-        k.points = std::move(c.points);
-        k.closed = c.closed;
-        k.labels.add("cliff");
-        out.curves.push_back(std::move(k));
-    }
-    return out;
-}
-
-namespace {
-constexpr double kTaperOffsetMm = 0.05;  // between the strokes that widen a crest line
-constexpr double kTaperEndMm = 0.7;      // the first widening stroke starts this far from the line's ends
-constexpr double kTaperFall = 1.5;       // the fall (per length) over 1 mm on paper of a full wall below
-}  // namespace
-
-tex::Curves tapered(const ControlFields& f, const ParamValues& p, const Curves& lines) {
-    const double mm = p.at(kGroundPerMm);
-    Curves out = lines;
-    for (const Curve& c : lines.curves) {
-        const std::size_t n = c.points.size();
-        if (n < 3 || c.closed) continue;
-        // Arc length at each point, the side and the wall below it.
-        std::vector<double> at(n, 0.0);
-        for (std::size_t i = 1; i < n; ++i) at[i] = at[i - 1] + distance(c.points[i - 1], c.points[i]);
-        const double total = at.back();
-        std::vector<Point> normal(n);
-        std::vector<double> wall(n, 0.0);
-        for (std::size_t i = 0; i < n; ++i) {
-            const Point t = c.points[std::min(i + 1, n - 1)] - c.points[i > 0 ? i - 1 : 0];
-            const double l = std::hypot(t.x, t.y);
-            if (l == 0) continue;
-            Point nrm{-t.y / l, t.x / l};
-            const double sl = f.shade(c.points[i] + nrm * (0.5 * mm)), sr = f.shade(c.points[i] - nrm * (0.5 * mm));
-            if (std::isnan(sl) || (!std::isnan(sr) && sr > sl)) nrm = -nrm;
-            const double z0 = f.elevation(c.points[i]), z1 = f.elevation(c.points[i] + nrm * mm);
-            normal[i] = nrm;
-            wall[i] = std::isnan(z0) || std::isnan(z1) ? 0.0 : clamp01((z0 - z1) / (kTaperFall * mm));
-        }
-        for (int k = 1; k <= 2; ++k) {
-            std::vector<Point> run;
-            auto flush = [&] {
-                if (run.size() >= 2) {
-                    Curve w;
-                    w.points = std::move(run);
-                    w.labels = c.labels;
-                    out.curves.push_back(std::move(w));
-                }
-                run.clear();
-            };
-            for (std::size_t i = 0; i < n; ++i) {
-                const bool on = wall[i] >= k / 3.0 && std::min(at[i], total - at[i]) >= k * kTaperEndMm * mm &&
-                                (run.empty() || dot(normal[i], normal[i - 1]) > 0);
-                if (!on) {
-                    flush();
-                    continue;
-                }
-                run.push_back(c.points[i] + normal[i] * (k * kTaperOffsetMm * mm));
-            }
-            flush();
-        }
-    }
-    return out;
-}
-
-tex::Curves shadow_strokes(const ControlFields& f, const ParamValues& p, const FaceReading& face, const Curves& lines) {
-    const double longest = p.at("crest_length"), spacing = p.at("crest_spacing");
-    const bool follow = p.at("follow_fall_line") > 0;
-    auto hang = [&](const Point& foot, const Point& t, long long k, double to_end) -> Curves {
-        Point n{-t.y, t.x};
-        double shade = f.shade(foot + n * (0.5 * longest));
-        const double other = f.shade(foot - n * (0.5 * longest));
-        if (std::isnan(shade) || (!std::isnan(other) && other > shade)) {
-            n = -n;
-            shade = other;
-        }
-        if (std::isnan(shade)) return Nothing();
-        if (ThinRank(k) > kLitCliffStrokes + (1 - kLitCliffStrokes) * clamp01(shade)) return Nothing();
-        const std::optional<Point> d = hanging_direction(f, face, follow, foot, n, longest);
-        if (!d) return Nothing();
-        double h = f.height(foot);
-        if (std::isnan(h)) h = face.height;
-        const double base = longest * (1 + p.at("crest_height_gain") * clamp01(h));
-        return Labelled(tex::Polyline({foot, foot + *d * hanging_length(base, k, spacing, to_end, longest)}), "ridge");
-    };
-    return MapAlong(lines, spacing, hang);
-}
-
-tex::Curves cliff_strokes(const ControlFields& f, const ParamValues& p, const FaceReading& face, const Curves& tops) {
-    const double longest = p.at("cliff_length"), spacing = p.at("crest_spacing");
-    const bool follow = p.at("follow_fall_line") > 0;
-    auto hang = [&](const Point& foot, const Point& t, long long k, double to_end) -> Curves {
-        const Point n{-t.y, t.x};  // into the band: the line runs with the band on its left
-        const std::optional<Point> d = hanging_direction(f, face, follow, foot, n, longest);
-        if (!d) return Nothing();
-        // Dense in shade, sparse on lit rock: stroke k is kept when its golden-ratio rank is
-        // under the shade (from a third of them on fully lit ground).
-        double shade = f.shade(foot + n * (0.5 * longest));
-        if (std::isnan(shade)) shade = face.density;
-        if (ThinRank(k) > kLitCliffStrokes + (1 - kLitCliffStrokes) * std::clamp(shade, 0.0, 1.0)) return Nothing();
-        // As long as the band is high: down to where the slope falls under cliff_slope again.
-        const double step = 0.1 * p.at(kGroundPerMm);
-        double band = longest;
-        for (double t = step; t < longest; t += step)
-            if (!(f.slope(foot + *d * t) >= p.at("cliff_slope"))) {
-                band = t;
-                break;
-            }
-        return Labelled(tex::Polyline({foot, foot + *d * hanging_length(band, k, spacing, to_end, longest)}), "ridge");
-    };
-    return MapAlong(tops, spacing, hang);
 }
 
 void check_fray(const ParamValues& p) {

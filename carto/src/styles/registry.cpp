@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "carto/error.hpp"
+#include "carto/partition.hpp"
 #include "libtex/random.hpp"
 #include "builtins.hpp"
 #include "terrain_tools.hpp"

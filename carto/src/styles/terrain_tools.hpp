@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "carto/partition.hpp"
 #include "carto/styles.hpp"
 #include "libtex/discrete.hpp"
 
