@@ -662,6 +662,14 @@ TEST(Merge, ApartLeavesAGapAlongTheLines) {
     ASSERT_EQ(round.curves.size(), 2u);
     EXPECT_NEAR(round.curves[0].points.back().x, 4.2, 1e-9);
     EXPECT_NEAR(round.curves[1].points.front().x, 5.8, 1e-9);
+    // A closed ring cut once is one piece, whichever point it starts from.
+    const Curves ring = Apart(Constant(Polyline({{0, 0}, {10, 0}, {10, 10}, {0, 10}}, true)),
+                              Polyline({{5, 9}, {5, 12}}), 1.0)(Region::rectangle(-1, -1, 11, 13));
+    ASSERT_EQ(ring.curves.size(), 1u);
+    EXPECT_FALSE(ring.curves[0].closed);
+    EXPECT_NEAR(ring.curves[0].points.front().x, 4.0, 1e-9);
+    EXPECT_NEAR(ring.curves[0].points.back().x, 6.0, 1e-9);
+    EXPECT_EQ(ring.curves[0].points.size(), 6u);
     EXPECT_THROW(Apart(Constant(strokes), line, 0.0), Error);
 }
 

@@ -57,9 +57,15 @@ tex::Curves cliff_tops(const ControlFields& f, const ParamValues& p, const Regio
     const Curves levels = IsoLines(f.slope, p.at("cliff_slope"), cell)(grown_box(p, region));
     Curves runs;
     for (const Curve& c : levels.curves) {
-        // Runs of the line along which the band (on its left) lies lower: a cliff's top.
+        // Runs of the line along which the band (on its left) lies lower: a cliff's top. A
+        // closed line is read from its smallest point, not from where its tracing started
+        // (which depends on the box), and kept closed when it is a top all round.
         std::vector<Point> pts = c.points;
-        if (c.closed) pts.push_back(pts.front());
+        if (c.closed) {
+            std::rotate(pts.begin(), std::min_element(pts.begin(), pts.end()), pts.end());
+            pts.push_back(pts.front());
+        }
+        const std::size_t before = runs.curves.size();
         std::vector<Point> run;
         auto flush = [&] {
             if (run.size() >= 2) runs.append(tex::Polyline(run));
@@ -82,6 +88,10 @@ tex::Curves cliff_tops(const ControlFields& f, const ParamValues& p, const Regio
             }
         }
         flush();
+        if (c.closed && runs.curves.size() == before + 1 && runs.curves.back().points.size() == pts.size()) {
+            runs.curves.back().points.pop_back();
+            runs.curves.back().closed = true;
+        }
     }
     return structure_pieces(runs, p, cell, p.at("cliff_min_length"), "cliff");
 }

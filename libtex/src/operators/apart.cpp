@@ -163,6 +163,14 @@ Arrangement Apart(Arrangement a, Curves lines, double distance) {
                 continue;
             }
             if (run.size() >= 2) pieces.push_back(run);
+            // A closed curve kept through its first point: the pieces before and after that
+            // point are one piece (wherever the curve happened to start).
+            if (c.closed && pieces.size() >= 2 && pieces.front().front() == pts.front() &&
+                pieces.back().back() == pts.back()) {
+                std::vector<Point>& last = pieces.back();
+                last.insert(last.end(), pieces.front().begin() + 1, pieces.front().end());
+                pieces.erase(pieces.begin());
+            }
             for (auto& piece : pieces) {
                 Curve k;
                 k.points = std::move(piece);
