@@ -903,29 +903,25 @@ TEST(Pipeline, TheRockStructureLinesFollowTheTerrainAndCrossFaces) {
         const double l = tex::norm(t);
         return Point{-t.y / l * mm, t.x / l * mm};
     };
-    for (std::size_t i = 0; i < all.size(); ++i) {
-        for (const auto& c : all[i].ridges.curves) {
-            EXPECT_TRUE(c.labels.has("ridgeline"));
+    // Each point of the lines: counted, and whether it stands above (below) the ground 1 mm
+    // either side across the line.
+    auto profile = [&](const tex::Curves& lines, const char* label, std::size_t& points, std::size_t& above,
+                       std::size_t& below) {
+        for (const auto& c : lines.curves) {
+            EXPECT_TRUE(c.labels.has(label));
             for (std::size_t k = 0; k < c.points.size(); ++k) {
                 const Point q = c.points[k], n = across(c, k);
                 const double z = f.elevation(q), a = f.elevation(q + n), b = f.elevation(q - n);
                 if (std::isnan(z) || std::isnan(a) || std::isnan(b)) continue;
-                ++ridge_points;
-                on_crest += z > a && z > b;
-                ridge_in_floor += z < a && z < b;
+                ++points;
+                above += z > a && z > b;
+                below += z < a && z < b;
             }
         }
-        for (const auto& c : all[i].couloirs.curves) {
-            EXPECT_TRUE(c.labels.has("couloir"));
-            for (std::size_t k = 0; k < c.points.size(); ++k) {
-                const Point q = c.points[k], n = across(c, k);
-                const double z = f.elevation(q), a = f.elevation(q + n), b = f.elevation(q - n);
-                if (std::isnan(z) || std::isnan(a) || std::isnan(b)) continue;
-                ++couloir_points;
-                in_floor += z < a && z < b;
-                couloir_on_crest += z > a && z > b;
-            }
-        }
+    };
+    for (const auto& s : all) {
+        profile(s.ridges, "ridgeline", ridge_points, on_crest, ridge_in_floor);
+        profile(s.couloirs, "couloir", couloir_points, couloir_on_crest, in_floor);
     }
     ASSERT_GT(ridge_points, 200u);
     ASSERT_GT(couloir_points, 200u);

@@ -25,6 +25,14 @@ Region grown_box(const ParamValues& p, const Region& region) {
     return Region::rectangle(b.xmin, b.ymin, b.xmax, b.ymax);
 }
 
+// The length of a curve (round a closed one).
+double curve_length(const Curve& c) {
+    double length = 0;
+    const std::size_t n = c.points.size();
+    for (std::size_t i = 0; i + 1 < n + (c.closed ? 1 : 0); ++i) length += distance(c.points[i], c.points[(i + 1) % n]);
+    return length;
+}
+
 // Lines traced on a lattice of `cell`, smoothed over about crest_smoothing, the pieces at
 // least `min_length` long, labelled.
 Curves structure_pieces(const Curves& traced, const ParamValues& p, double cell, double min_length,
@@ -32,10 +40,7 @@ Curves structure_pieces(const Curves& traced, const ParamValues& p, double cell,
     const int half = std::max(1, int(std::lround(p.at("crest_smoothing") / cell)));
     Curves out;
     for (Curve& c : MovingAverage(traced, half).curves) {
-        double length = 0;
-        const std::size_t n = c.points.size();
-        for (std::size_t i = 0; i + 1 < n + (c.closed ? 1 : 0); ++i) length += distance(c.points[i], c.points[(i + 1) % n]);
-        if (n < 2 || length < min_length) continue;
+        if (c.points.size() < 2 || curve_length(c) < min_length) continue;
         c.labels.add(label);
         out.curves.push_back(std::move(c));
     }
@@ -117,11 +122,8 @@ Structure given_first(const ParamValues& p, const Structure& s, const Region& re
         const Curves on_border = border_lines(region, given);
         if (on_border.empty()) return lines;
         Curves out;
-        for (Curve& c : Apart(Constant(lines), on_border, snap)(region).curves) {
-            double length = 0;
-            for (std::size_t i = 0; i + 1 < c.points.size(); ++i) length += distance(c.points[i], c.points[i + 1]);
-            if (length >= min_length) out.curves.push_back(std::move(c));
-        }
+        for (Curve& c : Apart(Constant(lines), on_border, snap)(region).curves)
+            if (curve_length(c) >= min_length) out.curves.push_back(std::move(c));
         return out;
     };
     return {apart(s.ridges, "ridge", p.at("crease_min_length")), apart(s.couloirs, "valley", p.at("crease_min_length")),
