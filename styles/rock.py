@@ -6,10 +6,10 @@ the elevation), drawn wider above walls on their shadow side, with strokes hangi
 on that side; the tops of the cliff bands (where the slope passes cliff_slope), with rows of
 strokes hanging down to the band's foot; the couloirs, thin lines the fill strokes keep away
 from. The fill and cross strokes of print.py take the ink the structure leaves under the tone
-curve. Where rock meets scree, grass or ice, the fill and cross strokes are drawn back from
-the face's border by an irregular length between fray_min and fray_max (libtex's
-FrayedCrop): the rock ends where its strokes end, in a ragged band, not along one smooth
-line. A border with another rock face across it, or with a ridge or cliff on it, keeps its
+curve. Where rock meets scree, grass or ice, the fill and cross strokes end at an irregular
+distance between fray_min and fray_max from the face's border, inside it or (for the share
+fray_beyond) past it (libtex's FrayedCrop): the rock ends where its strokes end, in a ragged
+band across the border, not along one smooth line. A border with another rock face across it, or with a ridge or cliff on it, keeps its
 strokes to the line.
 
 The style is a program over the native style blocks (rockhatch.carto.blocks, the

@@ -134,10 +134,11 @@ void bind_blocks(py::module_& m) {
     m.def("cliff_strokes", &blocks::cliff_strokes, py::arg("fields"), py::arg("params"), py::arg("face"),
           py::arg("tops"), "rows of strokes hanging from cliff tops down the fall line");
     m.def("check_fray", &blocks::check_fray, py::arg("params"),
-          "raises RockhatchError (usage) unless 0 <= fray_min <= fray_max");
+          "raises RockhatchError (usage) unless 0 <= fray_min <= fray_max and fray_beyond <= 1");
     m.def("frayed", &blocks::frayed, py::arg("fields"), py::arg("params"), py::arg("arrangement"),
-          "the arrangement cut to the face, its strokes drawn back irregularly from the rock's edge "
-          "(fray_min .. fray_max; not where a face lies across or a ridge or cliff lies on the border)");
+          "the arrangement cut to the face, its strokes ending irregularly across the rock's edge "
+          "(fray_min .. fray_max back from it, or past it for the share fray_beyond; not where a face lies "
+          "across or a ridge or cliff lies on the border)");
     m.def("valleys", &blocks::valleys, "(f) the valleys the face owns");
     m.def("cross_hatching", &blocks::cross_hatching, py::arg("fields"), py::arg("params"), py::arg("face"),
           "(g) cross hatches in the coarse cells rough enough, denser when rougher");

@@ -205,13 +205,16 @@ void add_merge_bindings(py::module_& m) {
           "a evaluated on the region and cut to it (CROP_ADD_BOUNDARY adds the region's labelled outline)");
     m.def(
         "FrayedCrop",
-        [](Arrangement a, double min, double max, const py::object& across, std::vector<std::string> hard) {
-            return FrayedCrop(std::move(a), min, max, across.is_none() ? Field() : to_field(across), std::move(hard));
+        [](Arrangement a, double min, double max, const py::object& across, std::vector<std::string> hard,
+           double beyond) {
+            return FrayedCrop(std::move(a), min, max, across.is_none() ? Field() : to_field(across), std::move(hard),
+                              beyond);
         },
         py::arg("a"), py::arg("min"), py::arg("max"), py::arg("across") = py::none(),
-        py::arg("hard") = std::vector<std::string>{},
+        py::arg("hard") = std::vector<std::string>{}, py::arg("beyond") = 0.0,
         "a cut to the region, each end of an open curve on the region's border drawn back by a random length in "
-        "[min, max], except on edges labelled one of `hard` and where `across` has a value beyond the border");
+        "[min, max], except on edges labelled one of `hard` and where `across` has a value beyond the border; "
+        "the share `beyond` of those ends drawn on past the border to that depth instead, where the way is free");
     m.def("Apart", &Apart, py::arg("a"), py::arg("lines"), py::arg("distance"),
           "the curves of a less their parts within `distance` of the lines (a gap left along them)");
     m.def("Outline", &Outline, "the region evaluated on as an arrangement: its labelled edges, else its rings");

@@ -821,8 +821,9 @@ TEST(Fields, FaceWiseRasterAndClosedFormFieldsDriveAStyle) {
 }
 
 // The rock style has no drawn outline: where no face lies across a border and no ridge lies
-// on it, fill and cross strokes end at least fray_min inside it, spread over the band up to
-// fray_max; the same drawing on any number of threads.
+// on it, fill and cross strokes end at least fray_min from it, spread over the band up to
+// fray_max on both sides of it (fray_beyond's share past it); the same drawing on any number
+// of threads.
 TEST(Pipeline, TheRockStyleDrawsNoOutline) {
     Options o = sample_options("rock");
     o.threads = 1;
@@ -860,8 +861,12 @@ TEST(Pipeline, TheRockStyleDrawsNoOutline) {
         }
         return best;
     };
-    std::size_t ends = 0, shallow = 0, deep = 0, too_close = 0;
+    std::size_t ends = 0, shallow = 0, deep = 0, too_close = 0, outside = 0;
     for (std::size_t k = 0; k < d.faces.size(); ++k) {
+        std::size_t index = 0;
+        while (index < part.faces.size() && part.faces[index].id != d.faces[k].face_id) ++index;
+        ASSERT_LT(index, part.faces.size());
+        const tex::Region region = face_region(part, index);
         ASSERT_EQ(d.faces[k].hatches.size(), d2.faces[k].hatches.size());
         for (std::size_t i = 0; i < d.faces[k].hatches.size(); ++i) {
             const Hatch& h = d.faces[k].hatches[i];
@@ -872,16 +877,21 @@ TEST(Pipeline, TheRockStyleDrawsNoOutline) {
                 if (dist > 2 * mm) continue;
                 ++ends;
                 too_close += dist < 0.2 * mm - 1e-6;
-                shallow += dist >= 0.2 * mm - 1e-6 && dist < 0.85 * mm;
-                deep += dist >= 0.85 * mm && dist <= 1.5 * mm + 1e-6;
+                shallow += dist >= 0.2 * mm - 1e-6 && dist < 0.45 * mm;
+                deep += dist >= 0.45 * mm && dist <= 0.75 * mm + 1e-6;
+                outside += !region.contains(e);
             }
         }
     }
     ASSERT_GT(ends, 1000u);
     EXPECT_LT(double(too_close) / double(ends), 0.01) << too_close << " of " << ends;
-    // Ragged: the ends spread over the band (the rest, farther than 1.5 mm, end on their own).
-    EXPECT_GT(double(shallow) / double(ends), 0.2) << shallow << " of " << ends;
-    EXPECT_GT(double(deep) / double(ends), 0.2) << deep << " of " << ends;
+    // Ragged: the ends spread over the band (the rest, farther than 0.75 mm, end on their own),
+    // on both sides of the border.
+    EXPECT_GT(double(shallow) / double(ends), 0.15) << shallow << " of " << ends;
+    EXPECT_GT(double(deep) / double(ends), 0.15) << deep << " of " << ends;
+    const double band = double(shallow + deep);
+    EXPECT_GT(double(outside) / band, 0.1) << outside << " of " << band;
+    EXPECT_LT(double(outside) / band, 0.6) << outside << " of " << band;
 }
 
 // The rock style's structure lines: crests on crests and couloirs in couloirs of the DEM, one

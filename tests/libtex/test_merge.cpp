@@ -635,6 +635,66 @@ TEST(Merge, FrayedCropIsKeyedBySeedAndGeometryOnly) {
     EXPECT_THROW(FrayedCrop(rows(), -1.0, 1.0), Error);
 }
 
+// With `beyond`, that share of the ends goes on past the border to the band's depth outside
+// (straight on), the rest back inside: the curves end on both sides of the border, none on
+// it, and an end whose way out meets another face goes back in instead.
+TEST(Merge, FrayedCropDrawsAShareOfTheEndsOnPastTheBorder) {
+    SetSeed(3);
+    const Region& sq = kTall;
+    auto signed_depth = [](const Point& p) { return p.x < 5 ? p.x : 10 - p.x; };  // < 0: outside
+    for (double beyond : {0.0, 0.5, 1.0}) {
+        const Curves c = FrayedCrop(rows(), 0.5, 2.0, Field(), {}, beyond)(sq);
+        ASSERT_EQ(c.curves.size(), 20u) << beyond;
+        std::size_t outside = 0, ends = 0;
+        for (const auto& k : c.curves) {
+            EXPECT_EQ(k.points.size(), 2u);
+            EXPECT_EQ(k.points.front().y, k.points.back().y);  // straight on, along the row
+            for (const Point& p : {k.points.front(), k.points.back()}) {
+                const double d = signed_depth(p);
+                ++ends;
+                outside += d < 0;
+                EXPECT_GE(std::abs(d), 0.5 - 1e-6) << beyond;
+                EXPECT_LE(std::abs(d), 2.0 + 1e-6) << beyond;
+            }
+        }
+        if (beyond == 0) EXPECT_EQ(outside, 0u);
+        if (beyond == 1) EXPECT_EQ(outside, ends);
+        if (beyond == 0.5) {
+            EXPECT_GT(outside, ends / 4);
+            EXPECT_LT(outside, 3 * ends / 4);
+        }
+    }
+    // The share's draw is the end's own: the ends that stay inside are those of beyond = 0.
+    // (The same stream for both: the first operator created after SetSeed.)
+    SetSeed(3);
+    const Curves none = FrayedCrop(rows(), 0.5, 2.0)(sq);
+    SetSeed(3);
+    const Curves half = FrayedCrop(rows(), 0.5, 2.0, Field(), {}, 0.5)(sq);
+    ASSERT_EQ(none.curves.size(), half.curves.size());
+    for (std::size_t i = 0; i < half.curves.size(); ++i) {
+        const auto &h = half.curves[i].points, &n = none.curves[i].points;
+        if (signed_depth(h.front()) > 0) EXPECT_NEAR(h.front().x, n.front().x, 1e-6);
+        if (signed_depth(h.back()) > 0) EXPECT_NEAR(h.back().x, n.back().x, 1e-6);
+        // One that goes out goes as deep as it would have gone in.
+        if (signed_depth(h.front()) < 0) EXPECT_NEAR(-h.front().x, n.front().x, 1e-6);
+        if (signed_depth(h.back()) < 0) EXPECT_NEAR(h.back().x - 10, 10 - n.back().x, 1e-6);
+    }
+    // Another face 1 beyond the right side: an end goes out there only as far as the way is
+    // free (never onto the face), the others back in; the left side all go out.
+    const Field across([](const Point& p) { return p.x > 11 ? 1.0 : NAN; });
+    std::size_t left_out = 0, right_in = 0;
+    for (const auto& k : FrayedCrop(rows(), 0.5, 2.0, across, {}, 1.0)(sq).curves) {
+        const double x = k.points.back().x;
+        EXPECT_TRUE((x >= 8.0 - 1e-6 && x <= 9.5 + 1e-6) || (x >= 10.5 - 1e-6 && x < 11)) << x;
+        right_in += x < 10;
+        left_out += k.points.front().x < 0;
+    }
+    EXPECT_EQ(left_out, 20u);
+    EXPECT_GT(right_in, 5u);
+    EXPECT_THROW(FrayedCrop(rows(), 0.5, 2.0, Field(), {}, 1.5), Error);
+    EXPECT_THROW(FrayedCrop(rows(), 0.5, 2.0, Field(), {}, -0.1), Error);
+}
+
 // Apart: a gap left along lines.
 TEST(Merge, ApartLeavesAGapAlongTheLines) {
     // Horizontal strokes across a vertical line at x = 5: each cut in two, the gap exactly the

@@ -17,7 +17,7 @@ using tex::Arrangement;
 // Parameter lists (defaults follow App. E at 1:10000).
 std::vector<StyleParam> fill_params(double length_mm, double jitter);
 extern const std::vector<StyleParam> kTriangles, kCoarse, kPeaks, kBalanced, kHigh, kCross, kTone, kCrest;
-// The band inside the rock's edge where fill strokes end (frayed).
+// The band across the rock's edge where fill strokes end (frayed).
 extern const std::vector<StyleParam> kFray;
 // Cliff bands: where the slope passes cliff_slope, their tops and the strokes hanging from them.
 extern const std::vector<StyleParam> kCliff;
@@ -149,12 +149,13 @@ tex::Curves tapered(const ControlFields& f, const ParamValues& p, const tex::Cur
 // partition's ridges, a third of them kept on lit rock. Labelled "ridge"; uncut.
 tex::Curves shadow_strokes(const ControlFields& f, const ParamValues& p, const FaceReading& face,
                            const tex::Curves& lines);
-// Throws a usage error unless 0 <= fray_min <= fray_max.
+// Throws a usage error unless 0 <= fray_min <= fray_max and fray_beyond <= 1.
 void check_fray(const ParamValues& p);
 // The arrangement a, cut to the face, its strokes drawn back from the rock's edge by a
-// random length in [fray_min, fray_max] (tex::FrayedCrop): where no face lies across the
-// border (the density field has no value there) and no ridge or cliff lies on it, strokes
-// end irregularly in a band inside the border instead of drawing it.
+// random length in [fray_min, fray_max], or for the share fray_beyond of them drawn on past
+// it by that much (tex::FrayedCrop): where no face lies across the border (the density field
+// has no value there) and no ridge or cliff lies on it, strokes end irregularly in a band
+// across the border instead of drawing it, and the band keeps the ink of the tone.
 Arrangement frayed(const ControlFields& f, const ParamValues& p, Arrangement a);
 
 // (f) the valleys the face owns (a valley between two faces is drawn once).

@@ -78,8 +78,10 @@ const std::vector<StyleParam> kCrest = {
     {"crest_smoothing", 0.8, "mm", "crest lines are drawn smooth at this length (shorter bends and steps go)"},
 };
 const std::vector<StyleParam> kFray = {
-    {"fray_min", 0.2, "mm", "strokes end at least this far inside the rock's edge (where nothing lies across it)"},
-    {"fray_max", 1.5, "mm", "and at most this far: they end irregularly in the band between"},
+    {"fray_min", 0.2, "mm", "strokes end at least this far from the rock's edge (where nothing lies across it)"},
+    {"fray_max", 0.75, "mm", "and at most this far: they end irregularly in the band between"},
+    {"fray_beyond", 0.5, "ratio",
+     "this share of the strokes reaching the edge go on past it by as much instead (0 to 1: ends on both sides)"},
 };
 const std::vector<StyleParam> kCliff = {
     {"cliff_slope", 100.0, "%", "cliff bands are where the slope passes this (percent; 100: 45 degrees)"},
@@ -366,6 +368,11 @@ Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const F
 }
 
 void check_fray(const ParamValues& p) {
+    if (!(p.at("fray_beyond") <= 1)) {
+        std::ostringstream m;
+        m << "style: --param fray_beyond=" << p.at("fray_beyond") << " must lie between 0 and 1";
+        throw Error(Code::Usage, m.str());
+    }
     if (!(p.at("fray_min") >= 0) || !(p.at("fray_max") >= p.at("fray_min"))) {
         std::ostringstream m;
         m << "style: --param fray_min=" << p.at("fray_min") / p.at(kGroundPerMm) << " and fray_max="
@@ -375,7 +382,8 @@ void check_fray(const ParamValues& p) {
 }
 
 Arrangement frayed(const ControlFields& f, const ParamValues& p, Arrangement a) {
-    return FrayedCrop(std::move(a), p.at("fray_min"), p.at("fray_max"), f.density, {"ridge", "cliff"});
+    return FrayedCrop(std::move(a), p.at("fray_min"), p.at("fray_max"), f.density, {"ridge", "cliff"},
+                      p.at("fray_beyond"));
 }
 
 Arrangement valleys() {

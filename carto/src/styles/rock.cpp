@@ -5,9 +5,9 @@
 // down to the band's foot; the couloirs, thin lines the fill strokes keep away from, so that
 // they read as gaps between the rock ribs. The fill and cross strokes of the print style take
 // the ink the structure leaves under the tone curve. Where rock meets scree, grass or ice,
-// the fill and cross strokes are drawn back from the face's border by an irregular length
-// (FrayedCrop), so the rock ends where its strokes end, in a ragged band, instead of along one
-// smooth line; a border with rock across it, or a ridge on it, keeps its strokes to the line.
+// the fill and cross strokes end at an irregular distance from the face's border, inside it or
+// past it (FrayedCrop), so the rock ends where its strokes end, in a ragged band across the
+// border, instead of along one smooth line; a border with rock across it, or a ridge on it, keeps its strokes to the line.
 #include "builtins.hpp"
 
 namespace carto::blocks {

@@ -35,9 +35,14 @@ Arrangement Crop(Arrangement a, Border b);
 // `hard` (a structure line drawn there) and less where `across` has a value just beyond it
 // (another face goes on there); the default `across` (NaN everywhere) leaves all of it. The
 // depths are keyed by the end point, the operator's stream and the seed: the same on any
-// thread and in any tiling.
+// thread and in any tiling. With `beyond` > 0, that share of the rim's ends (a draw of their
+// own) is drawn on past the rim instead, its last segment continued straight to the same
+// depth outside the region, where the way is free (not back into the region, not onto
+// another face): the curves then end on both sides of the rim, and the band keeps on
+// average the ink a plain crop leaves (beyond = 1/2). Throws tex::Error naming FrayedCrop
+// for a band or share out of range.
 Arrangement FrayedCrop(Arrangement a, double min, double max, Field across = Field(),
-                       std::vector<std::string> hard = {});
+                       std::vector<std::string> hard = {}, double beyond = 0);
 // The curves of a (evaluated on the region) less their parts within `distance` of any of
 // `lines` (a gap left along them, as a couloir is drawn in rock), cut exactly where they
 // enter that buffer (the union of the capsules round the lines' segments); a curve that

@@ -2,6 +2,7 @@
 // that the border is not drawn by the ends of the curves (rock drawing has no outline).
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -9,6 +10,7 @@
 #include "libtex/error.hpp"
 #include "libtex/merge.hpp"
 #include "libtex/random.hpp"
+#include "libtex/region.hpp"
 
 namespace tex {
 namespace {
@@ -135,15 +137,53 @@ std::vector<Point> draw_back(std::vector<Point> pts, double depth, const BorderI
     return {};
 }
 
+// The polyline pts drawn on past the rim from its end: its last segment continued straight
+// until the end lies `depth` beyond the rim, outside the region (bisected to that depth),
+// and at most 2 depth beyond the old end. False, pts untouched, when the way back into the
+// region, onto another face (a value of `across`) or never that far from the rim.
+bool draw_on(std::vector<Point>& pts, double depth, const PreparedRegion& region, const Field& across,
+             const BorderIndex& border) {
+    const Point end = pts.back(), from = pts[pts.size() - 2];
+    const double l = distance(from, end);
+    if (!(l > 0)) return false;
+    const Point dir = (end - from) / l;
+    const double step = depth / 4;
+    auto beyond = [&](double t) {
+        const Point q = end + dir * t;
+        return !region.contains(q) && border.to_rim(q, depth) >= depth;
+    };
+    bool out = false;
+    for (double lo = 0, t = step; t <= 2 * depth + 1e-9 * depth; lo = t, t += step) {
+        const Point q = end + dir * t;
+        if (!std::isnan(across(q))) return false;
+        const bool inside = region.contains(q);
+        if (inside && (out || t > depth)) return false;
+        out = out || !inside;
+        if (!beyond(t)) continue;
+        double hi = t;
+        for (int it = 0; it < 30; ++it) {
+            const double m = (lo + hi) / 2;
+            (beyond(m) ? hi : lo) = m;
+        }
+        pts.back() = end + dir * hi;
+        return true;
+    }
+    return false;
+}
+
 }  // namespace
 
-Arrangement FrayedCrop(Arrangement a, double min, double max, Field across, std::vector<std::string> hard) {
+Arrangement FrayedCrop(Arrangement a, double min, double max, Field across, std::vector<std::string> hard,
+                       double beyond) {
     if (!(min >= 0) || !(max >= min) || !std::isfinite(max))
         throw Error("FrayedCrop", "the band must be 0 <= min <= max (got " + std::to_string(min) + ", " +
                                       std::to_string(max) + ")");
+    if (!(beyond >= 0 && beyond <= 1))
+        throw Error("FrayedCrop", "the share of ends drawn on past the rim must be in [0, 1] (got " +
+                                      std::to_string(beyond) + ")");
     // The stream is fixed now, when the operator is created (random.hpp, "Streams").
     const std::uint64_t stream = NextStream();
-    return Arrangement([a = std::move(a), min, max, across = std::move(across), hard = std::move(hard),
+    return Arrangement([a = std::move(a), min, max, across = std::move(across), hard = std::move(hard), beyond,
                         stream](const Region& r) {
         Curves in = apply_mask(a(r), r, CROP);
         if (in.curves.empty()) return in;
@@ -159,6 +199,14 @@ Arrangement FrayedCrop(Arrangement a, double min, double max, Field across, std:
             if (!rim || !(d <= near)) return 0.0;
             return min + (max - min) * unit_from_hash(hash_point(key, p));
         };
+        // Whether an end goes on past the rim (a draw of its own, keyed as its depth is).
+        const std::uint64_t side_key = hash_combine(key, 1);
+        auto onward = [&](const Point& p) { return beyond > 0 && unit_from_hash(hash_point(side_key, p)) < beyond; };
+        std::optional<PreparedRegion> prepared;
+        auto region = [&]() -> const PreparedRegion& {
+            if (!prepared) prepared.emplace(r);
+            return *prepared;
+        };
         Curves out;
         out.points = std::move(in.points);
         out.origin = std::move(in.origin);
@@ -167,11 +215,18 @@ Arrangement FrayedCrop(Arrangement a, double min, double max, Field across, std:
                 out.curves.push_back(std::move(c));
                 continue;
             }
-            const double head = depth_at(c.points.front());
-            const double tail = depth_at(c.points.back());
+            const Point first = c.points.front(), last = c.points.back();
+            const double head = depth_at(first);
+            const double tail = depth_at(last);
             std::vector<Point> pts = std::move(c.points);
-            if (head > 0) pts = draw_back(std::move(pts), head, border);
-            if (tail > 0 && pts.size() >= 2) {
+            // Each end on past the rim when its draw says so and the way is free, else back.
+            if (head > 0) {
+                std::reverse(pts.begin(), pts.end());
+                const bool on = onward(first) && draw_on(pts, head, region(), across, border);
+                std::reverse(pts.begin(), pts.end());
+                if (!on) pts = draw_back(std::move(pts), head, border);
+            }
+            if (tail > 0 && pts.size() >= 2 && !(onward(last) && draw_on(pts, tail, region(), across, border))) {
                 std::reverse(pts.begin(), pts.end());
                 pts = draw_back(std::move(pts), tail, border);
                 std::reverse(pts.begin(), pts.end());
