@@ -236,13 +236,16 @@ void bind_fields(py::module_& m) {
     m.def(
         "Creases",
         [](const py::object& f, const std::string& kind, double cell, double min_bend) {
-            if (kind != "ridge" && kind != "valley")
-                throw py::value_error("Creases: kind must be 'ridge' or 'valley' (got '" + kind + "')");
-            return Creases(to_field(f), kind == "ridge" ? CreaseKind::Ridge : CreaseKind::Valley, cell, min_bend);
+            if (kind != "ridge" && kind != "valley" && kind != "both")
+                throw py::value_error("Creases: kind must be 'ridge', 'valley' or 'both' (got '" + kind + "')");
+            const CreaseKind k =
+                kind == "ridge" ? CreaseKind::Ridge : kind == "valley" ? CreaseKind::Valley : CreaseKind::Both;
+            return Creases(to_field(f), k, cell, min_bend);
         },
         py::arg("field"), py::arg("kind"), py::arg("cell"), py::arg("min_bend"),
         "the ridge ('ridge') or valley ('valley') lines of a surface where it bends across them by at least "
-        "min_bend (change of slope per unit length), traced on the global lattice of spacing `cell`");
+        "min_bend (change of slope per unit length), traced on the global lattice of spacing `cell`; 'both': the "
+        "two from one sampling, labelled 'ridge' and 'valley'");
     m.def("Angle", &Angle, py::arg("v"), "atan2 of the vectors");
     m.def("Norm", &Norm, py::arg("v"), "length of the vectors");
     m.def("Gradient", [](const py::object& f, double h) { return Gradient(to_field(f), h); }, py::arg("f"),

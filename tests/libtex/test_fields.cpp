@@ -426,6 +426,29 @@ TEST(Creases, ARidgeAndAValleyAlongTheirCrestAndFloor) {
     EXPECT_TRUE(Creases(ridge, CreaseKind::Ridge, 0.5, 2.0)(box).empty());
 }
 
+// Both kinds from one sampling: the ridges then the valleys, each exactly the lines of its own
+// kind, labelled with it.
+TEST(Creases, BothKindsAreTheTwoSetsOfLinesLabelled) {
+    // Crests along x = pi/2 + 2 k pi, floors along x = -pi/2 + 2 k pi, on a gentle tilt.
+    const Field surface([](const Point& p) { return std::sin(p.x) + 0.05 * p.y; });
+    const Region box = Region::rectangle(-10, -10, 10, 10);
+    const Curves r = Creases(surface, CreaseKind::Ridge, 0.5, 0.1)(box);
+    const Curves v = Creases(surface, CreaseKind::Valley, 0.5, 0.1)(box);
+    ASSERT_EQ(r.curves.size(), 3u);
+    ASSERT_EQ(v.curves.size(), 3u);
+    for (const auto& k : r.curves)
+        for (const Point& p : k.points) EXPECT_NEAR(std::sin(p.x), 1.0, 0.01);
+    const Curves both = Creases(surface, CreaseKind::Both, 0.5, 0.1)(box);
+    ASSERT_EQ(both.curves.size(), r.curves.size() + v.curves.size());
+    for (std::size_t k = 0; k < both.curves.size(); ++k) {
+        const bool ridge = k < r.curves.size();
+        EXPECT_EQ(both.curves[k].labels.has("ridge"), ridge);
+        EXPECT_EQ(both.curves[k].labels.has("valley"), !ridge);
+        EXPECT_EQ(both.curves[k].points, ridge ? r.curves[k].points : v.curves[k - r.curves.size()].points);
+    }
+    EXPECT_TRUE(r.curves[0].labels.empty());
+}
+
 TEST(Creases, ASummitRingIsClosedAndAPartDrawsTheWholesLines) {
     // A crater rim: a ridge on the circle of radius 6 (bending by 2 across); its flanks are
     // cones, convex along their contours by slope / radius (under 0.2), below min_bend.

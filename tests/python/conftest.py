@@ -101,3 +101,26 @@ def pytest_collection_modifyitems(items):
     worker while the other had finished (that run took 281 s of wall time for 533 / 2). The
     order within each file is kept."""
     items.sort(key=lambda item: item.path.name != "test_tiles.py")
+
+
+def land_cover(path, tagged):
+    """A GeoPackage of land cover over the sample: its west half bare rock, its east half scree
+    (OpenStreetMap's natural=*), or with tagged False one untagged layer of both."""
+    from osgeo import ogr, osr
+    ds = ogr.GetDriverByName("GPKG").CreateDataSource(str(path))
+    srs = osr.SpatialReference()
+    srs.ImportFromEPSG(2154)
+    layer = ds.CreateLayer("multipolygons", srs, ogr.wkbPolygon)
+    if tagged:
+        layer.CreateField(ogr.FieldDefn("natural", ogr.OFTString))
+    halves = [("POLYGON((1003000 6538800,1004100 6538800,1004100 6541000,1003000 6541000,1003000 6538800))",
+               "bare_rock"),
+              ("POLYGON((1004100 6538800,1005200 6538800,1005200 6541000,1004100 6541000,1004100 6538800))", "scree")]
+    for wkt, natural in halves:
+        f = ogr.Feature(layer.GetLayerDefn())
+        if tagged:
+            f.SetField("natural", natural)
+        f.SetGeometry(ogr.CreateGeometryFromWkt(wkt))
+        layer.CreateFeature(f)
+    ds = None
+    return path

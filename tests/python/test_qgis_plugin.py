@@ -17,7 +17,7 @@ os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 os.environ["GDAL_PAM_ENABLED"] = "NO"
 import qgis.core as qgis_core  # noqa: E402  (python3-qgis: scripts/setup.sh installs it)
 
-from conftest import (PYTHON_DIR, ROOT, SANITIZED, finished_tiles, partition_with_scree,  # noqa: E402
+from conftest import (PYTHON_DIR, ROOT, SANITIZED, finished_tiles, land_cover, partition_with_scree,  # noqa: E402
                       python_env)
 from osgeo import gdal, ogr  # noqa: E402
 
@@ -399,6 +399,23 @@ def test_rock_partition_equals_the_command(qgis, rockhatch_exe, sample_dir, tmp_
     hatched = run("rockhatch:rockhatching", sample_params(sample_dir, tmp_path / "h.gpkg",
                                                           FACES=f"{out}|layername=faces"))
     assert hatched["FACES_HATCHED"] == counts["faces"] and hatched["HATCHES"] > 10000
+
+
+def test_rock_partition_mask_keeps_the_bare_rock_of_a_land_cover_layer(qgis, rockhatch_exe, sample_dir, tmp_path):
+    """The MASK parameter is the command's --mask: an OpenStreetMap land-cover layer keeps the
+    rock inside its natural=bare_rock polygons only, the same file as `rockhatch partition`."""
+    mask = land_cover(tmp_path / "osm.gpkg", True)
+    cli = tmp_path / "cli.gpkg"
+    subprocess.run([str(rockhatch_exe), "partition", "-q", "--dem", str(sample_dir / "dem.tif"), "--mask", str(mask),
+                    "-o", str(cli)], check=True)
+    out = tmp_path / "q.gpkg"
+    result = run("rockhatch:rockpartition", {"DEM": str(sample_dir / "dem.tif"), "MASK": str(mask),
+                                             "OUTPUT": str(out)})
+    assert out.read_bytes() == cli.read_bytes()
+    assert result["FACES_COUNT"] > 0
+    ds = ogr.Open(str(out))
+    east = max(f.GetGeometryRef().GetEnvelope()[1] for f in ds.GetLayerByName("faces"))
+    assert east <= 1004100 + 1e-6  # west of the scree
 
 
 def test_rock_partition_fixed_controls_equals_the_command(qgis, rockhatch_exe, sample_dir, tmp_path):

@@ -8,6 +8,7 @@ import pytest
 from osgeo import ogr, osr
 
 from bad_inputs import partition_file
+from conftest import land_cover
 from rockhatch import carto
 
 SOUTH = "POLYGON((1003700 6539000,1004500 6539000,1004500 6539500,1003700 6539500,1003700 6539000))"
@@ -84,27 +85,6 @@ def test_a_given_cliff_is_drawn_once_with_its_strokes_in_the_face_below(tmp_path
     assert list(on_edge) == [south]
     assert on_edge[south] == pytest.approx(800, rel=1e-6)
     assert hanging > 100
-
-
-def land_cover(path, tagged):
-    """West half bare rock, east half scree (OSM natural=*), or one untagged layer of both."""
-    ds = ogr.GetDriverByName("GPKG").CreateDataSource(str(path))
-    srs = osr.SpatialReference()
-    srs.ImportFromEPSG(2154)
-    layer = ds.CreateLayer("multipolygons", srs, ogr.wkbPolygon)
-    if tagged:
-        layer.CreateField(ogr.FieldDefn("natural", ogr.OFTString))
-    halves = [("POLYGON((1003000 6538800,1004100 6538800,1004100 6541000,1003000 6541000,1003000 6538800))",
-               "bare_rock"),
-              ("POLYGON((1004100 6538800,1005200 6538800,1005200 6541000,1004100 6541000,1004100 6538800))", "scree")]
-    for wkt, natural in halves:
-        f = ogr.Feature(layer.GetLayerDefn())
-        if tagged:
-            f.SetField("natural", natural)
-        f.SetGeometry(ogr.CreateGeometryFromWkt(wkt))
-        layer.CreateFeature(f)
-    ds = None
-    return path
 
 
 def test_mask_keeps_the_rock_of_a_land_cover_layer(tmp_path, sample_dir):

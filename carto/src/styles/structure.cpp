@@ -107,12 +107,17 @@ Structure structure_lines(const ControlFields& f, const ParamValues& p, const Re
     const double bend = p.at("crease_bend") / p.at(kGroundPerMm);
     const Region box = grown_box(p, region);
     s.cliffs = cliff_tops(f, p, region);
+    // Crests and couloirs from one sampling of the elevation, told apart by their label.
+    Curves crests, couloirs;
+    for (Curve& c : Creases(f.elevation, CreaseKind::Both, cell, bend)(box).curves) {
+        Curves& to = c.labels.has("ridge") ? crests : couloirs;
+        c.labels = tex::Labels();
+        to.curves.push_back(std::move(c));
+    }
     // Crests: not along a cliff top (drawn as such).
-    const Curves crests = Creases(f.elevation, CreaseKind::Ridge, cell, bend)(box);
     s.ridges = structure_pieces(Apart(Constant(crests), s.cliffs, snap)(box), p, cell, p.at("crease_min_length"),
                                 "ridgeline");
-    s.couloirs = structure_pieces(Creases(f.elevation, CreaseKind::Valley, cell, bend)(box), p, cell,
-                                  p.at("crease_min_length"), "couloir");
+    s.couloirs = structure_pieces(couloirs, p, cell, p.at("crease_min_length"), "couloir");
     return s;
 }
 

@@ -197,11 +197,12 @@ Arrangement IsoLines(Field f, double level, double cell);
 // The gradient and Hessian are central differences over the nodes of the lattice
 // (i cell, j cell) of the plane, the lines traced across its squares: a global lattice, so a
 // region draws the lines of the plane wherever it lies. Lines are open or closed polylines
-// through crossings of lattice edges, unlabelled, in no particular sense. Evaluated on a
-// region: the lines through the squares meeting its bounding box (read one cell further), not
-// cut to it. Throws tex::Error naming Creases for a cell that is not positive or a negative
-// min_bend.
-enum class CreaseKind { Ridge, Valley };
+// through crossings of lattice edges, unlabelled, in no particular sense. Both: the ridges
+// then the valleys of one sampling of f (half the field reads of two calls), labelled "ridge"
+// and "valley". Evaluated on a region: the lines through the squares meeting its bounding box
+// (read one cell further), not cut to it. Throws tex::Error naming Creases for a cell that is
+// not positive or a negative min_bend.
+enum class CreaseKind { Ridge, Valley, Both };
 Arrangement Creases(Field f, CreaseKind kind, double cell, double min_bend);
 
 // ---- Controlled arrangements and mappers (thesis 5.3.1, 5.3.2) ----

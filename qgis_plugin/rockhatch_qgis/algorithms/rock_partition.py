@@ -63,7 +63,9 @@ class RockPartition(RockhatchAlgorithm):
             "becomes the CRS of the partition.")
         self.add(QgsProcessingParameterFeatureSource(self.MASK, "Rock mask polygons", [QgsProcessing.TypeVectorPolygon],
                                                 optional=True),
-            "Optional polygons: rock is looked for only inside them (e.g. the rock areas of an existing map).")
+            "Optional polygons: rock is looked for only inside them (e.g. the rock areas of an existing map). "
+            "An OpenStreetMap land-cover layer (a natural field, or GDAL's other_tags) counts only its "
+            "natural=bare_rock polygons.")
         number(self.MIN_SLOPE, "Minimum slope (percent)", 70.0, 0.0,
                "Rock where the slope, averaged over about 25 m, reaches this many percent. Default: 70 (35 degrees).")
         number(self.MIN_ROUGHNESS, "Minimum roughness (0..1)", 0.001, 0.0,
