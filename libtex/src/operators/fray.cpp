@@ -16,6 +16,9 @@ namespace tex {
 namespace {
 
 constexpr std::uint64_t kFrayTag = 0x46524159ULL;
+// Halvings of a segment's parameter when an end is placed at its depth: 2^-20 of a segment
+// (a few metres on the ground) is far below a printed line's width.
+constexpr int kBisections = 20;
 
 // The segments of a region's boundary, each marked "rim" when the drawing ends there: not
 // labelled one of the hard labels, and no value of `across` just beyond it (outside is on
@@ -59,31 +62,32 @@ public:
     std::pair<double, bool> nearest(const Point& p, double limit) const {
         const int r = int(std::ceil(limit / cell_));
         const int x = col(p.x), y = row(p.y);
-        double best = limit;
+        double best = limit * limit;  // squared distances: one square root per query
         bool rim = false, found = false;
         for (int yy = std::max(0, y - r); yy <= std::min(cells_ - 1, y + r); ++yy)
             for (int xx = std::max(0, x - r); xx <= std::min(cells_ - 1, x + r); ++xx)
                 for (std::size_t k : buckets_[std::size_t(yy) * std::size_t(cells_) + std::size_t(xx)]) {
-                    const double d = distance_to(p, segs_[k]);
+                    const double d = squared_distance_to(p, segs_[k]);
                     if (d < best || (d == best && !found)) {
                         best = d;
                         rim = segs_[k].rim;
                         found = true;
                     }
                 }
-        return {found ? best : INFINITY, rim};
+        return {found ? std::sqrt(best) : INFINITY, rim};
     }
 
     // The distance from p to the nearest rim segment, up to `limit` (limit when none nearer).
     double to_rim(const Point& p, double limit) const {
         const int r = int(std::ceil(limit / cell_));
         const int x = col(p.x), y = row(p.y);
-        double best = limit;
+        const double limit2 = limit * limit;
+        double best = limit2;
         for (int yy = std::max(0, y - r); yy <= std::min(cells_ - 1, y + r); ++yy)
             for (int xx = std::max(0, x - r); xx <= std::min(cells_ - 1, x + r); ++xx)
                 for (std::size_t k : buckets_[std::size_t(yy) * std::size_t(cells_) + std::size_t(xx)])
-                    if (segs_[k].rim) best = std::min(best, distance_to(p, segs_[k]));
-        return best;
+                    if (segs_[k].rim) best = std::min(best, squared_distance_to(p, segs_[k]));
+        return best < limit2 ? std::min(limit, std::sqrt(best)) : limit;
     }
 
 private:
@@ -91,11 +95,12 @@ private:
         Point a, b;
         bool rim;
     };
-    static double distance_to(const Point& p, const Seg& s) {
+    static double squared_distance_to(const Point& p, const Seg& s) {
         const Point ab = s.b - s.a;
         const double l2 = dot(ab, ab);
         const double t = l2 > 0 ? std::clamp(dot(p - s.a, ab) / l2, 0.0, 1.0) : 0.0;
-        return distance(p, s.a + ab * t);
+        const Point d = p - (s.a + ab * t);
+        return dot(d, d);
     }
     int col(double x) const { return std::clamp(int((x - box_.xmin) / cell_), 0, cells_ - 1); }
     int row(double y) const { return std::clamp(int((y - box_.ymin) / cell_), 0, cells_ - 1); }
@@ -125,7 +130,7 @@ std::vector<Point> draw_back(std::vector<Point> pts, double depth, const BorderI
             }
             // The first sample far enough: bisect between the last one too close and it.
             double hi = t;
-            for (int it = 0; it < 30; ++it) {
+            for (int it = 0; it < kBisections; ++it) {
                 const double m = (lo + hi) / 2;
                 (far_enough(a + (b - a) * m) ? hi : lo) = m;
             }
@@ -161,7 +166,7 @@ bool draw_on(std::vector<Point>& pts, double depth, const PreparedRegion& region
         out = out || !inside;
         if (!beyond(t)) continue;
         double hi = t;
-        for (int it = 0; it < 30; ++it) {
+        for (int it = 0; it < kBisections; ++it) {
             const double m = (lo + hi) / 2;
             (beyond(m) ? hi : lo) = m;
         }
