@@ -773,12 +773,12 @@ TEST(Pipeline, PrintRefusesAToneCurveAboveItself) {
 }
 
 TEST(Pipeline, StylesAndParameters) {
-    // The seven rock styles of Fig. 5.4, print (the default), aretes (crest ornaments), rock
-    // (structure first, no drawn outline), then the two terrain styles.
+    // The seven rock styles of Fig. 5.4, print, aretes (crest ornaments), rock (structure
+    // first, no drawn outline: the default), then the two terrain styles.
     EXPECT_EQ(styles().size(), 12u);
     EXPECT_EQ(std::count_if(styles().begin(), styles().end(), [](const StyleInfo& s) { return s.crest_ornament; }), 1);
     EXPECT_EQ(std::count_if(styles().begin(), styles().end(), [](const StyleInfo& s) { return s.terrain; }), 2);
-    EXPECT_EQ(default_style(), "print");
+    EXPECT_EQ(default_style(), "rock");
     EXPECT_EQ(find_style("5.4a").name, "noisy");
     EXPECT_EQ(find_style("c").name, "density-cells");
     try {

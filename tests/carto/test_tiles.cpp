@@ -183,7 +183,8 @@ TEST(Tiles, TheRockStyleTiledIsTheWholeRunBitForBit) {
 TEST(Tiles, ATileReadsOnlyTheDemNearItsFaces) {
     TempDir dir;
     Options o = sample_options();
-    o.relief_radius = 100;  // a small relief window: the halo is the style's reach, 29 cells
+    o.relief_radius = 100;  // a small relief window: the halo is the style's reach (rock's
+                            // structure lines, traced 4.6 mm around each face), 33 cells
     const RasterInfo info = raster_info(o.dem, "--dem");
     const auto tiles = tile_grid(info, 800);
     const RasterInfo grid = working_grid(info).grid;
@@ -191,7 +192,7 @@ TEST(Tiles, ATileReadsOnlyTheDemNearItsFaces) {
     const Plan plan = make_plan(o, PlanFor::Drawing);
     const double margin = tile_context_margin(plan, cell);
     const int halo = tile_halo_cells(plan, cell);
-    EXPECT_EQ(halo, 29);
+    EXPECT_EQ(halo, 33);
     ASSERT_FALSE(plan.crest_band);  // no crest ornaments: the context is the faces' margin alone
     const Partition whole = load_partition(o.partition, grid.crs_wkt);
     const double snap = o.partition.snap;

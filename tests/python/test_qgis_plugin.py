@@ -26,7 +26,8 @@ from qgis.core import (QgsApplication, QgsProcessingException, QgsProcessingFeed
 
 PLUGINS = ROOT / "qgis_plugin"
 QGIS_PROCESS = "/usr/bin/qgis_process.bin"  # Debian's /usr/bin/qgis_process wrapper is broken, see the README
-FAMILIES = ["hatch_fill", "hatch_ridge", "hatch_valley", "hatch_cross"]
+# The default style's layers on the sample (rock: no couloir there).
+FAMILIES = ["hatch_fill", "hatch_ridge", "hatch_valley", "hatch_cross", "hatch_ridgeline", "hatch_cliff"]
 
 
 @pytest.fixture(scope="session")
@@ -202,7 +203,9 @@ def test_terrain_styles_through_the_algorithm(qgis, sample_dir, tmp_path, style,
                                                          SVG=str(tmp_path / "q.svg")))
     assert (tmp_path / "q.svg").read_bytes() == (tmp_path / "m.svg").read_bytes()
     uri = f"{tmp_path / 'q.gpkg'}|layername={layer}"
-    assert result["LAYERS"] == [f"{tmp_path / 'q.gpkg'}|layername={f}" for f in FAMILIES] + [uri]
+    # In the families' order: the terrain's layer before rock's structure layers.
+    rock_layers = [f"{tmp_path / 'q.gpkg'}|layername={f}" for f in FAMILIES]
+    assert result["LAYERS"] == rock_layers[:4] + [uri] + rock_layers[4:]
     loaded = QgsVectorLayer(uri, layer, "ogr")
     assert loaded.isValid() and loaded.geometryType() == qgis_core.QgsWkbTypes.PolygonGeometry
     assert loaded.featureCount() > 1000
@@ -692,7 +695,7 @@ def test_qgis_process_runs_rock_hatching(sample_dir, reference, tmp_path):
     t = time.perf_counter()
     p = subprocess.run([QGIS_PROCESS, "--json", "run", "rockhatch:rockhatching", "--",
                         f"DEM={sample_dir / 'dem.tif'}", f"FACES={sample_dir / 'partition.gpkg'}|layername=faces",
-                        "STYLE=print", f"OUTPUT={out}", f"SVG={tmp_path / 'qp.svg'}"], env=env,
+                        "STYLE=rock", f"OUTPUT={out}", f"SVG={tmp_path / 'qp.svg'}"], env=env,
                        capture_output=True, text=True, timeout=120)
     print(f"qgis_process run: {time.perf_counter() - t:.2f} s")
     assert p.returncode == 0, p.stderr + p.stdout

@@ -115,3 +115,44 @@ def test_mask_needs_the_automatic_partition(rockhatch_exe, tmp_path, sample_dir)
 
 if __name__ == "__main__":
     sys.exit(pytest.main([__file__, "-q"]))
+
+
+def test_the_drawing_does_not_depend_on_how_the_faces_are_numbered_or_their_rings_turned(tmp_path, sample_dir):
+    """A face's random draws (the rock style's frayed edge among them) are keyed by the face's
+    extent, not its feature id: the sample's partition renumbered from 0 (as a shapefile
+    numbers features) with every ring turned round draws the same strokes."""
+    src = ogr.Open(str(sample_dir / "partition.gpkg"))
+    path = tmp_path / "renumbered.gpkg"
+    dst = ogr.GetDriverByName("GPKG").CreateDataSource(str(path))
+    for name in ("faces", "lines", "orientation"):
+        layer = src.GetLayerByName(name)
+        out = dst.CreateLayer(name, layer.GetSpatialRef(), layer.GetGeomType())
+        defn = layer.GetLayerDefn()
+        for i in range(defn.GetFieldCount()):
+            out.CreateField(defn.GetFieldDefn(i))
+        for k, f in enumerate(layer):
+            g = f.GetGeometryRef().Clone()
+            if name == "faces":
+                for r in range(g.GetGeometryCount()):
+                    ring = g.GetGeometryRef(r)
+                    pts = ring.GetPoints()[::-1]
+                    for j, p in enumerate(pts):
+                        ring.SetPoint_2D(j, p[0], p[1])
+            nf = ogr.Feature(out.GetLayerDefn())
+            nf.SetFrom(f)
+            nf.SetGeometry(g)
+            nf.SetFID(k)  # from 0
+            assert out.CreateFeature(nf) == 0
+    dst = None
+    def strokes(partition):
+        drawing = carto.hatch(carto.prepare(sample_dir / "dem.tif", partition), style="rock")
+        out = []
+        for fh in drawing.faces:
+            for h in fh.hatches:
+                pts = [(p.x, p.y) for p in h.points]
+                out.append((int(h.family), tuple(min(pts, pts[::-1]))))
+        return sorted(out)
+
+    given, renumbered = strokes(sample_dir / "partition.gpkg"), strokes(path)
+    assert len(given) > 60000
+    assert given == renumbered

@@ -11,7 +11,8 @@ from bad_inputs import partition_file
 gdal.UseExceptions()
 ogr.UseExceptions()
 
-FAMILIES = ["hatch_fill", "hatch_ridge", "hatch_valley", "hatch_cross"]
+# The default style's layers on the sample (rock: no couloir there).
+FAMILIES = ["hatch_fill", "hatch_ridge", "hatch_valley", "hatch_cross", "hatch_ridgeline", "hatch_cliff"]
 
 
 def run(exe, *args, timeout=300):
@@ -50,7 +51,7 @@ def test_geopackage_layers_crs_and_attributes(sample_run):
         ds.ReleaseResultSet(rows)
         assert len(groups) == 1, groups
         family, style, lo, hi, w_lo, w_hi, n = groups[0]
-        assert (family, style, n) == (name.split("_")[1], "print", layer.GetFeatureCount())
+        assert (family, style, n) == (name.split("_")[1], "rock", layer.GetFeatureCount())
         assert 1 <= lo <= hi <= 20 and 0 < w_lo == w_hi
 
 
@@ -59,7 +60,7 @@ def test_svg_groups_scale_and_georeference(sample_run):
     root = ET.parse(out / "h.svg").getroot()
     ns = {"s": "http://www.w3.org/2000/svg", "rh": "https://rockhatch.invalid/ns"}
     groups = [g.get("id") for g in root.findall("s:g", ns)]
-    assert groups == ["fill", "ridge", "valley", "cross"]
+    assert groups == ["fill", "ridge", "valley", "cross", "ridgeline", "cliff"]
     geo = root.find("s:metadata/rh:georeference", ns)
     assert geo.get("crs") == "EPSG:2154"
     assert float(geo.get("scale")) == 10000

@@ -28,7 +28,7 @@ def polygons(gpkg, layer):
 def test_the_style_table_lists_them():
     terrain = [s.name for s in carto.styles() if s.terrain]
     assert terrain == ["scree", "slope-hachures"]
-    assert carto.default_style() == "print"
+    assert carto.default_style() == "rock"
     units = {p.name: p.unit for p in carto.find_style("slope-hachures").params}
     assert units["interval"] == "m" and units["spacing_min"] == "mm"
 
@@ -95,7 +95,7 @@ def test_bad_parameters_give_one_line(rockhatch_exe, sample_dir, tmp_path, args,
 
 def test_partition_none_is_for_terrain_styles_only(rockhatch_exe, sample_dir, tmp_path):
     r = run(rockhatch_exe, "--dem", sample_dir / "dem.tif", "--partition", "none", "-q", "-o", tmp_path / "x.gpkg")
-    assert r.returncode == 2 and "--partition none: style 'print' hatches rock faces" in r.stderr
+    assert r.returncode == 2 and "--partition none: style 'rock' hatches rock faces" in r.stderr
     r = run(rockhatch_exe, "--dem", sample_dir / "dem.tif", "--partition", "none", "--style", "slope-hachures",
             "-o", tmp_path / "h.gpkg")
     assert r.returncode == 0, r.stderr

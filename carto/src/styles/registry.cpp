@@ -30,7 +30,7 @@ const std::vector<terrain::Builtin>& terrain_builtins() {
     return all;
 }
 
-const std::string kDefaultStyle = "print";
+const std::string kDefaultStyle = "rock";
 
 }  // namespace
 
@@ -239,8 +239,11 @@ std::vector<Hatch> hatch_face(const tex::Arrangement& style, const Partition& p,
                               std::uint64_t seed) {
     tex::SeedScope scoped_seed(seed);
     // Streams of the partitions a program creates are numbered per face, whatever thread
-    // draws it.
-    tex::StreamScope streams(tex::hash_combine(0x46414345ULL, std::uint64_t(p.faces[face].id)));
+    // draws it, and keyed by the face's extent, not its id: the same face saved in another
+    // format (a shapefile numbers features from 0, and may turn rings round) draws the same.
+    const tex::BBox box = p.faces[face].region.bbox();
+    tex::StreamScope streams(
+        tex::hash_point(tex::hash_point(0x46414345ULL, {box.xmin, box.ymin}), {box.xmax, box.ymax}));
     return hatches_from_curves(style(face_region(p, face)));
 }
 

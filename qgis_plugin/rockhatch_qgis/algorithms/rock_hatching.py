@@ -138,7 +138,7 @@ class RockHatching(RockhatchAlgorithm):
         try:
             carto = self.carto()
         except QgsProcessingException:
-            return ["bidirectional"], "bidirectional"
+            return ["rock"], "rock"
         return [s.name for s in carto.styles()], carto.default_style()
 
     def initAlgorithm(self, config=None):  # noqa: N802

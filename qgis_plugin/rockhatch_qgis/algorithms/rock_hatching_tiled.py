@@ -119,7 +119,7 @@ class RockHatchingTiled(RockhatchAlgorithm):
         try:
             carto = self.carto()
         except QgsProcessingException:
-            return ["print"], "print"
+            return ["rock"], "rock"
         return [s.name for s in carto.styles()], carto.default_style()
 
     def shortHelpString(self):  # noqa: N802
