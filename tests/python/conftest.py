@@ -78,6 +78,26 @@ def sample_dir() -> pathlib.Path:
     return SAMPLE
 
 
+def data_snapshot() -> dict:
+    """The SHA-256 of every file under data/, by path."""
+    import hashlib
+    return {str(p.relative_to(ROOT)): hashlib.sha256(p.read_bytes()).hexdigest()
+            for p in sorted((ROOT / "data").rglob("*")) if p.is_file()}
+
+
+@pytest.fixture(scope="session", autouse=True)
+def data_folder_untouched():
+    """No test (nor the QGIS provider, GDAL's .aux.xml side files or an output written to the
+    wrong place) may change, add or remove a file under data/: the bundled inputs are read
+    only. Checked at the end of every session (each pytest-xdist worker's)."""
+    before = data_snapshot()
+    yield
+    after = data_snapshot()
+    if after != before:
+        changed = sorted(k for k in before.keys() | after.keys() if before.get(k) != after.get(k))
+        pytest.fail(f"files under data/ changed, appeared or went during the tests: {changed}")
+
+
 def partition_with_scree(sample_dir, path):
     """Copies the sample's partition to `path` with a polygon layer "scree": a 600 m square at
     the south-west corner of the faces. Returns the square (an OGR geometry)."""

@@ -710,6 +710,3 @@ def test_qgis_process_runs_rock_hatching(sample_dir, reference, tmp_path):
     assert p.returncode != 0 and "no line layer with a 'nope' field" in p.stdout + p.stderr
     shutil.rmtree(config)
 
-
-def test_sample_folder_untouched(qgis, sample_dir):
-    assert not list(sample_dir.glob("*.aux.xml"))
