@@ -99,7 +99,8 @@ Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const F
                            const tex::Region& region, const tex::Curves& spent);
 
 // The tops of the cliff bands around the face `region`: the level line slope = cliff_slope
-// of the slope field (tex::IsoLines on a lattice of a quarter of crest_smoothing, or of the
+// of the elevation field's slope, differenced over cliff_smoothing either side (the DEM's own
+// slope wanders round every cell-sized bump) (tex::IsoLines on a lattice of a quarter of crest_smoothing, or of the
 // DEM's cell when that is coarser: the same in a tile as in the whole), where the ground
 // falls into the band (the steeper side lower, on the line's left), traced over the face's
 // box grown by structure_margin, smoothed locally (tex::MovingAverage over crest_smoothing),

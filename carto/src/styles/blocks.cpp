@@ -87,6 +87,7 @@ const std::vector<StyleParam> kCliff = {
     {"cliff_slope", 100.0, "%", "cliff bands are where the slope passes this (percent; 100: 45 degrees)"},
     {"cliff_length", 3.0, "mm", "longest stroke hanging from a cliff top (strokes end at the band's foot)"},
     {"cliff_min_length", 2.0, "mm", "cliff tops shorter than this are not drawn"},
+    {"cliff_smoothing", 0.5, "mm", "cliff tops follow the slope of the elevation differenced over this either side"},
 };
 const std::vector<StyleParam> kStructure = {
     {"crease_bend", 0.25, "ratio",

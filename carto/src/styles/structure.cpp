@@ -59,7 +59,11 @@ double structure_margin(const ParamValues& p) {
 
 tex::Curves cliff_tops(const ControlFields& f, const ParamValues& p, const Region& region) {
     const double cell = std::max(p.at("crest_smoothing"), dem_cell(p)) / 4;
-    const Curves levels = IsoLines(f.slope, p.at("cliff_slope"), cell)(grown_box(p, region));
+    // The slope of the smoothed elevation, differenced over cliff_smoothing either side: the
+    // DEM's own slope wanders round every cell-sized bump, and its level line with it.
+    const double h = p.at("cliff_smoothing");
+    const Field slope = tex::Norm(tex::Gradient(f.elevation, h)) * Field(100.0);
+    const Curves levels = IsoLines(slope, p.at("cliff_slope"), cell)(grown_box(p, region));
     Curves runs;
     for (const Curve& c : levels.curves) {
         // Runs of the line along which the band (on its left) lies lower: a cliff's top. A
