@@ -6,7 +6,7 @@ import subprocess
 import sys
 
 import pytest
-from osgeo import ogr
+from osgeo import gdal, ogr
 
 from conftest import python_env
 from rockhatch import RockhatchError, carto
@@ -82,7 +82,7 @@ def test_each_crest_polygon_lies_along_its_own_ridge(sample_dir, tmp_path):
     assert owner["a"] == owner["b"], "a ridge's id changed with the seed or the band height"
 
 
-def test_draw_crests_is_keyed_by_the_ridge(sample_dir):
+def test_draw_crests_is_keyed_by_the_ridge(sample_dir, tmp_path):
     part = carto.prepare(str(sample_dir / "dem.tif"), str(sample_dir / "partition.gpkg")).partition
     a = _rings(carto.draw_crests(part, "default", 20.0, seed=5))
     b = _rings(carto.draw_crests(part, band_height=20.0, seed=5))
@@ -90,6 +90,25 @@ def test_draw_crests_is_keyed_by_the_ridge(sample_dir):
     assert a == b and a != c
     assert all(len([r for r in o if _area(r) > 0]) == 1 for o in a)  # one outer ring each
     assert "<svg" in carto.default_crest_svg()
+    # Keyed by the ridge, not by the order it comes in: the same partition with its line
+    # layer written in reverse order draws the same ornaments (as a set).
+    reversed_lines = tmp_path / "reversed.gpkg"
+    gdal.VectorTranslate(str(reversed_lines), str(sample_dir / "partition.gpkg"), layers=["faces", "orientation"])
+    src, dst = ogr.Open(str(sample_dir / "partition.gpkg")), ogr.Open(str(reversed_lines), 1)
+    lines = src.GetLayerByName("lines")
+    out = dst.CreateLayer("lines", lines.GetSpatialRef(), lines.GetGeomType())
+    for i in range(lines.GetLayerDefn().GetFieldCount()):
+        out.CreateField(lines.GetLayerDefn().GetFieldDefn(i))
+    features = list(lines)
+    for f in reversed(features):
+        g = ogr.Feature(out.GetLayerDefn())
+        g.SetFrom(f)
+        assert out.CreateFeature(g) == 0
+    assert len(features) > 5
+    src = dst = None
+    turned = carto.prepare(str(sample_dir / "dem.tif"), str(reversed_lines)).partition
+    d = _rings(carto.draw_crests(turned, "default", 20.0, seed=5))
+    assert len(a) >= 5 and sorted(map(str, d)) == sorted(map(str, a))
 
 
 def _rings(result):
