@@ -100,7 +100,20 @@ def test_inside_outside_and_rasterize():
     assert abs(inside.period1.y) == pytest.approx(120)
     length = lambda c: sum(abs(q.x - p.x) for cv in c.curves for p, q in zip(list(cv.points), list(cv.points)[1:]))
     whole = length(lines.Convert(WINDOW, CROP))
-    assert length(inside.Convert(WINDOW, CROP)) + length(outside.Convert(WINDOW, CROP)) == pytest.approx(whole)
+    inside_length, outside_length = length(inside.Convert(WINDOW, CROP)), length(outside.Convert(WINDOW, CROP))
+    assert inside_length + outside_length == pytest.approx(whole)
+    # Each part against the planar-map engine (neither may be empty: the sum alone holds when
+    # Inside returns nothing and Outside everything), on a window of whole grid cells (the
+    # engine scales each cell as the window crops it).
+    cells = Region.rectangle(0, 0, 320, 200)
+    plain_lines = StripesPartition(StripesProperties(0, 6), CROP)
+    plain_squares = MapToFaces(lambda f: Scale(Contour(f), 0.55),
+                               GridPartition(StripesProperties(0, 40), StripesProperties(pi / 2, 40), CROP))
+    expected_inside = length(Inside(plain_lines, plain_squares, CROP)(cells))
+    assert expected_inside == pytest.approx(18 * 8 * 22)  # 18 lines cross 8 squares 22 wide
+    assert length(inside.Convert(cells, CROP)) == pytest.approx(expected_inside)
+    assert length(outside.Convert(cells, CROP)) == pytest.approx(length(Outside(plain_lines, plain_squares, CROP)(cells)))
+    assert 0 < inside_length < whole
     image = Rasterize(squares, WINDOW, 0.5, 1.0)
     assert image.shape == (400, 600) and image.dtype.name == "uint8"
     assert image.min() == 0 and image.max() == 255
