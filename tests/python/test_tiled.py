@@ -147,22 +147,30 @@ def test_face_labels_of_a_band_and_distance_far_from_the_origin():
     bands = StripesProperties(0, 120, 300)
     SetFaceLabels(bands, "a", "b", "c")
     stripes = StripesPartition(bands, Tiled())
-    # The band between y = 0 and y = 120 (its face label, whatever the nearest curve), a
-    # whole number of periods away too.
+    # Bands 120 and 300 wide labelled a, b, c in turn: [0, 120) a, [120, 420) b, [420, 540) c,
+    # [-300, 0) c; the pattern repeats every six bands (1260). The band's own label, and its
+    # middle 60 from the curves, a whole number of periods away too.
     p1, p2 = stripes.period1, stripes.period2
-    for k in (0, 1000, -77777):
+    assert {(p1.x, p1.y), (p2.x, p2.y)} == {(0, 1260), (1260, 0)}
+    for y, label in ((60, "a"), (180, "b"), (480, "c"), (-60, "c"), (600, "a")):
+        assert stripes.FaceLabelsAt(Point(50, y)) == [label], y
+    for k in (1, 1000, -77777):
         p = Point(50 + k * (p1.x + p2.x), 60 + k * (p1.y + p2.y))
-        assert len(stripes.FaceLabelsAt(p)) == 1
-        assert stripes.FaceLabelsAt(p) == stripes.FaceLabelsAt(Point(50, 60))
+        assert stripes.FaceLabelsAt(p) == ["a"]
         assert stripes.DistanceToCurves(p) == pytest.approx(60, abs=1e-6)
-    # With squares in the bands: a band's face also carries what the squares' outer sides carry.
+    # With squares in the bands: a face of the union carries the labels of its sides (the
+    # planar map's rule). The square at (90, 105), 73.5 to 136.5 high, is cut by the line
+    # y = 120: its lower part has a side on band a's line and one on the square (r1); the
+    # square at (90, 315) lies inside band b: its sides are the square's alone (r2); the band
+    # around the squares keeps its own label.
     rows = StripesProperties(0, 210)
     SetFaceLabels(rows, "r1", "r2")
     squares = MapToFaces(lambda f: Scale(Contour(f), 0.3), GridPartition(rows, StripesProperties(pi / 2, 180), Tiled()))
     both = Union(stripes, squares)
-    inside_square = squares.FaceLabelsAt(Point(90, 105))
-    assert set(both.FaceLabelsAt(Point(5, 60))) >= set(stripes.FaceLabelsAt(Point(5, 60)))
-    assert set(both.FaceLabelsAt(Point(90, 105))) >= set(inside_square)
+    assert squares.FaceLabelsAt(Point(90, 105)) == ["r1"] and squares.FaceLabelsAt(Point(90, 315)) == ["r2"]
+    assert sorted(both.FaceLabelsAt(Point(90, 105))) == ["a", "r1"]
+    assert both.FaceLabelsAt(Point(90, 315)) == ["r2"]
+    assert both.FaceLabelsAt(Point(5, 60)) == ["a"] and both.FaceLabelsAt(Point(5, 315)) == ["b"]
 
 
 def test_a_mapper_reading_absolute_positions_is_an_error():
