@@ -81,9 +81,25 @@ def test_ghost_mapping_is_deterministic_at_any_thread_count():
 
 
 def test_a_tiled_map_is_an_arrangement(tmp_path):
+    """A tiled map evaluated on a square as any arrangement is (ExportSVG) draws what the
+    planar-map engine draws there: the same curves, segment for segment."""
     out = tmp_path / "stripes.svg"
-    ExportSVG(StripesPartition(StripesProperties(0.3, 10), Tiled(CROP_ADD_BOUNDARY)), 300, str(out))
+    tiled = ExportSVG(StripesPartition(StripesProperties(0.3, 10), Tiled(CROP_ADD_BOUNDARY)), 300, str(out))
+    engine = ExportSVG(StripesPartition(StripesProperties(0.3, 10), CROP_ADD_BOUNDARY), 300, str(tmp_path / "e.svg"))
     assert out.read_text().count("<path") + out.read_text().count("<polyline") > 5
+
+    def segments(curves):
+        out = set()
+        for cv in curves.curves:
+            pts = list(cv.points) + ([cv.points[0]] if cv.closed else [])
+            for p, q in zip(pts, pts[1:]):
+                a, b = (round(p.x, 6) + 0.0, round(p.y, 6) + 0.0), (round(q.x, 6) + 0.0, round(q.y, 6) + 0.0)
+                if a != b:
+                    out.add(tuple(sorted((a, b))))
+        return out
+
+    assert len(tiled.curves) == len(engine.curves) > 30
+    assert segments(tiled) == segments(engine)
 
 
 def test_stripes_cannot_be_mapped():
