@@ -1,5 +1,6 @@
 #include "carto/partition.hpp"
 
+#include <cpl_vsi.h>
 #include <gdal_priv.h>
 #include <ogr_geometry.h>
 #include <ogrsf_frmts.h>
@@ -631,9 +632,11 @@ struct PartitionSource {
     }
 };
 
-// Opens the dataset, read-only, once the file is known to be there.
+// Opens the dataset, read-only, once the file is known to be there (a path GDAL can stat: a
+// file, or one of its virtual file systems such as /vsizip/ or /vsimem/).
 DatasetPtr open_partition(const std::string& path, const std::string& what) {
-    if (!std::filesystem::exists(path)) throw Error(Code::InputMissing, what + ": no such file");
+    VSIStatBufL st;
+    if (VSIStatL(path.c_str(), &st) != 0) throw Error(Code::InputMissing, what + ": no such file");
     DatasetPtr ds(GDALDataset::FromHandle(
         GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
     if (!ds) throw Error(Code::InputMissing, what + ": not a vector dataset OGR can read");

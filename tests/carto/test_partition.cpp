@@ -1,6 +1,8 @@
 // Hand-made partitions whose shared borders are digitised twice with different vertices
 // (issue 11): load_partition snaps them onto each other, neighbours are found across every
 // shared segment, valleys are drawn once and ridge shapes fall into the darker face.
+#include <cpl_conv.h>
+#include <cpl_vsi.h>
 #include <gdal_priv.h>
 #include <gtest/gtest.h>
 #include <ogrsf_frmts.h>
@@ -352,5 +354,38 @@ TEST(Partition, CoordinatesThatAreNotFiniteAreRefused) {
             EXPECT_EQ(e.code(), Code::BadGeometry) << e.what();
             EXPECT_NE(std::string(e.what()).find("not finite"), std::string::npos) << e.what();
         }
+    }
+}
+
+// A partition is read from any path GDAL can stat: a GeoPackage copied into memory
+// (/vsimem/) or inside a zip (/vsizip/) reads as the file does; a virtual path that is not
+// there is a missing input.
+TEST(Partition, AVirtualPathReadsAsTheFile) {
+    const std::string file = kSample + "/partition.gpkg";
+    const Partition p = load(file);
+    ASSERT_EQ(p.faces.size(), 20u);
+    const std::string mem = "/vsimem/rockhatch_test_partition.gpkg";
+    ASSERT_EQ(CPLCopyFile(mem.c_str(), file.c_str()), 0);
+    const Partition q = load(mem);
+    VSIUnlink(mem.c_str());
+    ASSERT_EQ(q.faces.size(), p.faces.size());
+    for (std::size_t i = 0; i < p.faces.size(); ++i) {
+        EXPECT_EQ(q.faces[i].id, p.faces[i].id);
+        EXPECT_EQ(q.faces[i].region.outer(), p.faces[i].region.outer());
+        EXPECT_EQ(q.faces[i].boundary.size(), p.faces[i].boundary.size());
+    }
+    EXPECT_EQ(q.lines.size(), p.lines.size());
+    const std::string zip = "/vsimem/rockhatch_test_partition.zip";
+    ASSERT_EQ(CPLCopyFile(("/vsizip/" + zip + "/partition.gpkg").c_str(), file.c_str()), 0);
+    const Partition z = load("/vsizip/" + zip + "/partition.gpkg");
+    VSIUnlink(zip.c_str());
+    ASSERT_EQ(z.faces.size(), p.faces.size());
+    EXPECT_EQ(z.faces.back().region.outer(), p.faces.back().region.outer());
+    try {
+        (void)load("/vsimem/rockhatch_no_such_partition.gpkg");
+        FAIL() << "a missing virtual file was read";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), Code::InputMissing);
+        EXPECT_NE(std::string(e.what()).find("no such file"), std::string::npos) << e.what();
     }
 }
