@@ -1034,9 +1034,15 @@ void read_scree(const PartitionSource& src, Partition& p) {
 Partition load_partition(const PartitionOptions& opt, const std::string& working_wkt) {
     register_gdal();
     const QuietGdal quiet;
+    const DatasetPtr ds = open_partition(opt.path, "--partition '" + opt.path + "'");
+    return load_partition(*ds, opt, working_wkt);
+}
+
+Partition load_partition(GDALDataset& ds, const PartitionOptions& opt, const std::string& working_wkt) {
+    register_gdal();
+    const QuietGdal quiet;
     const std::string what = "--partition '" + opt.path + "'";
-    const DatasetPtr ds = open_partition(opt.path, what);
-    const PartitionSource src{*ds, what, opt, working_wkt};
+    const PartitionSource src{ds, what, opt, working_wkt};
 
     Partition p;
     p.crs_wkt = working_wkt;

@@ -10,6 +10,8 @@
 
 #include "libtex/region.hpp"
 
+class GDALDataset;
+
 namespace carto {
 
 using tex::Point;
@@ -85,6 +87,9 @@ struct PartitionOptions {
 // layer with a label attribute, or from layers named after their kind ("ridges",
 // "valleys", "thalwegs"...). Throws carto::Error naming the dataset, layer or field.
 Partition load_partition(const PartitionOptions& opt, const std::string& working_wkt);
+// The same from a dataset already open (any OGR driver, an in-memory one included); opt.path
+// names it in messages only.
+Partition load_partition(GDALDataset& ds, const PartitionOptions& opt, const std::string& working_wkt);
 
 // Makes the shared borders of neighbouring faces identical when they lie within `snap` of
 // each other, whatever their vertices: vertices move onto other faces' vertices, then onto
