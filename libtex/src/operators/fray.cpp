@@ -153,9 +153,10 @@ bool draw_on(std::vector<Point>& pts, double depth, const PreparedRegion& region
     if (!(l > 0)) return false;
     const Point dir = (end - from) / l;
     const double step = depth / 4;
+    auto deep_enough = [&](const Point& q) { return border.to_rim(q, depth) >= depth; };
     auto beyond = [&](double t) {
         const Point q = end + dir * t;
-        return !region.contains(q) && border.to_rim(q, depth) >= depth;
+        return !region.contains(q) && deep_enough(q);
     };
     bool out = false;
     for (double lo = 0, t = step; t <= 2 * depth + 1e-9 * depth; lo = t, t += step) {
@@ -164,7 +165,7 @@ bool draw_on(std::vector<Point>& pts, double depth, const PreparedRegion& region
         const bool inside = region.contains(q);
         if (inside && (out || t > depth)) return false;
         out = out || !inside;
-        if (!beyond(t)) continue;
+        if (inside || !deep_enough(q)) continue;  // beyond(t), the containment already known
         double hi = t;
         for (int it = 0; it < kBisections; ++it) {
             const double m = (lo + hi) / 2;
