@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <random>
 #include <set>
 #include <sstream>
@@ -124,6 +125,47 @@ TEST_P(TiledModes, StripesConversionGivesTheEnginesWholeLines) {
         } else if (b != CROP_ADD_BOUNDARY) {
             EXPECT_EQ(lines.size(), tiled.curves.size());
         }
+    }
+}
+
+TEST(Tiled, StripesInAKeepModeAreWholeBandsNotCopies) {
+    // Stripes' faces are infinite bands, which no copy of a one-period element can stand
+    // for: in a KEEP mode the tiled map hands them to the engine. What must come out, found
+    // here from the widths alone: KEEP_OUTSIDE keeps every band that meets the region, so its
+    // lines run from the last line at or below the region's lowest offset along the normal to
+    // the first at or above its highest, one whole line each (x at 42 m, y at 42 m + 12), its
+    // ends outside the region; KEEP_INSIDE keeps no band of a bounded region.
+    Stripes s = StripesProperties(pi / 5, 12, 30);
+    SetEdgeLabels(s, {"x", "y"});
+    const TiledMap t = StripesPartition(s, Tiled());
+    const Point n{-std::sin(pi / 5), std::cos(pi / 5)};
+    for (const Region& r : {kWindow, kTriangle}) {
+        double lo = INFINITY, hi = -INFINITY;
+        for (const Point& v : r.outer()) lo = std::min(lo, dot(v, n)), hi = std::max(hi, dot(v, n));
+        std::map<long long, std::string> expected;  // offset -> label
+        for (long long m = (long long)std::floor(lo / 42) - 1; m <= (long long)std::ceil(hi / 42) + 1; ++m)
+            for (const auto& [offset, label] : {std::pair{42.0 * m, "x"}, std::pair{42.0 * m + 12, "y"}})
+                expected[std::llround(offset)] = label;
+        const double first = double(std::prev(expected.upper_bound((long long)std::floor(lo)))->first);
+        const double last = double(expected.lower_bound((long long)std::ceil(hi))->first);
+        for (auto it = expected.begin(); it != expected.end();)
+            it = (it->first < first || it->first > last) ? expected.erase(it) : std::next(it);
+        ASSERT_GT(expected.size(), 10u);
+
+        const Curves outside = t.Convert(r, KEEP_OUTSIDE);
+        std::map<long long, std::string> got;
+        for (const auto& c : outside.curves) {
+            ASSERT_EQ(c.points.size(), 2u);
+            const double offset = dot(c.points.front(), n);
+            EXPECT_NEAR(dot(c.points.back(), n), offset, 1e-6);
+            EXPECT_NEAR(offset, std::round(offset), 1e-6);
+            EXPECT_FALSE(r.contains(c.points.front()));
+            EXPECT_FALSE(r.contains(c.points.back()));
+            EXPECT_TRUE(got.emplace(std::llround(offset), c.labels.has("x") ? "x" : c.labels.has("y") ? "y" : "?").second)
+                << "two curves on the line at " << offset;
+        }
+        EXPECT_EQ(got, expected);
+        EXPECT_TRUE(t.Convert(r, KEEP_INSIDE).curves.empty());
     }
 }
 

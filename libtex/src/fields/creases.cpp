@@ -67,30 +67,31 @@ Curves trace(const detail::LatticeWindow& w, CreaseKind kind, double cell, doubl
         return nodes[std::size_t((j - j0) * mx + (i - i0))];
     };
     // The crossing of a lattice edge, if the line crosses it where it bends enough: each edge
-    // read once, its crossing numbered in the order found (-2 not read yet, -1 none).
+    // read once, its crossing numbered in the order found (-2 not read yet, -1 none). An index,
+    // not a pointer: the crossings of a square's later edges may move the vector.
     std::vector<int> crossing_id(std::size_t(mx * my) * 2, -2);
     std::vector<Point> crossings;
     auto edge_of = [&](const Key& k) { return std::size_t((k.j - j0) * mx + (k.i - i0)) * 2 + std::size_t(k.vertical); };
-    auto crossing = [&](const Key& k) -> const Point* {
+    auto crossing = [&](const Key& k) -> int {
         int& id = crossing_id[edge_of(k)];
-        if (id != -2) return id >= 0 ? &crossings[std::size_t(id)] : nullptr;
+        if (id != -2) return id;
         id = -1;
         const long long i2 = k.vertical ? k.i : k.i + 1, j2 = k.vertical ? k.j + 1 : k.j;
         const Node &a = node_at(k.i, k.j), &b = node_at(i2, j2);
-        if (!a.valid || !b.valid || !a.dominant || !b.dominant) return nullptr;
+        if (!a.valid || !b.valid || !a.dominant || !b.dominant) return -1;
         const double ga = a.slope_along, gb = (dot(a.e, b.e) >= 0 ? 1.0 : -1.0) * b.slope_along;
-        if ((ga >= 0) == (gb >= 0)) return nullptr;
+        if ((ga >= 0) == (gb >= 0)) return -1;
         const double t = ga / (ga - gb);
         const double bend = a.bend + (b.bend - a.bend) * t;
-        if (!(bend > min_bend) || a.bend <= 0 || b.bend <= 0) return nullptr;
+        if (!(bend > min_bend) || a.bend <= 0 || b.bend <= 0) return -1;
         // The derivative falls across the line as the bend says (not a sign flip of a
         // vanishing derivative, as on the flank of a cone, where every radius would pass).
         const Point pa{double(k.i) * cell, double(k.j) * cell}, pb{double(i2) * cell, double(j2) * cell};
         const double across = std::abs(k.vertical ? a.e.y : a.e.x) * cell;
-        if (std::abs(ga - gb) < 0.5 * bend * across) return nullptr;
+        if (std::abs(ga - gb) < 0.5 * bend * across) return -1;
         id = int(crossings.size());
         crossings.push_back(pa + (pb - pa) * t);
-        return &crossings.back();
+        return id;
     };
     // Segments inside each square between its crossings: two join; four pair off the
     // shorter way; three (the eigenvector turned round inside the square) keep the
@@ -102,15 +103,15 @@ Curves trace(const detail::LatticeWindow& w, CreaseKind kind, double cell, doubl
     for (long long j = j0; j < j1; ++j)
         for (long long i = i0; i < i1; ++i) {
             const Key edge[4] = {{i, j, 0}, {i + 1, j, 1}, {i, j + 1, 0}, {i, j, 1}};
-            int on[4], n = 0;
-            const Point* p[4];
+            int on[4], n = 0, c[4];
             for (int k = 0; k < 4; ++k)
-                if ((p[k] = crossing(edge[k]))) on[n++] = k;
+                if ((c[k] = crossing(edge[k])) >= 0) on[n++] = k;
+            auto p = [&](int k) -> const Point& { return crossings[std::size_t(c[k])]; };
             if (n == 2) {
                 segs.push_back({edge[on[0]], edge[on[1]]});
             } else if (n == 4) {
-                const double around = distance(*p[0], *p[1]) + distance(*p[2], *p[3]);
-                const double other = distance(*p[1], *p[2]) + distance(*p[3], *p[0]);
+                const double around = distance(p(0), p(1)) + distance(p(2), p(3));
+                const double other = distance(p(1), p(2)) + distance(p(3), p(0));
                 if (around <= other) {
                     segs.push_back({edge[0], edge[1]});
                     segs.push_back({edge[2], edge[3]});
@@ -122,7 +123,7 @@ Curves trace(const detail::LatticeWindow& w, CreaseKind kind, double cell, doubl
                 int best = 0;
                 double shortest = INFINITY;
                 for (int k = 0; k < 3; ++k) {
-                    const double l = distance(*p[on[k]], *p[on[(k + 1) % 3]]);
+                    const double l = distance(p(on[k]), p(on[(k + 1) % 3]));
                     if (l < shortest) shortest = l, best = k;
                 }
                 segs.push_back({edge[on[best]], edge[on[(best + 1) % 3]]});
