@@ -54,12 +54,18 @@ std::string label(FuzzedDataProvider& in) {
     return in.PickValueInArray({"ridge", "valley", "other", "thalweg", "", "crête", "Ridge", "boundary"});
 }
 
+std::unique_ptr<OGRSpatialReference> epsg(int code) {
+    auto s = std::make_unique<OGRSpatialReference>();
+    s->importFromEPSG(code);
+    return s;
+}
+
 std::unique_ptr<OGRSpatialReference> srs(FuzzedDataProvider& in) {
     const int c = in.ConsumeIntegralInRange<int>(0, 7);
     if (c == 0) return nullptr;  // no CRS
-    auto s = std::make_unique<OGRSpatialReference>();
-    s->importFromEPSG(c == 1 ? 4326 : c == 2 ? 32632 : 2154);
-    return s;
+    // Each CRS read from PROJ's database once (a lookup per input took most of the time).
+    static const std::unique_ptr<OGRSpatialReference> known[3] = {epsg(4326), epsg(32632), epsg(2154)};
+    return std::unique_ptr<OGRSpatialReference>(known[c == 1 ? 0 : c == 2 ? 1 : 2]->Clone());
 }
 
 void real_field(OGRFeature& f, const char* name, FuzzedDataProvider& in) {

@@ -10,6 +10,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <unordered_map>
 
@@ -39,7 +40,7 @@ bool is_polygon_layer(OGRLayer* l) { return flat(l) == wkbPolygon || flat(l) == 
 bool is_line_layer(OGRLayer* l) { return flat(l) == wkbLineString || flat(l) == wkbMultiLineString; }
 
 struct Reprojector {
-    std::unique_ptr<OGRCoordinateTransformation> ct;
+    std::unique_ptr<OGRCoordinateTransformation> ct;  // none: the layer is in the working CRS
     void apply(OGRGeometry* g) const {
         if (ct) g->transform(ct.get());
     }
@@ -56,21 +57,52 @@ bool keep(const OGRGeometry* reprojected, const std::optional<tex::BBox>& box) {
     return !(e.MaxX < box->xmin || e.MinX > box->xmax || e.MaxY < box->ymin || e.MinY > box->ymax);
 }
 
+std::string wkt2(const OGRSpatialReference& srs) {
+    const char* const options[] = {"FORMAT=WKT2_2019", nullptr};
+    char* wkt = nullptr;
+    std::string out;
+    if (srs.exportToWkt(&wkt, options) == OGRERR_NONE && wkt) out = wkt;
+    CPLFree(wkt);
+    return out;
+}
+
+// The reprojection of a layer into the working CRS. PROJ takes 2 to 6 ms to make a
+// transformation, and a partition's layers, repeated runs (QGIS, tiles) and the fuzzer ask for
+// the same few again and again: each one made is kept for the process, by the layer CRS's WKT
+// and the working CRS's, and every caller gets its own copy (a transformation is not safe to
+// share between threads).
 Reprojector reprojector(OGRLayer* layer, const std::string& working_wkt, const std::string& what) {
     const OGRSpatialReference* srs = layer->GetSpatialRef();
     // GeoPackage layers without a CRS report an "Undefined" placeholder.
     const char* name = srs ? srs->GetName() : nullptr;
     if (!srs || srs->IsEmpty() || (name && std::string(name).find("Undefined") != std::string::npos))
         throw Error(Code::NoCrs, what + ": layer '" + layer->GetName() + "' has no CRS");
+    // Never destroyed: PROJ may be torn down before static destructors run at exit.
+    static std::mutex mutex;
+    static auto& kept = *new std::map<std::string, std::unique_ptr<OGRCoordinateTransformation>>;  // null: same CRS
+    std::string key = wkt2(*srs);
+    if (!key.empty()) key.append("\n").append(working_wkt);
+    Reprojector r;
+    if (!key.empty()) {
+        const std::lock_guard<std::mutex> lock(mutex);
+        if (const auto it = kept.find(key); it != kept.end()) {
+            r.ct.reset(it->second ? it->second->Clone() : nullptr);
+            return r;
+        }
+    }
     OGRSpatialReference dst;
     dst.importFromWkt(working_wkt.c_str());
     dst.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
     OGRSpatialReference src(*srs);
     src.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-    Reprojector r;
     if (!src.IsSame(&dst)) {
         r.ct.reset(OGRCreateCoordinateTransformation(&src, &dst));
         if (!r.ct) throw Error(Code::NoCrs, what + ": cannot reproject layer '" + std::string(layer->GetName()) + "'");
+    }
+    if (!key.empty()) {
+        const std::lock_guard<std::mutex> lock(mutex);
+        if (kept.size() >= 64) kept.clear();  // a bound: what was cleared is made again
+        kept.emplace(key, r.ct ? std::unique_ptr<OGRCoordinateTransformation>(r.ct->Clone()) : nullptr);
     }
     return r;
 }

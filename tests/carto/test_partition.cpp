@@ -11,6 +11,7 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <thread>
 
 #include "carto/error.hpp"
 #include "carto/extract.hpp"
@@ -388,4 +389,60 @@ TEST(Partition, AVirtualPathReadsAsTheFile) {
         EXPECT_EQ(e.code(), Code::InputMissing);
         EXPECT_NE(std::string(e.what()).find("no such file"), std::string::npos) << e.what();
     }
+}
+
+// Layers in other CRSs are reprojected each by its own transformation, however often and in
+// whatever order loads ask for them (the transformations are kept for the process, by both
+// CRSs): the sample's faces copied into EPSG:4326, then EPSG:32631, then 4326 again, then
+// the working CRS, read on one thread and then on two at once, land on the file's vertices
+// (within 1 mm: PROJ's round trip).
+TEST(Partition, LayersInOtherCrssEachReadThroughTheirOwnTransformation) {
+    const std::string file = kSample + "/partition.gpkg";
+    const Partition truth = load(file);
+    GDALDatasetUniquePtr src(GDALDataset::Open(file.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+    ASSERT_TRUE(src);
+    auto copy_in = [&](int epsg) {
+        // Every layer of the file (faces and lines), its geometries transformed.
+        OGRSpatialReference to;
+        to.importFromEPSG(epsg);
+        to.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+        GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("Memory");
+        std::unique_ptr<GDALDataset> ds(mem->Create("copy", 0, 0, 0, GDT_Unknown, nullptr));
+        for (OGRLayer* in : src->GetLayers()) {
+            OGRSpatialReference from(*in->GetSpatialRef());
+            from.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+            std::unique_ptr<OGRCoordinateTransformation> ct(OGRCreateCoordinateTransformation(&from, &to));
+            OGRLayer* l = ds->CreateLayer(in->GetName(), &to, in->GetGeomType(), nullptr);
+            for (int i = 0; i < in->GetLayerDefn()->GetFieldCount(); ++i) l->CreateField(in->GetLayerDefn()->GetFieldDefn(i));
+            in->ResetReading();
+            for (auto& f : *in) {
+                std::unique_ptr<OGRFeature> g(f->Clone());
+                if (g->GetGeometryRef()) g->GetGeometryRef()->transform(ct.get());
+                EXPECT_EQ(l->CreateFeature(g.get()), OGRERR_NONE);
+            }
+        }
+        return ds;
+    };
+    auto expect_on_truth = [&](const Partition& p, const std::string& what) {
+        ASSERT_EQ(p.faces.size(), truth.faces.size()) << what;
+        double worst = 0;
+        for (std::size_t i = 0; i < p.faces.size(); ++i) {
+            ASSERT_EQ(p.faces[i].region.outer().size(), truth.faces[i].region.outer().size()) << what;
+            for (std::size_t k = 0; k < p.faces[i].region.outer().size(); ++k)
+                worst = std::max(worst, distance(p.faces[i].region.outer()[k], truth.faces[i].region.outer()[k]));
+        }
+        EXPECT_LT(worst, 1e-3) << what;
+    };
+    const auto wgs84 = copy_in(4326), utm = copy_in(32631), same = copy_in(2154);
+    PartitionOptions o;
+    o.path = "copy";
+    for (auto* ds : {wgs84.get(), utm.get(), wgs84.get(), same.get(), utm.get()})
+        expect_on_truth(load_partition(*ds, o, lambert93()), ds->GetLayer(0)->GetSpatialRef()->GetName());
+    Partition a, b;
+    std::thread t1([&] { a = load_partition(*wgs84, o, lambert93()); });
+    std::thread t2([&] { b = load_partition(*utm, o, lambert93()); });
+    t1.join();
+    t2.join();
+    expect_on_truth(a, "4326 on a thread");
+    expect_on_truth(b, "32631 on a thread");
 }

@@ -824,6 +824,21 @@ TEST(Fields, FaceWiseRasterAndClosedFormFieldsDriveAStyle) {
 // on it, fill and cross strokes end at least fray_min from it, spread over the band up to
 // fray_max on both sides of it (fray_beyond's share past it); the same drawing on any number
 // of threads.
+// The distance from p to the nearest of the region's rings.
+double to_ring(const tex::Region& r, const Point& p) {
+    double best = 1e300;
+    auto ring = [&](const std::vector<Point>& pts) {
+        for (std::size_t i = 0; i < pts.size(); ++i) {
+            const Point &a = pts[i], &b = pts[(i + 1) % pts.size()], ab = b - a;
+            const double t = std::clamp(tex::dot(p - a, ab) / std::max(tex::dot(ab, ab), 1e-300), 0.0, 1.0);
+            best = std::min(best, tex::distance(p, a + ab * t));
+        }
+    };
+    ring(r.outer());
+    for (const auto& h : r.holes()) ring(h);
+    return best;
+}
+
 TEST(Pipeline, TheRockStyleDrawsNoOutline) {
     Options o = sample_options("rock");
     o.threads = 1;
@@ -861,7 +876,7 @@ TEST(Pipeline, TheRockStyleDrawsNoOutline) {
         }
         return best;
     };
-    std::size_t ends = 0, shallow = 0, deep = 0, too_close = 0, outside = 0;
+    std::size_t ends = 0, shallow = 0, deep = 0, too_close = 0, outside = 0, crosses = 0, crosses_outside = 0;
     for (std::size_t k = 0; k < d.faces.size(); ++k) {
         std::size_t index = 0;
         while (index < part.faces.size() && part.faces[index].id != d.faces[k].face_id) ++index;
@@ -880,6 +895,7 @@ TEST(Pipeline, TheRockStyleDrawsNoOutline) {
                 shallow += dist >= 0.2 * mm - 1e-6 && dist < 0.45 * mm;
                 deep += dist >= 0.45 * mm && dist <= 0.75 * mm + 1e-6;
                 outside += !region.contains(e);
+                if (h.family == Family::Cross) ++crosses, crosses_outside += !region.contains(e) && to_ring(region, e) > 1e-6 * mm;
             }
         }
     }
@@ -892,6 +908,9 @@ TEST(Pipeline, TheRockStyleDrawsNoOutline) {
     const double band = double(shallow + deep);
     EXPECT_GT(double(outside) / band, 0.1) << outside << " of " << band;
     EXPECT_LT(double(outside) / band, 0.6) << outside << " of " << band;
+    // Only fill strokes go past the border: a cross stroke there reads as a stray hair.
+    EXPECT_GT(crosses, 20u);
+    EXPECT_EQ(crosses_outside, 0u);
 }
 
 // The rock style's structure lines: crests on crests and couloirs in couloirs of the DEM, one

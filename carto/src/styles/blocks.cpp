@@ -81,7 +81,7 @@ const std::vector<StyleParam> kFray = {
     {"fray_min", 0.2, "mm", "strokes end at least this far from the rock's edge (where nothing lies across it)"},
     {"fray_max", 0.75, "mm", "and at most this far: they end irregularly in the band between"},
     {"fray_beyond", 0.5, "ratio",
-     "this share of the strokes reaching the edge go on past it by as much instead (0 to 1: ends on both sides)"},
+     "this share of the fill strokes reaching the edge go on past it by as much instead (0 to 1: ends on both sides; the cross strokes all end inside)"},
 };
 const std::vector<StyleParam> kCliff = {
     {"cliff_slope", 100.0, "%", "cliff bands are where the slope passes this (percent; 100: 45 degrees)"},
@@ -383,8 +383,19 @@ void check_fray(const ParamValues& p) {
 }
 
 Arrangement frayed(const ControlFields& f, const ParamValues& p, Arrangement a) {
-    return FrayedCrop(std::move(a), p.at("fray_min"), p.at("fray_max"), f.density, {"ridge", "cliff"},
-                      p.at("fray_beyond"));
+    // The cross strokes are only drawn back from the rim: drawn on past it, a texture with no
+    // fall line to follow reads as stray hairs round the rock. The fill strokes end on both
+    // sides of it (fray_beyond of them past it).
+    const double lo = p.at("fray_min"), hi = p.at("fray_max"), beyond = p.at("fray_beyond");
+    return Arrangement([a = std::move(a), across = f.density, lo, hi, beyond](const Region& r) {
+        Curves strokes, crosses;
+        Curves all = a(r);
+        for (Curve& c : all.curves) (c.labels.has("cross") ? crosses : strokes).curves.push_back(std::move(c));
+        auto given = [](Curves c) { return Arrangement([c = std::move(c)](const Region&) { return c; }); };
+        Curves out = FrayedCrop(given(std::move(strokes)), lo, hi, across, {"ridge", "cliff"}, beyond)(r);
+        out.append(FrayedCrop(given(std::move(crosses)), lo, hi, across, {"ridge", "cliff"}, 0)(r));
+        return out;
+    });
 }
 
 Arrangement valleys() {
