@@ -715,6 +715,8 @@ FaceFields face_fields(const PartitionSource& src, OGRLayer* faces) {
     return f;
 }
 
+constexpr double kRepairableMetres = 1e10;
+
 // A face feature's geometry in the working CRS, repaired when invalid (counted in `repaired`)
 // unless --no-repair; nullptr for a feature without geometry or off the filter box.
 std::unique_ptr<OGRGeometry> face_geometry(const PartitionSource& src, const OGRFeature& feat, const Reprojector& proj,
@@ -731,6 +733,15 @@ std::unique_ptr<OGRGeometry> face_geometry(const PartitionSource& src, const OGR
             throw Error(Code::BadGeometry, what + ": face " + std::to_string(feat.GetFID()) +
                                                " is not a valid polygon (self-intersecting?); repair it or drop "
                                                "--no-repair");
+        // GEOS's repair works in the coordinates' own magnitude: near the largest doubles its
+        // sums overflow and a ten-vertex face took minutes (fuzz_partition_struct). No map's
+        // coordinates come near 1e10 m (250 times round the Earth).
+        OGREnvelope e;
+        g->getEnvelope(&e);
+        if (std::max({std::abs(e.MinX), std::abs(e.MaxX), std::abs(e.MinY), std::abs(e.MaxY)}) > kRepairableMetres)
+            throw Error(Code::BadGeometry, what + ": face " + std::to_string(feat.GetFID()) +
+                                               " is invalid and lies beyond any map (coordinates over 1e10 m): it "
+                                               "cannot be repaired");
         std::unique_ptr<OGRGeometry> fixed(g->MakeValid());
         if (!fixed || fixed->IsEmpty())
             throw Error(Code::BadGeometry,

@@ -358,6 +358,25 @@ TEST(Partition, CoordinatesThatAreNotFiniteAreRefused) {
     }
 }
 
+// fuzz_partition_struct: an invalid face with coordinates near the largest doubles kept GEOS's
+// repair busy for minutes. Such a face is refused (BadGeometry), naming it; the same
+// bow-tie on the map is repaired as before.
+TEST(Partition, AnInvalidFaceBeyondAnyMapIsRefusedNotRepairedForever) {
+    const double huge = 1.5e308;
+    const std::string far = write_partition("far_bowtie", {{{{0, 0}, {huge, 100}, {huge, 0}, {0, 100}}}},
+                                            {{{{0, 0}, {0, 100}}, "ridge"}});
+    try {
+        load(far);
+        ADD_FAILURE() << "accepted";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), Code::BadGeometry) << e.what();
+        EXPECT_NE(std::string(e.what()).find("face 1 is invalid and lies beyond any map"), std::string::npos) << e.what();
+    }
+    const std::string near = write_partition("near_bowtie", {{{{0, 0}, {100, 100}, {100, 0}, {0, 100}}}},
+                                             {{{{0, 0}, {0, 100}}, "ridge"}});
+    EXPECT_EQ(load(near).faces.size(), 2u);
+}
+
 // A partition is read from any path GDAL can stat: a GeoPackage copied into memory
 // (/vsimem/) or inside a zip (/vsizip/) reads as the file does; a virtual path that is not
 // there is a missing input.
