@@ -88,6 +88,7 @@ const std::vector<StyleParam> kCliff = {
     {"cliff_length", 3.0, "mm", "longest stroke hanging from a cliff top (strokes end at the band's foot)"},
     {"cliff_min_length", 2.0, "mm", "cliff tops shorter than this are not drawn"},
     {"cliff_smoothing", 0.5, "mm", "cliff tops follow the slope of the elevation differenced over this either side"},
+    {"cliff_break", 30.0, "%", "a cliff top is drawn only where the slope below it exceeds the slope above by this (percent: a break of slope)"},
 };
 const std::vector<StyleParam> kStructure = {
     {"crease_bend", 0.25, "ratio",

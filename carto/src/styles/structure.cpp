@@ -87,7 +87,10 @@ tex::Curves cliff_tops(const ControlFields& f, const ParamValues& p, const Regio
             if (l > 0) {
                 const Point mid = (a + b) / 2, left{-(b - a).y / l, (b - a).x / l};
                 const double into = f.height(mid + left * cell), out = f.height(mid - left * cell);
-                top = into < out;  // NaN: not a top
+                // A break of slope: steeper below the line than above it by cliff_break (a
+                // slope that only hovers round cliff_slope, as on an even flank, is no top).
+                const double below = slope(mid + left * h), above = slope(mid - left * h);
+                top = into < out && !(below - above < p.at("cliff_break"));  // NaN: not a top
             }
             if (top) {
                 if (run.empty()) run.push_back(a);
