@@ -824,15 +824,18 @@ TEST(Fields, FaceWiseRasterAndClosedFormFieldsDriveAStyle) {
 // on it, fill and cross strokes end at least fray_min from it, spread over the band up to
 // fray_max on both sides of it (fray_beyond's share past it); the same drawing on any number
 // of threads.
+// The distance from p to the segment ab.
+double to_segment(const Point& p, const Point& a, const Point& b) {
+    const Point ab = b - a;
+    const double t = std::clamp(tex::dot(p - a, ab) / std::max(tex::dot(ab, ab), 1e-300), 0.0, 1.0);
+    return tex::distance(p, a + ab * t);
+}
+
 // The distance from p to the nearest of the region's rings.
 double to_ring(const tex::Region& r, const Point& p) {
     double best = 1e300;
     auto ring = [&](const std::vector<Point>& pts) {
-        for (std::size_t i = 0; i < pts.size(); ++i) {
-            const Point &a = pts[i], &b = pts[(i + 1) % pts.size()], ab = b - a;
-            const double t = std::clamp(tex::dot(p - a, ab) / std::max(tex::dot(ab, ab), 1e-300), 0.0, 1.0);
-            best = std::min(best, tex::distance(p, a + ab * t));
-        }
+        for (std::size_t i = 0; i < pts.size(); ++i) best = std::min(best, to_segment(p, pts[i], pts[(i + 1) % pts.size()]));
     };
     ring(r.outer());
     for (const auto& h : r.holes()) ring(h);
@@ -868,12 +871,7 @@ TEST(Pipeline, TheRockStyleDrawsNoOutline) {
         double best = 1e300;
         const auto it = cells.find({(long long)std::floor(p.x / cell), (long long)std::floor(p.y / cell)});
         if (it == cells.end()) return best;
-        for (std::size_t k : it->second) {
-            const auto& [a, b] = rim[k];
-            const Point ab = b - a;
-            const double t = std::clamp(tex::dot(p - a, ab) / std::max(tex::dot(ab, ab), 1e-300), 0.0, 1.0);
-            best = std::min(best, tex::distance(p, a + ab * t));
-        }
+        for (std::size_t k : it->second) best = std::min(best, to_segment(p, rim[k].first, rim[k].second));
         return best;
     };
     std::size_t ends = 0, shallow = 0, deep = 0, too_close = 0, outside = 0, crosses = 0, crosses_outside = 0;

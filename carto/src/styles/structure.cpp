@@ -89,8 +89,8 @@ tex::Curves cliff_tops(const ControlFields& f, const ParamValues& p, const Regio
                 const double into = f.height(mid + left * cell), out = f.height(mid - left * cell);
                 // A break of slope: steeper below the line than above it by cliff_break (a
                 // slope that only hovers round cliff_slope, as on an even flank, is no top).
-                const double below = slope(mid + left * h), above = slope(mid - left * h);
-                top = into < out && !(below - above < p.at("cliff_break"));  // NaN: not a top
+                // NaN heights: not a top; the slopes are read only where the ground falls.
+                top = into < out && !(slope(mid + left * h) - slope(mid - left * h) < p.at("cliff_break"));
             }
             if (top) {
                 if (run.empty()) run.push_back(a);
