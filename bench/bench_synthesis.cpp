@@ -3,6 +3,12 @@
 // the paper's published DP times at the same piece counts.
 //
 //   bench_synthesis [--runs N] [--markdown FILE] [--elements DIR]
+//   bench_synthesis --defaults [--runs N] [--markdown FILE] [--elements DIR]
+//
+// --defaults: the options' defaults (one component, holes free, topology slicing) on the five
+// exemplars of scripts/synth_exemplars.py and the project's three, along a wave of length
+// 1500 under a band of 40: the seed's event grouping 0.2 (the default before the automatic
+// choice) against the automatic choice.
 //
 // The exemplar (synth_vine.svg) is cut uniformly into as many pieces as the paper's row has,
 // and the curve is made as long as that row's result (pieces x piece width), open or closed
@@ -55,21 +61,94 @@ double peak_rss_mb() {
     return double(u.ru_maxrss) / 1024.0;
 }
 
+// One call of SynthesizeAlongCurve, `runs` times: a cell of the --defaults table.
+struct Try {
+    bool ok = false;
+    std::string error;
+    tex::SynthesisReport rep;
+    double seconds = 0;
+};
+
+Try attempt(const tex::Curves& ex, const tex::Curves& curve, double band, const tex::SynthesisOptions& o, int runs) {
+    Try t;
+    std::vector<double> times;
+    for (int k = 0; k < runs; ++k) {
+        const auto t0 = std::chrono::steady_clock::now();
+        try {
+            tex::SynthesizeAlongCurve(ex, curve, band, o, &t.rep);
+            t.ok = true;
+        } catch (const tex::Error& e) {
+            t.error = e.what();
+        }
+        times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    }
+    t.seconds = median(times);
+    return t;
+}
+
+int defaults_table(int runs, const std::string& markdown, const std::string& elements) {
+    const std::vector<std::pair<const char*, const char*>> exemplars = {
+        {"synth_rungs", "ladder, nine evenly spaced rungs (8 holes)"},
+        {"synth_bar_beads", "beads on a bar, up and down"},
+        {"synth_rings", "chain of nine overlapping rings (9 holes)"},
+        {"synth_truss", "zig-zag between two rails (13 triangular holes)"},
+        {"synth_dots", "loose dots above a bar, beads under it (6 components)"},
+        {"synth_ladder", "project's ladder (4 holes)"},
+        {"synth_beads", "project's beads (holes, loose diamonds)"},
+        {"synth_vine", "project's vine"},
+    };
+    std::vector<tex::Point> p;
+    for (int i = 0; i <= 150; ++i) p.push_back({1500.0 * i / 150, 60 * std::sin(3 * tex::pi * i / 150)});
+    const tex::Curves curve = tex::Polyline(p);
+    std::ostringstream md;
+    md << "<!-- written by `build/bench/bench_synthesis --defaults`; medians of " << runs << " runs -->\n"
+       << "| exemplar | seed's 0.2 W (old default) | automatic (new default) | grouping chosen (slicings tried) "
+          "| pieces in exemplar / result | time old / new |\n"
+       << "|---|---|---|---|---|---:|\n";
+    for (const auto& [name, what] : exemplars) {
+        const tex::Curves ex = tex::ImportSVG(elements + "/" + name + ".svg");
+        tex::SynthesisOptions seed;
+        seed.event_grouping = 0.2;
+        const Try old = attempt(ex, curve, 40, seed, runs);
+        const Try now = attempt(ex, curve, 40, tex::SynthesisOptions{}, runs);
+        auto cell = [](const Try& t) {
+            if (!t.ok) {
+                const std::string e = t.error.substr(t.error.find(": ") + 2);
+                return "error: " + e.substr(0, e.find(" within")) + " ...";
+            }
+            char c[128];
+            std::snprintf(c, sizeof c, "%d component(s), %d hole(s)", t.rep.components, t.rep.holes);
+            return std::string(c);
+        };
+        char line[1024];
+        std::snprintf(line, sizeof line, "| `%s`: %s | %s | %s | %g (%d) | %d / %d | %.1f / %.1f ms |\n", name, what,
+                      cell(old).c_str(), cell(now).c_str(), now.rep.event_grouping, now.rep.groupings_tried,
+                      now.rep.pieces_in_exemplar, now.rep.pieces_in_result, old.seconds * 1e3, now.seconds * 1e3);
+        std::cout << line;
+        md << line;
+    }
+    if (!markdown.empty()) std::ofstream(markdown) << md.str();
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     int runs = 5;
+    bool defaults = false;
     std::string markdown, elements = RH_SYNTH_ELEMENTS;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
-        if (a == "--runs" && i + 1 < argc) runs = std::max(1, std::atoi(argv[++i]));
+        if (a == "--defaults") defaults = true;
+        else if (a == "--runs" && i + 1 < argc) runs = std::max(1, std::atoi(argv[++i]));
         else if (a == "--markdown" && i + 1 < argc) markdown = argv[++i];
         else if (a == "--elements" && i + 1 < argc) elements = argv[++i];
         else {
-            std::cerr << "usage: bench_synthesis [--runs N] [--markdown FILE] [--elements DIR]\n";
+            std::cerr << "usage: bench_synthesis [--defaults] [--runs N] [--markdown FILE] [--elements DIR]\n";
             return 2;
         }
     }
+    if (defaults) return defaults_table(runs, markdown, elements);
     const tex::Curves vine = tex::ImportSVG(elements + "/synth_vine.svg");
     const double band = 40;
     const double width = tex::BBoxWidth(vine) * band / tex::BBoxHeight(vine);

@@ -5,6 +5,10 @@ paper around the same ground point, rendered at 300 dpi (rsvg-convert) so that o
 is 1/300 inch on paper when the PNG is printed at 300 dpi.
 
     /usr/bin/python3 bench/print_crops.py BUILD_DIR OUT_DIR [--style print] [--size 60] [--scales 10000 25000 50000]
+    /usr/bin/python3 bench/print_crops.py BUILD_DIR docs --compare print,rock --scales 10000 25000 --size 60
+
+--compare A,B also writes OUT_DIR/B-CASE.png per case: the two styles side by side (A left,
+B right), one row per scale (the figures of docs/rock.md).
 
 Only the faces centred near the crop are hatched (--window), so a large DEM stays quick.
 """
@@ -70,14 +74,34 @@ def main():
     ap.add_argument("--scales", type=int, nargs="+", default=[10000, 25000, 50000],
                     help="scale denominators (default: 10000 25000 50000)")
     ap.add_argument("--cases", nargs="+", default=list(CASES), help="cases (default: all)")
+    ap.add_argument("--compare", metavar="A,B", help="two styles side by side, a row per scale")
     args = ap.parse_args()
     exe = args.build / "carto" / "rockhatch"
+    styles = args.compare.split(",") if args.compare else [args.style]
     for case in args.cases:
         if not CASES[case][0].exists():
             print(f"print_crops: {CASES[case][0]} absent, {case} skipped")
             continue
+        crops = {}
         for scale in args.scales:
-            crop(exe, case, scale, args.style, args.size, args.out / f"print-{case}-{scale}-{args.style}.png", args.tmp)
+            for style in styles:
+                out = (args.tmp if args.compare else args.out) / f"print-{case}-{scale}-{style}.png"
+                crop(exe, case, scale, style, args.size, out, args.tmp)
+                crops[scale, style] = out
+        if args.compare:
+            side_by_side(crops, args.scales, styles, args.out / f"{styles[-1]}-{case}.png")
+
+
+def side_by_side(crops, scales, styles, out, gap=20):
+    """The crops in a grid, one row per scale, one column per style, on white paper."""
+    tiles = [[Image.open(crops[scale, style]) for style in styles] for scale in scales]
+    w, h = tiles[0][0].size
+    sheet = Image.new("1", (len(styles) * w + (len(styles) - 1) * gap, len(scales) * h + (len(scales) - 1) * gap), 1)
+    for i, row in enumerate(tiles):
+        for j, im in enumerate(row):
+            sheet.paste(im, (j * (w + gap), i * (h + gap)))
+    sheet.save(out, optimize=True)
+    print(f"{out}: {' | '.join(styles)}, rows 1:{', 1:'.join(str(s) for s in scales)}")
 
 
 if __name__ == "__main__":

@@ -12,13 +12,26 @@
 #   --copy                copy the plugin folder instead of symlinking it
 #   --module-path DIR     folder of the rockhatch Python module (e.g. build/python), saved in the
 #                         profile as the setting rockhatch/python_path; not needed after
-#                         scripts/setup.sh, which makes the module importable for /usr/bin/python3
+#                         scripts/setup.sh, which makes the module importable for /usr/bin/python3,
+#                         nor for an installed rockhatch (share/rockhatch/qgis_plugin holds this
+#                         script; the prefix's module is used when Python cannot import one)
 #   --zip OUT.zip         write a zip installable with Plugins > Manage and Install Plugins >
 #                         Install from ZIP, and install nothing
 set -euo pipefail
-ROOT="$(cd "$(dirname "$0")/.." && pwd)"
-PLUGIN="$ROOT/qgis_plugin/rockhatch_qgis"
+HERE="$(cd "$(dirname "$0")" && pwd)"
 NAME=rockhatch_qgis
+installed_module=""
+if [ -d "$HERE/$NAME" ]; then
+  # Installed: PREFIX/share/rockhatch/qgis_plugin/{this script,rockhatch_qgis}.
+  PLUGIN="$HERE/$NAME"
+  prefix="$(cd "$HERE/../../.." && pwd)"
+  for d in "$prefix"/lib/python3/dist-packages "$prefix"/lib/python3.*/dist-packages; do
+    [ -f "$d/rockhatch/__init__.py" ] && installed_module="$d" && break
+  done
+else
+  # In the clone: scripts/ beside qgis_plugin/.
+  PLUGIN="$(cd "$HERE/.." && pwd)/qgis_plugin/$NAME"
+fi
 
 profile=default
 profiles=""
@@ -36,6 +49,12 @@ while [ $# -gt 0 ]; do
     *) echo "install_qgis_plugin: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
+
+# An installed plugin uses its prefix's module when Python does not import one already.
+if [ -z "$module_path" ] && [ -n "$installed_module" ] && \
+   ! /usr/bin/python3 -c "import rockhatch" 2>/dev/null; then
+  module_path="$installed_module"
+fi
 
 if [ -n "$zip" ]; then
   /usr/bin/python3 - "$PLUGIN" "$zip" <<'EOF'

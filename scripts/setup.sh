@@ -22,6 +22,7 @@ PACKAGES=(
   python3-pil openimageio-tools                     # tests read written images back (PNG, TIFF; EXR)
   python3-distributed python3-dask python3-psutil  # rockhatch tiles: tiled runs on Dask distributed
   librsvg2-bin time                                 # PNG previews of SVG outputs; GNU time (benchmarks)
+  dpkg-dev file binutils                            # the Debian package (cpack: dpkg-shlibdeps, file, objdump)
   libopenimageio-dev                                # libtex_image: tiled maps rasterised to image files
   qgis python3-qgis qgis-providers                  # the QGIS plugin and its tests (headless QGIS, qgis_process)
   clang libclang-rt-14-dev                          # the sanitizer build of the tests; libFuzzer (scripts/fuzz.sh)

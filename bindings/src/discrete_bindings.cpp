@@ -156,6 +156,22 @@ void bind_discrete(py::module_& m) {
     m.def("Scale", py::overload_cast<double>(&Scale), py::arg("factor"),
           "Partial form: an element operator");
     m.def("Scale", py::overload_cast<RealGen>(&Scale), py::arg("factor"));
+    // A generator for the element or the parameter (after the plain forms, which pybind11
+    // tries first): a generator of regions, both drawn anew at every call.
+    m.def("Translation", py::overload_cast<const Region&, Pinning>(&Translation), py::arg("element"),
+          py::arg("location"), "With a pinning: a generator of the element at its successive points");
+    m.def("Translation", py::overload_cast<RegionGen, const Point&>(&Translation), py::arg("element"),
+          py::arg("location"));
+    m.def("Translation", py::overload_cast<RegionGen, Pinning>(&Translation), py::arg("element"),
+          py::arg("location"));
+    m.def("Rotation", py::overload_cast<const Region&, RealGen>(&Rotation), py::arg("element"),
+          py::arg("angle"), "With a generator: a generator of the element turned by a new angle at every call");
+    m.def("Rotation", py::overload_cast<RegionGen, double>(&Rotation), py::arg("element"), py::arg("angle"));
+    m.def("Rotation", py::overload_cast<RegionGen, RealGen>(&Rotation), py::arg("element"), py::arg("angle"));
+    m.def("Scale", py::overload_cast<const Region&, RealGen>(&Scale), py::arg("element"), py::arg("factor"),
+          "With a generator: a generator of the element scaled by a new factor at every call");
+    m.def("Scale", py::overload_cast<RegionGen, double>(&Scale), py::arg("element"), py::arg("factor"));
+    m.def("Scale", py::overload_cast<RegionGen, RealGen>(&Scale), py::arg("element"), py::arg("factor"));
 
     // ---- Scalars ----
     m.def("CountUpTo", &CountUpTo, py::arg("n"), "A condition true n times, then false");

@@ -29,7 +29,7 @@ SynthesisOptions options(const py::kwargs& kw, const char* op) {
             else if (s == "uniform") o.slicing = Slicing::Uniform;
             else throw Error(op, "slicing must be 'topology' or 'uniform', not '" + s + "'");
         } else if (k == "slicing_lines") o.slicing_lines = value.cast<int>();
-        else if (k == "event_grouping") o.event_grouping = value.cast<double>();
+        else if (k == "event_grouping") o.event_grouping = optional_of<double>(value);
         else if (k == "thin_portal") o.thin_portal = value.cast<double>();
         else if (k == "alpha") o.alpha = value.cast<double>();
         else if (k == "length_tolerance") o.length_tolerance = value.cast<double>();
@@ -55,8 +55,9 @@ autocorrelation : float, default 0
 slicing : {'topology', 'uniform'}, default 'topology'
     Cuts between groups of topological events, or slicing_lines equal cuts.
 slicing_lines : int, default 8
-event_grouping : float, default 0.2
-    Events closer than this fraction of the exemplar's width form one group.
+event_grouping : float or None, default None
+    Events closer than this fraction of the exemplar's width form one group. None: chosen
+    from the exemplar (the seed's 0.2 when its pieces meet the request, else finer).
 thin_portal : float, default 0
     Cuts whose narrowest portal is thinner than this (output units) are dropped.
 alpha : float, default 0.8

@@ -64,6 +64,8 @@ const char* kUsage =
 
 }  // namespace
 
+const char* partition_usage() { return kUsage; }
+
 int partition_main(int argc, char** argv) {
     carto::ExtractOptions o;
     std::string out, png;

@@ -28,19 +28,39 @@ namespace {
 using carto::Code;
 using carto::Error;
 
+// The folder holding this program's own Python package: the installed one beside the program
+// (RH_PYTHON_INSTALLED, relative to the program's folder), else the build's; "" if neither.
+std::string python_package_dir() {
+    std::vector<std::string> candidates;
+#ifdef RH_PYTHON_INSTALLED
+    char exe[4096];
+    const ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (n > 0) {
+        std::string dir(exe, std::size_t(n));
+        dir = dir.substr(0, dir.rfind('/'));
+        candidates.push_back(dir + "/" RH_PYTHON_INSTALLED);
+    }
+#endif
+#ifdef RH_PYTHON_DIR
+    candidates.push_back(RH_PYTHON_DIR);
+#endif
+    for (const auto& c : candidates)
+        if (access((c + "/rockhatch/__init__.py").c_str(), R_OK) == 0) return c;
+    return "";
+}
+
 // Runs `python3 -m rockhatch` with the same arguments (the Python module parses them with
-// the same option table; `tiles` is its tiled run). The build's package folder comes first
-// on PYTHONPATH.
+// the same option table; `tiles` is its tiled run). This program's package folder comes
+// first on PYTHONPATH.
 int run_script(char** argv) {
     const char* env = std::getenv("RH_PYTHON");
     const std::string python = env && *env ? env : "/usr/bin/python3";
-#ifdef RH_PYTHON_DIR
-    if (access(RH_PYTHON_DIR "/rockhatch/__init__.py", R_OK) == 0) {
+    const std::string own = python_package_dir();
+    if (!own.empty()) {
         const char* old = std::getenv("PYTHONPATH");
-        const std::string path = std::string(RH_PYTHON_DIR) + (old && *old ? std::string(":") + old : "");
+        const std::string path = own + (old && *old ? std::string(":") + old : "");
         setenv("PYTHONPATH", path.c_str(), 1);
     }
-#endif
     std::vector<char*> args = {const_cast<char*>(python.c_str()), const_cast<char*>("-m"),
                                const_cast<char*>("rockhatch")};
     for (char** a = argv + 1; *a; ++a) args.push_back(*a);

@@ -58,7 +58,7 @@ std::vector<Option> options(CommandLine& cl) {
          [&](const std::string& v) { o.slope = v; }},
         {"--roughness", "PATH", "roughness raster in 0..1 (default: computed from the DEM)",
          [&](const std::string& v) { o.roughness = v; }},
-        {"--style", "NAME", "hatching style (see --list-styles; default: print, the tone, fall-line and crest design after (g))",
+        {"--style", "NAME", "hatching style (see --list-styles; default: rock, the structure lines with strokes hanging from them and the print tone)",
          [&](const std::string& v) { o.style = v; }},
         {"--script", "PATH", "a Python style script (see styles/); its parameters are set with --param",
          [&](const std::string& v) { cl.script = o.style_file = v; }},
@@ -154,23 +154,32 @@ std::string params_text(const std::vector<StyleParam>& params, int indent) {
     return os.str();
 }
 
-std::string help_text() {
+std::vector<OptionHelp> option_table() {
     CommandLine dummy;
-    const std::vector<Option> opts = options(dummy);
+    std::vector<OptionHelp> out;
+    for (const auto& o : options(dummy)) out.push_back({o.name, o.arg ? o.arg : "", o.help});
+    return out;
+}
+
+std::string exit_codes_text() {
+    return "exit codes: 0 ok, 1 failure, 2 usage, 3 missing input, 4 no CRS, 5 no overlap,\n"
+           "6 bad layer or attribute, 7 unknown style or parameter, 8 invalid geometry,\n"
+           "9 output exists, is an input or cannot be written, 10 cancelled\n";
+}
+
+std::string help_text() {
     std::ostringstream out;
     out << "usage: rockhatch --dem DEM.tif --partition faces.gpkg [options] -o hatching.gpkg|.svg|.png\n\n"
                  "Draws rock hatching from a DEM and a partition of the rock areas whose borders are\n"
                  "labelled ridge / valley / other (thesis Chapter 5).\n\noptions:\n";
-    for (const auto& o : opts) {
-        std::string head = std::string(o.name) + (o.arg ? std::string(" ") + o.arg : "");
+    for (const auto& o : option_table()) {
+        std::string head = o.name + (o.arg.empty() ? std::string() : " " + o.arg);
         out << "  " << head << (head.size() < 26 ? std::string(26 - head.size(), ' ') : "\n" + std::string(28, ' '))
                   << o.help << "\n";
     }
     out << "\nstyles (parameters in mm on paper at the map scale, m on the ground, ratios, or degrees):\n";
     out << styles_text();
-    out << "\nexit codes: 0 ok, 1 failure, 2 usage, 3 missing input, 4 no CRS, 5 no overlap,\n"
-                 "6 bad layer or attribute, 7 unknown style or parameter, 8 invalid geometry,\n"
-                 "9 output exists, is an input or cannot be written, 10 cancelled\n";
+    out << "\n" << exit_codes_text();
     return out.str();
 }
 

@@ -229,6 +229,58 @@ TEST(DiscreteOperators, CentroidAndTransformations) {
     EXPECT_EQ(Translation(Point{1, 2}, Point{3, 4}), (Point{3, 4}));
 }
 
+// Rotation, Scale and Translation take a generator for the element or for their parameter
+// alike: the result is a generator drawing both anew at every call, element first, giving
+// what the full form gives on the drawn values.
+TEST(DiscreteOperators, TransformationsTakeAShapeOrAGeneratorAlike) {
+    const Region shape({{0, 0}, {4, 0}, {4, 1}, {0, 1}});
+    auto values = [](std::vector<double> v) {
+        auto next = std::make_shared<std::size_t>(0);
+        return RealGen([v, next] { return v.at((*next)++); });
+    };
+    auto same = [](const Region& a, const Region& b) {
+        ASSERT_EQ(a.outer().size(), b.outer().size());
+        for (std::size_t i = 0; i < a.outer().size(); ++i) {
+            EXPECT_DOUBLE_EQ(a.outer()[i].x, b.outer()[i].x);
+            EXPECT_DOUBLE_EQ(a.outer()[i].y, b.outer()[i].y);
+        }
+    };
+    const RegionGen turned = Rotation(shape, values({0.3, 1.2}));
+    same(turned(), Rotation(shape, 0.3));
+    same(turned(), Rotation(shape, 1.2));
+    const RegionGen grown = Scale(shape, values({2.0, 0.5}));
+    same(grown(), Scale(shape, 2.0));
+    same(grown(), Scale(shape, 0.5));
+    const RegionGen placed = Translation(shape, Sequence({Point{10, 20}, Point{-5, 3}}));
+    same(placed(), Translation(shape, Point{10, 20}));
+    same(placed(), Translation(shape, Point{-5, 3}));
+    // A generator as the element: each call takes its next region; with two generators the
+    // element is drawn before the parameter.
+    const Region other = Scale(shape, 3.0);
+    auto shapes = [&](std::vector<Region> v) {
+        auto next = std::make_shared<std::size_t>(0);
+        return RegionGen([v, next] { return v.at((*next)++); });
+    };
+    const RegionGen both = Rotation(shapes({shape, other}), values({0.7, 0.1}));
+    same(both(), Rotation(shape, 0.7));
+    same(both(), Rotation(other, 0.1));
+    same(Scale(shapes({other}), 0.25)(), Scale(other, 0.25));
+    same(Translation(shapes({other}), Point{1, 1})(), Translation(other, Point{1, 1}));
+    // The seed's spelling of a randomly turned shape: the same draws as the composition.
+    // (SetSeed restarts the numbering of streams, so both RandomR get the same stream.)
+    tex::SetSeed(0);
+    const RegionGen a = Rotation(shape, RandomR(0, tex::pi));
+    tex::SetSeed(0);
+    const RegionGen b = Compose(Rotation(RandomR(0, tex::pi)), Const(shape));
+    same(a(), b());
+    same(a(), b());
+    // Bad parameters are refused when the generator is made or when it draws them.
+    EXPECT_TEX_ERROR(Rotation(RegionGen(Const(shape)), std::nan("")), "Rotation", "finite");
+    EXPECT_TEX_ERROR(Scale(RegionGen(Const(shape)), -1.0), "Scale", "positive");
+    EXPECT_TEX_ERROR(Scale(shape, values({-2.0}))(), "Scale", "positive");
+    EXPECT_TEX_ERROR(Rotation(RegionGen(), 1.0), "Rotation", "no element generator");
+}
+
 TEST(DiscreteOperators, OverlapIsClosedAndKnowsHoles) {
     const Region frame({{0, 0}, {30, 0}, {30, 30}, {0, 30}},
                        {{{10, 10}, {20, 10}, {20, 20}, {10, 20}}});

@@ -695,6 +695,32 @@ TEST(Merge, FrayedCropDrawsAShareOfTheEndsOnPastTheBorder) {
     EXPECT_THROW(FrayedCrop(rows(), 0.5, 2.0, Field(), {}, -0.1), Error);
 }
 
+// Only ends whose strokes cross the rim steeply (60 degrees or more) go on past it: a stroke
+// drawn on at a slant runs along the outside of the rim, a hair on the rock's edge.
+TEST(Merge, FrayedCropDrawsOnlySteepEndsOnPastTheBorder) {
+    // Parallel strokes at `angle` to the sides x = 0 and x = 10 of kTall, every end on a side.
+    auto slanted = [](double angle) {
+        Curves c;
+        const double rise = 10 / std::tan(angle * tex::pi / 180);
+        for (double y = -5; y < 5; y += 0.5) c.append(Polyline({{-5, y - rise / 2}, {15, y + 1.5 * rise}}));
+        return Constant(c);
+    };
+    for (double angle : {40.0, 55.0, 65.0, 80.0, 90.0}) {
+        SetSeed(3);
+        const Curves c = FrayedCrop(slanted(angle), 0.5, 2.0, Field(), {}, 1.0)(kTall);
+        std::size_t ends = 0, outside = 0;
+        for (const auto& k : c.curves)
+            for (const Point& p : {k.points.front(), k.points.back()}) {
+                ++ends;
+                outside += p.x < 0 || p.x > 10;
+                EXPECT_GE(std::min(std::abs(p.x), std::abs(10 - p.x)), 0.5 - 1e-6) << angle;  // none on the rim
+            }
+        ASSERT_GT(ends, 30u) << angle;
+        if (angle < 60) EXPECT_EQ(outside, 0u) << angle << " degrees: drawn back in";
+        else EXPECT_EQ(outside, ends) << angle << " degrees: all drawn on";
+    }
+}
+
 // Apart: a gap left along lines.
 TEST(Merge, ApartLeavesAGapAlongTheLines) {
     // Horizontal strokes across a vertical line at x = 5: each cut in two, the gap exactly the

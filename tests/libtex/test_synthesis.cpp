@@ -321,6 +321,135 @@ TEST(Synthesis, SlicingCutsBetweenGroupsOfEvents) {
     EXPECT_EQ(pieces(o), 6);
 }
 
+// ---- The event grouping chosen from the exemplar (defaults on ordinary exemplars) ----
+
+// Five exemplars of scripts/synth_exemplars.py, each with its events closer together than
+// the seed's 0.2 W: that grouping leaves each of them one piece, which cannot make one
+// component along a long curve.
+class Defaults : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(Defaults, SucceedWithTheRequestedTopology) {
+    const Curves ex = exemplar(GetParam());
+    for (bool closed : {false, true}) {
+        const Curves curve = closed ? Polyline(circle({0, 0}, 1600 / (2 * pi)), true) : Polyline(wave(1500, 60));
+        SynthesisReport rep;
+        const Curves out = SynthesizeAlongCurve(ex, curve, 40, SynthesisOptions{}, &rep);
+        EXPECT_EQ(intersections(out), 0);
+        const Topo t = count(out);
+        EXPECT_TRUE(t.oriented);
+        EXPECT_EQ(t.components, 1) << (closed ? "closed" : "open");
+        EXPECT_EQ(t.holes, rep.holes);
+        EXPECT_GT(rep.pieces_in_result, 2);
+        // The seed's grouping was tried first and refused; a finer one was kept.
+        EXPECT_GE(rep.groupings_tried, 2);
+        EXPECT_LT(rep.event_grouping, 0.2);
+        // Typed back in as the option, the chosen grouping gives the same pattern.
+        SynthesisOptions o;
+        o.event_grouping = rep.event_grouping;
+        EXPECT_EQ(bytes(SynthesizeAlongCurve(ex, curve, 40, o)), bytes(out));
+    }
+    // The seed's grouping, asked for explicitly, still refuses, naming the grouping that works.
+    SynthesisOptions seed;
+    seed.event_grouping = 0.2;
+    try {
+        SynthesizeAlongCurve(ex, Polyline(wave(1500, 60)), 40, seed);
+        FAIL() << "expected an error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("exemplar's 1 pieces gives 1 component"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("; event_grouping=0.0"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("leave event_grouping unset"), std::string::npos) << e.what();
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Synthesis, Defaults,
+                         ::testing::Values("synth_rungs", "synth_bar_beads", "synth_rings", "synth_truss", "synth_dots"));
+
+TEST(Synthesis, DefaultsMeetHoleAndComponentCounts) {
+    // Counts other than the default request, with the grouping still chosen automatically.
+    struct Ask {
+        const char* name;
+        std::optional<int> components, holes;
+    };
+    for (const Ask& a : {Ask{"synth_rungs", 1, 20}, Ask{"synth_rings", 1, 40}, Ask{"synth_truss", 1, 30},
+                         Ask{"synth_dots", std::nullopt, std::nullopt}, Ask{"synth_bar_beads", 1, 0}}) {
+        SynthesisOptions o;
+        o.components = a.components;
+        o.holes = a.holes;
+        SynthesisReport rep;
+        const Curves out = SynthesizeAlongCurve(exemplar(a.name), Polyline(wave(1500, 60)), 40, o, &rep);
+        EXPECT_EQ(intersections(out), 0) << a.name;
+        const Topo t = count(out);
+        if (a.components) EXPECT_EQ(t.components, *a.components) << a.name;
+        if (a.holes) EXPECT_EQ(t.holes, *a.holes) << a.name;
+        EXPECT_EQ(t.components, rep.components) << a.name;
+        EXPECT_EQ(t.holes, rep.holes) << a.name;
+    }
+}
+
+TEST(Synthesis, TheSeedsGroupingIsKeptWhereItWorks) {
+    // The project's ladder makes one component at 0.2 W: unset, the option gives the same
+    // pieces and the same bytes as 0.2, with no other grouping tried.
+    const Curves curve = Polyline(wave(1500, 60));
+    SynthesisOptions seed;
+    seed.event_grouping = 0.2;
+    SynthesisReport automatic, explicit_;
+    const std::string a = bytes(SynthesizeAlongCurve(exemplar("synth_ladder"), curve, 40, SynthesisOptions{}, &automatic));
+    const std::string b = bytes(SynthesizeAlongCurve(exemplar("synth_ladder"), curve, 40, seed, &explicit_));
+    EXPECT_EQ(a, b);
+    EXPECT_EQ(automatic.event_grouping, 0.2);
+    EXPECT_EQ(automatic.groupings_tried, 1);
+    EXPECT_EQ(automatic.pieces_in_exemplar, 3);
+    EXPECT_EQ(explicit_.groupings_tried, 1);
+    // An explicit grouping is used as given, even where another would make more pieces.
+    SynthesisOptions fine_grouping;
+    fine_grouping.event_grouping = 0.03;
+    SynthesisReport f;
+    SynthesizeAlongCurve(exemplar("synth_ladder"), curve, 40, fine_grouping, &f);
+    EXPECT_EQ(f.pieces_in_exemplar, 7);
+    EXPECT_EQ(f.event_grouping, 0.03);
+}
+
+TEST(Synthesis, ErrorsNameWhatToChange) {
+    auto message = [](const Curves& ex, const SynthesisOptions& o) {
+        try {
+            SynthesizeAlongCurve(ex, Polyline(wave(2000, 10)), 40, o);
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    auto has = [](const std::string& m, const std::string& word) {
+        EXPECT_NE(m.find(word), std::string::npos) << "'" << word << "' not in: " << m;
+    };
+    // A band running straight through (a zig-zag strip): events only at its ends, so no
+    // grouping cuts it; uniform slicing does.
+    std::vector<Point> top, ring;
+    for (int i = 0; i <= 30; ++i) top.push_back({20.0 * i, 10.0 * (i % 2) + 5});
+    for (const Point& p : top) ring.push_back(p - Point{0, 8});
+    ring.insert(ring.end(), top.rbegin(), top.rend());
+    const std::string zigzag = message(Polyline(ring, true), SynthesisOptions{});
+    has(zigzag, "no event_grouping can cut it");
+    has(zigzag, "slicing=uniform (slicing_lines=8) meets it");
+    // Automatic groupings all tried on a ladder asked for no hole (every ladder has one).
+    SynthesisOptions no_hole;
+    no_hole.holes = 0;
+    const std::string ladder = message(exemplar("synth_ladder"), no_hole);
+    has(ladder, "no sequence of the exemplar's 3 to ");
+    has(ladder, "pieces (event_grouping 0.2 to ");
+    has(ladder, "gives 1 component(s), 0 hole(s)");
+    has(ladder, "try slicing=uniform");
+    // An explicit grouping too coarse for the exemplar: the error gives one that works.
+    SynthesisOptions coarse;
+    coarse.event_grouping = 0.2;
+    has(message(exemplar("synth_vine"), coarse), "; event_grouping=0.07 meets it");
+    // Not in (0, 1]: named, with the way back to the automatic choice.
+    for (double bad : {0.0, -0.1, 1.5, std::nan("")}) {
+        SynthesisOptions o;
+        o.event_grouping = bad;
+        has(message(exemplar("synth_vine"), o), "event_grouping must be in (0, 1] or unset");
+    }
+}
+
 TEST(Synthesis, ThinPortalFilterDropsCutsThroughTheString) {
     // The beads' string is 3 of the exemplar's 34 units: 3.5 at a band of 40. Cutting only
     // where portals are wider leaves fewer pieces.

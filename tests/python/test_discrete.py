@@ -56,6 +56,34 @@ def test_operators_are_values():
     assert v.x == pytest.approx(0, abs=1e-15) and v.y == pytest.approx(1)
 
 
+def test_transformations_take_a_shape_or_a_generator_alike():
+    def ring(r):
+        return [(p.x, p.y) for p in r.outer]
+
+    shape = Region.rectangle(0, 0, 4, 1)
+    angles = iter([0.3, 1.2])
+    turned = Rotation(shape, lambda: next(angles))  # a Python callable as the angle
+    assert ring(turned()) == ring(Rotation(shape, 0.3))
+    assert ring(turned()) == ring(Rotation(shape, 1.2))
+    factors = iter([2.0])
+    assert Scale(shape, lambda: next(factors))().area() == pytest.approx(4 * shape.area())
+    points = iter([Point(10, 20)])
+    placed = Translation(shape, lambda: next(points))
+    assert Centroid(placed()).x == pytest.approx(10)
+    # A callable as the element, with a plain or a generated parameter.
+    shapes = iter([shape, Scale(shape, 3.0)])
+    both = Rotation(lambda: next(shapes), 0.5)
+    assert ring(both()) == ring(Rotation(shape, 0.5))
+    assert both().area() == pytest.approx(9 * shape.area())
+    # The seed's spelling: the same draws as Compose(Rotation(RandomR(...)), Const(shape)).
+    with StreamScope(0):
+        a = Rotation(shape, RandomR(0, math.pi))
+    with StreamScope(0):
+        b = Compose(Rotation(RandomR(0, math.pi)), Const(shape))
+    assert [ring(a()) for _ in range(3)] == [ring(b()) for _ in range(3)]
+    assert ring(a()) != ring(shape)
+
+
 def test_python_callables_drive_a_greedy_distribution():
     with StreamScope(0):
         hatches = RegionSet()

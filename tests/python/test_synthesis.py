@@ -146,10 +146,56 @@ def test_impossible_request_is_a_clear_error():
     (dict(band_height=10, holes=-2), "holes"),
     (dict(band_height=10, slicing="zigzag"), "slicing must be"),
     (dict(band_height=10, closed_pattern=True), "closed_pattern"),
+    (dict(band_height=10, event_grouping=0), r"event_grouping must be in \(0, 1\] or unset"),
 ])
 def test_bad_options_name_themselves(kwargs, match):
     with pytest.raises(TexError, match=match):
         SynthesizeAlongCurve(exemplar("synth_vine"), wave(300, 10), **kwargs)
+# Five exemplars of scripts/synth_exemplars.py whose events lie closer together than the seed's
+# 0.2 of their width: that grouping leaves each one piece, which cannot make one component.
+FIVE = ["synth_rungs", "synth_bar_beads", "synth_rings", "synth_truss", "synth_dots"]
+
+
+@pytest.mark.parametrize("name", FIVE)
+def test_the_defaults_succeed_on_ordinary_exemplars(name):
+    ex = exemplar(name)
+    c = SynthesizeAlongCurve(ex, wave(1500, 60), 40)
+    assert not segments_meet(c)
+    comps, holes, oriented = topology(c)
+    assert comps == 1 and oriented
+    # None is the default: the grouping is chosen from the exemplar.
+    assert ToSVG(SynthesizeAlongCurve(ex, wave(1500, 60), 40, event_grouping=None), 2000) == ToSVG(c, 2000)
+    # The seed's grouping, asked for, still refuses, and the error gives a grouping that works.
+    with pytest.raises(TexError, match=r"exemplar's 1 pieces gives 1 component.*; event_grouping=0\.\d+ meets it "
+                                       r"\(leave event_grouping unset"):
+        SynthesizeAlongCurve(ex, wave(1500, 60), 40, event_grouping=0.2)
+
+
+def test_the_grouping_named_by_the_error_works():
+    with pytest.raises(TexError) as e:
+        SynthesizeAlongCurve(exemplar("synth_rings"), wave(1500, 60), 40, event_grouping=0.2, holes=44)
+    g = float(str(e.value).split("event_grouping=")[1].split()[0])
+    c = SynthesizeAlongCurve(exemplar("synth_rings"), wave(1500, 60), 40, event_grouping=g, holes=44)
+    assert topology(c)[:2] == (1, 44)
+
+
+def test_the_seeds_grouping_is_kept_where_it_works():
+    # The project's ladder makes one component at 0.2: the same bytes with the option unset.
+    a = SynthesizeAlongCurve(exemplar("synth_ladder"), wave(1500, 60), 40, seed=4)
+    b = SynthesizeAlongCurve(exemplar("synth_ladder"), wave(1500, 60), 40, seed=4, event_grouping=0.2)
+    assert ToSVG(a, 2000) == ToSVG(b, 2000)
+
+
+def test_a_band_without_events_is_told_to_slice_uniformly():
+    top = [Point(20 * i, 10 * (i % 2) + 5) for i in range(31)]
+    zigzag = Polyline([Point(p.x, p.y - 8) for p in top] + top[::-1], True)
+    with pytest.raises(TexError, match=r"; slicing=uniform \(slicing_lines=8\) meets it \(the exemplar has no topological "
+                                       r"event but its ends, so no event_grouping can cut it\)"):
+        SynthesizeAlongCurve(zigzag, wave(2000, 10), 40)
+    c = SynthesizeAlongCurve(zigzag, wave(2000, 10), 40, slicing="uniform")
+    assert topology(c)[0] == 1
+
+
 def test_unknown_option_is_a_type_error():
     with pytest.raises(TypeError, match="unexpected keyword argument .colour."):
         SynthesizeAlongCurve(exemplar("synth_vine"), wave(300, 10), 10, colour="red")

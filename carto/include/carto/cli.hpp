@@ -23,6 +23,14 @@ struct CommandLine {
 CommandLine parse_command_line(const std::vector<std::string>& args);
 // The --help text, and the style list of --list-styles.
 std::string help_text();
+// The option table as --help prints it (name, argument or "" for a flag, help), for the
+// man page and the shell completion (apps/make_docs.cpp).
+struct OptionHelp {
+    std::string name, arg, help;
+};
+std::vector<OptionHelp> option_table();
+// The exit codes' lines of --help.
+std::string exit_codes_text();
 
 // A command-line number: the whole of `v`, finite; else Error(Usage) "OPT: 'V' is not a number".
 double parse_double(const std::string& opt, const std::string& v);

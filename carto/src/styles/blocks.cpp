@@ -81,7 +81,7 @@ const std::vector<StyleParam> kFray = {
     {"fray_min", 0.2, "mm", "strokes end at least this far from the rock's edge (where nothing lies across it)"},
     {"fray_max", 0.75, "mm", "and at most this far: they end irregularly in the band between"},
     {"fray_beyond", 0.5, "ratio",
-     "this share of the fill strokes reaching the edge go on past it by as much instead (0 to 1: ends on both sides; the cross strokes all end inside)"},
+     "this share of the fill strokes reaching the edge go on past it by as much instead, where they cross it at 60 degrees or more (0 to 1: ends on both sides; the cross strokes all end inside)"},
 };
 const std::vector<StyleParam> kCliff = {
     {"cliff_slope", 100.0, "%", "cliff bands are where the slope passes this (percent; 100: 45 degrees)"},

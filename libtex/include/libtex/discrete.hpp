@@ -89,6 +89,7 @@ using RealGen = std::function<double()>;               // ∅ -> R
 using ThicknessFn = std::function<double(double)>;     // R -> R
 using Reshaping = std::function<std::vector<Region>(const std::vector<Region>&)>;  // s(2D) -> s(2D)
 using Repinning = std::function<Point(const Region&)>;                             // 2D -> 0D
+using RegionGen = std::function<Region()>;                                         // ∅ -> 2D
 
 // Not ∘ f.
 template <class F>
@@ -175,6 +176,21 @@ Region Scale(const Region& r, double s);
 Polyline Scale(const Polyline& c, double s);
 Point Scale(const Point& v, double s);
 std::vector<Region> Scale(const std::vector<Region>& rs, double s);
+
+// The full forms with a generator for the element, the location, the angle or the factor
+// (the seed's override: an ∅ -> T operator stands for a T): a generator of regions that
+// draws its generators anew at every call, the element first. Rotation(shape, RandomR(0, pi))
+// is Compose(Rotation(RandomR(0, pi)), Const(shape)); Translation(shape, pinning) places the
+// shape at the pinning's successive points.
+RegionGen Translation(const Region& r, Pinning p);
+RegionGen Translation(RegionGen r, const Point& p);
+RegionGen Translation(RegionGen r, Pinning p);
+RegionGen Rotation(const Region& r, RealGen angle);
+RegionGen Rotation(RegionGen r, double angle);
+RegionGen Rotation(RegionGen r, RealGen angle);
+RegionGen Scale(const Region& r, RealGen factor);
+RegionGen Scale(RegionGen r, double factor);
+RegionGen Scale(RegionGen r, RealGen factor);
 
 // Partial forms. Translation(element) is a shaping; the element may be a generator (a new
 // region for every pin).

@@ -38,8 +38,10 @@ Arrangement Crop(Arrangement a, Border b);
 // thread and in any tiling. With `beyond` > 0, that share of the rim's ends (a draw of their
 // own) is drawn on past the rim instead, its last segment continued straight to the same
 // depth outside the region, where the way is free (not back into the region, not onto
-// another face): the curves then end on both sides of the rim, and the band keeps on
-// average the ink a plain crop leaves (beyond = 1/2). Throws tex::Error naming FrayedCrop
+// another face) and the stroke crosses the rim at 60 degrees or more (a slanting stroke
+// drawn on would run along the rim's outside, a hair on the edge): the curves then end on
+// both sides of the rim, and the band keeps on average the ink a plain crop leaves
+// (beyond = 1/2). Throws tex::Error naming FrayedCrop
 // for a band or share out of range.
 Arrangement FrayedCrop(Arrangement a, double min, double max, Field across = Field(),
                        std::vector<std::string> hard = {}, double beyond = 0);

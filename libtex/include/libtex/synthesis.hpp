@@ -36,8 +36,11 @@ struct SynthesisOptions {
     // Number of cuts t of the uniform slicing (t + 1 pieces).
     int slicing_lines = 8;
     // Topological events closer than this fraction of the exemplar's width form one group
-    // (5.2.2).
-    double event_grouping = 0.2;
+    // (5.2.2). Unset (the default): chosen from the exemplar. The seed's 0.2 is tried first
+    // and kept when some sequence of its pieces meets the request. Else finer groupings,
+    // each just below one more of the gaps between the exemplar's successive events (largest
+    // gap first, none under 0.005), until one does; SynthesisReport::event_grouping says which.
+    std::optional<double> event_grouping;
     // A cut whose narrowest portal is thinner than this (in output units, the exemplar being
     // scaled to the band height) is dropped (5.2.1); 0 keeps every cut.
     double thin_portal = 0.0;
@@ -61,6 +64,8 @@ struct SynthesisOptions {
 // What one synthesis did (for the benchmark and the tests).
 struct SynthesisReport {
     int pieces_in_exemplar = 0;
+    double event_grouping = 0;  // the grouping the pieces were cut with (topology slicing; else 0)
+    int groupings_tried = 1;    // slicings solved to get there (more than 1: the automatic choice went finer)
     int pieces_in_result = 0;
     int components = 0;  // as the descriptors say (the tests count them again on the output)
     int holes = 0;

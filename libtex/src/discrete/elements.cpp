@@ -427,6 +427,57 @@ std::vector<Region> Scale(const std::vector<Region>& rs, double s) {
     return out;
 }
 
+namespace {
+// A generator argument that must be there ("no ... generator given" otherwise).
+template <class F>
+F given(F f, const char* op, const char* what) {
+    if (!f) throw Error(op, std::string("no ") + what + " generator given");
+    return f;
+}
+// The generator of op(element, parameter), each drawn anew at every call, the element first.
+template <class E, class P, class Op>
+RegionGen generated(E element, P parameter, Op op) {
+    return [element = std::move(element), parameter = std::move(parameter), op] {
+        Region e = element();
+        return op(e, parameter());
+    };
+}
+}  // namespace
+
+RegionGen Translation(const Region& r, Pinning p) {
+    return Translation(RegionGen(Const(r)), std::move(p));
+}
+RegionGen Translation(RegionGen r, const Point& p) {
+    check_finite(p.x + p.y, "Translation", "the location");
+    return Translation(std::move(r), Pinning(Const(p)));
+}
+RegionGen Translation(RegionGen r, Pinning p) {
+    return generated(given(std::move(r), "Translation", "element"), given(std::move(p), "Translation", "location"),
+                     [](const Region& e, const Point& q) { return Translation(e, q); });
+}
+RegionGen Rotation(const Region& r, RealGen angle) {
+    return Rotation(RegionGen(Const(r)), std::move(angle));
+}
+RegionGen Rotation(RegionGen r, double angle) {
+    check_finite(angle, "Rotation", "the angle");
+    return Rotation(std::move(r), RealGen(Const(angle)));
+}
+RegionGen Rotation(RegionGen r, RealGen angle) {
+    return generated(given(std::move(r), "Rotation", "element"), given(std::move(angle), "Rotation", "angle"),
+                     [](const Region& e, double a) { return Rotation(e, a); });
+}
+RegionGen Scale(const Region& r, RealGen factor) {
+    return Scale(RegionGen(Const(r)), std::move(factor));
+}
+RegionGen Scale(RegionGen r, double factor) {
+    check_scale(factor);
+    return Scale(std::move(r), RealGen(Const(factor)));
+}
+RegionGen Scale(RegionGen r, RealGen factor) {
+    return generated(given(std::move(r), "Scale", "element"), given(std::move(factor), "Scale", "factor"),
+                     [](const Region& e, double f) { return Scale(e, f); });
+}
+
 Shaping Translation(Region r) {
     check_region(r, "Translation");
     return [r](const Point& p) { return Translation(r, p); };

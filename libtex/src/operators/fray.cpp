@@ -142,28 +142,39 @@ std::vector<Point> draw_back(std::vector<Point> pts, double depth, const BorderI
     return {};
 }
 
+// An end is drawn on past the rim only where its stroke crosses the rim steeply, at 60
+// degrees or more: continued at a slant, a stroke runs along the outside of the rim and the
+// rock's edge grows hairs. It then lies `depth` beyond the rim within depth / sin 60 degrees.
+constexpr double kSteepestTravel = 1.1547005383792515;  // 1 / sin(60 degrees)
+
 // The polyline pts drawn on past the rim from its end: its last segment continued straight
 // until the end lies `depth` beyond the rim, outside the region (bisected to that depth),
-// and at most 2 depth beyond the old end. False, pts untouched, when the way back into the
-// region, onto another face (a value of `across`) or never that far from the rim.
-bool draw_on(std::vector<Point>& pts, double depth, const PreparedRegion& region, const Field& across,
-             const BorderIndex& border) {
+// at most kSteepestTravel (depth + inset) beyond the old end, `inset` being how far inside
+// the rim that end lies. False, pts untouched, when the way goes back into the region, onto
+// another face (a value of `across`) or not that far from the rim within that travel (a
+// slanting stroke).
+bool draw_on(std::vector<Point>& pts, double depth, double inset, const PreparedRegion& region,
+             const Field& across, const BorderIndex& border) {
     const Point end = pts.back(), from = pts[pts.size() - 2];
     const double l = distance(from, end);
     if (!(l > 0)) return false;
     const Point dir = (end - from) / l;
-    const double step = depth / 4;
+    const double step = depth / 8, reach = kSteepestTravel * (depth + inset);
     auto deep_enough = [&](const Point& q) { return border.to_rim(q, depth) >= depth; };
     auto beyond = [&](double t) {
         const Point q = end + dir * t;
         return !region.contains(q) && deep_enough(q);
     };
     bool out = false;
-    for (double lo = 0, t = step; t <= 2 * depth + 1e-9 * depth; lo = t, t += step) {
+    for (double lo = 0, t = step;; lo = t, t += step) {
+        if (t > reach) {
+            if (lo >= reach) return false;
+            t = reach;  // the last probe at the travel's limit itself
+        }
         const Point q = end + dir * t;
         if (!std::isnan(across(q))) return false;
         const bool inside = region.contains(q);
-        if (inside && (out || t > depth)) return false;
+        if (inside && (out || t > depth + inset)) return false;
         out = out || !inside;
         if (inside || !deep_enough(q)) continue;  // beyond(t), the containment already known
         double hi = t;
@@ -200,10 +211,11 @@ Arrangement FrayedCrop(Arrangement a, double min, double max, Field across, std:
         // An end within `min` of the border whose nearest border is rim is drawn back to a
         // depth in [min, max] from the rim (0: it stays).
         const double near = std::max(eps, min);
-        auto depth_at = [&](const Point& p) -> double {
+        // Also how far inside the rim the end lies.
+        auto depth_at = [&](const Point& p) -> std::pair<double, double> {
             const auto [d, rim] = border.nearest(p, near);
-            if (!rim || !(d <= near)) return 0.0;
-            return min + (max - min) * unit_from_hash(hash_point(key, p));
+            if (!rim || !(d <= near)) return {0.0, 0.0};
+            return {min + (max - min) * unit_from_hash(hash_point(key, p)), d};
         };
         // Whether an end goes on past the rim (a draw of its own, keyed as its depth is).
         const std::uint64_t side_key = hash_combine(key, 1);
@@ -222,17 +234,18 @@ Arrangement FrayedCrop(Arrangement a, double min, double max, Field across, std:
                 continue;
             }
             const Point first = c.points.front(), last = c.points.back();
-            const double head = depth_at(first);
-            const double tail = depth_at(last);
+            const auto [head, head_inset] = depth_at(first);
+            const auto [tail, tail_inset] = depth_at(last);
             std::vector<Point> pts = std::move(c.points);
             // Each end on past the rim when its draw says so and the way is free, else back.
             if (head > 0) {
                 std::reverse(pts.begin(), pts.end());
-                const bool on = onward(first) && draw_on(pts, head, region(), across, border);
+                const bool on = onward(first) && draw_on(pts, head, head_inset, region(), across, border);
                 std::reverse(pts.begin(), pts.end());
                 if (!on) pts = draw_back(std::move(pts), head, border);
             }
-            if (tail > 0 && pts.size() >= 2 && !(onward(last) && draw_on(pts, tail, region(), across, border))) {
+            if (tail > 0 && pts.size() >= 2 &&
+                !(onward(last) && draw_on(pts, tail, tail_inset, region(), across, border))) {
                 std::reverse(pts.begin(), pts.end());
                 pts = draw_back(std::move(pts), tail, border);
                 std::reverse(pts.begin(), pts.end());

@@ -1,6 +1,7 @@
 // Exemplar rings, slicing and pieces (seed 002, sections 3.2, 3.3 and 5).
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numeric>
 
 #include "libtex/error.hpp"
@@ -132,6 +133,8 @@ double off_vertices(const Exemplar& ex, double c) {
     return c;
 }
 
+}  // namespace
+
 // x of the vertices where a column of the exemplar starts, ends, splits or merges: the local
 // extrema of x along the rings (runs of equal x count once per side change).
 std::vector<double> topology_events(const Exemplar& ex) {
@@ -151,9 +154,57 @@ std::vector<double> topology_events(const Exemplar& ex) {
     return ev;
 }
 
+namespace {
+
+// The shortest decimal strictly between lo and hi (0 <= lo < hi), the closest to their middle
+// among those of that length: a grouping a user can type and get the same groups.
+double round_between(double lo, double hi) {
+    const double mid = 0.5 * (lo + hi);
+    for (double step = 0.1; step > 1e-12; step /= 10) {
+        double best = -1;
+        for (double k = std::floor(lo / step) + 1; k * step < hi; ++k) {
+            const double v = k * step;
+            if (v > lo && (best < 0 || std::abs(v - mid) < std::abs(best - mid))) best = v;
+        }
+        if (best > 0) return best;
+    }
+    return mid;
+}
+
 }  // namespace
 
-std::vector<double> cut_positions(const Exemplar& ex, const SynthesisOptions& o) {
+std::vector<double> automatic_groupings(const Exemplar& ex) {
+    std::vector<double> out{kSeedGrouping};
+    const std::vector<double> ev = topology_events(ex);
+    // The gaps between successive events, as fractions of W, that the seed's grouping does
+    // not split, largest first; gaps under kFinestGrouping stay grouped (noise, 5.2.2).
+    std::vector<double> gaps;
+    for (std::size_t i = 1; i < ev.size(); ++i) gaps.push_back((ev[i] - ev[i - 1]) / ex.width);
+    std::sort(gaps.begin(), gaps.end(), std::greater<>());
+    std::vector<double> distinct;
+    for (double g : gaps)
+        if (distinct.empty() || g < distinct.back() * (1 - 1e-9)) distinct.push_back(g);
+    // Each grouping between two successive distinct gaps splits one more of them.
+    std::vector<double> finer;
+    for (std::size_t k = 0; k < distinct.size(); ++k) {
+        const double g = distinct[k];
+        if (g > kSeedGrouping) continue;
+        if (g <= kFinestGrouping) break;
+        const double below = k + 1 < distinct.size() ? distinct[k + 1] : 0.0;
+        finer.push_back(round_between(below, g));
+    }
+    // At most kMaxGroupings tries in all, spread evenly over the finer ones (first and last kept).
+    const std::size_t room = kMaxGroupings - 1;
+    if (finer.size() > room) {
+        std::vector<double> kept;
+        for (std::size_t i = 0; i < room; ++i) kept.push_back(finer[i * (finer.size() - 1) / (room - 1)]);
+        finer = kept;
+    }
+    out.insert(out.end(), finer.begin(), finer.end());
+    return out;
+}
+
+std::vector<double> cut_positions(const Exemplar& ex, const SynthesisOptions& o, double grouping) {
     std::vector<double> cuts;
     const double W = ex.width;
     if (o.slicing == Slicing::Uniform) {
@@ -165,7 +216,7 @@ std::vector<double> cut_positions(const Exemplar& ex, const SynthesisOptions& o)
         while (i < ev.size()) {
             std::size_t j = i + 1;
             double sum = ev[i];
-            while (j < ev.size() && ev[j] - ev[j - 1] <= o.event_grouping * W) sum += ev[j++];
+            while (j < ev.size() && ev[j] - ev[j - 1] <= grouping * W) sum += ev[j++];
             centres.push_back(sum / double(j - i));
             i = j;
         }

@@ -381,7 +381,14 @@ std::string describe(const SynthesisOptions& o, bool cyclic) {
 
 }  // namespace
 
-Solution solve(const SolveInput& in, SynthesisReport& report, const std::string& op) {
+std::string no_sequence(const SolveInput& in, const std::string& pieces) {
+    const auto& o = in.options;
+    return "no sequence of the exemplar's " + pieces + " gives " + describe(o, in.cyclic) + " within " +
+           std::to_string(int(std::lround(o.max_length_deviation * 100))) + "% of the curve's length " +
+           std::to_string(in.length);
+}
+
+std::optional<Solution> solve(const SolveInput& in, SynthesisReport& report, const std::string& op) {
     const auto t0 = std::chrono::steady_clock::now();
     const auto& o = in.options;
     const double L = in.length;
@@ -415,12 +422,7 @@ Solution solve(const SolveInput& in, SynthesisReport& report, const std::string&
         if (best) break;
     }
     report.dp_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (!best)
-        throw Error(op, "no sequence of the exemplar's " + std::to_string(in.pieces->size()) +
-                            " pieces gives " + describe(o, in.cyclic) + " within " +
-                            std::to_string(int(std::lround(o.max_length_deviation * 100))) +
-                            "% of the curve's length " + std::to_string(L) +
-                            " (try another exemplar, slicing, band height or constraint)");
+    if (!best) return std::nullopt;
     Solution s;
     s.sequence = solver.backtrack(*best);
     s.length = best->length;

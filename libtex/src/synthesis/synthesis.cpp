@@ -2,6 +2,7 @@
 // along the curve, and the rectangle (6.2).
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 
@@ -372,8 +373,9 @@ void check_options(const SynthesisOptions& o, const std::string& op) {
         bad("autocorrelation must be a finite weight >= 0, not " + std::to_string(o.autocorrelation));
     if (o.slicing == Slicing::Uniform && (o.slicing_lines < 1 || o.slicing_lines > 1000))
         bad("slicing_lines must be between 1 and 1000, not " + std::to_string(o.slicing_lines));
-    if (!(o.event_grouping > 0 && o.event_grouping <= 1))
-        bad("event_grouping must be in (0, 1], not " + std::to_string(o.event_grouping));
+    if (o.event_grouping && !(*o.event_grouping > 0 && *o.event_grouping <= 1))
+        bad("event_grouping must be in (0, 1] or unset (chosen from the exemplar), not " +
+            std::to_string(*o.event_grouping));
     if (!std::isfinite(o.thin_portal) || o.thin_portal < 0)
         bad("thin_portal must be a finite width >= 0, not " + std::to_string(o.thin_portal));
     if (!(o.alpha >= 0 && o.alpha <= 1)) bad("alpha must be in [0, 1], not " + std::to_string(o.alpha));
@@ -383,6 +385,80 @@ void check_options(const SynthesisOptions& o, const std::string& op) {
         bad("max_length_deviation must be in [length_tolerance, 1), not " + std::to_string(o.max_length_deviation));
     if (!std::isfinite(o.randomness) || o.randomness < 0)
         bad("randomness must be a finite value >= 0, not " + std::to_string(o.randomness));
+}
+
+// A grouping as a user would type it (0.2, 0.07).
+std::string number(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return buf;
+}
+
+// One slicing of the exemplar and what the solver made of it.
+struct Attempt {
+    double grouping = 0;
+    std::vector<double> cuts;
+    std::vector<Piece> pieces;
+    std::vector<std::vector<Join>> joins;
+    SynthesisReport report;
+    std::optional<Solution> solution;
+};
+
+Attempt attempt(const Exemplar& ex, const SynthesisOptions& o, double grouping, std::vector<double> cuts,
+                SolveInput in, const std::string& op) {
+    Attempt a;
+    a.grouping = grouping;
+    a.cuts = std::move(cuts);
+    a.pieces = make_pieces(ex, a.cuts);
+    a.joins = join_table(a.pieces, in.band_height, o.alpha);
+    a.report.pieces_in_exemplar = int(a.pieces.size());
+    a.report.target_length = in.length;
+    a.report.event_grouping = o.slicing == Slicing::Topology ? grouping : 0.0;
+    in.pieces = &a.pieces;
+    in.joins = &a.joins;
+    a.solution = solve(in, a.report, op);
+    return a;
+}
+
+// When nothing met the request: what else would, tried only now (the error path), so that
+// the error can name the option to change.
+std::string what_to_change(const Exemplar& ex, const SynthesisOptions& o, const std::vector<Attempt>& tried,
+                           const SolveInput& in, const std::string& op) {
+    auto cut_before = [&](const std::vector<double>& cuts) {
+        for (const Attempt& a : tried)
+            if (a.cuts == cuts) return true;
+        return false;
+    };
+    if (o.slicing == Slicing::Topology && o.event_grouping) {
+        // An explicit grouping: would the automatic choice meet it?
+        for (double g : automatic_groupings(ex)) {
+            std::vector<double> cuts = cut_positions(ex, o, g);
+            if (cut_before(cuts)) continue;
+            if (attempt(ex, o, g, std::move(cuts), in, op).solution)
+                return "; event_grouping=" + number(g) + " meets it (leave event_grouping unset to choose it from "
+                       "the exemplar)";
+        }
+    }
+    if (o.slicing == Slicing::Topology) {
+        SynthesisOptions u = o;
+        u.slicing = Slicing::Uniform;
+        // Events only at the exemplar's two ends (a band running straight through): no
+        // grouping can cut it anywhere else.
+        bool inner = false;
+        const double end = kFinestGrouping * ex.width;
+        for (double x : topology_events(ex)) inner = inner || (x > end && x < ex.width - end);
+        const std::string note =
+            inner ? "" : " (the exemplar has no topological event but its ends, so no event_grouping can cut it)";
+        if (attempt(ex, u, 0, cut_positions(ex, u, 0), in, op).solution)
+            return "; slicing=uniform (slicing_lines=" + std::to_string(o.slicing_lines) + ") meets it" + note;
+        if (!o.event_grouping)
+            return note + "; try slicing=uniform with more slicing_lines, a larger max_length_deviation, a longer "
+                          "exemplar or another constraint";
+        return note + "; try another event_grouping, slicing=uniform, a larger max_length_deviation or another "
+                      "constraint";
+    }
+    return "; try more or fewer slicing_lines, slicing=topology, a larger max_length_deviation, another exemplar "
+           "or another constraint";
 }
 
 }  // namespace
@@ -411,15 +487,7 @@ Curves SynthesizeAlongCurve(const Curves& exemplar, const Curves& curve, double 
     if (!(band.length() > 0)) throw Error(op, "the curve has no length");
 
     const Exemplar ex = make_exemplar(exemplar, band_height, op);
-    const std::vector<Piece> pieces = make_pieces(ex, cut_positions(ex, o));
-    const auto joins = join_table(pieces, band_height, o.alpha);
-
-    SynthesisReport rep;
-    rep.pieces_in_exemplar = int(pieces.size());
-    rep.target_length = band.length();
     SolveInput in;
-    in.pieces = &pieces;
-    in.joins = &joins;
     in.length = band.length();
     in.band_height = band_height;
     in.cyclic = cv.closed;
@@ -431,7 +499,35 @@ Curves SynthesizeAlongCurve(const Curves& exemplar, const Curves& curve, double 
         for (const Point& p : pts) h = hash_point(h, p);
         in.key = h;
     }
-    const Solution sol = solve(in, rep, op);
+    // The event grouping: the option when set, else the seed's 0.2 W and then finer ones, the
+    // first whose pieces meet the request (a grouping that cuts as the one before is skipped).
+    std::vector<double> groupings{0.0};
+    if (o.slicing == Slicing::Topology)
+        groupings = o.event_grouping ? std::vector<double>{*o.event_grouping} : automatic_groupings(ex);
+    std::vector<Attempt> tried;
+    for (double g : groupings) {
+        std::vector<double> cuts = cut_positions(ex, o, g);
+        bool seen = false;
+        for (const Attempt& a : tried) seen = seen || a.cuts == cuts;
+        if (seen) continue;
+        tried.push_back(attempt(ex, o, g, std::move(cuts), in, op));
+        tried.back().report.groupings_tried = int(tried.size());
+        if (tried.back().solution) break;
+    }
+    if (!tried.back().solution) {
+        std::string pieces = std::to_string(tried.front().pieces.size());
+        if (tried.size() > 1)
+            pieces += " to " + std::to_string(tried.back().pieces.size()) + " pieces (event_grouping " +
+                      number(tried.front().grouping) + " to " + number(tried.back().grouping) + ")";
+        else
+            pieces += " pieces";
+        throw Error(op, no_sequence(in, pieces) + what_to_change(ex, o, tried, in, op));
+    }
+    const Attempt& chosen = tried.back();
+    const std::vector<Piece>& pieces = chosen.pieces;
+    const auto& joins = chosen.joins;
+    SynthesisReport rep = chosen.report;
+    const Solution& sol = *chosen.solution;
     rep.pieces_in_result = int(sol.sequence.size());
     rep.components = sol.components;
     rep.holes = sol.holes;

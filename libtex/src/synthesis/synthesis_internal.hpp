@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,8 +31,25 @@ Exemplar make_exemplar(const Curves& c, double band_height, const std::string& o
 // The interior intervals (portals) a vertical line x = c cuts through, bottom to top.
 std::vector<std::pair<double, double>> portals_at(const Exemplar& ex, double c);
 
-// Cut positions (strictly inside (0, width), never through a vertex).
-std::vector<double> cut_positions(const Exemplar& ex, const SynthesisOptions& o);
+// Cut positions (strictly inside (0, width), never through a vertex); topology slicing groups
+// the events with `grouping` (a fraction of the width; unused by uniform slicing).
+std::vector<double> cut_positions(const Exemplar& ex, const SynthesisOptions& o, double grouping);
+
+// x of the exemplar's topological events (5.2), sorted: the vertices where x has a local
+// extremum along a ring.
+std::vector<double> topology_events(const Exemplar& ex);
+
+// The event grouping of the seed (5.2.2), tried first when the option is unset.
+constexpr double kSeedGrouping = 0.2;
+// The automatic choice never splits events closer than this fraction of the width.
+constexpr double kFinestGrouping = 0.005;
+// At most this many groupings are tried (the seed's and finer ones).
+constexpr std::size_t kMaxGroupings = 12;
+// The groupings tried when the option is unset, coarsest first: the seed's 0.2, then for each
+// distinct gap between successive topological events narrower than that (and wider than
+// kFinestGrouping), largest first, a round grouping just below it, which splits the exemplar
+// there as well. Each gives more pieces than the one before.
+std::vector<double> automatic_groupings(const Exemplar& ex);
 
 // Union-find over small integer sets (components of pieces and of partial patterns).
 struct Dsu {
@@ -105,8 +123,12 @@ struct Solution {
     int components = 0, holes = 0;
     bool closed_pattern = false;
 };
-// Throws tex::Error naming `op` when no sequence meets the constraints.
-Solution solve(const SolveInput& in, SynthesisReport& report, const std::string& op);
+// The cheapest sequence meeting the constraints, or nothing when none does (other errors
+// throw tex::Error naming `op`).
+std::optional<Solution> solve(const SolveInput& in, SynthesisReport& report, const std::string& op);
+// "no sequence of the exemplar's <pieces> gives <the request> within <d>% of the
+// curve's length <L>", the start of the error when solve finds nothing.
+std::string no_sequence(const SolveInput& in, const std::string& pieces);
 
 // Joins descriptor d (a partial pattern) with piece p on its right (the merge rule of 3.4).
 Descriptor join(const Descriptor& d, const Descriptor& p);
