@@ -60,12 +60,13 @@ std::unique_ptr<OGRSpatialReference> epsg(int code) {
     return s;
 }
 
-std::unique_ptr<OGRSpatialReference> srs(FuzzedDataProvider& in) {
+// A layer's CRS (nullptr: none). Each CRS is read from PROJ's database once (a lookup per
+// input took most of the time) and never copied here: the in-memory layer keeps its own copy.
+OGRSpatialReference* srs(FuzzedDataProvider& in) {
     const int c = in.ConsumeIntegralInRange<int>(0, 7);
     if (c == 0) return nullptr;  // no CRS
-    // Each CRS read from PROJ's database once (a lookup per input took most of the time).
     static const std::unique_ptr<OGRSpatialReference> known[3] = {epsg(4326), epsg(32632), epsg(2154)};
-    return std::unique_ptr<OGRSpatialReference>(known[c == 1 ? 0 : c == 2 ? 1 : 2]->Clone());
+    return known[c == 1 ? 0 : c == 2 ? 1 : 2].get();
 }
 
 void real_field(OGRFeature& f, const char* name, FuzzedDataProvider& in) {
@@ -85,9 +86,9 @@ std::unique_ptr<GDALDataset> build(FuzzedDataProvider& in, carto::PartitionOptio
     std::unique_ptr<GDALDataset> ds(drv ? drv->Create("fuzz", 0, 0, 0, GDT_Unknown, nullptr) : nullptr);
     if (!ds) return nullptr;
     // Faces.
-    auto fsrs = srs(in);
+    OGRSpatialReference* const fsrs = srs(in);
     const bool multi = in.ConsumeBool();
-    OGRLayer* fl = ds->CreateLayer("faces", fsrs.get(), multi ? wkbMultiPolygon : wkbPolygon, nullptr);
+    OGRLayer* fl = ds->CreateLayer("faces", fsrs, multi ? wkbMultiPolygon : wkbPolygon, nullptr);
     for (const char* name : {"density", "orientation"}) {
         OGRFieldDefn d(name, OFTReal);
         fl->CreateField(&d);
@@ -125,9 +126,9 @@ std::unique_ptr<GDALDataset> build(FuzzedDataProvider& in, carto::PartitionOptio
         (void)fl->CreateFeature(&feat);
     }
     // Lines: one labelled layer, or layers named after their kind.
-    auto lsrs = in.ConsumeBool() ? srs(in) : std::unique_ptr<OGRSpatialReference>(fsrs ? fsrs->Clone() : nullptr);
+    OGRSpatialReference* const lsrs = in.ConsumeBool() ? srs(in) : fsrs;
     if (in.ConsumeBool()) {
-        OGRLayer* ll = ds->CreateLayer("lines", lsrs.get(), in.ConsumeBool() ? wkbLineString : wkbMultiLineString, nullptr);
+        OGRLayer* ll = ds->CreateLayer("lines", lsrs, in.ConsumeBool() ? wkbLineString : wkbMultiLineString, nullptr);
         OGRFieldDefn kind("kind", OFTString);
         ll->CreateField(&kind);
         for (int n = in.ConsumeIntegralInRange<int>(0, 6); n > 0; --n) {
@@ -146,7 +147,7 @@ std::unique_ptr<GDALDataset> build(FuzzedDataProvider& in, carto::PartitionOptio
     } else {
         for (const char* name : {"ridges", "valleys"}) {
             if (!in.ConsumeBool()) continue;
-            OGRLayer* ll = ds->CreateLayer(name, lsrs.get(), wkbLineString, nullptr);
+            OGRLayer* ll = ds->CreateLayer(name, lsrs, wkbLineString, nullptr);
             for (int n = in.ConsumeIntegralInRange<int>(0, 4); n > 0; --n) {
                 OGRFeature feat(ll->GetLayerDefn());
                 OGRLineString l = line(in);
@@ -157,7 +158,7 @@ std::unique_ptr<GDALDataset> build(FuzzedDataProvider& in, carto::PartitionOptio
     }
     // Orientation lines.
     if (in.ConsumeBool()) {
-        OGRLayer* ol = ds->CreateLayer("orientation", fsrs.get(), wkbLineString, nullptr);
+        OGRLayer* ol = ds->CreateLayer("orientation", fsrs, wkbLineString, nullptr);
         for (int n = in.ConsumeIntegralInRange<int>(0, 4); n > 0; --n) {
             OGRFeature feat(ol->GetLayerDefn());
             OGRLineString l = line(in);
@@ -168,7 +169,7 @@ std::unique_ptr<GDALDataset> build(FuzzedDataProvider& in, carto::PartitionOptio
     // A density layer of points or polygons.
     if (in.ConsumeBool()) {
         const bool points = in.ConsumeBool();
-        OGRLayer* dl = ds->CreateLayer("dens", fsrs.get(), points ? wkbPoint : wkbPolygon, nullptr);
+        OGRLayer* dl = ds->CreateLayer("dens", fsrs, points ? wkbPoint : wkbPolygon, nullptr);
         OGRFieldDefn d("density", OFTReal);
         dl->CreateField(&d);
         for (int n = in.ConsumeIntegralInRange<int>(0, 4); n > 0; --n) {

@@ -717,6 +717,42 @@ FaceFields face_fields(const PartitionSource& src, OGRLayer* faces) {
 
 constexpr double kRepairableMetres = 1e10;
 
+// GEOS's repair of an invalid face (MakeValid), kept for the process by the face's exact
+// coordinates (its WKB): a tile reads the faces meeting it twice (tiles.cpp), a face meeting
+// several tiles is read for each, each run from QGIS reads the partition again, and the
+// repair of a ten-vertex self-intersecting face can take GEOS a few hundred overlays. The same
+// coordinates always get the same repair; every caller gets its own copy. nullptr: GEOS could
+// not repair it.
+std::unique_ptr<OGRGeometry> repaired_copy(const OGRGeometry& g) {
+    static std::mutex mutex;
+    // Never destroyed, as the transformations above.
+    static auto& kept = *new std::unordered_map<std::string, std::unique_ptr<OGRGeometry>>;
+    static std::size_t kept_bytes = 0;
+    std::string key(std::size_t(g.WkbSize()), '\0');
+    g.exportToWkb(wkbNDR, reinterpret_cast<unsigned char*>(key.data()), wkbVariantIso);
+    {
+        const std::lock_guard<std::mutex> lock(mutex);
+        if (const auto it = kept.find(key); it != kept.end()) {
+            if (!it->second) return nullptr;
+            std::unique_ptr<OGRGeometry> copy(it->second->clone());
+            copy->assignSpatialReference(g.getSpatialReference());  // as MakeValid does
+            return copy;
+        }
+    }
+    std::unique_ptr<OGRGeometry> fixed(g.MakeValid());
+    const std::lock_guard<std::mutex> lock(mutex);
+    // A bound, 16 MB of faces (their repairs about as much): what was cleared is repaired again.
+    if (kept_bytes + key.size() > (std::size_t(16) << 20)) {
+        kept.clear();
+        kept_bytes = 0;
+    }
+    std::unique_ptr<OGRGeometry> copy(fixed ? fixed->clone() : nullptr);
+    if (copy) copy->assignSpatialReference(nullptr);  // the layer's CRS is not kept alive by it
+    const std::size_t size = key.size();
+    if (kept.try_emplace(std::move(key), std::move(copy)).second) kept_bytes += size;
+    return fixed;
+}
+
 // A face feature's geometry in the working CRS, repaired when invalid (counted in `repaired`)
 // unless --no-repair; nullptr for a feature without geometry or off the filter box.
 std::unique_ptr<OGRGeometry> face_geometry(const PartitionSource& src, const OGRFeature& feat, const Reprojector& proj,
@@ -742,7 +778,7 @@ std::unique_ptr<OGRGeometry> face_geometry(const PartitionSource& src, const OGR
             throw Error(Code::BadGeometry, what + ": face " + std::to_string(feat.GetFID()) +
                                                " is invalid and lies beyond any map (coordinates over 1e10 m): it "
                                                "cannot be repaired");
-        std::unique_ptr<OGRGeometry> fixed(g->MakeValid());
+        std::unique_ptr<OGRGeometry> fixed = repaired_copy(*g);
         if (!fixed || fixed->IsEmpty())
             throw Error(Code::BadGeometry,
                         what + ": face " + std::to_string(feat.GetFID()) + " is invalid and cannot be repaired");
@@ -942,20 +978,25 @@ void read_per_kind_lines(const PartitionSource& src, const std::vector<std::pair
     }
 }
 
-// Reads the ridge and valley lines near the faces (`around`); without any line layer the
-// borders cannot be labelled: an error.
-void read_lines(const PartitionSource& src, const std::optional<tex::BBox>& around, Partition& p) {
-    const LineLayers layers = line_layers(src);
+// The line layers (line_layers); without any the borders cannot be labelled: an error.
+LineLayers required_line_layers(const PartitionSource& src) {
+    LineLayers layers = line_layers(src);
+    if (!layers.labelled && layers.per_kind.empty() && !layers.osm)
+        throw Error(Code::BadLayer, src.what + ": no line layer with a '" + src.opt.label_field +
+                                        "' field and no 'ridges' / 'valleys' layers: the faces' borders cannot be "
+                                        "labelled");
+    return layers;
+}
+
+// Reads the ridge and valley lines of `layers` near the faces (`around`).
+void read_lines(const PartitionSource& src, const LineLayers& layers, const std::optional<tex::BBox>& around,
+                Partition& p) {
     if (layers.labelled) {
         read_labelled_lines(src, layers.labelled, around, p.lines);
     } else if (!layers.per_kind.empty()) {
         read_per_kind_lines(src, layers.per_kind, around, p.lines);
-    } else if (layers.osm) {
-        read_osm_lines(src, layers.osm, around, p.lines);
     } else {
-        throw Error(Code::BadLayer, src.what + ": no line layer with a '" + src.opt.label_field +
-                                        "' field and no 'ridges' / 'valleys' layers: the faces' borders cannot be "
-                                        "labelled");
+        read_osm_lines(src, layers.osm, around, p.lines);
     }
 }
 
@@ -1091,6 +1132,9 @@ Partition load_partition(GDALDataset& ds, const PartitionOptions& opt, const std
     OGRLayer* faces = face_layer(src);
     const Reprojector face_proj = reprojector(faces, working_wkt, what);
     const FaceFields fields = face_fields(src, faces);
+    // The line layers are found before any face is read: a partition without them fails at
+    // once, not after the repair of every invalid face (a third of fuzz_partition_struct's time).
+    const LineLayers lines = required_line_layers(src);
     read_faces(src, faces, face_proj, fields, p);
     snap_face_borders(src, p);
 
@@ -1098,7 +1142,7 @@ Partition load_partition(GDALDataset& ds, const PartitionOptions& opt, const std
     // faces beyond the filter box (a face meeting the box is read whole, its attributes too).
     std::optional<tex::BBox> around = opt.filter;
     if (around) around->add(p.bounds());
-    read_lines(src, around, p);
+    read_lines(src, lines, around, p);
     read_orientations(src, around, p);
     read_densities(src, fields.dens_name, around, p);
     read_scree(src, p);

@@ -465,3 +465,74 @@ TEST(Partition, LayersInOtherCrssEachReadThroughTheirOwnTransformation) {
     expect_on_truth(a, "4326 on a thread");
     expect_on_truth(b, "32631 on a thread");
 }
+
+// An invalid face is GEOS's repair of it every time it is read: the reader keeps each repair
+// for the process by the face's exact coordinates, so two bow ties with the same bounding box
+// and the same number of vertices, read in turn, each get their own repair, read after read,
+// with the note of the repair each time.
+TEST(Partition, AnInvalidFaceReadAgainIsRepairedAsTheFirstTime) {
+    const HandLine ridge{{{0, 0}, {0, 100}}, "ridge"};
+    // Crossings at (50, 50) and (33.3, 33.3).
+    const std::string a = write_partition("bowtie_a", {{{{0, 0}, {100, 100}, {100, 0}, {0, 100}}}}, {ridge});
+    const std::string b = write_partition("bowtie_b", {{{{0, 0}, {100, 100}, {100, 0}, {0, 50}}}}, {ridge});
+    auto has_vertex = [](const Partition& p, double x, double y) {
+        for (const auto& r : rings_of(p))
+            for (const Point& q : r)
+                if (distance(q, Point{X0 + x, Y0 + y}) < 1e-6) return true;
+        return false;
+    };
+    auto repaired_note = [](const Partition& p) {
+        return std::find(p.notes.begin(), p.notes.end(), "repaired 1 invalid face polygon(s)") != p.notes.end();
+    };
+    const Partition first_a = load(a), first_b = load(b);
+    ASSERT_EQ(first_a.faces.size(), 2u);
+    ASSERT_EQ(first_b.faces.size(), 2u);
+    EXPECT_TRUE(has_vertex(first_a, 50, 50));
+    EXPECT_FALSE(has_vertex(first_a, 100.0 / 3, 100.0 / 3));
+    EXPECT_TRUE(has_vertex(first_b, 100.0 / 3, 100.0 / 3));
+    EXPECT_FALSE(has_vertex(first_b, 50, 50));
+    EXPECT_TRUE(repaired_note(first_a));
+    EXPECT_TRUE(repaired_note(first_b));
+    for (int round = 0; round < 2; ++round)
+        for (const auto& [path, first] : {std::pair{a, &first_a}, std::pair{b, &first_b}}) {
+            const Partition again = load(path);
+            EXPECT_EQ(rings_of(again), rings_of(*first)) << path;
+            ASSERT_EQ(again.faces.size(), first->faces.size());
+            for (std::size_t i = 0; i < again.faces.size(); ++i) {
+                EXPECT_EQ(again.faces[i].id, first->faces[i].id);
+                EXPECT_EQ(again.faces[i].boundary.size(), first->faces[i].boundary.size());
+            }
+            EXPECT_EQ(again.notes, first->notes) << path;
+        }
+}
+
+// The line layers are found before any face is read: a partition without them is refused for
+// that, at once, even when a face would have been refused (its density out of [0, 1]) or
+// repaired.
+TEST(Partition, WithoutLineLayersNoFaceIsRead) {
+    GDALAllRegister();
+    OGRSpatialReference srs;
+    srs.importFromEPSG(2154);
+    GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("Memory");
+    std::unique_ptr<GDALDataset> ds(mem->Create("nolines", 0, 0, 0, GDT_Unknown, nullptr));
+    OGRLayer* fl = ds->CreateLayer("faces", &srs, wkbPolygon, nullptr);
+    OGRFieldDefn dens("density", OFTReal);
+    fl->CreateField(&dens);
+    OGRFeature feat(fl->GetLayerDefn());
+    OGRLinearRing ring;
+    for (const Point& q : std::vector<Point>{{0, 0}, {100, 100}, {100, 0}, {0, 100}, {0, 0}}) ring.addPoint(X0 + q.x, Y0 + q.y);
+    OGRPolygon poly;
+    poly.addRing(&ring);
+    feat.SetGeometry(&poly);
+    feat.SetField("density", 2.0);
+    ASSERT_EQ(fl->CreateFeature(&feat), OGRERR_NONE);
+    PartitionOptions o;
+    o.path = "nolines";
+    try {
+        load_partition(*ds, o, lambert93());
+        ADD_FAILURE() << "accepted";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), Code::BadLayer) << e.what();
+        EXPECT_NE(std::string(e.what()).find("no line layer with a 'kind' field"), std::string::npos) << e.what();
+    }
+}
