@@ -17,7 +17,8 @@ WINDOW = ",".join(str(v) for v in SAMPLE_SW_QUARTER)
 
 
 def run(cmd, env=None, **kw):
-    r = subprocess.run([str(c) for c in cmd], capture_output=True, text=True, env=env, **kw)
+    """A command; by default with tool_env() (CMake, cpack, dpkg, the compilers, ldd)."""
+    r = subprocess.run([str(c) for c in cmd], capture_output=True, text=True, env=env or tool_env(), **kw)
     assert r.returncode == 0, f"{cmd} failed ({r.returncode}):\n{r.stdout}\n{r.stderr}"
     return r
 
@@ -29,6 +30,12 @@ def clean_env(**extra):
     return env
 
 
+def tool_env():
+    """For the system's tools: without the sanitizer pass's LD_PRELOAD of the ASan runtime,
+    under which cpack, not instrumented, hung in a lock while writing the package."""
+    return {k: v for k, v in clean_env().items() if k != "LD_PRELOAD"}
+
+
 def python_dir(root: pathlib.Path) -> pathlib.Path:
     found = sorted(root.glob("lib/python3*/dist-packages"))
     assert len(found) == 1, f"one Python package folder under {root}/lib, found {found}"
@@ -37,7 +44,7 @@ def python_dir(root: pathlib.Path) -> pathlib.Path:
 
 def resolved_libraries(program: pathlib.Path) -> dict:
     """name -> path of the shared libraries the loader picks for the program (ldd)."""
-    out = run(["ldd", program], env=clean_env()).stdout
+    out = run(["ldd", program]).stdout
     libs = {}
     for line in out.splitlines():
         parts = line.split()
@@ -178,8 +185,8 @@ def test_a_cmake_project_of_ones_own_builds_against_the_installed_libtex(prefix,
         pytest.fail(f"{in_tree} is missing (configure with RH_BUILD_EXAMPLES=ON)")
     out = tmp_path / "build"
     run(["cmake", "-S", ROOT / "examples" / "downstream", "-B", out, f"-DCMAKE_PREFIX_PATH={prefix}",
-         "-DCMAKE_BUILD_TYPE=Release"], env=clean_env())
-    run(["cmake", "--build", out], env=clean_env())
+         "-DCMAKE_BUILD_TYPE=Release"])
+    run(["cmake", "--build", out])
     program = out / "stones"
     assert str(resolved_libraries(program)[f"libtex.so.{SONAME}"]).startswith(str(prefix.resolve()))
     run([program, tmp_path / "mine.svg", "7"], env=clean_env())
