@@ -14,6 +14,7 @@ PACKAGES=(
   libgdal-dev gdal-bin libproj-dev proj-bin         # carto: rasters, vectors, CRSs
   libgeographiclib-dev                              # carto: UTM zone of geographic DEMs
   libsqlite3-dev                                    # carto: bulk-loaded GeoPackage R-tree
+  zlib1g-dev                                        # carto: the PDF layers' compressed pages
   libjemalloc-dev                                   # the rockhatch command's allocator (many small maps)
   libgtest-dev                                      # C++ tests
   python3 python3-dev pybind11-dev                  # the Python module, for /usr/bin/python3
@@ -22,6 +23,7 @@ PACKAGES=(
   python3-pil openimageio-tools                     # tests read written images back (PNG, TIFF; EXR)
   python3-distributed python3-dask python3-psutil  # rockhatch tiles: tiled runs on Dask distributed
   librsvg2-bin time                                 # PNG previews of SVG outputs; GNU time (benchmarks)
+  poppler-utils                                     # tests render PDF outputs (pdftoppm)
   dpkg-dev file binutils                            # the Debian package (cpack: dpkg-shlibdeps, file, objdump)
   libopenimageio-dev                                # libtex_image: tiled maps rasterised to image files
   qgis python3-qgis qgis-providers                  # the QGIS plugin and its tests (headless QGIS, qgis_process)

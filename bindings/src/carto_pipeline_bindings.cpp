@@ -35,6 +35,8 @@ void add_pipeline_bindings(py::module_& m) {
         .def_readwrite("outputs", &Options::outputs)
         .def_readwrite("overwrite", &Options::overwrite)
         .def_readwrite("png_pixels", &Options::png_pixels)
+        .def_readwrite("page", &Options::page, "page of a .pdf output: A0..A5 or WxH in mm ('' = the drawing's frame)")
+        .def_readwrite("zoom", &Options::zoom, "zoom levels of a vector-tile output, 'Z1-Z2' ('' = 12-16)")
         .def_readwrite("spatial_index", &Options::spatial_index)
         .def_readwrite("window", &Options::window)
         .def_readwrite("mask", &Options::mask, "with partition 'auto': rock only inside this polygon layer")
@@ -48,6 +50,7 @@ void add_pipeline_bindings(py::module_& m) {
         .def_readonly("crs", &Stats::crs)
         .def_readonly("notes", &Stats::notes)
         .def_readonly("crests", &Stats::crests, "ridge lines drawn with a crest ornament")
+        .def_readonly("tiles", &Stats::tiles, "the vector-tile output's tiles (zero without one)")
         .def("__repr__", [](const Stats& s) {
             return "Stats(faces=" + std::to_string(s.faces) + ", hatches=" + std::to_string(s.hatches) + ")";
         });
@@ -172,6 +175,43 @@ void add_output_bindings(py::module_& m) {
         },
         py::arg("drawing"), py::arg("path"), py::arg("pixels") = 1600, py::arg("hillshade") = nullptr,
         py::call_guard<py::gil_scoped_release>());
+    m.def("write_pdf", [](const Drawing& d, const std::string& path, const std::string& page) {
+              write_pdf(d, path, page.empty() ? std::nullopt : std::optional<PageSize>(parse_page(page)));
+          },
+          py::arg("drawing"), py::arg("path"), py::arg("page") = "", py::call_guard<py::gil_scoped_release>(),
+          "a georeferenced PDF at true scale, one optional-content layer per family; page A0..A5 or WxH mm");
+    py::class_<TileStats>(m, "TileStats")
+        .def_readonly("tiles", &TileStats::tiles)
+        .def_readonly("bytes", &TileStats::bytes)
+        .def_readonly("largest", &TileStats::largest, "bytes of the largest tile")
+        .def_property_readonly("largest_tile", [](const TileStats& s) {
+            return py::make_tuple(s.largest_z, s.largest_x, s.largest_y);
+        }, "(z, x, y) of the largest tile")
+        .def_readonly("features", &TileStats::features)
+        .def("__repr__", [](const TileStats& s) {
+            return "TileStats(tiles=" + std::to_string(s.tiles) + ", bytes=" + std::to_string(s.bytes) +
+                   ", largest=" + std::to_string(s.largest) + ")";
+        });
+    m.def(
+        "write_vector_tiles",
+        [](const std::vector<std::pair<int, std::string>>& zooms, const std::string& path, const std::string& name,
+           const py::object& cb) {
+            const Progress p = to_progress(cb);
+            std::vector<ZoomDrawing> z;
+            for (const auto& [zoom, gpkg] : zooms) z.push_back({zoom, gpkg});
+            return write_vector_tiles(z, path, name, [&p](double f) { return !p || p(f, "writing tiles"); });
+        },
+        py::arg("zooms"), py::arg("path"), py::arg("name") = "rockhatch", py::arg("progress") = py::none(),
+        py::call_guard<py::gil_scoped_release>(),
+        "vector tiles (.mbtiles or a folder) from [(zoom, hatch GeoPackage drawn at zoom_scale(zoom))]");
+    m.def("mbtiles_stats", &mbtiles_stats, py::arg("path"));
+    m.def("zoom_scale", &zoom_scale, py::arg("zoom"), py::arg("latitude"),
+          "the map scale of a web zoom level at a latitude (OGC's 0.28 mm pixel)");
+    m.def("dem_latitude", &dem_latitude, py::arg("dem"), "latitude (WGS 84) of the DEM's centre");
+    m.def("parse_zoom_range", [](const std::string& t) {
+        const ZoomRange r = parse_zoom_range(t);
+        return py::make_tuple(r.min, r.max);
+    }, py::arg("text"));
     m.def("check_output", &check_output, py::arg("path"), py::arg("overwrite"), py::arg("what") = "-o");
     m.def(
         "check_outputs",

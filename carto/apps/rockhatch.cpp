@@ -100,6 +100,10 @@ int main(int argc, char** argv) {
             for (const auto& n : s.notes) std::fprintf(stderr, "rockhatch: note: %s\n", n.c_str());
         std::fprintf(stderr, "rockhatch: %zu faces, %zu hatches, %.2f s, working CRS %s\n", s.faces, s.hatches, s.seconds,
                      s.crs.c_str());
+        if (s.tiles.tiles)
+            std::fprintf(stderr, "rockhatch: %zu vector tiles, %.1f MB, largest %.0f kB (%d/%d/%d)\n", s.tiles.tiles,
+                         s.tiles.bytes / 1e6, s.tiles.largest / 1e3, s.tiles.largest_z, s.tiles.largest_x,
+                         s.tiles.largest_y);
         return 0;
     } catch (const carto::Error& e) {
         bar.finish();

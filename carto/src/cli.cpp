@@ -52,7 +52,8 @@ std::vector<Option> options(CommandLine& cl) {
         {"--partition", "PATH", "partition of the rock areas (GeoPackage, shapefile...): faces + labelled lines; auto: extracted "
                                 "from the DEM; none: no rock (terrain styles only)",
          [&](const std::string& v) { o.partition.path = v; }},
-        {"-o", "PATH", "output: .gpkg (one layer per hatch family), .svg (true scale) or .png (preview); repeatable",
+        {"-o", "PATH", "output: .gpkg (one layer per hatch family), .svg (true scale), .png (preview), .pdf (georeferenced, "
+                         "true scale), .mbtiles or DIR/ (vector tiles, see --zoom); repeatable",
          [&](const std::string& v) { o.outputs.push_back(v); }},
         {"--slope", "PATH", "slope raster in percent (default: computed from the DEM)",
          [&](const std::string& v) { o.slope = v; }},
@@ -119,6 +120,10 @@ std::vector<Option> options(CommandLine& cl) {
                  throw Error(Code::Usage, "--window: expected XMIN,YMIN,XMAX,YMAX with XMIN < XMAX and YMIN < YMAX");
              o.window = tex::BBox{n[0], n[1], n[2], n[3]};
          }},
+        {"--page", "A0..A5|WxH", "page of a .pdf output, in mm, the drawing centred (default: the drawing's frame)",
+         [&](const std::string& v) { o.page = v; }},
+        {"--zoom", "Z1-Z2", "zoom levels of a vector-tile output, each drawn at its own scale (default 12-16)",
+         [&](const std::string& v) { o.zoom = v; }},
         {"--png-size", "PIXELS", "width of PNG previews (default 1600)",
          [&](const std::string& v) { o.png_pixels = int(parse_uint("--png-size", v, std::numeric_limits<int>::max())); }},
         {"--no-spatial-index", nullptr, "write the GeoPackage without its R-tree (much faster for millions of hatches)",

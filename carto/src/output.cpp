@@ -23,6 +23,7 @@
 #include "gpkg_rtree.hpp"
 #include "preview.hpp"
 #include "temp_file.hpp"
+#include "xml_text.hpp"
 
 namespace fs = std::filesystem;
 
@@ -31,17 +32,6 @@ namespace {
 
 void num(std::string& s, double v) { tex::append_svg_number(s, v); }
 
-std::string xml_escape(const std::string& in) {
-    std::string out;
-    for (char c : in) {
-        if (c == '<') out += "&lt;";
-        else if (c == '>') out += "&gt;";
-        else if (c == '&') out += "&amp;";
-        else if (c == '"') out += "&quot;";
-        else out += c;
-    }
-    return out;
-}
 
 // The R-tree box of a feature's points.
 BoxD box_of(const std::vector<Point>& pts) {
@@ -80,7 +70,10 @@ std::vector<std::vector<std::size_t>> crest_polygons(const CrestOrnament& c) {
 }  // namespace
 
 void check_output(const std::string& path, bool overwrite, const std::string& what) {
-    const fs::path p(path);
+    // A folder output (DIR/ of vector tiles) is checked as the folder's own name.
+    std::string name = path;
+    while (name.size() > 1 && name.back() == '/') name.pop_back();
+    const fs::path p(name);
     const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
     if (!fs::is_directory(dir)) throw Error(Code::OutputExists, what + " '" + path + "': the folder does not exist");
     if (fs::exists(p) && !overwrite)
@@ -125,10 +118,6 @@ void check_outputs(const std::vector<FileArg>& inputs, const std::vector<FileArg
     }
 }
 
-namespace {
-
-// The rock families are always written (an empty layer says "none drawn"); the terrain
-// families only by the styles that draw them.
 bool has_family(const Drawing& d, Family f) {
     if (int(f) < kRockFamilies) return true;
     for (const auto& face : d.faces)
@@ -136,6 +125,8 @@ bool has_family(const Drawing& d, Family f) {
             if (h.family == f) return true;
     return false;
 }
+
+namespace {
 
 // Receives the hatches of one family, each as the points written (a closed hatch with its
 // first point repeated at the end), with its face and style.

@@ -13,6 +13,8 @@
 #include "carto/crest.hpp"
 #include "carto/error.hpp"
 #include "carto/extract.hpp"
+#include "carto/publish.hpp"
+#include "temp_file.hpp"
 #include "carto/control_fields.hpp"
 #include "libtex/parallel.hpp"
 #include "libtex/random.hpp"
@@ -38,9 +40,11 @@ Raster load_dem(const std::string& path, std::vector<std::string>* notes) {
 
 // The number of squares of the style's finest length (a "mm" parameter, in ground units)
 // over the faces to hatch: beyond this, a scale or a parameter asks for more geometry than
-// a machine holds, so the run is refused before it starts (at 1:10000 the sample and
-// Chamonix.tif need about 1e6).
-constexpr double kMaxFinestCells = 1e8;
+// a machine holds, so the run is refused before it starts. The rock style's min_gap at
+// 1:10000 makes about 1.3e6 squares of the sample and 3.8e7 of Chamonix.tif (386 MB at the
+// peak); the limit lets Chamonix.tif be drawn at zoom 16 of a vector-tile output (1:5,940,
+// 1.1e8) and refuses what would take several GB.
+constexpr double kMaxFinestCells = 4e8;
 
 void check_workload(const StyleInfo& info, const ParamValues& params, const Partition& part,
                     const std::vector<int>& selected, double scale) {
@@ -279,8 +283,58 @@ void write_outputs(const Drawing& d, const Prepared& p, const Plan& plan, const 
                 break;
             case OutputFormat::Svg: write_svg(d, out.path); break;
             case OutputFormat::Png: write_png(d, out.path, plan.options.png_pixels, &p.terrain.hillshade); break;
+            case OutputFormat::Pdf: write_pdf(d, out.path, plan.page); break;
+            case OutputFormat::VectorTiles: break;  // drawn per zoom level: write_zoom_tiles
         }
     tick(progress, 1.0, "done");
+}
+
+Plan zoom_plan(const Plan& plan, int zoom, double latitude) {
+    Options o = plan.options;
+    o.scale = zoom_scale(zoom, latitude);
+    o.outputs.clear();
+    o.page.clear();
+    o.zoom.clear();
+    return make_plan(o, PlanFor::Drawing);
+}
+
+TileStats write_zoom_tiles(const Plan& plan, const Progress& progress, Stats* counts) {
+    std::vector<const Output*> outs;
+    for (const Output& out : plan.outputs)
+        if (out.format == OutputFormat::VectorTiles) outs.push_back(&out);
+    if (outs.empty()) return {};
+    const double latitude = dem_latitude(plan.options.dem);
+    const int levels = plan.zoom.max - plan.zoom.min + 1;
+    // Each level's drawing in a GeoPackage of its own next to the first output, removed at the end.
+    std::vector<std::unique_ptr<TempFile>> files;
+    std::vector<ZoomDrawing> zooms;
+    for (int z = plan.zoom.min; z <= plan.zoom.max; ++z) {
+        const int k = z - plan.zoom.min;
+        const Progress part = [&](double f, const std::string& stage) {
+            return !progress || progress(0.8 * (k + f) / levels, "zoom " + std::to_string(z) + ": " + stage);
+        };
+        const Plan pz = zoom_plan(plan, z, latitude);
+        const Prepared p = prepare(pz, part);
+        const Drawing d = hatch(p, pz, part);
+        if (counts) {
+            counts->faces = 0;  // the finest level's
+            for (const auto& f : d.faces) {
+                counts->hatches += f.hatches.size();
+                counts->faces += f.face_id != kTerrainFaceId;
+            }
+        }
+        files.push_back(std::make_unique<TempFile>(outs.front()->path.back() == '/'
+                                                       ? outs.front()->path.substr(0, outs.front()->path.size() - 1)
+                                                       : outs.front()->path,
+                                                   ".z" + std::to_string(z) + ".gpkg"));
+        write_gpkg(d, files.back()->path, false);
+        zooms.push_back({z, files.back()->path});
+    }
+    TileStats stats;
+    for (const Output* out : outs)
+        stats = write_vector_tiles(zooms, out->path, std::filesystem::path(plan.options.dem).stem().string(),
+                                   [&](double f) { return !progress || progress(0.8 + 0.2 * f, "writing tiles"); });
+    return stats;
 }
 
 Stats run(const Plan& plan, const Progress& progress) {
@@ -288,10 +342,20 @@ Stats run(const Plan& plan, const Progress& progress) {
     // The run's thread count for every stage (reading, hatching, writing), on this thread
     // only: the process's is left as it was.
     const tex::ThreadsScope threads(plan.options.threads);
+    Stats s;
+    const bool drawing = std::any_of(plan.outputs.begin(), plan.outputs.end(),
+                                     [](const Output& o) { return o.format != OutputFormat::VectorTiles; });
+    if (!drawing) {
+        // Vector tiles only: each zoom level is its own drawing.
+        s.tiles = write_zoom_tiles(plan, progress, &s);
+        s.crs = "EPSG:3857 (vector tiles)";
+        s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        return s;
+    }
     const Prepared p = prepare(plan, progress);
     const Drawing d = hatch(p, plan, progress);
     write_outputs(d, p, plan, progress);
-    Stats s;
+    s.tiles = write_zoom_tiles(plan, progress, nullptr);
     s.faces = std::size_t(std::count_if(d.faces.begin(), d.faces.end(),
                                         [](const FaceHatches& f) { return f.face_id != kTerrainFaceId; }));
     for (const auto& f : d.faces) s.hatches += f.hatches.size();

@@ -1,5 +1,6 @@
 #include "carto/plan.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -26,6 +27,8 @@ std::optional<OutputFormat> format_of(const std::string& path) {
     if (e == ".gpkg") return OutputFormat::GeoPackage;
     if (e == ".svg") return OutputFormat::Svg;
     if (e == ".png") return OutputFormat::Png;
+    if (e == ".pdf") return OutputFormat::Pdf;
+    if (e == ".mbtiles" || (!path.empty() && path.back() == '/')) return OutputFormat::VectorTiles;
     return std::nullopt;
 }
 
@@ -74,7 +77,7 @@ Plan make_plan(const Options& o, PlanFor use) {
     if (use == PlanFor::Run) {
         if (o.dem.empty()) throw Error(Code::Usage, "--dem is required");
         if (o.partition.path.empty()) throw Error(Code::Usage, "--partition is required");
-        if (o.outputs.empty()) throw Error(Code::Usage, "-o is required (.gpkg, .svg or .png)");
+        if (o.outputs.empty()) throw Error(Code::Usage, "-o is required (.gpkg, .svg, .png, .pdf, .mbtiles or DIR/)");
     }
     if (!(o.partition.snap > 0)) throw Error(Code::Usage, "--snap must be positive");
     if (!(o.relief_radius > 0) || !std::isfinite(o.relief_radius))
@@ -83,9 +86,20 @@ Plan make_plan(const Options& o, PlanFor use) {
     check_files(o);
     for (const auto& out : o.outputs) {
         const std::optional<OutputFormat> f = format_of(out);
-        if (!f) throw Error(Code::Usage, "-o '" + out + "': unknown format (use .gpkg, .svg or .png)");
+        if (!f) throw Error(Code::Usage, "-o '" + out + "': unknown format (use .gpkg, .svg, .png, .pdf, "
+                                                   ".mbtiles or DIR/ for a folder of vector tiles)");
         plan.outputs.push_back({out, *f});
     }
+    const auto has = [&](OutputFormat f) {
+        return std::any_of(plan.outputs.begin(), plan.outputs.end(), [&](const Output& out) { return out.format == f; });
+    };
+    if (!o.page.empty()) {
+        if (use == PlanFor::Run && !has(OutputFormat::Pdf)) throw Error(Code::Usage, "--page needs a .pdf output");
+        plan.page = parse_page(o.page);
+    }
+    if (!o.zoom.empty() && use == PlanFor::Run && !has(OutputFormat::VectorTiles))
+        throw Error(Code::Usage, "--zoom needs a vector-tile output (.mbtiles or DIR/)");
+    plan.zoom = parse_zoom_range(o.zoom.empty() ? kDefaultZoom : o.zoom);
     if (o.png_pixels < 16 || o.png_pixels > 20000) throw Error(Code::Usage, "--png-size must be in 16..20000");
     if (o.crest_height_mm) {
         if (!o.crest_ornament) throw Error(Code::Usage, "--crest-height needs --crest-ornament");

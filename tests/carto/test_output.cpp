@@ -24,18 +24,12 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path fresh_dir(const std::string& name) {
-    const fs::path dir = rh_test::scratch_dir() / name;
-    fs::remove_all(dir);
+    const fs::path dir = rh_test::fresh_dir(name);
     fs::create_directories(dir / "sub");
     return dir;
 }
 
-std::string bytes(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+std::string bytes(const fs::path& p) { return rh_test::file_bytes(p); }
 
 // The message of the OutputExists error check_outputs throws (nullopt when it accepts).
 std::optional<std::string> refusal(const std::vector<FileArg>& in, const std::vector<FileArg>& out) {

@@ -6,6 +6,8 @@
 #include <stdlib.h>
 
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -34,6 +36,22 @@ inline std::string scratch(const std::string& name) {
     const std::filesystem::path p = scratch_dir() / name;
     std::filesystem::create_directories(p.parent_path());
     return p.string();
+}
+
+// An empty folder of that name in the scratch folder (made again if a test made it before).
+inline std::filesystem::path fresh_dir(const std::string& name) {
+    const std::filesystem::path dir = scratch_dir() / name;
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
+// A file's bytes.
+inline std::string file_bytes(const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
 }
 
 }  // namespace rh_test

@@ -61,6 +61,11 @@ def out(w, name="o.gpkg"):
     return w / "out" / name
 
 
+def copy_as(src, dst):
+    shutil.copy(src, dst)
+    return dst
+
+
 def text_file(w, name, text):
     p = w / name
     p.write_text(text)
@@ -369,6 +374,24 @@ CASES: List[Case] = [
          ("partition.gpkg", "--partition", "onto an input")),
     Case(RH, "-o", "a hard link to the DEM", lambda w: main(w, "--overwrite", o=hard_link(dem(w), w / "h.tif")), 9,
          ("h.tif", "--dem", "onto an input")),
+    Case(RH, "-o", "a .pdf that is the DEM, with --overwrite",
+         lambda w: ["-q", "--dem", copy_as(dem(w), w / "d.pdf"), "--partition", part(w), "--overwrite", "-o", w / "d.pdf"],
+         9, ("d.pdf", "--dem", "onto an input")),
+    Case(RH, "-o", "a .mbtiles that is the DEM, with --overwrite",
+         lambda w: ["-q", "--dem", copy_as(dem(w), w / "d.mbtiles"), "--partition", part(w), "--overwrite", "-o",
+                    w / "d.mbtiles"], 9, ("d.mbtiles", "--dem", "onto an input")),
+    Case(RH, "--page", "unknown size", lambda w: main(w, "--page", "A9", o=out(w, "o.pdf")), 2, ("--page 'A9'",)),
+    Case(RH, "--page", "smaller than the drawing", lambda w: main(w, "--page", "40x40", o=out(w, "o.pdf")), 2,
+         ("--page 40x40", "use a larger page")),
+    Case(RH, "--page", "without a .pdf output", lambda w: main(w, "--page", "A4"), 2, ("--page needs a .pdf",)),
+    Case(RH, "--zoom", "out of 0-22", lambda w: main(w, "--zoom", "3-25", o=out(w, "o.mbtiles")), 2,
+         ("--zoom '3-25'", "0..22")),
+    Case(RH, "--zoom", "reversed", lambda w: main(w, "--zoom", "16-12", o=out(w, "o.mbtiles")), 2,
+         ("--zoom '16-12'",)),
+    Case(RH, "--zoom", "not a number", lambda w: main(w, "--zoom", "z15", o=out(w, "o.mbtiles")), 2,
+         ("--zoom 'z15'",)),
+    Case(RH, "--zoom", "without a vector-tile output", lambda w: main(w, "--zoom", "14"), 2,
+         ("--zoom needs a vector-tile output",)),
     Case(RH, "(any)", "unknown option", lambda w: main(w, "--bogus"), 2, ("unknown option '--bogus'",)),
     Case(RH, "(any)", "option without its value", lambda w: ["-q", "--dem", dem(w), "--partition"], 2,
          ("--partition",)),

@@ -139,12 +139,21 @@ def test_rock_hatching_equals_the_command(qgis, sample_dir, reference, tmp_path)
     print(f"rock hatching on the sample through processing.run: {seconds:.2f} s")
     assert layer_features(tmp_path / "h.gpkg") == reference["features"]
     assert (tmp_path / "h.svg").read_bytes() == reference["svg"].read_bytes()
+    assert result["PDF"] is None
     assert result["HATCHES"] == sum(reference["counts"].values()) and result["FACES_HATCHED"] == 20
     assert result["LAYERS"] == [f"{tmp_path / 'h.gpkg'}|layername={f}" for f in FAMILIES]
     for uri in result["LAYERS"]:
         layer = QgsVectorLayer(uri, "h", "ogr")
         assert layer.isValid() and layer.crs().authid() == "EPSG:2154"
         assert [f.name() for f in layer.fields()][1:] == ["face_id", "family", "style", "width_mm"]
+
+
+def test_rock_hatching_writes_the_commands_geopdf(qgis, sample_dir, tmp_path):
+    result = run("rockhatch:rockhatching", sample_params(sample_dir, tmp_path / "h.gpkg", PDF=str(tmp_path / "h.pdf")))
+    assert result["PDF"] == str(tmp_path / "h.pdf")
+    pdf = QgsRasterLayer(str(tmp_path / "h.pdf"), "pdf")
+    assert pdf.isValid() and pdf.crs().authid() == "EPSG:2154"
+    assert round(pdf.extent().width()) == 1900
 
 
 def test_two_files_and_memory_layers(qgis, sample_dir, reference, tmp_path):

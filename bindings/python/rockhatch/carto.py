@@ -124,10 +124,12 @@ _PARTITION_KEYS = ("faces_layer", "lines_layer", "label_field", "id_field", "ori
 
 def make_options(dem="", partition="", outputs=(), style=None, params=None, scale=10000.0, seed=0, threads=0,
                  overwrite=False, slope="", roughness="", window=None, png_pixels=1600, spatial_index=True,
-                 relief_radius=1000.0, crest_ornament=None, crest_height_mm=None, mask="", **partition_options):
+                 relief_radius=1000.0, crest_ornament=None, crest_height_mm=None, mask="", page="", zoom="",
+                 **partition_options):
     """The Options of the rockhatch command from keyword arguments (same names as its
     options, partition layer and field options included; crest_ornament is 'default' or an
-    SVG file, crest_height_mm the band height in mm on paper)."""
+    SVG file, crest_height_mm the band height in mm on paper; page the page of a .pdf output,
+    zoom the zoom levels of a .mbtiles output, e.g. "12-16")."""
     o = Options()  # noqa: F405
     o.dem = os.fspath(dem)
     o.partition.path = os.fspath(partition)
@@ -160,6 +162,8 @@ def make_options(dem="", partition="", outputs=(), style=None, params=None, scal
     if window is not None:
         o.window = window if isinstance(window, _tex.BBox) else _tex.BBox(*window)
     o.png_pixels = int(png_pixels)
+    o.page = str(page or "")
+    o.zoom = str(zoom or "")
     o.spatial_index = bool(spatial_index)
     return o
 

@@ -210,6 +210,7 @@ class Summary:
         self.warnings = []            # what the user should know about the result
         self.partition_seconds = 0.0  # --partition auto: extracting and merging the partition
         self.extract_rounds = []      # --partition auto: windows extracted per tile computed
+        self.vector_tiles = None      # a vector-tile output: carto.TileStats
 
     def __repr__(self):
         return (f"Summary(tiles={self.tiles}, done_before={self.done_before}, faces={self.faces}, "
@@ -222,10 +223,81 @@ def _eta(done, total, started, first_done):
     return rate, left
 
 
-def run_args(argv, progress=None):
+def _is_vector_tiles(path):
+    return path.lower().endswith(".mbtiles") or path.endswith("/")
+
+
+def _without(args, flags):
+    """args without the options in `flags` (each taking a value, as --flag V or --flag=V)."""
+    out, i = [], 0
+    while i < len(args):
+        name = args[i].partition("=")[0]
+        if name in flags:
+            i += 1 if "=" in args[i] else 2
+            continue
+        out.append(args[i])
+        i += 1
+    return out
+
+
+def _run_zoom_levels(argv, mine, options, progress, t0):
+    """A vector-tile output (.mbtiles or DIR/): every zoom level of --zoom is a tiled run of
+    its own at that level's scale (carto.zoom_scale at the DEM's latitude), on one cluster,
+    into a GeoPackage per level; the levels are then written as one set of vector tiles by
+    carto.write_vector_tiles, as the rockhatch command writes them."""
+    outs = list(options.outputs)
+    if len(outs) != 1:
+        raise carto.error(2, "rockhatch tiles with a vector-tile output takes no other -o (run it once per output)")
+    out = outs[0]
+    zmin, zmax = carto.parse_zoom_range(options.zoom or "12-16")
+    latitude = carto.dem_latitude(options.dem)
+    workdir = mine.get("--workdir") or (out.rstrip("/") + ".tiles")
+    os.makedirs(workdir, exist_ok=True)
+    base = _without(list(argv), {"-o", "--zoom", "--scale", "--workdir", "--page"})
+    base = [a for a in base if a != "--keep-tiles"]
+    summary = Summary()
+    levels, cluster = [], _Cluster(mine, _positive("--workers", mine.get("--workers", 1), int), summary)
+    try:
+        for k, z in enumerate(range(zmin, zmax + 1)):
+            gpkg = os.path.join(workdir, f"z{z}.gpkg")
+            sub = base + ["--scale", repr(carto.zoom_scale(z, latitude)), "-o", gpkg, "--overwrite",
+                          "--workdir", os.path.join(workdir, f"z{z}"), "--keep-tiles"]
+            n = zmax - zmin + 1
+
+            def part(f, stage, k=k, z=z):
+                return not progress or progress(0.9 * (k + f) / n, f"zoom {z}: {stage}")
+
+            s = run_args(sub, part, cluster=cluster)
+            summary.tiles += s.tiles
+            summary.done_before += s.done_before
+            summary.hatches += s.hatches
+            summary.faces = s.faces
+            summary.tile_seconds += s.tile_seconds
+            summary.peak_mb = max(summary.peak_mb, s.peak_mb)
+            summary.warnings += s.warnings
+            levels.append((z, gpkg))
+    finally:
+        cluster.close()
+    if progress:
+        progress(0.9, "writing tiles")
+    t_merge = time.monotonic()
+    name = os.path.splitext(os.path.basename(options.dem))[0]
+    summary.vector_tiles = carto.write_vector_tiles(levels, out, name)
+    summary.merge_seconds = time.monotonic() - t_merge
+    if not mine.get("--keep-tiles"):
+        shutil.rmtree(workdir, ignore_errors=True)
+    summary.seconds = time.monotonic() - t0
+    if progress:
+        progress(1.0, "done")
+    return summary
+
+
+def run_args(argv, progress=None, cluster=None):
     """A tiled run from command-line arguments (the rockhatch option table plus
     TILE_OPTIONS). progress(fraction, stage) is called as tiles finish; returning False
-    cancels (the tiles done are kept for a resume). Returns a Summary."""
+    cancels (the tiles done are kept for a resume). Returns a Summary. A vector-tile output
+    (.mbtiles, DIR/) runs once per zoom level (--zoom). `cluster`: a running _Cluster to use
+    (left running)."""
     t0 = time.monotonic()
     mine, extract, rest = _split_args(list(argv))
     if "--tile-size" not in mine:
@@ -240,6 +312,9 @@ def run_args(argv, progress=None):
         _positive("--connect-timeout", mine["--connect-timeout"])
     cl = carto.parse_command_line(rest)
     options = cl.options
+    if any(_is_vector_tiles(o) for o in options.outputs):
+        carto.make_plan(options)  # every check of the options, before any work
+        return _run_zoom_levels(argv, mine, options, progress, t0)
     if cl.script:
         options.style_file = cl.script
         carto.check_files(options)
@@ -303,7 +378,9 @@ def run_args(argv, progress=None):
     if "--threads" not in " ".join(rest) and "--scheduler" not in mine:
         task_args += ["--threads", str(max(1, (os.cpu_count() or 1) // workers))]
     job = hashlib.sha1(json.dumps(key).encode()).hexdigest()[:12]
-    cluster = _Cluster(mine, workers, summary)
+    own_cluster = cluster is None
+    if own_cluster:
+        cluster = _Cluster(mine, workers, summary)
     try:
         # Hatching fractions of the progress: after the partition's share with --partition auto.
         span = (0.3, 0.99) if auto else (0.0, 0.99)
@@ -324,7 +401,8 @@ def run_args(argv, progress=None):
                      (task_args, (grid[i].xmin, grid[i].ymin, grid[i].xmax, grid[i].ymax), paths[i])) for i in pending]
             _compute(jobs, summary.done_before, len(grid), "tiles", span, cluster, summary, progress, _count_tile)
     finally:
-        cluster.close()
+        if own_cluster:
+            cluster.close()
     missing = [p for p in paths if not os.path.exists(p)]
     if missing:
         raise carto.error(1, f"{len(missing)} tile(s) missing after the run (first: {missing[0]})")
@@ -343,6 +421,8 @@ def run_args(argv, progress=None):
         for out in others:
             if out.lower().endswith(".svg"):
                 carto.write_svg(drawing, out)
+            elif out.lower().endswith(".pdf"):
+                carto.write_pdf(drawing, out, options.page)
             else:
                 carto.write_png(drawing, out, options.png_pixels)
     summary.merge_seconds = time.monotonic() - t_merge
@@ -645,6 +725,10 @@ def main(argv=None):
         bar.finish()
         sys.stderr.write(f"rockhatch tiles: {s.tiles} tiles ({s.done_before} done before), {s.faces} faces, "
                          f"{s.hatches} hatches, {s.seconds:.2f} s, peak {s.peak_mb:.0f} MB per worker\n")
+        if s.vector_tiles is not None and s.vector_tiles.tiles:
+            v = s.vector_tiles
+            sys.stderr.write(f"rockhatch tiles: {v.tiles} vector tiles, {v.bytes / 1e6:.1f} MB, largest "
+                             f"{v.largest / 1e3:.0f} kB ({'/'.join(map(str, v.largest_tile))})\n")
         if s.partition_faces:
             sys.stderr.write(f"rockhatch tiles: partition extracted tile by tile: {s.partition_faces} faces, "
                              f"{s.partition_seconds:.2f} s\n")

@@ -32,6 +32,10 @@ struct Drawing {
     std::vector<std::string> notes;  // what drawing noted (ridges skipped)
 };
 
+// Whether the drawing's outputs have a layer (group) for the family: the rock families
+// always (an empty layer says "none drawn"), the terrain families when a style drew them.
+bool has_family(const Drawing& d, Family f);
+
 // `keep_going(fraction written)` is asked every few thousand features; false cancels
 // (Error Cancelled, nothing left behind).
 void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index = true,

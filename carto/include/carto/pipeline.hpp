@@ -16,6 +16,7 @@
 #include "carto/output.hpp"
 #include "carto/partition.hpp"
 #include "carto/plan.hpp"
+#include "carto/publish.hpp"
 #include "carto/progress.hpp"
 #include "carto/styles.hpp"
 #include "carto/terrain.hpp"
@@ -29,6 +30,7 @@ struct Stats {
     double seconds = 0;
     std::string crs;                  // working CRS name
     std::vector<std::string> notes;   // what was repaired, derived or assumed
+    TileStats tiles;                  // of the vector-tile output, when there is one
 };
 
 // The data a style runs on, once read and prepared.
@@ -84,6 +86,13 @@ Drawing hatch(const Prepared& p, const Plan& plan, const Progress& progress = {}
 Drawing hatch(const Prepared& p, const Plan& plan, const std::vector<int>& faces, const Progress& progress = {});
 // 4. Writes the drawing to every output of the plan (the PNG over the terrain's hillshade).
 void write_outputs(const Drawing& d, const Prepared& p, const Plan& plan, const Progress& progress = {});
+// The run plan of one zoom level of a vector-tile output: the plan's options at the scale of
+// zoom `zoom` at `latitude` (zoom_scale), without outputs.
+Plan zoom_plan(const Plan& plan, int zoom, double latitude);
+// Draws every zoom level of plan.zoom at its own scale (prepare and hatch, as a run) and
+// writes the plan's vector-tile outputs; adds the hatches of every level to counts->hatches
+// and sets counts->faces to the finest level's. Nothing when the plan has no such output.
+TileStats write_zoom_tiles(const Plan& plan, const Progress& progress = {}, Stats* counts = nullptr);
 // The whole chain.
 Stats run(const Plan& plan, const Progress& progress = {});
 

@@ -15,6 +15,7 @@
 
 #include "carto/crest.hpp"
 #include "carto/partition.hpp"
+#include "carto/publish.hpp"
 #include "carto/styles.hpp"
 
 namespace carto {
@@ -46,7 +47,9 @@ struct Options {
     double relief_radius = 1000;
     std::uint64_t seed = 0;              // --seed
     unsigned threads = 0;                // --threads (0 = all; at most kMaxThreads)
-    std::vector<std::string> outputs;    // .gpkg, .svg, .png
+    std::vector<std::string> outputs;    // .gpkg, .svg, .png, .pdf, .mbtiles or DIR/ (vector tiles)
+    std::string page;                    // --page for a .pdf output ("" = fitted to the drawing)
+    std::string zoom;                    // --zoom for vector tiles ("" = kDefaultZoom)
     bool overwrite = false;
     int png_pixels = 1600;
     bool spatial_index = true;           // R-tree in the GeoPackage
@@ -55,7 +58,7 @@ struct Options {
     std::optional<tex::BBox> window;
 };
 
-enum class OutputFormat { GeoPackage, Svg, Png };
+enum class OutputFormat { GeoPackage, Svg, Png, Pdf, VectorTiles };
 struct Output {
     std::string path;
     OutputFormat format;
@@ -65,6 +68,8 @@ struct Output {
 // are averaged for the styles (ControlFields::fall_line, ::shade): the map's scale of detail
 // (10 m at 1:10000, 25 m at 1:25000), finer than a coarse cell of the styles.
 inline constexpr double kFieldSmoothingMm = 1.0;
+
+inline constexpr const char* kDefaultZoom = "12-16";
 
 struct Plan {
     // The options as given: the stages read their paths, the window, seed and thread count.
@@ -82,6 +87,10 @@ struct Plan {
     std::optional<double> crest_band;
     std::shared_ptr<const CrestExemplar> crest_exemplar;
     std::vector<Output> outputs;
+    // The page of the PDF outputs (--page); unset: fitted to the drawing.
+    std::optional<PageSize> page;
+    // The zoom levels of the vector-tile outputs (--zoom, kDefaultZoom when unset).
+    ZoomRange zoom;
     // kFieldSmoothingMm in ground units.
     double field_smoothing = 0;
 

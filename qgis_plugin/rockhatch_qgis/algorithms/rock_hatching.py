@@ -120,7 +120,7 @@ class RockHatching(RockhatchAlgorithm):
     ORIENTATION_FIELD, DENSITY_FIELD, ID_FIELD, ORIENTATION_LAYER = (
         "ORIENTATION_FIELD", "DENSITY_FIELD", "ID_FIELD", "ORIENTATION_LAYER")
     SLOPE, ROUGHNESS, STYLE, STYLE_SCRIPT, PARAMS = "SLOPE", "ROUGHNESS", "STYLE", "STYLE_SCRIPT", "PARAMS"
-    SCALE, SEED, OUTPUT, SVG = "SCALE", "SEED", "OUTPUT", "SVG"
+    SCALE, SEED, OUTPUT, SVG, PDF = "SCALE", "SEED", "OUTPUT", "SVG", "PDF"
     RELIEF_RADIUS = "RELIEF_RADIUS"
     CREST, CREST_EXEMPLAR, CREST_HEIGHT = "CREST", "CREST_EXEMPLAR", "CREST_HEIGHT"
     SCREE = "SCREE"
@@ -224,6 +224,10 @@ class RockHatching(RockhatchAlgorithm):
         self.add(QgsProcessingParameterFileDestination(self.SVG, "Hatches (SVG)", "SVG files (*.svg)", optional=True,
                                                   createByDefault=False),
             "Optional SVG drawing of the hatches at the map scale (millimetres on paper).")
+        self.add(QgsProcessingParameterFileDestination(self.PDF, "Hatches (GeoPDF)", "PDF files (*.pdf)", optional=True,
+                                                  createByDefault=False),
+            "Optional georeferenced PDF at the map scale on a page fitted to the drawing, one PDF layer "
+            "per hatch family, for print layout (docs/publish.md).")
         self.addOutput(QgsProcessingOutputMultipleLayers("LAYERS", "Hatch layers"))
         self.addOutput(QgsProcessingOutputNumber("FACES_HATCHED", "Faces hatched"))
         self.addOutput(QgsProcessingOutputNumber("HATCHES", "Hatches"))
@@ -317,7 +321,8 @@ class RockHatching(RockhatchAlgorithm):
         style = script or self.parameterAsEnumString(parameters, self.STYLE, context)
         output = self.parameterAsFileOutput(parameters, self.OUTPUT, context)
         svg = self.parameterAsFileOutput(parameters, self.SVG, context)
-        outputs = [output] + ([svg] if svg else [])
+        pdf = self.parameterAsFileOutput(parameters, self.PDF, context)
+        outputs = [output] + ([svg] if svg else []) + ([pdf] if pdf else [])
         exemplar = self.parameterAsFile(parameters, self.CREST_EXEMPLAR, context)
         crest = exemplar or ("default" if self.parameterAsBool(parameters, self.CREST, context) else None)
         crest_height = self.parameterAsDouble(parameters, self.CREST_HEIGHT, context) if crest else None
@@ -336,5 +341,5 @@ class RockHatching(RockhatchAlgorithm):
         feedback.pushInfo(f"{stats.faces} faces, {stats.hatches} hatches in {stats.seconds:.1f} s ({stats.crs})")
 
         uris = load_hatch_layers(output, context, self.OUTPUT)
-        return {self.OUTPUT: output, self.SVG: svg or None, "LAYERS": uris,
+        return {self.OUTPUT: output, self.SVG: svg or None, self.PDF: pdf or None, "LAYERS": uris,
                 "FACES_HATCHED": stats.faces, "HATCHES": stats.hatches}
