@@ -79,6 +79,8 @@ int main(int argc, char** argv) {
     if (argc > 1 && std::string(argv[1]) == "partition") return partition_main(argc - 1, argv + 1);
     // A tiled run is Python's (rockhatch.tiles, on Dask distributed): `python3 -m rockhatch tiles ...`.
     if (argc > 1 && std::string(argv[1]) == "tiles") return run_script(argv);
+    // The web map page over vector tiles (rockhatch.serve): `python3 -m rockhatch serve DIR`.
+    if (argc > 1 && std::string(argv[1]) == "serve") return run_script(argv);
     carto::ProgressBar bar(false);
     try {
         const carto::CommandLine cl = carto::parse_command_line(std::vector<std::string>(argv + 1, argv + argc));
