@@ -3,7 +3,8 @@
 #
 #   scripts/setup.sh            install + configure + build into ./build
 #   RH_BUILD_DIR=dir scripts/setup.sh
-#   scripts/setup.sh --packages install only (scripts/sanitize.sh and scripts/fuzz.sh)
+#   scripts/setup.sh --packages install only (scripts/sanitize.sh and scripts/fuzz.sh), with
+#                               web/'s npm packages
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -28,7 +29,13 @@ PACKAGES=(
   libopenimageio-dev                                # libtex_image: tiled maps rasterised to image files
   qgis python3-qgis qgis-providers                  # the QGIS plugin and its tests (headless QGIS, qgis_process)
   clang libclang-rt-14-dev                          # the sanitizer build of the tests; libFuzzer (scripts/fuzz.sh)
+  chromium                                          # the web page's browser test (headless, tests/python/test_web.py)
 )
+# Node.js and npm for web/ (MapLibre GL JS, playwright-core): Debian's, unless a node with its
+# npm is already there (a NodeSource nodejs carries its own npm and conflicts with Debian's).
+if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
+  PACKAGES+=(nodejs npm)
+fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do
@@ -41,6 +48,12 @@ if [ ${#missing[@]} -gt 0 ]; then
   export DEBIAN_FRONTEND=noninteractive
   $SUDO apt-get update -qq
   $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+# The web page's packages (web/package-lock.json), again whenever the lock file changed.
+if [ ! -f web/node_modules/.package-lock.json ] || [ web/package-lock.json -nt web/node_modules/.package-lock.json ]; then
+  echo "setup: npm ci in web/"
+  (cd web && npm ci --no-audit --no-fund --loglevel=error)
 fi
 [ "${1:-}" = --packages ] && exit 0
 

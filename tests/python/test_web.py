@@ -42,6 +42,12 @@ FAMILY_NAMES = {f"hatch_{f}": f for f in ("fill", "ridge", "valley", "cross", "r
 FAMILY_NAMES["crest"] = "crest"
 
 
+def tool_env():
+    """For the system's programs (ogr2ogr, node and Chromium): without the sanitizer pass's
+    LD_PRELOAD of the ASan runtime, which only this build's programs and module need."""
+    return {k: v for k, v in os.environ.items() if k != "LD_PRELOAD"}
+
+
 def make_rock_mbtiles(rockhatch_exe, out_dir) -> pathlib.Path:
     """out_dir/rock.mbtiles: the sample drawn by `rockhatch` (at 1:10000, with crest
     ornaments) into a GeoPackage, turned into vector tiles, levels 12 to 16, by GDAL's MVT
@@ -56,7 +62,7 @@ def make_rock_mbtiles(rockhatch_exe, out_dir) -> pathlib.Path:
     out = out_dir / "rock.mbtiles"
     subprocess.run(["ogr2ogr", "-f", "MBTiles", str(out), str(gpkg), "-dsco", "MINZOOM=12", "-dsco", "MAXZOOM=16",
                     "-dsco", "CONF=" + json.dumps(conf), "--config", "OGR_SQLITE_SYNCHRONOUS", "OFF"],
-                   check=True, capture_output=True, timeout=600)
+                   check=True, capture_output=True, timeout=600, env=tool_env())
     gpkg.unlink()
     return out
 
@@ -346,7 +352,7 @@ def test_page_draws_rock(tiles_dir, tmp_path):
     with serve(tiles_dir) as url:
         t0 = time.monotonic()
         r = subprocess.run(["node", str(SHOOT), url, str(tmp_path), "13", "16"], capture_output=True, text=True,
-                           timeout=300, cwd=WEB)
+                           timeout=300, cwd=WEB, env=tool_env())
         wall = time.monotonic() - t0
     out = json.loads(r.stdout.strip().splitlines()[-1]) if r.stdout.strip() else {}
     assert r.returncode == 0, f"{out.get('failure')} {out.get('console')} {r.stderr[-2000:]}"
