@@ -9,6 +9,14 @@ install(PROGRAMS ${PROJECT_SOURCE_DIR}/scripts/install_qgis_plugin.sh DESTINATIO
 file(GLOB RH_STYLE_SCRIPTS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/styles/*.py)
 install(FILES ${RH_STYLE_SCRIPTS} DESTINATION ${RH_INSTALL_DATADIR}/styles)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/data/sample_montblanc DESTINATION ${RH_INSTALL_DATADIR}/data)
+# The web page of `rockhatch serve` (docs/web.md), with MapLibre GL JS's distribution from
+# web/node_modules (scripts/setup.sh runs npm ci there; without it the page is installed
+# alone and `rockhatch serve` says MapLibre is missing).
+install(FILES ${PROJECT_SOURCE_DIR}/web/index.html ${PROJECT_SOURCE_DIR}/web/app.js ${PROJECT_SOURCE_DIR}/web/style.css
+        DESTINATION ${RH_INSTALL_DATADIR}/web)
+set(RH_MAPLIBRE_DIST ${PROJECT_SOURCE_DIR}/web/node_modules/maplibre-gl/dist)
+install(FILES ${RH_MAPLIBRE_DIST}/maplibre-gl.js ${RH_MAPLIBRE_DIST}/maplibre-gl.css ${RH_MAPLIBRE_DIST}/LICENSE.txt
+        DESTINATION ${RH_INSTALL_DATADIR}/web/node_modules/maplibre-gl/dist OPTIONAL)
 
 set(CPACK_GENERATOR DEB)
 set(CPACK_PACKAGE_NAME rockhatch)

@@ -150,6 +150,16 @@ def test_script_runs_of_the_installed_command_use_the_installed_python_package(p
     assert out.read_bytes() == builtin.read_bytes(), "the installed rock.py draws what the built-in rock draws"
 
 
+def test_the_installed_python_module_finds_the_installed_web_page(prefix):
+    """`rockhatch serve` of a prefix serves share/rockhatch/web: the page and MapLibre GL JS."""
+    web = prefix / "share" / "rockhatch" / "web"
+    for f in ("index.html", "app.js", "style.css", "node_modules/maplibre-gl/dist/maplibre-gl.js"):
+        assert (web / f).read_bytes() == (ROOT / "web" / f).read_bytes(), f
+    code = "from rockhatch.serve import find_web_dir\nprint(find_web_dir())\n"
+    out = run(["/usr/bin/python3", "-c", code], env=clean_env(PYTHONPATH=str(python_dir(prefix)))).stdout.strip()
+    assert pathlib.Path(out) == web.resolve()
+
+
 def test_the_installed_python_module_imports_from_the_prefix(prefix):
     pydir = python_dir(prefix)
     code = ("import rockhatch, rockhatch.carto, rockhatch.tex\n"
