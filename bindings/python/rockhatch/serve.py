@@ -321,12 +321,9 @@ def make_hillshade(dem, out, log=print):
         ds = None
         os.replace(part, out)
     except (RuntimeError, OSError) as e:
-        for p in (part,):
-            if os.path.exists(p):
-                os.remove(p)
         raise ServeError(9, f"cannot make '{out}' from --dem '{dem}': {e}") from None
-    finally:
-        for p in (shade, merc):
+    finally:  # on an error or Ctrl-C too: no temporary file is left (the part is gone once renamed)
+        for p in (shade, merc, part):
             if os.path.exists(p):
                 os.remove(p)
 
@@ -462,24 +459,26 @@ def main(argv=None):
     except ServeError as e:
         sys.stderr.write(f"rockhatch serve: {e}\n")
         return e.code
+    except KeyboardInterrupt:
+        sys.stderr.write("rockhatch serve: interrupted\n")
+        return 130
+
+    # Ctrl-C (SIGINT) and SIGTERM stop the server, from the moment its address is printed: a
+    # request being answered is finished, then the socket is closed.
+    def _stop(signum, frame):
+        threading.Thread(target=server.shutdown, daemon=True).start()
+
+    previous = {sig: signal.signal(sig, _stop) for sig in (signal.SIGINT, signal.SIGTERM)}
     host, port = server.server_address[:2]
     shown = f"[{host}]" if ":" in host else host
     base = server.raster[0].name if server.raster else "none"
     print(f"rockhatch serve: http://{shown}:{port}/  (rock: {', '.join(t.name for t in server.vector)}; "
           f"base: {base}; Ctrl-C stops)", flush=True)
-    stop = threading.Event()
-
-    def _stop(signum, frame):
-        stop.set()
-        threading.Thread(target=server.shutdown, daemon=True).start()
-
-    previous = signal.signal(signal.SIGTERM, _stop)
     try:
         server.serve_forever(poll_interval=0.2)
-    except KeyboardInterrupt:
-        pass
     finally:
-        signal.signal(signal.SIGTERM, previous)
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
         server.server_close()
     print("rockhatch serve: stopped", file=sys.stderr, flush=True)
     return 0
