@@ -40,6 +40,7 @@ try {
   Object.assign(out, await page.evaluate(() => ({
     firstRockDrawnMs: window.rockhatch.firstRockDrawnMs,
     firstIdleMs: window.rockhatch.firstIdleMs,
+    pageLoadMs: performance.getEntriesByType("navigation")[0].loadEventEnd,
     errors: window.rockhatch.errors,
     rockLayers: window.rockhatch.rockLayers,
     fittedZoom: window.rockhatch.map.getZoom(),
