@@ -361,10 +361,16 @@ def test_page_draws_rock(tiles_dir, tmp_path):
     assert out["requests"]["failed"] == 0
 
     measures = {"renderer": out["renderer"], "first_rock_drawn_ms": round(out["firstRockDrawnMs"]),
-                "first_idle_ms": round(out["firstIdleMs"]), "page_load_ms": round(out["pageLoadMs"]), "shoot_wall_s": round(wall, 1), "views": {}}
+                "first_idle_ms": round(out["firstIdleMs"]), "page_load_ms": round(out["pageLoadMs"]),
+                "shoot_wall_s": round(wall, 1), "views": {}}
     for view in ("fitted", "z13", "z16"):
         v = out["views"][view]
         assert v["features"] > 1000, (view, v)  # the rock layers are drawn there
+        # Strokes as wide as on paper at the level's scale, magnified between levels.
+        assert len(v["widths"]) >= 4, v["widths"]
+        zoom = v["zoom"]
+        for layer, (width_mm, px) in v["widths"].items():
+            assert px == pytest.approx(width_mm / 0.2646 * 2 ** (zoom - int(zoom)), rel=1e-6), (view, layer)
         rock, base = tmp_path / f"{view}.png", tmp_path / f"{view}-base.png"
         d_rock, d_base, darker = dark_pixels(rock), dark_pixels(base), darker_pixels(rock, base)
         measures["views"][view] = {"zoom": round(v["zoom"], 2), "scale": v["scale"], "features": v["features"],

@@ -63,8 +63,16 @@ try {
   }, visible);
   const count = () => page.evaluate(() => {
     const map = window.rockhatch.map;
-    return { features: map.queryRenderedFeatures({ layers: window.rockhatch.rockLayers }).length,
-             zoom: map.getZoom(), scale: document.getElementById("scale").textContent };
+    const features = map.queryRenderedFeatures({ layers: window.rockhatch.rockLayers });
+    // The stroke width MapLibre evaluated for one feature of each line layer, with its width_mm.
+    const widths = {};
+    for (const f of features) {
+      if (f.layer.type === "line" && !(f.layer.id in widths)) {
+        widths[f.layer.id] = [f.properties.width_mm, f.layer.paint["line-width"]];
+      }
+    }
+    return { features: features.length, widths, zoom: map.getZoom(),
+             scale: document.getElementById("scale").textContent };
   });
 
   const shot = async (name) => {
