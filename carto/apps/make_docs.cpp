@@ -54,7 +54,8 @@ std::string man_page(const std::string& version) {
          "\\-o \\fIOUT\\fR.gpkg|.svg|.png\n.br\n"
       << ".B rockhatch partition\n\\-\\-dem \\fIDEM\\fR \\-o \\fIFACES\\fR.gpkg [\\fIoptions\\fR]\n.br\n"
       << ".B rockhatch tiles\n[\\fIthe options above\\fR] \\-\\-tile\\-size \\fIM\\fR [\\-\\-scheduler \\fIADDRESS\\fR] "
-         "\\-o \\fIOUT\\fR.gpkg\n"
+         "\\-o \\fIOUT\\fR.gpkg\n.br\n"
+      << ".B rockhatch serve\n\\fIDIR\\fR [\\-\\-port \\fIN\\fR] [\\-\\-dem \\fIDEM\\fR]\n"
       << ".SH DESCRIPTION\n"
       << roff("Draws rock hatching from a DEM and a partition of the rock areas whose borders are labelled ridge, "
               "valley, cliff or other (the partition can be extracted from the DEM with --partition auto or "
@@ -62,7 +63,8 @@ std::string man_page(const std::string& version) {
               "control fields made from the DEM, its slope and its roughness. Outputs are GeoPackage layers, "
               "an SVG at true scale, a PNG preview. The same inputs and seed give the same bytes whatever the "
               "thread count or the tiling. rockhatch tiles runs the same drawing tile by tile on Dask "
-              "distributed (see rockhatch tiles --help).")
+              "distributed (see rockhatch tiles --help); rockhatch serve shows the drawing's vector tiles "
+              "(MBTiles) on a web map page (see rockhatch serve --help).")
       << ".SH OPTIONS\n";
     for (const auto& o : carto::option_table()) {
         m << ".TP\n.B " << dashes(o.name);
@@ -79,6 +81,7 @@ std::string man_page(const std::string& version) {
          "a DEM and a hand-drawn partition to try the command on\n"
          ".TP\n.I share/rockhatch/styles\nthe built-in styles as Python style scripts (\\-\\-script)\n"
          ".TP\n.I share/rockhatch/qgis_plugin\nthe QGIS Processing provider and install_qgis_plugin.sh\n"
+         ".TP\n.I share/rockhatch/web\nthe web map page of rockhatch serve, with MapLibre GL JS\n"
       << ".SH \"SEE ALSO\"\n.BR gdalinfo (1),\n.BR qgis (1)\n";
     return m.str();
 }
@@ -110,7 +113,7 @@ std::string completion() {
       << "  if [ \"${COMP_WORDS[1]}\" = partition ]; then\n"
       << "    COMPREPLY=($(compgen -W \"" << join(part) << "\" -- \"$cur\"))\n"
       << "  elif [ \"$COMP_CWORD\" -eq 1 ]; then\n"
-      << "    COMPREPLY=($(compgen -W \"partition tiles " << join(all) << "\" -- \"$cur\"))\n"
+      << "    COMPREPLY=($(compgen -W \"partition tiles serve " << join(all) << "\" -- \"$cur\"))\n"
       << "  else\n"
       << "    COMPREPLY=($(compgen -W \"" << join(all) << "\" -- \"$cur\"))\n"
       << "  fi\n"
