@@ -1,24 +1,26 @@
 // rockhatch's web map: the rock drawing's vector tiles over a hillshade, both served by
 // `rockhatch serve` (tiles.json lists them). Each zoom level of the rock tiles was drawn at
-// its own map scale, so a line is as wide on screen as on paper: width_mm / 0.2646 CSS
-// pixels at the zoom where a tile is shown at its own size, and 2^(zoom - floor(zoom)) times
-// that between two levels and past the last one (the drawing magnified, as its lines are).
+// its own map scale, the one where a pixel of a `tile_px`-pixel tile is `pixel_mm` on paper
+// (rockhatch's writer: 256 and OGC's 0.28 mm). MapLibre shows a level-z tile 512 CSS pixels
+// wide at map zoom z, so the drawing is on screen magnified 512 / tile_px times, and its
+// lines with it: width_mm / pixel_mm * 512 / tile_px CSS pixels at an integer zoom, and
+// 2^(zoom - floor(zoom)) times that between two levels and past the last one.
 "use strict";
 
-const MM_PER_CSS_PX = 0.2646;            // 96 CSS pixels to the inch
+const MM_PER_CSS_PX = 0.2646;            // 96 CSS pixels to the inch: the scale on screen
 const EARTH_CIRCUMFERENCE = 40075016.686;  // metres, web mercator
 const DEFAULT_WIDTH_MM = 0.1;
 
 // Read by the browser test (web/test/shoot.mjs): the map, its rock layers, timings in ms
 // since the page's navigation started, and the errors met.
 const rockhatch = (window.rockhatch = {
-  map: null, rockLayers: [], baseLayers: [], firstRockDrawnMs: null, firstIdleMs: null, errors: [],
+  map: null, rockLayers: [], baseLayers: [], drawnAt: null, firstRockDrawnMs: null, firstIdleMs: null, errors: [],
 });
 
 // line-width in CSS pixels: the saw-tooth above from the first level to the last, then
 // growing with the map past the last level (over-zoom).
-function lineWidth(minMapZoom, maxMapZoom) {
-  const base = ["/", ["coalesce", ["get", "width_mm"], DEFAULT_WIDTH_MM], MM_PER_CSS_PX];
+function lineWidth(minMapZoom, maxMapZoom, pixelMm, tilePx) {
+  const base = ["*", ["/", ["coalesce", ["get", "width_mm"], DEFAULT_WIDTH_MM], pixelMm], 512 / tilePx];
   const stops = [];
   for (let z = minMapZoom; z < maxMapZoom; z++) {
     stops.push(z, base, z + 0.999, ["*", base, Math.pow(2, 0.999)]);
@@ -59,7 +61,8 @@ function buildStyle(sets) {
       type: "vector", tiles: ts.tiles, bounds: ts.bounds,
       minzoom: ts.minzoom, maxzoom: ts.maxzoom, attribution: ts.attribution || "rock drawing: rockhatch",
     };
-    const width = lineWidth(z0, z1);
+    const width = lineWidth(z0, z1, ts.pixel_mm || 0.28, ts.tile_px || 256);
+    rockhatch.drawnAt = { pixelMm: ts.pixel_mm || 0.28, tilePx: ts.tile_px || 256, minzoom: z0, maxzoom: z1 };
     for (const layer of ts.vector_layers || []) {
       // Every layer is drawn as lines and as filled polygons, each for its own geometries:
       // the line families (fill, ridge, ...) stroke, the polygon ones (stone, hachure,
@@ -88,13 +91,23 @@ function unionBounds(sets) {
   return [[b[0], b[1]], [b[2], b[3]]];
 }
 
-// The map scale on screen at the centre: metres per CSS pixel over 0.2646 mm.
-function scaleText(map) {
-  const lat = map.getCenter().lat * Math.PI / 180;
-  const metresPerPx = EARTH_CIRCUMFERENCE * Math.cos(lat) / (512 * Math.pow(2, map.getZoom()));
-  const denominator = metresPerPx / (MM_PER_CSS_PX / 1000);
+function scaleNumber(denominator) {
   const rounded = Math.round(denominator / 100) * 100;
-  return `zoom ${map.getZoom().toFixed(1)} \u00b7 1:${rounded.toLocaleString("en").replace(/,/g, "\u202f")}`;
+  return `1:${rounded.toLocaleString("en").replace(/,/g, "\u202f")}`;
+}
+
+// The map scale on screen at the centre (metres per CSS pixel over 0.2646 mm), and the scale
+// the level shown was drawn at (metres per pixel of a tile_px tile over pixel_mm).
+function scaleText(map) {
+  const zoom = map.getZoom();
+  const ground = EARTH_CIRCUMFERENCE * Math.cos(map.getCenter().lat * Math.PI / 180);
+  let text = `zoom ${zoom.toFixed(1)} \u00b7 screen ${scaleNumber(ground / (512 * Math.pow(2, zoom)) / (MM_PER_CSS_PX / 1000))}`;
+  const d = rockhatch.drawnAt;
+  if (d) {
+    const level = Math.min(Math.max(Math.floor(zoom), d.minzoom), d.maxzoom);
+    text += ` \u00b7 drawn for ${scaleNumber(ground / (d.tilePx * Math.pow(2, level)) / (d.pixelMm / 1000))}`;
+  }
+  return text;
 }
 
 function showMessage(text) {

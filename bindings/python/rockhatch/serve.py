@@ -214,6 +214,18 @@ class Tileset:
         # size: a level-z tile is shown at its own scale at map zoom z), 256 for GDAL's PNG
         # tiles unless the file says otherwise.
         self.tile_size = 512
+        # The scale each level was drawn at, for the page's line widths: the writer of
+        # `rockhatch -o x.mbtiles` (carto::zoom_scale) takes level z at the ground of a pixel
+        # of a 256-pixel Web Mercator tile over OGC's 0.28 mm pixel; the metadata keys
+        # pixel_mm and tile_px say otherwise for tiles drawn another way.
+        self.pixel_mm, self.tile_px = 0.28, 256
+        try:
+            self.pixel_mm = float(meta.get("pixel_mm", self.pixel_mm))
+            self.tile_px = int(meta.get("tile_px", self.tile_px))
+        except ValueError:
+            raise ServeError(3, f"'{self.path}': bad pixel_mm or tile_px in the metadata") from None
+        if not (self.pixel_mm > 0 and self.tile_px > 0):
+            raise ServeError(3, f"'{self.path}': pixel_mm and tile_px must be positive")
         if not self.vector:
             try:
                 self.tile_size = int(meta.get("tile_size", 256))
@@ -242,6 +254,7 @@ class Tileset:
                 pass
         if self.vector:
             tj["vector_layers"] = self.vector_layers
+            tj["pixel_mm"], tj["tile_px"] = self.pixel_mm, self.tile_px
         return tj
 
     def tile(self, z, x, y):
