@@ -344,7 +344,7 @@ def test_page_draws_rock(tiles_dir, tmp_path):
     assert r.returncode == 0, f"{out.get('failure')} {out.get('console')} {r.stderr[-2000:]}"
     assert out["errors"] == [], out["errors"]
     assert not [c for c in out["console"] if c.startswith(("error", "pageerror"))], out["console"]
-    assert out["requests"]["failed"] == 0
+    assert out["requests"]["failed"] == [] and out["requests"]["tiles"] > 10, out["requests"]
 
     measures = {"renderer": out["renderer"], "first_rock_drawn_ms": round(out["firstRockDrawnMs"]),
                 "first_idle_ms": round(out["firstIdleMs"]), "page_load_ms": round(out["pageLoadMs"]),

@@ -22,13 +22,17 @@ const browser = await chromium.launch({
   executablePath,
   args: ["--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--ignore-gpu-blocklist", "--no-sandbox"],
 });
-const out = { console: [], requests: { tiles: 0, failed: 0 } };
+const out = { console: [], requests: { tiles: 0, failed: [] } };
 try {
   const page = await browser.newPage({ viewport: { width: 1024, height: 768 }, deviceScaleFactor: 1 });
   page.on("console", (m) => out.console.push(`${m.type()}: ${m.text()}`));
   page.on("pageerror", (e) => out.console.push(`pageerror: ${e.message}`));
   page.on("requestfinished", (r) => { if (r.url().includes("/tiles/")) out.requests.tiles++; });
-  page.on("requestfailed", (r) => { out.requests.failed++; });
+  // A request MapLibre cancels itself (a tile no longer needed) is not a failure.
+  page.on("requestfailed", (r) => {
+    const why = (r.failure() || {}).errorText || "";
+    if (!why.includes("ERR_ABORTED")) out.requests.failed.push(`${r.url()}: ${why}`);
+  });
 
   const t0 = Date.now();
   await page.goto(url, { waitUntil: "load" });
