@@ -353,6 +353,15 @@ Stats run(const Plan& plan, const Progress& progress) {
         return s;
     }
     const Prepared p = prepare(plan, progress);
+    // A PDF page too small for the faces is refused before they are hatched (the drawing's
+    // frame is at least their extent; write_pdf checks the frame itself).
+    if (!plan.options.window && !p.partition.faces.empty())
+        for (const Output& out : plan.outputs)
+            if (out.format == OutputFormat::Pdf) {
+                tex::BBox faces;
+                for (const auto& f : p.partition.faces) faces.add(f.region.bbox());
+                page_layout(faces, plan.options.scale, plan.page, out.path);
+            }
     const Drawing d = hatch(p, plan, progress);
     write_outputs(d, p, plan, progress);
     s.tiles = write_zoom_tiles(plan, progress, nullptr);

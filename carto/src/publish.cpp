@@ -237,35 +237,32 @@ PageSize parse_page(const std::string& text) {
     return {text, std::min(w, h), std::max(w, h)};
 }
 
+PageLayout page_layout(const tex::BBox& frame, double scale, const std::optional<PageSize>& page,
+                       const std::string& path) {
+    const double fw = frame.width() * 1000.0 / scale, fh = frame.height() * 1000.0 / scale;
+    std::ostringstream m;
+    m.precision(4);
+    if (!page) {
+        if (fw <= kMaxPdfPageMm && fh <= kMaxPdfPageMm) return {fw, fh};
+        m << "-o '" << path << "': the drawing is " << fw << " x " << fh << " mm at 1:" << std::llround(scale)
+          << ", more than a PDF page holds (" << std::lround(kMaxPdfPageMm) << " mm a side); use a smaller scale";
+        throw Error(Code::Usage, m.str());
+    }
+    if (fw <= page->width_mm && fh <= page->height_mm) return {page->width_mm, page->height_mm};
+    if (fw <= page->height_mm && fh <= page->width_mm) return {page->height_mm, page->width_mm};
+    m << "--page " << page->name << " (" << page->width_mm << " x " << page->height_mm << " mm): the drawing is "
+      << fw << " x " << fh << " mm at 1:" << std::llround(scale) << "; use a larger page or a smaller scale";
+    throw Error(Code::Usage, m.str());
+}
+
 void write_pdf(const Drawing& d, const std::string& path, const std::optional<PageSize>& page) {
     register_gdal();
     if (d.bounds.empty() || !(d.bounds.width() > 0) || !(d.bounds.height() > 0))
         throw Error(Code::Failure, "-o '" + path + "': nothing to draw (the drawing has no extent)");
     const double mm_per_unit = 1000.0 / d.scale;
     const double fw = d.bounds.width() * mm_per_unit, fh = d.bounds.height() * mm_per_unit;
-    double pw = fw, ph = fh;
-    if (page) {
-        if (fw <= page->width_mm && fh <= page->height_mm) {
-            pw = page->width_mm;
-            ph = page->height_mm;
-        } else if (fw <= page->height_mm && fh <= page->width_mm) {
-            pw = page->height_mm;
-            ph = page->width_mm;
-        } else {
-            std::ostringstream m;
-            m.precision(4);
-            m << "--page " << page->name << " (" << page->width_mm << " x " << page->height_mm
-              << " mm): the drawing is " << fw << " x " << fh << " mm at 1:" << std::llround(d.scale)
-              << "; use a larger page or a smaller scale";
-            throw Error(Code::Usage, m.str());
-        }
-    } else if (fw > kMaxPdfPageMm || fh > kMaxPdfPageMm) {
-        std::ostringstream m;
-        m.precision(4);
-        m << "-o '" << path << "': the drawing is " << fw << " x " << fh << " mm at 1:" << std::llround(d.scale)
-          << ", more than a PDF page holds (" << std::lround(kMaxPdfPageMm) << " mm a side); use a smaller scale";
-        throw Error(Code::Usage, m.str());
-    }
+    const PageLayout pl = page_layout(d.bounds, d.scale, page, path);
+    const double pw = pl.width_mm, ph = pl.height_mm;
     const double pt = 72.0 / 25.4;  // PDF units per mm
     const double x0 = (pw - fw) / 2 * pt, y0 = (ph - fh) / 2 * pt, x1 = x0 + fw * pt, y1 = y0 + fh * pt;
     const tex::BBox& b = d.bounds;
@@ -517,6 +514,16 @@ TileStats write_vector_tiles(const std::vector<ZoomDrawing>& zooms, const std::s
             throw Error(Code::OutputExists, "-o '" + path + "': " + last_gdal_error("cannot write the tiles"));
     }
     if (mbtiles) {
+        // How the levels were drawn, for a page that shows them (web/app.js): the scale where a
+        // pixel of a 256-pixel tile is kWebPixelMm.
+        sqlite3* db = nullptr;
+        char sql[160];
+        std::snprintf(sql, sizeof sql,
+                      "INSERT INTO metadata (name, value) VALUES ('pixel_mm', '%g'), ('tile_px', '256')", kWebPixelMm);
+        const bool ok = sqlite3_open_v2(out.path.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr) == SQLITE_OK &&
+                        sqlite3_exec(db, sql, nullptr, nullptr, nullptr) == SQLITE_OK;
+        sqlite3_close(db);
+        if (!ok) throw Error(Code::OutputExists, "-o '" + path + "': cannot complete the tiles' metadata");
         const TileStats t = mbtiles_stats(out.path);
         stats.tiles = t.tiles;
         stats.bytes = t.bytes;

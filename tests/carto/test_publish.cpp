@@ -219,6 +219,10 @@ TEST(VectorTiles, EachZoomLevelShowsItsOwnDrawing) {
     for (const auto& [zoom, strokes] : {std::pair{14, 10}, std::pair{15, 60}}) {
         Ds ds = open(dir / "rock.mbtiles", GDAL_OF_VECTOR, {"ZOOM_LEVEL=" + std::to_string(zoom)});
         ASSERT_TRUE(ds);
+        // How the levels were drawn, for the page that shows them.
+        ASSERT_TRUE(ds->GetMetadataItem("pixel_mm"));
+        EXPECT_STREQ(ds->GetMetadataItem("pixel_mm"), "0.28");
+        EXPECT_STREQ(ds->GetMetadataItem("tile_px"), "256");
         OGRLayer* fill = ds->GetLayerByName("fill");
         ASSERT_TRUE(fill) << "zoom " << zoom;
         ASSERT_TRUE(ds->GetLayerByName("ridge"));

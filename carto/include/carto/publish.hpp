@@ -29,6 +29,15 @@ PageSize parse_page(const std::string& text);
 // The largest page side a PDF reader is bound to accept (14400 units of 1/72 in).
 inline constexpr double kMaxPdfPageMm = 14400 / 72.0 * 25.4;
 
+// The page (mm) of a PDF of the drawing framed by `frame` at 1:scale: the frame, or `page`
+// upright or turned, whichever holds it. Throws Error(Usage) when none does; `path` names
+// the output in the message.
+struct PageLayout {
+    double width_mm, height_mm;
+};
+PageLayout page_layout(const tex::BBox& frame, double scale, const std::optional<PageSize>& page,
+                       const std::string& path);
+
 // Writes the drawing as a georeferenced PDF at true scale (1:d.scale): black strokes of each
 // family's width on paper with round caps and joins, filled crest ornaments and terrain
 // elements, one optional-content layer per family (named as the GeoPackage's layers,
