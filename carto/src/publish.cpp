@@ -40,8 +40,7 @@ std::string publish_lower(std::string s) {
     return s;
 }
 
-
-// A number as the composition file takes it: enough digits for a hundredth of a micrometre.
+// A number of the composition file (PDF units or ground units) to six decimals.
 std::string pdf_number(double v) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.6f", v);
@@ -97,9 +96,9 @@ std::string layer_content(const Drawing& d, const LayerRef& layer, const PageMap
     std::string head;
     if (layer.filled) head = "0 g\n";
     else {
-        head = "0 G 1 J 1 j ";
-        append_pdf_number(head, pdf_line_width(family_width_mm(layer.family)));
-        head += " w\n";
+        char width[48];  // to a ten-thousandth of a point: the family's width exactly enough
+        std::snprintf(width, sizeof width, "0 G 1 J 1 j %.4f w\n", pdf_line_width(family_width_mm(layer.family)));
+        head = width;
     }
     if (layer.layer == "crest") {
         // One path per ridge, its holes by the even-odd rule (as the SVG's).

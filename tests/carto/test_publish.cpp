@@ -138,7 +138,7 @@ TEST(Pdf, IsGeoreferencedAtTrueScaleWithALayerAndTheWidthOfEachFamily) {
     const std::set<double> widths = line_widths(dir / "map.pdf");
     for (Family f : {Family::Fill, Family::Ridge, Family::Valley, Family::Cross})
         EXPECT_TRUE(std::any_of(widths.begin(), widths.end(), [&](double w) {
-            return std::abs(w - pdf_line_width(family_width_mm(f))) < 0.006;
+            return std::abs(w - pdf_line_width(family_width_mm(f))) < 1e-4;
         })) << family_name(f);
     EXPECT_EQ(widths.size(), 4u);
     // Nothing left beside it (the GeoPackage and composition it was made from).
