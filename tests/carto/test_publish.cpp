@@ -133,7 +133,7 @@ TEST(Pdf, IsGeoreferencedAtTrueScaleWithALayerAndTheWidthOfEachFamily) {
     std::set<std::string> layers;
     for (char** m = ds->GetMetadata("LAYERS"); m && *m; ++m) layers.insert(std::string(*m).substr(std::string(*m).find('=') + 1));
     EXPECT_EQ(layers, (std::set<std::string>{"fill", "ridge", "valley", "cross"}));
-    // The strokes are the families' widths on paper: 0.10 mm and 0.12 mm are 0.28 and 0.34
+    // The strokes are the families' widths on paper: 0.10 mm and 0.12 mm are 0.2835 and 0.3402
     // PDF units.
     const std::set<double> widths = line_widths(dir / "map.pdf");
     for (Family f : {Family::Fill, Family::Ridge, Family::Valley, Family::Cross})
