@@ -376,3 +376,21 @@ def test_page_draws_rock(tiles_dir, tmp_path):
         for z in ("z13", "z16"):
             Image.open(tmp_path / f"{z}.png").convert("RGB").quantize(64).save(ROOT / "docs" / f"web-{z}.png",
                                                                                 optimize=True)
+
+
+def test_make_hillshade_leaves_gdals_exceptions_as_the_caller_had_them(tmp_path):
+    from osgeo import gdal
+
+    from rockhatch import serve
+
+    before = gdal.GetUseExceptions()
+    try:
+        for setting in (gdal.DontUseExceptions, gdal.UseExceptions):
+            setting()
+            expected = gdal.GetUseExceptions()
+            out = tmp_path / f"hillshade{expected}.mbtiles"
+            serve.make_hillshade(SAMPLE / "dem.tif", out, log=lambda *a: None)
+            assert out.exists()
+            assert gdal.GetUseExceptions() == expected
+    finally:
+        (gdal.UseExceptions if before else gdal.DontUseExceptions)()

@@ -290,9 +290,21 @@ def make_hillshade(dem, out, log=print):
     """DIR/hillshade.mbtiles from a DEM: GDAL's hillshade, warped to EPSG:3857, PNG tiles at
     the zoom level nearest the DEM's cell size with overviews down to a few tiles. Written to
     a temporary name in the same folder and renamed, so a stopped run leaves no half file."""
-    from osgeo import gdal, osr
+    from osgeo import gdal
 
+    # GDAL's exceptions for this call only: the caller's choice is put back.
+    used = gdal.GetUseExceptions()
     gdal.UseExceptions()
+    try:
+        _make_hillshade(gdal, dem, out, log)
+    finally:
+        if not used:
+            gdal.DontUseExceptions()
+
+
+def _make_hillshade(gdal, dem, out, log):
+    from osgeo import osr
+
     dem = pathlib.Path(dem)
     if not dem.is_file():
         raise ServeError(3, f"--dem '{dem}': no such file")
