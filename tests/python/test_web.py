@@ -379,18 +379,16 @@ def test_page_draws_rock(tiles_dir, tmp_path):
 
 
 def test_make_hillshade_leaves_gdals_exceptions_as_the_caller_had_them(tmp_path):
-    from osgeo import gdal
-
-    from rockhatch import serve
-
-    before = gdal.GetUseExceptions()
-    try:
-        for setting in (gdal.DontUseExceptions, gdal.UseExceptions):
-            setting()
-            expected = gdal.GetUseExceptions()
-            out = tmp_path / f"hillshade{expected}.mbtiles"
-            serve.make_hillshade(SAMPLE / "dem.tif", out, log=lambda *a: None)
-            assert out.exists()
-            assert gdal.GetUseExceptions() == expected
-    finally:
-        (gdal.UseExceptions if before else gdal.DontUseExceptions)()
+    # In a fresh interpreter: the test processes' other modules have their own GDAL settings.
+    for setting, expected in (("DontUseExceptions", 0), ("UseExceptions", 1)):
+        out = tmp_path / f"hillshade{expected}.mbtiles"
+        code = ("from osgeo import gdal\n"
+                "from rockhatch import serve\n"
+                f"gdal.{setting}()\n"
+                f"serve.make_hillshade({str(SAMPLE / 'dem.tif')!r}, {str(out)!r}, log=lambda *a: None)\n"
+                "print(gdal.GetUseExceptions())\n")
+        p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=python_env(),
+                           timeout=300)
+        assert p.returncode == 0, p.stderr
+        assert out.exists()
+        assert p.stdout.split()[-1] == str(expected), p.stdout
