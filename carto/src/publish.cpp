@@ -523,13 +523,9 @@ TileStats write_vector_tiles(const std::vector<ZoomDrawing>& zooms, const std::s
                         sqlite3_exec(db, sql, nullptr, nullptr, nullptr) == SQLITE_OK;
         sqlite3_close(db);
         if (!ok) throw Error(Code::OutputExists, "-o '" + path + "': cannot complete the tiles' metadata");
-        const TileStats t = mbtiles_stats(out.path);
-        stats.tiles = t.tiles;
-        stats.bytes = t.bytes;
-        stats.largest = t.largest;
-        stats.largest_z = t.largest_z;
-        stats.largest_x = t.largest_x;
-        stats.largest_y = t.largest_y;
+        const std::size_t features = stats.features;
+        stats = mbtiles_stats(out.path);
+        stats.features = features;
     }
     if (!mbtiles && fs::exists(fs::symlink_status(path))) {
         // --overwrite of a folder: only one of tiles (the MVT driver's metadata.json) is replaced.
