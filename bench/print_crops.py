@@ -6,6 +6,7 @@ is 1/300 inch on paper when the PNG is printed at 300 dpi.
 
     /usr/bin/python3 bench/print_crops.py BUILD_DIR OUT_DIR [--style print] [--size 60] [--scales 10000 25000 50000]
     /usr/bin/python3 bench/print_crops.py BUILD_DIR docs --compare print,rock --scales 10000 25000 --size 60
+    /usr/bin/python3 bench/print_crops.py BUILD_DIR docs --compare rock:band_height=1000:band_ragged=0,rock --name rows
 
 --compare A,B also writes OUT_DIR/B-CASE.png per case: the two styles side by side (A left,
 B right), one row per scale (the figures of docs/rock.md).
@@ -39,10 +40,11 @@ def crop(exe, case, scale, style, size_mm, out_png, tmp):
     dem, partition, (cx, cy) = CASES[case]
     half = size_mm / 2 * scale / 1000.0  # ground units
     margin = half * 1.5  # faces centred this far out still reach into the crop
-    svg = tmp / f"{case}-{scale}-{style}.svg"
-    cmd = [str(exe), "--dem", str(dem), "--partition", str(partition), "--style", style, "--scale", str(scale),
+    svg = tmp / f"{case}-{scale}-{style.replace(':', '-')}.svg"
+    name, *params = style.split(":")  # a style and its parameters: rock:band_height=100
+    cmd = [str(exe), "--dem", str(dem), "--partition", str(partition), "--style", name, "--scale", str(scale),
            "--window", f"{cx - half - margin},{cy - half - margin},{cx + half + margin},{cy + half + margin}",
-           "-q", "--overwrite", "-o", str(svg)]
+           "-q", "--overwrite", "-o", str(svg)] + [a for kv in params for a in ("--param", kv)]
     subprocess.run(cmd, check=True)
     text = svg.read_text()
     geo = re.search(r'xmin="([-\d.e+]+)" ymin="([-\d.e+]+)" xmax="([-\d.e+]+)" ymax="([-\d.e+]+)"', text)
@@ -74,7 +76,9 @@ def main():
     ap.add_argument("--scales", type=int, nargs="+", default=[10000, 25000, 50000],
                     help="scale denominators (default: 10000 25000 50000)")
     ap.add_argument("--cases", nargs="+", default=list(CASES), help="cases (default: all)")
-    ap.add_argument("--compare", metavar="A,B", help="two styles side by side, a row per scale")
+    ap.add_argument("--compare", metavar="A,B",
+                    help="two styles side by side, a row per scale; a style may carry parameters: rock:band_height=1.5")
+    ap.add_argument("--name", help="the side-by-side figure is OUT/NAME-CASE.png (default: the second style's name)")
     args = ap.parse_args()
     exe = args.build / "carto" / "rockhatch"
     styles = args.compare.split(",") if args.compare else [args.style]
@@ -85,11 +89,11 @@ def main():
         crops = {}
         for scale in args.scales:
             for style in styles:
-                out = (args.tmp if args.compare else args.out) / f"print-{case}-{scale}-{style}.png"
+                out = (args.tmp if args.compare else args.out) / f"print-{case}-{scale}-{style.replace(':', '-')}.png"
                 crop(exe, case, scale, style, args.size, out, args.tmp)
                 crops[scale, style] = out
         if args.compare:
-            side_by_side(crops, args.scales, styles, args.out / f"{styles[-1]}-{case}.png")
+            side_by_side(crops, args.scales, styles, args.out / f"{args.name or styles[-1]}-{case}.png")
 
 
 def side_by_side(crops, scales, styles, out, gap=20):

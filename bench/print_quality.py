@@ -220,9 +220,9 @@ def structure_measures(terrain, partition, drawing, scale):
     return out
 
 
-def measure(dem, partition, scale, style=None, params=None):
+def measure(dem, partition, scale, style=None, params=None, seed=0):
     prepared = carto.prepare(dem, partition, scale=scale)
-    drawing = carto.hatch(prepared, scale=scale, style=style, params=params or {})
+    drawing = carto.hatch(prepared, scale=scale, style=style, params=params or {}, seed=seed)
     terrain = prepared.terrain
     faces = {f.id: f for f in prepared.partition.faces}
     ground_m2_per_mm2 = (scale / 1000.0) ** 2
@@ -313,6 +313,7 @@ def main():
     ap.add_argument("--scales", default="10000,25000,50000")
     ap.add_argument("--style", default=None)
     ap.add_argument("--cases", default="", help="only the cases whose label contains this text")
+    ap.add_argument("--seed", type=int, default=0, help="the drawing's seed (the measures' spread over seeds)")
     ap.add_argument("--param", action="append", default=[], metavar="KEY=VALUE",
                     help="a style parameter, as the command's --param (repeatable)")
     args = ap.parse_args()
@@ -337,7 +338,7 @@ def main():
     cases = [c for c in cases if args.cases in c[0]]
     for label, dem, partition in cases:
         for scale in scales:
-            m = measure(dem, partition, scale, args.style, params)
+            m = measure(dem, partition, scale, args.style, params, args.seed)
             rows.append((label, scale, m))
             print(f"{label:34s} 1:{scale:<6.0f} " + ", ".join(
                 f"{k} {v:.3g}" if isinstance(v, float) else f"{k} {v}" for k, v in m.items()), flush=True)

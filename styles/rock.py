@@ -6,7 +6,8 @@ the elevation), drawn wider above walls on their shadow side, with strokes hangi
 on that side; the tops of the cliff bands (where the slope passes cliff_slope), with rows of
 strokes hanging down to the band's foot; the couloirs, thin lines the fill strokes keep away
 from. The fill and cross strokes of print.py take the ink the structure leaves under the tone
-curve. Where rock meets scree, grass or ice, the fill and cross strokes end at an irregular
+curve, the fill in rows hanging from the level lines of the elevation (band_height apart,
+libtex's CutAtLevels), each tone cell's strokes shortened from their lower ends to its ink. Where rock meets scree, grass or ice, the fill and cross strokes end at an irregular
 distance between fray_min and fray_max from the face's border, inside it or (for the share
 fray_beyond) past it (libtex's FrayedCrop): the rock ends where its strokes end, in a ragged
 band across the border, not along one smooth line. A border with another rock face across it, or with a ridge or cliff on it, keeps its
@@ -23,7 +24,7 @@ Run on its own, or through the rockhatch command:
 import sys
 
 from rockhatch.carto import params_help
-from rockhatch.carto.blocks import (BALANCED, CLIFF, CREST, CROSS, FRAY, STRUCTURE, TONE, TONE_CELLS, check_fray,
+from rockhatch.carto.blocks import (BALANCED, CLIFF, CREST, CROSS, FRAY, ROWS, STRUCTURE, TONE, TONE_CELLS, check_fray,
                                     check_tone, cliff_strokes, crest_lines, crest_strokes, frayed, given_cliffs,
                                     given_first, read_face, shadow_strokes, structure_lines, tapered, toned_hatching,
                                     valleys)
@@ -33,7 +34,7 @@ NAME = "rock"
 FIGURE = "after 5.4g"
 TITLE = ("rock drawing: crests, couloirs and cliff tops with strokes hanging from them, the print tone, no drawn "
          "outline")
-PARAMS = TONE + TONE_CELLS + BALANCED + CREST + CLIFF + STRUCTURE + CROSS + FRAY
+PARAMS = TONE + TONE_CELLS + BALANCED + CREST + CLIFF + STRUCTURE + CROSS + FRAY + ROWS
 __doc__ += params_help(PARAMS)
 
 

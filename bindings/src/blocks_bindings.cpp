@@ -48,6 +48,7 @@ void bind_blocks(py::module_& m) {
     m.attr("CREST") = table(blocks::kCrest);
     m.attr("CROSS") = table(blocks::kCross);
     m.attr("FRAY") = table(blocks::kFray);
+    m.attr("ROWS") = table(blocks::kRows);
     m.attr("CLIFF") = table(blocks::kCliff);
     m.attr("STRUCTURE") = table(blocks::kStructure);
 

@@ -210,6 +210,9 @@ void bind_fields(py::module_& m) {
           py::arg("region"), "f inside the region (borders included), NaN outside");
     m.def("Fallback", [](const py::object& f, const py::object& g) { return Fallback(to_field(f), to_field(g)); },
           py::arg("f"), py::arg("g"), "f where it has a value, else g");
+    m.def("Noise", &Noise, py::arg("wavelength"),
+          "smooth noise of the plane in [-1, 1]: values at the nodes of a lattice `wavelength` apart, keyed by the "
+          "node and the seed at the call, interpolated with a smoothstep");
 
     py::class_<VectorField>(m, "VectorField", "A vector at every point of the plane (NaN components: none)")
         .def(py::init<>())

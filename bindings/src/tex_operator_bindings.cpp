@@ -217,6 +217,14 @@ void add_merge_bindings(py::module_& m) {
         "the share `beyond` of those ends drawn on past the border to that depth instead, where the way is free");
     m.def("Apart", &Apart, py::arg("a"), py::arg("lines"), py::arg("distance"),
           "the curves of a less their parts within `distance` of the lines (a gap left along them)");
+    m.def(
+        "CutAtLevels",
+        [](Arrangement a, const py::object& f, double step, double gap, double sampling) {
+            return CutAtLevels(std::move(a), to_field(f), step, gap, sampling);
+        },
+        py::arg("a"), py::arg("f"), py::arg("step"), py::arg("gap"), py::arg("sampling") = 0.0,
+        "the curves of a cut into rows where the field f crosses a multiple of step: each piece starts on a level "
+        "line and ends `gap` before the next one; f read every `sampling` along the curves");
     m.def("Outline", &Outline, "the region evaluated on as an arrangement: its labelled edges, else its rings");
     m.def("Merge", &Merge, py::arg("a1"), py::arg("a2"), "Union's name in the thesis's Chapter 4");
     m.def("Inside", py::overload_cast<Arrangement, Arrangement, Border>(&Inside), py::arg("a1"), py::arg("a2"), py::arg("border"));

@@ -759,6 +759,99 @@ TEST(Merge, ApartLeavesAGapAlongTheLines) {
     EXPECT_THROW(Apart(Constant(strokes), line, 0.0), Error);
 }
 
+TEST(Merge, CutAtLevelsHangsRowsFromTheLevelLines) {
+    // A plane falling southward (f = y) and strokes down it: cut at every 10, each piece
+    // starts on a level line below it and ends 1 above the next (the gap on the higher side).
+    const Field f = FunctionField([](const Point& p) { return p.y; });
+    Curves strokes;
+    for (int k = 0; k < 3; ++k) strokes.append(Polyline({{double(k), 45}, {double(k), 3}}));     // downhill
+    strokes.append(Polyline({{5, 3}, {5, 45}}));                                                  // uphill
+    strokes.curves[3].labels.add("fill");
+    const Curves out = CutAtLevels(Constant(strokes), f, 10, 1)(kAny);
+    // 45..41, 40..31, 30..21, 20..11, 10..3 on each: five pieces, each from a level line down.
+    ASSERT_EQ(out.curves.size(), 20u);
+    for (const auto& c : out.curves) {
+        const double hi = std::max(c.points.front().y, c.points.back().y);
+        const double lo = std::min(c.points.front().y, c.points.back().y);
+        EXPECT_TRUE(hi == 45 || std::abs(std::remainder(hi, 10)) < 1e-9) << hi;  // on a level line
+        EXPECT_TRUE(lo == 3 || std::abs(std::remainder(lo - 1, 10)) < 1e-9) << lo;  // 1 above the next
+    }
+    // The same pieces whichever way a stroke runs, labels kept.
+    for (std::size_t k = 0; k < 5; ++k) {
+        const auto& down = out.curves[k].points;
+        const auto& up = out.curves[15 + 4 - k].points;
+        EXPECT_NEAR(down.front().y, up.back().y, 1e-9);
+        EXPECT_NEAR(down.back().y, up.front().y, 1e-9);
+        EXPECT_TRUE(out.curves[15 + k].labels.has("fill"));
+    }
+    // Sampled between the points: a bent field cut where it crosses, not where a straight
+    // reading of the ends says. f = y^2 / 10 on a stroke from y = 0 to 20 crosses 10 at
+    // y = 10, 20 at y = 14.14..., 30 at y = 17.32...
+    const Field bent = FunctionField([](const Point& p) { return p.y * p.y / 10; });
+    const Curves fine = CutAtLevels(Constant(Polyline({{0, 20}, {0, 0}})), bent, 10, 0, 0.01)(kAny);
+    std::vector<double> ends;
+    for (const auto& c : fine.curves) ends.push_back(c.points.back().y);
+    std::sort(ends.begin(), ends.end());
+    ASSERT_GE(ends.size(), 4u);
+    EXPECT_NEAR(ends[1], 10, 1e-3);
+    EXPECT_NEAR(ends[2], std::sqrt(200.0), 1e-3);
+    EXPECT_NEAR(ends[3], std::sqrt(300.0), 1e-3);
+    // Only the curve's own points are kept between the cuts, not the samples.
+    for (const auto& c : fine.curves) EXPECT_EQ(c.points.size(), 2u);
+    // No value, no cut; bad arguments refused.
+    const Curves none = CutAtLevels(Constant(strokes), Field(), 10, 1)(kAny);
+    EXPECT_EQ(none.curves.size(), strokes.curves.size());
+    EXPECT_THROW(CutAtLevels(Constant(strokes), f, 0, 1), Error);
+    EXPECT_THROW(CutAtLevels(Constant(strokes), f, 10, -1), Error);
+    EXPECT_THROW(CutAtLevels(Constant(strokes), f, 10, 1, -0.5), Error);
+}
+
+TEST(Merge, CutAtLevelsCutsAPartAsTheWhole) {
+    // The levels are the plane's: a stroke cut in two regions gives, in each, the whole's
+    // pieces cut to it (the cuts placed on the level lines, whatever the samples around them).
+    const Field f = FunctionField([](const Point& p) { return 0.3 * p.y + 0.1 * p.x + 0.02 * p.x * p.y; });
+    const Curves stroke = Polyline({{1, 40}, {3, 20}, {2, 1}});
+    const Curves whole = CutAtLevels(Crop(Constant(stroke), CROP), f, 2.5, 0.4, 0.2)(kAny);
+    const Curves lower = CutAtLevels(Crop(Constant(stroke), CROP), f, 2.5, 0.4, 0.2)(Region::rectangle(-10, -10, 10, 20));
+    auto same = [](const Curve& a, const Curve& b) {
+        if (a.points.size() != b.points.size()) return false;
+        for (std::size_t i = 0; i < a.points.size(); ++i)
+            if (distance(a.points[i], b.points[i]) > 1e-9) return false;
+        return true;
+    };
+    std::size_t matched = 0;
+    for (const auto& c : lower.curves)
+        for (const auto& w : whole.curves) matched += same(c, w);
+    // Every piece of the lower part but the one the region's edge cuts is a piece of the whole.
+    EXPECT_GE(matched + 1, lower.curves.size());
+    EXPECT_GE(matched, 3u);
+}
+
+TEST(Fields, NoiseIsSmoothBoundedAndKeyedBySeed) {
+    const std::uint64_t saved = GetSeed();
+    SetSeed(7);
+    const Field a = Noise(10);
+    const Field b = Noise(10);
+    SetSeed(8);
+    const Field c = Noise(10);
+    SetSeed(saved);
+    double lo = 1, hi = -1, differs = 0;
+    for (int i = 0; i < 200; ++i) {
+        const Point p{i * 0.77 - 50, i * 1.31 - 80};
+        const double v = a(p);
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+        EXPECT_EQ(v, b(p));                                  // the same seed, the same noise
+        differs += std::abs(v - c(p));
+        EXPECT_LT(std::abs(a(p + Point{0.01, 0}) - v), 0.01);  // smooth: no jump over 1/1000 of its wavelength
+    }
+    EXPECT_GE(lo, -1.0);
+    EXPECT_LE(hi, 1.0);
+    EXPECT_GT(hi - lo, 0.8);      // it spans most of its range
+    EXPECT_GT(differs, 200 * 0.1);  // another seed, another noise
+    EXPECT_THROW(Noise(0), Error);
+}
+
 TEST(Merge, MovingAverageIsLocalAndKeepsTheEnds) {
     // A zigzag: averaged over 2 points either side, its teeth shrink; a piece of it is averaged
     // as the whole is, away from the piece's ends.

@@ -310,6 +310,8 @@ CASES: List[Case] = [
     Case(RH, "--param", "unknown name", lambda w: main(w, "--style", "noisy", "--param", "peak_length=3"), 7,
          ("'noisy'", "'peak_length'")),
     Case(RH, "--param", "no value", lambda w: main(w, "--param", "spacing_min"), 2, ("expected NAME=VALUE",)),
+    Case(RH, "--param", "rows laid over twice as dense as the tone", lambda w: main(w, "--param", "band_ragged=3"), 2,
+         ("band_ragged=3", "above 1")),
     *number_cases(RH, "--param", param, extra_bad=[
         ("zero", "0", ("spacing_min",)),
         ("negative", "-1", ("spacing_min",)),

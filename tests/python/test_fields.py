@@ -231,3 +231,24 @@ def test_align_to_field_and_the_print_budget_helpers():
     left = Region([Point(-1, -1), Point(4, -1), Point(4, 4), Point(-1, 4)])
     assert abs(carto.ink_area(curves, 1.0, left) - 0.5) < 1e-12
     assert abs(carto.area_within(square, left) - 16) < 1e-9
+
+
+def test_cut_at_levels_and_noise_from_python():
+    # Strokes down a plane falling southward (f = y), cut every 10: each piece starts on a level
+    # line and ends 1 above the next; a Python callable serves as the field.
+    from rockhatch.tex import Constant, CutAtLevels, GetSeed, Noise, Polyline, SetSeed
+    saved = GetSeed()
+    strokes = Polyline([Point(0, 45), Point(0, 3)])
+    out = CutAtLevels(Constant(strokes), lambda p: p.y, 10, 1)(Region.rectangle(-10, -10, 10, 50))
+    tops = sorted(max(c.points[0].y, c.points[-1].y) for c in out.curves)
+    bottoms = sorted(min(c.points[0].y, c.points[-1].y) for c in out.curves)
+    assert tops == pytest.approx([10, 20, 30, 40, 45]) and bottoms == pytest.approx([3, 11, 21, 31, 41])
+    with pytest.raises(Exception, match="CutAtLevels"):
+        CutAtLevels(Constant(strokes), lambda p: p.y, 0, 1)
+    SetSeed(3)
+    n = Noise(5.0)
+    values = [n(Point(0.37 * k, 0.71 * k)) for k in range(100)]
+    assert all(-1 <= v <= 1 for v in values) and max(values) - min(values) > 0.5
+    SetSeed(3)
+    assert Noise(5.0)(Point(1.5, 2.5)) == n(Point(1.5, 2.5))
+    SetSeed(saved)

@@ -21,6 +21,9 @@ extern const std::vector<StyleParam> kTriangles, kCoarse, kPeaks, kBalanced, kHi
 extern const std::vector<StyleParam> kFray;
 // Cliff bands: where the slope passes cliff_slope, their tops and the strokes hanging from them.
 extern const std::vector<StyleParam> kCliff;
+// Rows of fill strokes hanging from the level lines of the elevation (toned_hatching with
+// band_height > 0, tex::CutAtLevels).
+extern const std::vector<StyleParam> kRows;
 // print's tone cells: kCoarse's parameters, 2 mm wide (3 mm cells, 150 m at 1:50000, let the
 // ink of a block follow its cell more than its own shade: rho 0.77 on the sample there).
 extern const std::vector<StyleParam> kToneCells;
@@ -94,7 +97,10 @@ double tone_coverage(const ParamValues& p, double shade);
 // strokes; fill strokes run along the fall line read at the cell's centre and are turned to
 // the fall line at their middles (AlignToField) when follow_fall_line > 0, else along the
 // face's orientation (and are turned onto it: break-point jitter shifts strokes without
-// tilting them).
+// tilting them). With the kRows parameters (band_height...), the fill strokes are also cut
+// where the elevation, its level lines wandering by band_wander, crosses a multiple of
+// band_height (tex::CutAtLevels), laid band_ragged denser and shortened from their lower ends
+// by random shares until the cell's fill ink is the tone's exactly.
 Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const FaceReading& face,
                            const tex::Region& region, const tex::Curves& spent);
 

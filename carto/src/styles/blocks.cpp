@@ -83,6 +83,14 @@ const std::vector<StyleParam> kFray = {
     {"fray_beyond", 0.5, "ratio",
      "this share of the fill strokes reaching the edge go on past it by as much instead, where they cross it at 60 degrees or more (0 to 1: ends on both sides; the cross strokes all end inside)"},
 };
+const std::vector<StyleParam> kRows = {
+    {"band_height", 1.2, "mm",
+     "fill strokes hang in rows from level lines of the elevation this x the scale apart (1.2 mm: 12 m at 1:10000)"},
+    {"band_gap", 0.15, "mm", "white paper above each row's level line"},
+    {"band_wander", 0.5, "ratio", "the rows' level lines wander up and down by this share of band_height (over 5 mm on paper)"},
+    {"band_ragged", 0.3, "ratio",
+     "fill strokes in rows are laid this much denser, then shortened from their lower ends by random shares to the tone: rows end raggedly"},
+};
 const std::vector<StyleParam> kCliff = {
     {"cliff_slope", 100.0, "%", "cliff bands are where the slope passes this (percent; 100: 45 degrees)"},
     {"cliff_length", 3.0, "mm", "longest stroke hanging from a cliff top (strokes end at the band's foot)"},
@@ -281,11 +289,86 @@ void check_tone(const ParamValues& p) {
         m << "--param gap=" << p.at("gap") << " is not a fraction in (0, 1]";
         bad(m.str());
     }
+    // Rows: strokes laid more than twice as dense as the tone asks would cost time for nothing.
+    if (p.count("band_ragged") && p.at("band_ragged") > 1) {
+        m << "--param band_ragged=" << p.at("band_ragged") << " is above 1";
+        bad(m.str());
+    }
 }
 
 double tone_coverage(const ParamValues& p, double shade) {
     return p.at("tone_min") + (p.at("tone_max") - p.at("tone_min")) * std::pow(clamp01(shade), p.at("tone_gamma"));
 }
+
+namespace {
+
+// The curve less `cut` of its length at its end (back) or its start.
+void trim_curve(Curve& c, double cut, bool back) {
+    if (!back) std::reverse(c.points.begin(), c.points.end());
+    while (cut > 0 && c.points.size() >= 2) {
+        Point& b = c.points.back();
+        const Point a = c.points[c.points.size() - 2];
+        const double l = distance(a, b);
+        if (l > cut) {
+            b = a + (b - a) * ((l - cut) / l);
+            break;
+        }
+        cut -= l;
+        c.points.pop_back();
+    }
+    if (!back) std::reverse(c.points.begin(), c.points.end());
+}
+
+// The distance on paper over which the rows' level lines wander (band_wander).
+constexpr double kBandWanderMm = 5.0;
+
+constexpr std::uint64_t kRaggedTag = 0x52414747ULL;
+
+// Shortens the strokes from their lower ends (down the direction `down`, radians) so that
+// their length is `keep` at most: each by a random share (keyed by its upper end and the
+// seed), the shares scaled together so that the lengths add up to `keep`; a stroke whose
+// share reaches 1 goes.
+void shorten_to_ink(Curves& strokes, double keep, double down) {
+    std::vector<double> len(strokes.curves.size());
+    double total = 0;
+    for (std::size_t i = 0; i < len.size(); ++i) {
+        const auto& pts = strokes.curves[i].points;
+        for (std::size_t k = 1; k < pts.size(); ++k) len[i] += distance(pts[k - 1], pts[k]);
+        total += len[i];
+    }
+    const double remove = total - std::max(keep, 0.0);
+    if (!(remove > 0)) return;
+    const Point d{std::cos(down), std::sin(down)};
+    const std::uint64_t key = hash_combine(kRaggedTag, GetSeed());
+    std::vector<double> share(len.size());
+    std::vector<char> back(len.size());
+    const double mean = remove / total;
+    for (std::size_t i = 0; i < len.size(); ++i) {
+        const auto& pts = strokes.curves[i].points;
+        if (pts.size() < 2) continue;
+        back[i] = dot(pts.back() - pts.front(), d) >= 0;  // the last point is the lower
+        const double u = unit_from_hash(hash_point(key, back[i] ? pts.front() : pts.back()));
+        share[i] = std::min(1.0, 2 * mean * u);
+    }
+    // Scaled until the shares take off `remove` (capped at whole strokes, a few rounds).
+    for (int round = 0; round < 4; ++round) {
+        double taken = 0;
+        for (std::size_t i = 0; i < len.size(); ++i) taken += share[i] * len[i];
+        if (!(taken > 0) || std::abs(taken - remove) <= 1e-9 * total) break;
+        for (double& v : share) v = std::min(1.0, v * remove / taken);
+    }
+    std::vector<Curve> kept;
+    kept.reserve(strokes.curves.size());
+    for (std::size_t i = 0; i < len.size(); ++i) {
+        if (share[i] >= 1 - 1e-9) continue;
+        Curve& c = strokes.curves[i];
+        trim_curve(c, share[i] * len[i], back[i]);
+        kept.push_back(std::move(c));
+    }
+    strokes.curves = std::move(kept);
+}
+
+}  // namespace
 
 Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const FaceReading& face,
                            const Region& region, const Curves& spent) {
@@ -310,7 +393,13 @@ Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const F
             spent_ink->push_back({(a + b) * 0.5, distance(a, b) * width});
         }
     }
-    auto hatch_cell = [f, p, face, region, spent_ink](const Face& cell) {
+    // The field the rows are cut on: the elevation, its level lines wandering by up to
+    // band_wander x band_height over kBandWanderMm on paper, so that the rows thicken and thin
+    // as bands of rock do rather than run as regular contours.
+    const Field levels = p.count("band_height") ? f.elevation + Noise(kBandWanderMm * p.at(kGroundPerMm)) *
+                                                                    Field(p.at("band_wander") * p.at("band_height"))
+                                                  : f.elevation;
+    auto hatch_cell = [f, p, face, region, spent_ink, levels](const Face& cell) {
         const double mm = p.at(kGroundPerMm), gap = p.at("gap"), len = p.at("length");
         const Region box = ToRegion(cell);
         const Point c = Centroid(cell);
@@ -357,13 +446,39 @@ Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const F
         // Fill strokes of width w every s cover w x gap / s of the cell; min_gap keeps white
         // paper between neighbours whatever the tone asks.
         const double wf = family_width_mm(Family::Fill) * mm;
-        const double s = std::max(wf * gap / (target - cross_cover), wf + p.at("min_gap"));
-        const Arrangement lines =
-            Crop(noisy_lines("fill", theta, s, len, p.at("jitter"), gap, f.slope, p.at("slope_min")), CROP);
+        // In rows (band_height > 0): the strokes are also cut where the elevation crosses a
+        // level every band_height (ground units, as every length here), band_gap above each
+        // level, and laid band_ragged denser than the tone asks; each is then shortened from
+        // its lower end by a random share so that the cell's ink is the tone's exactly: the
+        // rows start together on their level line and end raggedly.
+        const double band = p.count("band_height") ? p.at("band_height") : 0.0;
+        double drawn = 1;
+        if (band > 0) {
+            // The grade of the elevation the rows are cut on, differenced over a millimetre.
+            const double h = 0.5 * mm;
+            const double gx = (f.elevation(Point{c.x + h, c.y}) - f.elevation(Point{c.x - h, c.y})) / (2 * h);
+            const double gy = (f.elevation(Point{c.x, c.y + h}) - f.elevation(Point{c.x, c.y - h})) / (2 * h);
+            const double row = band / std::hypot(gx, gy);  // a row's length on the ground (inf: flat, NaN: none)
+            const double cut = p.at("band_gap");
+            drawn = (std::isnan(row) ? 1.0 : std::max(0.25, row > cut ? 1 - cut / row : 0.0)) / (1 + p.at("band_ragged"));
+        }
+        const double want = target - cross_cover;
+        const double s = std::max(wf * gap * drawn / want, wf + p.at("min_gap"));
+        // In rows, the strokes are broken at twice their length: the rows break them too.
+        const Arrangement lines = Crop(
+            noisy_lines("fill", theta, s, band > 0 ? 2 * len : len, p.at("jitter"), gap, f.slope, p.at("slope_min")),
+            CROP);
         // Each stroke laid on the fall line at its middle (where the partition gave no
         // orientation), else on the cell's direction: the jitter of the break points moves
         // strokes, it does not tilt them (tilted, sparse strokes read as zigzags).
-        out.append(AlignToField(lines, follow ? Fallback(f.fall_line, Field(theta)) : Field(theta))(cell));
+        const Arrangement fill = AlignToField(lines, follow ? Fallback(f.fall_line, Field(theta)) : Field(theta));
+        if (!(band > 0)) {
+            out.append(fill(cell));
+            return out;
+        }
+        Curves rows = CutAtLevels(fill, levels, band, p.at("band_gap"), 0.5 * mm)(cell);
+        shorten_to_ink(rows, want * box.area() / wf, theta);
+        out.append(std::move(rows));
         return out;
     };
     return MapToFaces(hatch_cell, grid);

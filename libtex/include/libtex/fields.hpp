@@ -136,6 +136,11 @@ Field Restrict(Field f, const BBox& box);
 Field Restrict(Field f, Region region);
 // f where it has a value, else g.
 Field Fallback(Field f, Field g);
+// Smooth noise of the plane in [-1, 1]: values drawn at the nodes of a square lattice
+// `wavelength` apart on the plane's axes (keyed by the node and the seed at the call, so any
+// region or tile reads the same noise), interpolated between them with a smoothstep. Throws
+// tex::Error naming Noise for a wavelength that is not positive.
+Field Noise(double wavelength);
 
 // ---- Vector fields ----
 

@@ -51,6 +51,14 @@ Arrangement FrayedCrop(Arrangement a, double min, double max, Field across = Fie
 // never comes near is kept as it is. Throws tex::Error naming Apart for a distance that is
 // not positive.
 Arrangement Apart(Arrangement a, Curves lines, double distance);
+// The curves of a (evaluated on the region) cut where the field f crosses a multiple of
+// `step`, as hachures hang in rows from the level lines of the elevation: at each crossing
+// the piece on the lower side starts on the level line and the piece on the higher side ends
+// `gap` (a length along the curve) before it. f is read at the curve's points and every
+// `sampling` between them (0: at its points only). The levels are the plane's, so any region
+// or tile cuts a curve at the same points; a stretch where f has no value is not cut. Throws
+// tex::Error naming CutAtLevels for a step that is not positive or a negative gap or sampling.
+Arrangement CutAtLevels(Arrangement a, Field f, double step, double gap, double sampling = 0);
 // The region itself as an arrangement: its boundary, as the labelled edges of the face it
 // comes from when it has them (Region::with_edges), else its rings.
 Arrangement Outline();

@@ -1,5 +1,6 @@
 // Control fields: builders, compositions, the locality check.
 #include "libtex/fields.hpp"
+#include "libtex/random.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -367,6 +368,24 @@ Field Fallback(Field f, Field g) {
                         return std::isnan(v) ? at(in, 1, p) : v;
                     },
                     dom);
+}
+
+Field Noise(double wavelength) {
+    if (!(wavelength > 0) || !std::isfinite(wavelength))
+        throw Error("Noise", "the wavelength must be positive and finite (got " + std::to_string(wavelength) + ")");
+    const std::uint64_t key = hash_combine(0x4E4F495345ULL, GetSeed());
+    return FunctionField([key, wavelength](const Point& p) {
+        const double x = p.x / wavelength, y = p.y / wavelength;
+        const double fx = std::floor(x), fy = std::floor(y);
+        auto node = [&](double i, double j) {
+            return 2 * unit_from_hash(hash_double(hash_double(key, fx + i), fy + j)) - 1;
+        };
+        auto smooth = [](double t) { return t * t * (3 - 2 * t); };
+        const double u = smooth(x - fx), v = smooth(y - fy);
+        const double a = node(0, 0) + (node(1, 0) - node(0, 0)) * u;
+        const double b = node(0, 1) + (node(1, 1) - node(0, 1)) * u;
+        return a + (b - a) * v;
+    });
 }
 
 // ---- Vector fields ----
