@@ -949,6 +949,11 @@ TEST(Pipeline, TheRockStyleHangsItsFillInRowsAndKeepsTheTone) {
     EXPECT_GT(std::sqrt(var / double(drops.size())), 0.1);
     const auto [pn, pon, pdrops] = fill_tops(hatch(sample(), sample_options("print")));
     EXPECT_LT(double(pon) / double(pn), 0.04) << pon << " of " << pn;
+    // No rows where the ground is gentler than band_slope (here: anywhere).
+    Options slabs = o;
+    slabs.params["band_slope"] = 10000;
+    const auto [sn, son, sdrops] = fill_tops(hatch(sample(), slabs));
+    EXPECT_LT(double(son) / double(sn), 0.04) << son << " of " << sn;
     // The tone: each face's fill and cross ink within 15 % of print's, face by face (large faces).
     const Drawing print = hatch(sample(), sample_options("print"));
     auto ink = [](const FaceHatches& fh) {

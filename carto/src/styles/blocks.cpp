@@ -87,6 +87,7 @@ const std::vector<StyleParam> kRows = {
     {"band_height", 1.2, "mm",
      "fill strokes hang in rows from level lines of the elevation this x the scale apart (1.2 mm: 12 m at 1:10000)"},
     {"band_gap", 0.15, "mm", "white paper above each row's level line"},
+    {"band_slope", 70.0, "%", "rows where the ground is at least this steep (percent; 70: 35 degrees), long strokes on gentler slabs"},
     {"band_wander", 0.5, "ratio", "the rows' level lines wander up and down by this share of band_height (over 5 mm on paper)"},
     {"band_ragged", 0.3, "ratio",
      "fill strokes in rows are laid this much denser, then shortened from their lower ends by random shares to the tone: rows end raggedly"},
@@ -453,32 +454,37 @@ Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const F
         // rows start together on their level line and end raggedly.
         const double band = p.count("band_height") ? p.at("band_height") : 0.0;
         double drawn = 1;
+        bool rows = false;
         if (band > 0) {
-            // The grade of the elevation the rows are cut on, differenced over a millimetre.
+            // The grade of the elevation the rows are cut on, differenced over a millimetre:
+            // rows where it is at least band_slope (walls), long strokes on slabs.
             const double h = 0.5 * mm;
             const double gx = (f.elevation(Point{c.x + h, c.y}) - f.elevation(Point{c.x - h, c.y})) / (2 * h);
             const double gy = (f.elevation(Point{c.x, c.y + h}) - f.elevation(Point{c.x, c.y - h})) / (2 * h);
-            const double row = band / std::hypot(gx, gy);  // a row's length on the ground (inf: flat, NaN: none)
-            const double cut = p.at("band_gap");
-            drawn = (std::isnan(row) ? 1.0 : std::max(0.25, row > cut ? 1 - cut / row : 0.0)) / (1 + p.at("band_ragged"));
+            const double grade = std::hypot(gx, gy);
+            rows = grade * 100 >= p.at("band_slope");
+            if (rows) {
+                const double row = band / grade, cut = p.at("band_gap");  // a row's length on the ground
+                drawn = std::max(0.25, row > cut ? 1 - cut / row : 0.0) / (1 + p.at("band_ragged"));
+            }
         }
         const double want = target - cross_cover;
         const double s = std::max(wf * gap * drawn / want, wf + p.at("min_gap"));
         // In rows, the strokes are broken at twice their length: the rows break them too.
         const Arrangement lines = Crop(
-            noisy_lines("fill", theta, s, band > 0 ? 2 * len : len, p.at("jitter"), gap, f.slope, p.at("slope_min")),
+            noisy_lines("fill", theta, s, rows ? 2 * len : len, p.at("jitter"), gap, f.slope, p.at("slope_min")),
             CROP);
         // Each stroke laid on the fall line at its middle (where the partition gave no
         // orientation), else on the cell's direction: the jitter of the break points moves
         // strokes, it does not tilt them (tilted, sparse strokes read as zigzags).
         const Arrangement fill = AlignToField(lines, follow ? Fallback(f.fall_line, Field(theta)) : Field(theta));
-        if (!(band > 0)) {
+        if (!rows) {
             out.append(fill(cell));
             return out;
         }
-        Curves rows = CutAtLevels(fill, levels, band, p.at("band_gap"), 0.5 * mm)(cell);
-        shorten_to_ink(rows, want * box.area() / wf, theta);
-        out.append(std::move(rows));
+        Curves hanging = CutAtLevels(fill, levels, band, p.at("band_gap"), 0.5 * mm)(cell);
+        shorten_to_ink(hanging, want * box.area() / wf, theta);
+        out.append(std::move(hanging));
         return out;
     };
     return MapToFaces(hatch_cell, grid);
