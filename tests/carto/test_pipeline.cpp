@@ -922,7 +922,7 @@ TEST(Pipeline, TheRockStyleHangsItsFillInRowsAndKeepsTheTone) {
     const ControlFields f = control_fields(sample(), plan);
     const double mm = o.scale / 1000, band = 1.2 * mm;
     auto fill_tops = [&](const Drawing& d) {
-        std::size_t strokes = 0, on_level = 0;
+        std::size_t strokes = 0, on_level = 0, specks = 0;
         std::vector<double> drops;
         for (const auto& face : d.faces)
             for (const auto& h : face.hatches) {
@@ -934,12 +934,17 @@ TEST(Pipeline, TheRockStyleHangsItsFillInRowsAndKeepsTheTone) {
                 if (std::min(phase, 1 - phase) < 0.01) {
                     ++on_level;
                     drops.push_back(std::abs(z0 - z1) / band);
+                    double length = 0;
+                    for (std::size_t i = 1; i < h.points.size(); ++i) length += tex::distance(h.points[i - 1], h.points[i]);
+                    specks += length < 0.2 * mm;
                 }
             }
-        return std::make_tuple(strokes, on_level, drops);
+        return std::make_tuple(strokes, on_level, drops, specks);
     };
-    const auto [n, on, drops] = fill_tops(rows);
+    const auto [n, on, drops, specks] = fill_tops(rows);
     ASSERT_GT(n, 5000u);
+    // No specks in the rows: a stroke shorter than twice its width goes whole.
+    EXPECT_LT(double(specks) / double(on), 0.02) << specks << " of " << on;
     // Without rows a stroke's top lies within 1 % of a band of a level line 2 % of the time.
     EXPECT_GT(double(on) / double(n), 0.3) << on << " of " << n;
     // Ragged lower ends: the drops of the strokes hanging from a level line spread.
@@ -947,12 +952,12 @@ TEST(Pipeline, TheRockStyleHangsItsFillInRowsAndKeepsTheTone) {
     double var = 0;
     for (double v : drops) var += (v - mean) * (v - mean);
     EXPECT_GT(std::sqrt(var / double(drops.size())), 0.1);
-    const auto [pn, pon, pdrops] = fill_tops(hatch(sample(), sample_options("print")));
+    const auto [pn, pon, pdrops, pspecks] = fill_tops(hatch(sample(), sample_options("print")));
     EXPECT_LT(double(pon) / double(pn), 0.04) << pon << " of " << pn;
     // No rows where the ground is gentler than band_slope (here: anywhere).
     Options slabs = o;
     slabs.params["band_slope"] = 10000;
-    const auto [sn, son, sdrops] = fill_tops(hatch(sample(), slabs));
+    const auto [sn, son, sdrops, sspecks] = fill_tops(hatch(sample(), slabs));
     EXPECT_LT(double(son) / double(sn), 0.04) << son << " of " << sn;
     // The tone: each face's fill and cross ink within 15 % of print's, face by face (large faces).
     const Drawing print = hatch(sample(), sample_options("print"));

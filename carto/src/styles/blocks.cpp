@@ -324,44 +324,56 @@ void trim_curve(Curve& c, double cut, bool back) {
 constexpr double kBandWanderMm = 5.0;
 
 constexpr std::uint64_t kRaggedTag = 0x52414747ULL;
+// In rows, no fill stroke shorter than this many times its width: a shorter one reads as a speck.
+constexpr double kShortestStroke = 2.0;
 
 // Shortens the strokes from their lower ends (down the direction `down`, radians) so that
 // their length is `keep` at most: each by a random share (keyed by its upper end and the
-// seed), the shares scaled together so that the lengths add up to `keep`; a stroke whose
-// share reaches 1 goes.
-void shorten_to_ink(Curves& strokes, double keep, double down) {
-    std::vector<double> len(strokes.curves.size());
+// seed), the shares scaled together so that the lengths add up to `keep`. A stroke that
+// would be left shorter than `shortest` goes whole (a speck, not a stroke), the others
+// taking up the difference.
+void shorten_to_ink(Curves& strokes, double keep, double down, double shortest) {
+    const std::size_t n = strokes.curves.size();
+    std::vector<double> len(n);
     double total = 0;
-    for (std::size_t i = 0; i < len.size(); ++i) {
+    for (std::size_t i = 0; i < n; ++i) {
         const auto& pts = strokes.curves[i].points;
         for (std::size_t k = 1; k < pts.size(); ++k) len[i] += distance(pts[k - 1], pts[k]);
         total += len[i];
     }
     const double remove = total - std::max(keep, 0.0);
-    if (!(remove > 0)) return;
     const Point d{std::cos(down), std::sin(down)};
     const std::uint64_t key = hash_combine(kRaggedTag, GetSeed());
-    std::vector<double> share(len.size());
-    std::vector<char> back(len.size());
-    const double mean = remove / total;
-    for (std::size_t i = 0; i < len.size(); ++i) {
+    std::vector<double> share(n, 0.0);
+    std::vector<char> back(n);
+    const double mean = remove > 0 ? remove / total : 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
         const auto& pts = strokes.curves[i].points;
-        if (pts.size() < 2) continue;
+        if (pts.size() < 2 || len[i] < shortest) {
+            share[i] = 1;
+            continue;
+        }
         back[i] = dot(pts.back() - pts.front(), d) >= 0;  // the last point is the lower
-        const double u = unit_from_hash(hash_point(key, back[i] ? pts.front() : pts.back()));
-        share[i] = std::min(1.0, 2 * mean * u);
+        share[i] = std::min(1.0, 2 * mean * unit_from_hash(hash_point(key, back[i] ? pts.front() : pts.back())));
     }
-    // Scaled until the shares take off `remove` (capped at whole strokes, a few rounds).
-    for (int round = 0; round < 4; ++round) {
-        double taken = 0;
-        for (std::size_t i = 0; i < len.size(); ++i) taken += share[i] * len[i];
-        if (!(taken > 0) || std::abs(taken - remove) <= 1e-9 * total) break;
-        for (double& v : share) v = std::min(1.0, v * remove / taken);
+    // Scaled until the shares take off `remove` (capped at whole strokes, a few rounds); a
+    // stroke left under `shortest` goes.
+    for (int round = 0; round < 4 && remove > 0; ++round) {
+        double taken = 0, partial = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+            if (share[i] < 1 && (1 - share[i]) * len[i] < shortest) share[i] = 1;
+            taken += share[i] * len[i];
+            if (share[i] < 1) partial += share[i] * len[i];
+        }
+        if (!(partial > 0) || std::abs(taken - remove) <= 1e-9 * total) break;
+        const double scale = std::max(0.0, (remove - (taken - partial)) / partial);
+        for (double& v : share)
+            if (v < 1) v = std::min(1.0, v * scale);
     }
     std::vector<Curve> kept;
-    kept.reserve(strokes.curves.size());
-    for (std::size_t i = 0; i < len.size(); ++i) {
-        if (share[i] >= 1 - 1e-9) continue;
+    kept.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        if (share[i] >= 1 - 1e-9 || (1 - share[i]) * len[i] < shortest) continue;
         Curve& c = strokes.curves[i];
         trim_curve(c, share[i] * len[i], back[i]);
         kept.push_back(std::move(c));
@@ -483,7 +495,7 @@ Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const F
             return out;
         }
         Curves hanging = CutAtLevels(fill, levels, band, p.at("band_gap"), 0.5 * mm)(cell);
-        shorten_to_ink(hanging, want * box.area() / wf, theta);
+        shorten_to_ink(hanging, want * box.area() / wf, theta, kShortestStroke * wf);
         out.append(std::move(hanging));
         return out;
     };
