@@ -58,9 +58,15 @@ def run(alg, params, feedback=None):
     return processing.run(alg, params, feedback=feedback or QgsProcessingFeedback())
 
 
+def drawn_layers(ds):
+    """The layers of drawn features: the table of the faces' fingerprints (rockhatch update's,
+    in a whole run's GeoPackage) aside."""
+    return [ds.GetLayer(i) for i in range(ds.GetLayerCount()) if ds.GetLayer(i).GetName() != "rockhatch_faces"]
+
+
 def layer_counts(gpkg):
     ds = ogr.Open(str(gpkg))
-    return {ds.GetLayer(i).GetName(): ds.GetLayer(i).GetFeatureCount() for i in range(ds.GetLayerCount())}
+    return {layer.GetName(): layer.GetFeatureCount() for layer in drawn_layers(ds)}
 
 
 def layer_features(gpkg):
@@ -69,8 +75,7 @@ def layer_features(gpkg):
     more): equal when the hatches are."""
     ds = ogr.Open(str(gpkg))
     out = {}
-    for i in range(ds.GetLayerCount()):
-        layer = ds.GetLayer(i)
+    for layer in drawn_layers(ds):
         name = layer.GetName()
         out[name] = [(f.GetField("face_id"), f.GetGeometryRef().ExportToWkb()) for f in layer]
         rows = ds.ExecuteSQL(f"SELECT family, style, width_mm, count(*) FROM {name} GROUP BY 1, 2, 3 ORDER BY 1, 2, 3")
