@@ -169,10 +169,14 @@ CrestResult
     m.def(
         "restore_faces",
         [](const std::string& path, const std::string& undo) {
-            const FaceReplacement r = restore_faces(path, undo);
+            FaceReplacement r;
+            {
+                const py::gil_scoped_release released;
+                r = restore_faces(path, undo);
+            }
             return py::make_tuple(r.deleted, r.written);
         },
-        py::arg("path"), py::arg("undo"), py::call_guard<py::gil_scoped_release>(),
+        py::arg("path"), py::arg("undo"),
         "undoes the update that wrote `undo` (one transaction); returns (features removed, features written)");
     m.def(
         "read_fingerprints",

@@ -41,6 +41,22 @@ def option(args, name, default=None):
     return args[args.index(name) + 1] if name in args else default
 
 
+def update_file(path, faces=(), reset=False, undo="", progress=None):
+    """carto.update on a hatch GeoPackage with the options of the run that wrote it: redraws
+    the faces whose inputs changed, and `faces` (face ids), or every face with reset."""
+    carto = module.carto()
+    args = run_command(path)
+    if args is None:
+        raise ValueError(f"'{path}' keeps no fingerprints (written by a tiled run or an older version): run "
+                         "Rock hatching again to write them")
+    update = carto.parse_update_command_line(args + ["-q", "-o", path])
+    options = update.command.options
+    options.overwrite = True
+    if update.command.script:
+        options.custom_style = carto.load_style(update.command.script)
+    return carto.update_options(options, progress, reset=reset, faces=faces, undo=undo)
+
+
 class EditLoop:
     """The re-hatching of a project's partition layer into its hatch layers, with an undo
     stack (one entry per re-hatching: the files it changed and their undo files)."""
@@ -84,7 +100,6 @@ class EditLoop:
         file drawn from it, redrawing the faces asked for and every face whose inputs changed;
         returns {file: UpdateReport}. Raises ValueError (nothing changed) when no open hatch
         layer comes from this partition or a hatch layer has unsaved edits of its own."""
-        carto = module.carto()
         files = self.hatch_files(faces)
         if not files:
             raise ValueError(f"no open hatch layer was drawn from the partition of layer '{faces.name()}' (a run "
@@ -99,18 +114,12 @@ class EditLoop:
         asked = {i for i in asked if faces.getFeature(i).isValid()}
         reports, done = {}, []
         try:
-            for path, layers in files.items():
-                args = run_command(path)
-                id_field = option(args, "--id-field")
+            for path in files:
+                id_field = option(run_command(path), "--id-field")
                 ids = sorted(int(faces.getFeature(i)[id_field]) if id_field else i for i in asked)
-                update = carto.parse_update_command_line(args + ["-q", "-o", path])
-                options = update.command.options
-                options.overwrite = True
-                if update.command.script:
-                    options.custom_style = carto.load_style(update.command.script)
                 self.count += 1
                 undo = os.path.join(self.folder, f"undo-{self.count}.gpkg")
-                reports[path] = carto.update_options(options, progress, faces=ids, undo=undo)
+                reports[path] = update_file(path, ids, undo=undo, progress=progress)
                 done.append((path, undo))
         finally:
             if done:
