@@ -17,8 +17,8 @@ os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 os.environ["GDAL_PAM_ENABLED"] = "NO"
 import qgis.core as qgis_core  # noqa: E402  (python3-qgis: scripts/setup.sh installs it)
 
-from conftest import (PYTHON_DIR, ROOT, SANITIZED, finished_tiles, land_cover, partition_with_scree,  # noqa: E402
-                      python_env)
+from conftest import (PYTHON_DIR, ROOT, SANITIZED, features_by_face, finished_tiles, land_cover,  # noqa: E402
+                      partition_with_scree, python_env)
 from osgeo import gdal, ogr  # noqa: E402
 
 from qgis.core import (QgsApplication, QgsProcessingException, QgsProcessingFeedback, QgsProject,  # noqa: E402
@@ -727,21 +727,6 @@ def test_qgis_process_runs_rock_hatching(sample_dir, reference, tmp_path):
 
 
 # ---- the edit loop: re-hatching faces in place (edit_loop.py, rockhatch update)
-
-
-def features_by_face(gpkg):
-    """{face id: sorted (layer, family, style, width, GeoPackage geometry blob)}: the bytes of
-    every hatch feature of the file, fids aside."""
-    import sqlite3
-    con = sqlite3.connect(str(gpkg))
-    out = {}
-    try:
-        for (name,) in con.execute("SELECT table_name FROM gpkg_contents WHERE table_name LIKE 'hatch_%'"):
-            for row in con.execute(f'SELECT face_id, family, style, width_mm, geom FROM "{name}"'):
-                out.setdefault(row[0], []).append((name,) + row[1:])
-    finally:
-        con.close()
-    return {face: sorted(rows) for face, rows in out.items()}
 
 
 def hatch_layers_of(gpkg, project):
