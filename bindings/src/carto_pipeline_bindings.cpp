@@ -310,6 +310,11 @@ void add_tile_bindings(py::module_& m) {
     m.def("tile_grid", &tile_grid, py::arg("dem"), py::arg("size"),
           "square tiles of side `size` covering the DEM from its north-west corner, row by row (outer tiles reach "
           "beyond it)");
+    m.def("tile_context_margin", &tile_context_margin, py::arg("plan"), py::arg("cell"),
+          "how far (ground units) around a face the faces and lines its drawing reads reach (a tile's context, "
+          "a face's fingerprint)");
+    m.def("tile_halo_cells", &tile_halo_cells, py::arg("plan"), py::arg("cell"),
+          "the DEM cells read around that margin (the relief radius or the style's reach)");
     m.def("check_tiled_rasters", &check_tiled_rasters, py::arg("options"),
           "refuses a --slope or --roughness raster a tile cannot read as the whole run does (another grid in "
           "another CRS than the DEM's working CRS)");

@@ -99,12 +99,55 @@ Digest face_digest(const Partition& part, const RockFace& f) {
     return d;
 }
 
-Digest line_digest(const LabelledLine& l) {
+// Whether a segment's box meets a box.
+bool meets(const Point& a, const Point& b, const tex::BBox& box) {
+    return std::max(a.x, b.x) >= box.xmin && std::min(a.x, b.x) <= box.xmax && std::max(a.y, b.y) >= box.ymin &&
+           std::min(a.y, b.y) <= box.ymax;
+}
+
+// What a face's drawing can read of another face within its box: the other face's id and
+// controls, its border segments (with labels and the face across) that come into the box,
+// and whether each corner of the box lies in it. Inside the box, the other face is fixed by
+// these (a point of the box is in it by the parity of the segments between the point and a
+// corner), so an edit of its far parts does not redraw this face.
+// A face that does not come into the box (no segment, no corner in it) adds nothing.
+void add_face_within(Digest& digest, const Partition& part, const RockFace& f, const tex::BBox& box) {
     Digest d;
+    bool inside = false;
+    for (const BoundarySegment& s : f.boundary)
+        if (meets(s.a, s.b, box)) {
+            inside = true;
+            d.add(s.a);
+            d.add(s.b);
+            d.add(int(s.kind));
+            d.add(s.neighbor >= 0 && std::size_t(s.neighbor) < part.faces.size() ? part.faces[std::size_t(s.neighbor)].id
+                                                                                  : std::int64_t(-1));
+        }
+    for (const Point& corner : {Point{box.xmin, box.ymin}, Point{box.xmax, box.ymin}, Point{box.xmax, box.ymax},
+                                Point{box.xmin, box.ymax}}) {
+        const bool in = f.region.contains(corner);
+        inside = inside || in;
+        d.add(int(in));
+    }
+    if (!inside) return;
+    digest.add(f.id);
+    digest.add(int(f.orientation.has_value()));
+    digest.add(f.orientation.value_or(0.0));
+    digest.add(int(f.density.has_value()));
+    digest.add(f.density.value_or(0.0));
+    digest.add(d);
+}
+
+// A labelled line's segments that come into the box (lines label the faces' borders, within
+// the snap of them).
+void add_line_within(Digest& d, const LabelledLine& l, const tex::BBox& box) {
     d.add(int(l.kind));
-    d.add(std::uint64_t(l.points.size()));
-    for (const Point& q : l.points) d.add(q);
-    return d;
+    for (std::size_t i = 0; i + 1 < l.points.size(); ++i)
+        if (meets(l.points[i], l.points[i + 1], box)) {
+            d.add(std::uint64_t(i));
+            d.add(l.points[i]);
+            d.add(l.points[i + 1]);
+        }
 }
 
 // The digests of a raster's blocks of kBlock x kBlock cells (NoData as one value).
@@ -322,9 +365,7 @@ Fingerprints face_fingerprints(const Plan& plan, const Partition& part, const Ra
         line_boxes.push_back(b);
     }
     const BoxIndex face_index(face_boxes, std::max(margin, cell)), line_index(line_boxes, std::max(margin, cell));
-    std::vector<Digest> faces(part.faces.size()), lines(part.lines.size());
-    tex::parallel_for(faces.size(), [&](std::size_t i) { faces[i] = face_digest(part, part.faces[i]); });
-    tex::parallel_for(lines.size(), [&](std::size_t i) { lines[i] = line_digest(part.lines[i]); });
+
     const BlockDigests dem_blocks(dem);
     std::optional<BlockDigests> slope_blocks, roughness_blocks;
     if (slope) slope_blocks.emplace(*slope);
@@ -337,10 +378,11 @@ Fingerprints face_fingerprints(const Plan& plan, const Partition& part, const Ra
         const tex::BBox box = f.region.bbox().expanded(margin);
         Digest d;
         d.add(plan_digest);
-        d.add(faces[std::size_t(drawn[k])]);
-        for (int j : face_index.find(box)) d.add(faces[std::size_t(j)]);
+        d.add(face_digest(part, f));
+        for (int j : face_index.find(box))
+            if (j != drawn[k]) add_face_within(d, part, part.faces[std::size_t(j)], box);
         d.add(std::uint64_t(0xfeedULL));
-        for (int j : line_index.find(box)) d.add(lines[std::size_t(j)]);
+        for (int j : line_index.find(box)) add_line_within(d, part.lines[std::size_t(j)], box);
         add_blocks(d, dem, dem_blocks, box, halo);
         if (slope) add_blocks(d, *slope, *slope_blocks, box, halo);
         if (roughness) add_blocks(d, *roughness, *roughness_blocks, box, halo);

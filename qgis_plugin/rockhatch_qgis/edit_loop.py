@@ -61,6 +61,9 @@ class EditLoop:
     """The re-hatching of a project's partition layer into its hatch layers, with an undo
     stack (one entry per re-hatching: the files it changed and their undo files)."""
 
+    # Re-hatchings that can be undone, the last ones (each keeps the features it replaced).
+    MAX_UNDO = 20
+
     def __init__(self, project=None, canvas=None):
         self.project = project or QgsProject.instance()
         self.canvas = canvas
@@ -124,6 +127,9 @@ class EditLoop:
         finally:
             if done:
                 self.undo_stack.append(done)
+            while len(self.undo_stack) > self.MAX_UNDO:
+                for _, undo in self.undo_stack.pop(0):
+                    os.remove(undo)
             self.reload(files)
         return reports
 

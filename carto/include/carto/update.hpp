@@ -6,9 +6,11 @@
 // A face's fingerprint is a digest (128 bits, not cryptographic) of:
 // - the run's plan: program version, working CRS, the DEM's grid, the style (and the bytes of
 //   its script), its parameters, scale, seed, relief radius, the partition's options;
-// - the faces and labelled lines whose box meets the face's box grown by the context margin
-//   (tile_context_margin: the style's reach, the terrain kernels, the snap), as read:
-//   geometry, labels and neighbours of the borders, ids, orientation, density, anchor;
+// - the face as read (rings, labelled borders and the faces across, id, orientation,
+//   density, anchor), and within its box grown by the context margin (tile_context_margin:
+//   the style's reach, the terrain kernels, the snap) what the other faces and the labelled
+//   lines put there: their border segments in that box, with labels and the faces across,
+//   whether each corner of the box lies in them, their ids and controls;
 // - the DEM cells (and the --slope / --roughness cells) within that box grown by the halo
 //   (tile_halo_cells: the relief radius or the style's reach), in blocks of 8 x 8 cells.
 // These are the inputs a tile of a tiled run reads to draw a face exactly as the whole run
