@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """The re-hatching action in a real QGIS map canvas, headless: the sample hatched by the
-command, its faces and hatch layers in a project, one face's border moved in the faces'
-edit buffer and the face selected, the toolbar's action run (edit_loop.EditLoop with the
-canvas), the canvas saved before and after, side by side.
+command, its faces and hatch layers in a project, one face's density changed in the faces'
+edit buffer, the toolbar's action run (edit_loop.EditLoop with the canvas), the canvas saved
+before and after, side by side.
 
     QT_QPA_PLATFORM=offscreen /usr/bin/python3 qgis_plugin/render_edit_loop.py OUT.png
 
@@ -30,6 +30,7 @@ from qgis.PyQt.QtCore import QEventLoop, QSize, QTimer  # noqa: E402
 from qgis.PyQt.QtGui import QColor, QFont, QImage, QPainter  # noqa: E402
 
 FACE = 7
+STYLE = "bidirectional"
 
 
 def grab(canvas):
@@ -54,8 +55,9 @@ def main():
     work = pathlib.Path(tempfile.mkdtemp(prefix="rockhatch_edit_loop_"))
     part, out = work / "partition.gpkg", work / "hatches.gpkg"
     shutil.copy(SAMPLE / "partition.gpkg", part)
+    # A style that hatches by the faces' density (the default, rock, follows the shade).
     subprocess.run([str(BUILD / "carto" / "rockhatch"), "-q", "--dem", str(SAMPLE / "dem.tif"), "--partition",
-                    str(part), "-o", str(out)], check=True)
+                    str(part), "--style", STYLE, "-o", str(out)], check=True)
     project = QgsProject.instance()
     faces = QgsVectorLayer(f"{part}|layername=faces", "faces", "ogr")
     faces.setRenderer(faces.renderer().clone())
@@ -80,14 +82,10 @@ def main():
     canvas.show()
     before = grab(canvas)
 
-    # The face's border moved 60 m in the edit buffer, the face selected, the action run.
+    # The face's density raised in the edit buffer (0 light .. 1 dark), the action run.
     faces.startEditing()
-    geom = faces.getFeature(FACE).geometry()
-    ring = geom.asPolygon()[0]
-    k = len(ring) // 2
-    geom.moveVertex(ring[k].x() + 60, ring[k].y() - 40, k)
-    faces.changeGeometry(FACE, geom)
-    faces.selectByIds([FACE])
+    density = faces.getFeature(FACE)["density"]
+    faces.changeAttributeValue(FACE, faces.fields().indexOf("density"), 0.9)
     loop = EditLoop(project, canvas)
     reports = loop.rehatch(faces)
     report = next(iter(reports.values()))
@@ -99,8 +97,9 @@ def main():
     painter.drawImage(0, 40, before)
     painter.drawImage(before.width() + 10, 40, after)
     painter.setFont(QFont("DejaVu Sans", 13))
-    painter.drawText(10, 26, f"before: face {FACE} as drawn")
-    painter.drawText(before.width() + 20, 26, f"after: its border moved, re-hatched ({report.redrawn} faces redrawn)")
+    painter.drawText(10, 26, f"before: face {FACE} (the middle triangle), style {STYLE}")
+    painter.drawText(before.width() + 20, 26, f"after: density {density:g} -> 0.9, re-hatched ({report.redrawn} faces "
+                                              "redrawn)")
     painter.end()
     image.save(out_png)
     print(f"{out_png}: {image.width()} x {image.height()} px; {report.redrawn} faces redrawn "

@@ -249,7 +249,7 @@ def hatched(w, fingerprints=True):
         folder = pathlib.Path(tempfile.mkdtemp(prefix="rh_bad_update_"))
         path = folder / "h.gpkg"
         subprocess.run([str(build / "carto" / "rockhatch"), "-q", "--dem", SAMPLE / "dem.tif", "--partition",
-                        SAMPLE / "partition.gpkg", "-o", path], check=True)
+                        SAMPLE / "partition.gpkg", "-o", path], check=True, capture_output=True)
         if not fingerprints:
             ds = ogr.Open(str(path), 1)
             ds.DeleteLayer("rockhatch_faces")
@@ -262,7 +262,7 @@ def hatched(w, fingerprints=True):
 
 def upd(w, *extra, o=None):
     """rockhatch update on the sample (the copied partition: the same faces as the file's run)."""
-    return ["-q", "--dem", dem(w), "--partition", SAMPLE / "partition.gpkg", *extra, "-o", o or hatched(w)]
+    return ["-q", "--dem", dem(w), "--partition", part(w), *extra, "-o", o or hatched(w)]
 
 
 RH = "rockhatch"
