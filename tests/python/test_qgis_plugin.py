@@ -806,6 +806,16 @@ def test_rehatch_action_redraws_the_edited_and_selected_faces_and_undo_puts_them
         assert features_by_face(out) == {f: (full[f] if f in changed else before[f]) for f in full}
         result = run("rockhatch:updatehatching", {"HATCHES": str(out), "FACES": "3"})
         assert result["REDRAWN"] == 1 and features_by_face(out) == full
+        # The hatch layers stay editable in QGIS after updates: a feature deleted there and saved.
+        fill = next(layer for layer in hatches if layer.name() == "hatch_fill")
+        fill.reload()
+        count = fill.featureCount()
+        assert fill.startEditing()
+        assert fill.deleteFeature(next(fill.getFeatures()).id())
+        with pytest.raises(ValueError, match="unsaved edits"):  # re-hatching waits for them
+            loop.rehatch(faces)
+        assert fill.commitChanges(), fill.commitErrors()
+        assert layer_counts(out)["hatch_fill"] == count - 1
         assert subprocess.run([sys.executable, "/usr/lib/python3/dist-packages/osgeo_utils/samples/validate_gpkg.py",
                                str(out)], capture_output=True).returncode == 0
     finally:

@@ -125,3 +125,62 @@ def test_an_update_killed_while_writing_leaves_the_file_as_it_was(sample_dir, ed
     assert features_by_face(out) == before  # rolled back when next opened
     assert fingerprints(out) == prints
     assert valid(out)
+
+
+def test_a_moved_ridge_line_redraws_exactly_the_faces_it_reaches(rockhatch_exe, sample_dir, tmp_path):
+    from rockhatch import carto
+    part = tmp_path / "partition.gpkg"
+    shutil.copy(sample_dir / "partition.gpkg", part)
+    out = tmp_path / "h.gpkg"
+    carto.run(sample_dir / "dem.tif", part, [out])
+    # The middle vertex of ridge line 3 moved 12 m: its two segments before and after.
+    ds = ogr.Open(str(part), 1)
+    lines = ds.GetLayerByName("lines")
+    f = lines.GetFeature(3)
+    assert f.GetField("kind") == "ridge"
+    g = f.GetGeometryRef()
+    k = g.GetPointCount() // 2
+    moved = [(g.GetX(i), g.GetY(i)) for i in (k - 1, k, k + 1)]
+    g.SetPoint_2D(k, g.GetX(k) + 12.0, g.GetY(k))
+    moved.append((g.GetX(k), g.GetY(k)))
+    f.SetGeometry(g)
+    lines.SetFeature(f)
+    ds = None
+    plan = carto.make_plan(carto.make_options(sample_dir / "dem.tif", part, [out], overwrite=True))
+    gt = carto.working_grid(carto.raster_info(str(sample_dir / "dem.tif"))).grid.geotransform
+    margin = carto.tile_context_margin(plan, min(abs(gt[1]), abs(gt[5])))
+    xs, ys = [p[0] for p in moved], [p[1] for p in moved]
+    reached = set()
+    ds = ogr.Open(str(part))
+    for face in ds.GetLayerByName("faces"):
+        x0, x1, y0, y1 = face.GetGeometryRef().GetEnvelope()
+        if x0 - margin <= max(xs) and min(xs) <= x1 + margin and y0 - margin <= max(ys) and min(ys) <= y1 + margin:
+            reached.add(face.GetFID())
+    ds = None
+    report = carto.update(sample_dir / "dem.tif", part, [out])
+    assert set(report.redrawn_ids) == reached and 0 < len(reached) < 20
+    assert fingerprints(out) == fingerprints_of_a_run(sample_dir, part, tmp_path)
+
+
+def fingerprints_of_a_run(sample_dir, part, tmp_path):
+    from rockhatch import carto
+    carto.run(sample_dir / "dem.tif", part, [tmp_path / "whole.gpkg"], overwrite=True)
+    return fingerprints(tmp_path / "whole.gpkg")
+
+
+@pytest.mark.parametrize("key, value, words", [("RH_RUN_VERSION", "0.0.9", "program version 0.0.9"),
+                                               ("RH_RUN_CRS", "EPSG:32632", "CRS EPSG:32632")])
+def test_another_version_or_crs_is_refused_unless_reset(rockhatch_exe, sample_dir, tmp_path, key, value, words):
+    out = tmp_path / "h.gpkg"
+    args = ["-q", "--dem", str(sample_dir / "dem.tif"), "--partition", str(sample_dir / "partition.gpkg")]
+    subprocess.run([str(rockhatch_exe), *args, "-o", str(out)], check=True)
+    ds = ogr.Open(str(out), 1)
+    ds.SetMetadataItem(key, value)
+    ds = None
+    before = out.read_bytes()
+    r = subprocess.run([str(rockhatch_exe), "update", *args, "-o", str(out)], capture_output=True, text=True)
+    assert r.returncode == 2 and words in r.stderr and "--reset" in r.stderr, r.stderr
+    assert out.read_bytes() == before
+    r = subprocess.run([str(rockhatch_exe), "update", "--reset", *args, "-o", str(out)], capture_output=True, text=True)
+    assert r.returncode == 0 and "20 redrawn" in r.stderr, r.stderr
+    assert ogr.Open(str(out)).GetMetadataItem(key) != value and valid(out)
