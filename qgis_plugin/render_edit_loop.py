@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """The re-hatching action in a real QGIS map canvas, headless: the sample hatched by the
 command, its faces and hatch layers in a project, one face's density changed in the faces'
-edit buffer, the toolbar's action run (edit_loop.EditLoop with the canvas), the canvas saved
-before and after, side by side.
+edit buffer, the plugin's toolbar action triggered (its initGui run on a stand-in for QGIS's
+window, with the real canvas), the canvas saved before and after, side by side.
 
     QT_QPA_PLATFORM=offscreen /usr/bin/python3 qgis_plugin/render_edit_loop.py OUT.png
 
@@ -44,13 +44,46 @@ def grab(canvas):
     return canvas.grab().toImage()
 
 
+class Iface:
+    """What the plugin asks of QGIS's window (QgisInterface): a main window, a toolbar, the
+    Plugins menu, the message bar, the canvas and the active layer."""
+
+    def __init__(self, canvas, layer):
+        from qgis.PyQt.QtWidgets import QMainWindow
+        self.window, self.canvas, self.layer, self.messages = QMainWindow(), canvas, layer, []
+
+    def mainWindow(self):  # noqa: N802 (QGIS's names)
+        return self.window
+
+    def addToolBar(self, name):  # noqa: N802
+        return self.window.addToolBar(name)
+
+    def addPluginToMenu(self, menu, action):  # noqa: N802
+        pass
+
+    def removePluginMenu(self, menu, action):  # noqa: N802
+        pass
+
+    def mapCanvas(self):  # noqa: N802
+        return self.canvas
+
+    def activeLayer(self):  # noqa: N802
+        return self.layer
+
+    def messageBar(self):  # noqa: N802
+        return self
+
+    def pushMessage(self, title, text, level=0, duration=0):  # noqa: N802
+        self.messages.append(f"{title}: {text}")
+
+
 def main():
     out_png = sys.argv[1]
     QgsApplication.setPrefixPath("/usr", True)
     app = QgsApplication([], True)
     app.initQgis()
     from rockhatch_qgis.algorithms.rock_hatching import FAMILIES, hatch_renderer
-    from rockhatch_qgis.edit_loop import EditLoop
+    from rockhatch_qgis.plugin import RockhatchPlugin
 
     work = pathlib.Path(tempfile.mkdtemp(prefix="rockhatch_edit_loop_"))
     part, out = work / "partition.gpkg", work / "hatches.gpkg"
@@ -86,10 +119,15 @@ def main():
     faces.startEditing()
     density = faces.getFeature(FACE)["density"]
     faces.changeAttributeValue(FACE, faces.fields().indexOf("density"), 0.9)
-    loop = EditLoop(project, canvas)
-    reports = loop.rehatch(faces)
-    report = next(iter(reports.values()))
+    # The toolbar's action, as QGIS would trigger it, through the plugin's own initGui.
+    plugin = RockhatchPlugin(Iface(canvas, faces))
+    plugin.initGui()
+    rehatch = next(a for a in plugin.actions if a.text().startswith("Re-hatch"))
+    rehatch.trigger()
     after = grab(canvas)
+    assert plugin.loop.last, plugin.iface.messages
+    report = next(iter(plugin.loop.last.values()))
+    print("message bar:", "; ".join(plugin.iface.messages))
 
     image = QImage(before.width() * 2 + 10, before.height() + 40, QImage.Format_RGB32)
     image.fill(QColor("white"))

@@ -70,6 +70,7 @@ class EditLoop:
         self.undo_stack = []
         self.folder = tempfile.mkdtemp(prefix="rockhatch_undo_")
         self.count = 0
+        self.last = {}  # the last re-hatching's {file: UpdateReport}
 
     def hatch_files(self, faces):
         """{hatch GeoPackage: [its open layers]} of the files drawn from the partition layer's file."""
@@ -125,6 +126,7 @@ class EditLoop:
                 reports[path] = update_file(path, ids, undo=undo, progress=progress)
                 done.append((path, undo))
         finally:
+            self.last = reports
             if done:
                 self.undo_stack.append(done)
             while len(self.undo_stack) > self.MAX_UNDO:
