@@ -101,7 +101,11 @@ int main(int argc, char** argv) {
             return 0;
         }
         if (!cl.script.empty()) {
-            carto::check_files(cl.options);  // before Python starts: never write onto an input
+            // Before Python starts: never write onto an input (update's outputs exist: they are
+            // the files it updates).
+            carto::Options checked = cl.options;
+            checked.overwrite = checked.overwrite || update;
+            carto::check_files(checked);
             return run_script(argv);
         }
         bar = carto::ProgressBar(!cl.quiet);

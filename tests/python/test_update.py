@@ -184,3 +184,25 @@ def test_another_version_or_crs_is_refused_unless_reset(rockhatch_exe, sample_di
     r = subprocess.run([str(rockhatch_exe), "update", "--reset", *args, "-o", str(out)], capture_output=True, text=True)
     assert r.returncode == 0 and "20 redrawn" in r.stderr, r.stderr
     assert ogr.Open(str(out)).GetMetadataItem(key) != value and valid(out)
+
+
+def test_update_with_a_style_script(rockhatch_exe, sample_dir, tmp_path):
+    """--script: the command hands over to Python (python3 -m rockhatch update), which updates
+    with the script's style; the script's bytes are part of the fingerprints."""
+    from conftest import STYLES
+    script = tmp_path / "noisy.py"
+    shutil.copy(STYLES / "noisy.py", script)
+    args = ["-q", "--script", str(script), "--dem", str(sample_dir / "dem.tif"), "--partition",
+            str(sample_dir / "partition.gpkg")]
+    out = tmp_path / "s.gpkg"
+    subprocess.run([str(rockhatch_exe), *args, "-o", str(out)], check=True, capture_output=True)
+    before = features_by_face(out)
+    r = subprocess.run([str(rockhatch_exe), "update", *args, "--face", "3", "-o", str(out)],
+                       capture_output=True, text=True)
+    assert r.returncode == 0 and "20 faces, 1 redrawn" in r.stderr, r.stderr
+    assert features_by_face(out) == before
+    # An edit of the script (a comment) changes every fingerprint: every face is redrawn.
+    script.write_text(script.read_text() + "\n# edited\n")
+    r = subprocess.run([str(rockhatch_exe), "update", *args, "-o", str(out)], capture_output=True, text=True)
+    assert r.returncode == 0 and "20 faces, 20 redrawn" in r.stderr, r.stderr
+    assert features_by_face(out) == before

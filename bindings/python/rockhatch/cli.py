@@ -35,6 +35,8 @@ def main(argv=None, style=None):
             sys.stdout.write(carto.styles_text())
             return 0
         options = cl.options
+        if update:
+            options.overwrite = True  # the outputs are the files to update
         chosen = style if style is not None else (cl.script or None)
         if chosen is not None:
             if options.style:
@@ -44,7 +46,6 @@ def main(argv=None, style=None):
             options.custom_style = carto.as_style(chosen) if not isinstance(chosen, str) else carto.load_style(chosen)
         bar = carto.ProgressBar(not cl.quiet)
         if update:
-            options.overwrite = True  # the outputs are the files to update
             r = carto.update_options(options, bar, reset=u.reset, faces=u.faces)
             bar.finish()
             sys.stderr.write("rockhatch update: %d faces, %d redrawn (%d new), %d removed; features: %d removed, "
