@@ -8,7 +8,9 @@ one fingerprint per face and the options of the run that wrote it (metadata item
 RH_RUN_COMMAND), so a face whose inputs changed is redrawn even when it is not selected,
 and the features of every other face (hand edits included) stay as they are.
 """
+import atexit
 import os
+import shutil
 import tempfile
 
 from osgeo import ogr
@@ -69,6 +71,7 @@ class EditLoop:
         self.canvas = canvas
         self.undo_stack = []
         self.folder = tempfile.mkdtemp(prefix="rockhatch_undo_")
+        atexit.register(shutil.rmtree, self.folder, True)  # the undo files go with the session
         self.count = 0
         self.last = {}  # the last re-hatching's {file: UpdateReport}
 

@@ -11,6 +11,7 @@ that folder must be empty and every input unchanged.
 """
 from __future__ import annotations
 
+import atexit
 import dataclasses
 import pathlib
 import os
@@ -247,6 +248,7 @@ def hatched(w, fingerprints=True):
     if key not in _HATCHED:
         build = pathlib.Path(os.environ.get("RH_BUILD_DIR", ROOT / "build"))
         folder = pathlib.Path(tempfile.mkdtemp(prefix="rh_bad_update_"))
+        atexit.register(shutil.rmtree, folder, True)
         path = folder / "h.gpkg"
         subprocess.run([str(build / "carto" / "rockhatch"), "-q", "--dem", SAMPLE / "dem.tif", "--partition",
                         SAMPLE / "partition.gpkg", "-o", path], check=True, capture_output=True)
