@@ -18,6 +18,13 @@ void add_cli_bindings(py::module_& m) {
         .def_readonly("list_styles", &CommandLine::list_styles)
         .def_readonly("help", &CommandLine::help);
     m.def("parse_command_line", &parse_command_line, py::arg("args"), "the rockhatch option table");
+    py::class_<UpdateCommandLine>(m, "UpdateCommandLine")
+        .def_readonly("command", &UpdateCommandLine::command)
+        .def_readonly("reset", &UpdateCommandLine::reset)
+        .def_readonly("faces", &UpdateCommandLine::faces);
+    m.def("parse_update_command_line", &parse_update_command_line, py::arg("args"),
+          "rockhatch update's command line: the rockhatch option table, --reset and --face ID");
+    m.def("update_help_text", &update_help_text);
     py::class_<ProgressBar>(m, "ProgressBar",
                             "The progress bar of the rockhatch command on standard error; as a progress callback it "
                             "never cancels")

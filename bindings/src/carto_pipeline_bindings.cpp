@@ -7,6 +7,7 @@
 #include "carto/plan.hpp"
 #include "carto/raster.hpp"
 #include "carto/tiles.hpp"
+#include "carto/update.hpp"
 #include "carto_bindings.hpp"
 
 namespace rhpy {
@@ -143,6 +144,50 @@ CrestResult
         "run", [](const Options& o, const py::object& cb) { return run(o, to_progress(cb)); }, py::arg("options"),
         py::arg("progress") = py::none(), py::call_guard<py::gil_scoped_release>(),
         "everything the rockhatch command does: make the plan, prepare, hatch, write");
+    py::class_<UpdateReport>(m, "UpdateReport", "What rockhatch update redrew and rewrote")
+        .def_readonly("faces", &UpdateReport::faces, "faces of the plan")
+        .def_readonly("redrawn", &UpdateReport::redrawn, "faces drawn again (changed, new, asked for)")
+        .def_readonly("appeared", &UpdateReport::appeared, "of which new")
+        .def_readonly("removed", &UpdateReport::removed, "faces gone, their features removed")
+        .def_readonly("deleted", &UpdateReport::deleted, "features removed")
+        .def_readonly("written", &UpdateReport::written, "features written")
+        .def_readonly("kept", &UpdateReport::kept, "features of redrawn faces drawn again as they were, left in place")
+        .def_readonly("redrawn_ids", &UpdateReport::redrawn_ids)
+        .def_readonly("removed_ids", &UpdateReport::removed_ids)
+        .def_readonly("seconds", &UpdateReport::seconds)
+        .def_readonly("crs", &UpdateReport::crs)
+        .def_readonly("notes", &UpdateReport::notes);
+    m.def(
+        "update",
+        [](const Options& o, bool reset, const std::vector<std::int64_t>& faces, const std::string& undo,
+           const py::object& cb) { return update(o, UpdateOptions{reset, faces, undo}, to_progress(cb)); },
+        py::arg("options"), py::arg("reset") = false, py::arg("faces") = std::vector<std::int64_t>{},
+        py::arg("undo") = "", py::arg("progress") = py::none(), py::call_guard<py::gil_scoped_release>(),
+        "rockhatch update: redraws the faces whose fingerprint changed (or `faces`, or every face with reset) "
+        "in the options' GeoPackage output, in one transaction; with `undo`, what it replaces is written "
+        "there first (restore_faces)");
+    m.def(
+        "restore_faces",
+        [](const std::string& path, const std::string& undo) {
+            FaceReplacement r;
+            {
+                const py::gil_scoped_release released;
+                r = restore_faces(path, undo);
+            }
+            return py::make_tuple(r.deleted, r.written);
+        },
+        py::arg("path"), py::arg("undo"),
+        "undoes the update that wrote `undo` (one transaction); returns (features removed, features written)");
+    m.def(
+        "read_fingerprints",
+        [](const std::string& path) -> py::object {
+            const auto fp = read_fingerprints(path, "hatches");
+            if (!fp) return py::none();
+            py::dict faces;
+            for (const auto& [id, f] : fp->faces) faces[py::int_(id)] = f;
+            return py::make_tuple(fp->run, faces);
+        },
+        py::arg("path"), "(run metadata, {face id: fingerprint}) a hatch GeoPackage keeps, or None");
 }
 
 // The outputs: the writers (GeoPackage, SVG, PNG), reading a drawing back, and the checks
@@ -265,6 +310,11 @@ void add_tile_bindings(py::module_& m) {
     m.def("tile_grid", &tile_grid, py::arg("dem"), py::arg("size"),
           "square tiles of side `size` covering the DEM from its north-west corner, row by row (outer tiles reach "
           "beyond it)");
+    m.def("tile_context_margin", &tile_context_margin, py::arg("plan"), py::arg("cell"),
+          "how far (ground units) around a face the faces and lines its drawing reads reach (a tile's context, "
+          "a face's fingerprint)");
+    m.def("tile_halo_cells", &tile_halo_cells, py::arg("plan"), py::arg("cell"),
+          "the DEM cells read around that margin (the relief radius or the style's reach)");
     m.def("check_tiled_rasters", &check_tiled_rasters, py::arg("options"),
           "refuses a --slope or --roughness raster a tile cannot read as the whole run does (another grid in "
           "another CRS than the DEM's working CRS)");

@@ -55,7 +55,9 @@ std::string man_page(const std::string& version) {
       << ".B rockhatch partition\n\\-\\-dem \\fIDEM\\fR \\-o \\fIFACES\\fR.gpkg [\\fIoptions\\fR]\n.br\n"
       << ".B rockhatch tiles\n[\\fIthe options above\\fR] \\-\\-tile\\-size \\fIM\\fR [\\-\\-scheduler \\fIADDRESS\\fR] "
          "\\-o \\fIOUT\\fR.gpkg\n.br\n"
-      << ".B rockhatch serve\n\\fIDIR\\fR [\\-\\-port \\fIN\\fR] [\\-\\-dem \\fIDEM\\fR]\n"
+      << ".B rockhatch serve\n\\fIDIR\\fR [\\-\\-port \\fIN\\fR] [\\-\\-dem \\fIDEM\\fR]\n.br\n"
+      << ".B rockhatch update\n[\\-\\-reset] [\\-\\-face \\fIID\\fR]... [\\fIthe options of the run\\fR] "
+         "\\-o \\fIOUT\\fR.gpkg\n"
       << ".SH DESCRIPTION\n"
       << roff("Draws rock hatching from a DEM and a partition of the rock areas whose borders are labelled ridge, "
               "valley, cliff or other (the partition can be extracted from the DEM with --partition auto or "
@@ -64,7 +66,9 @@ std::string man_page(const std::string& version) {
               "an SVG at true scale, a PNG preview. The same inputs and seed give the same bytes whatever the "
               "thread count or the tiling. rockhatch tiles runs the same drawing tile by tile on Dask "
               "distributed (see rockhatch tiles --help); rockhatch serve shows the drawing's vector tiles "
-              "(MBTiles) on a web map page (see rockhatch serve --help).")
+              "(MBTiles) on a web map page (see rockhatch serve --help). rockhatch update redraws, in the "
+              "GeoPackage a run wrote, only the faces whose inputs changed since, keeping every other feature "
+              "(see ROCKHATCH UPDATE).")
       << ".SH OPTIONS\n";
     for (const auto& o : carto::option_table()) {
         m << ".TP\n.B " << dashes(o.name);
@@ -76,6 +80,7 @@ std::string man_page(const std::string& version) {
               "degrees; set them with --param NAME=VALUE.")
       << ".PP\n.nf\n" << roff(carto::styles_text()) << ".fi\n"
       << ".SH \"ROCKHATCH PARTITION\"\n.nf\n" << roff(partition_usage()) << ".fi\n"
+      << ".SH \"ROCKHATCH UPDATE\"\n.nf\n" << roff(carto::update_help_text()) << ".fi\n"
       << ".SH \"EXIT STATUS\"\n" << roff(carto::exit_codes_text())
       << ".SH FILES\n.TP\n.I share/rockhatch/data/sample_montblanc\n"
          "a DEM and a hand-drawn partition to try the command on\n"
@@ -100,6 +105,8 @@ std::string completion() {
     }
     for (const auto& s : carto::styles()) styles.push_back(s.name);
     const std::vector<std::string> part = usage_options(partition_usage());
+    std::vector<std::string> update;
+    for (const auto& o : carto::update_option_table()) update.push_back(o.name);
     std::string file_case;
     for (const auto& f : files) file_case += (file_case.empty() ? "" : "|") + f;
     std::ostringstream c;
@@ -113,7 +120,9 @@ std::string completion() {
       << "  if [ \"${COMP_WORDS[1]}\" = partition ]; then\n"
       << "    COMPREPLY=($(compgen -W \"" << join(part) << "\" -- \"$cur\"))\n"
       << "  elif [ \"$COMP_CWORD\" -eq 1 ]; then\n"
-      << "    COMPREPLY=($(compgen -W \"partition tiles serve " << join(all) << "\" -- \"$cur\"))\n"
+      << "    COMPREPLY=($(compgen -W \"partition tiles serve update " << join(all) << "\" -- \"$cur\"))\n"
+      << "  elif [ \"${COMP_WORDS[1]}\" = update ]; then\n"
+      << "    COMPREPLY=($(compgen -W \"" << join(update) << " " << join(all) << "\" -- \"$cur\"))\n"
       << "  else\n"
       << "    COMPREPLY=($(compgen -W \"" << join(all) << "\" -- \"$cur\"))\n"
       << "  fi\n"

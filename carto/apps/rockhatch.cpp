@@ -22,6 +22,7 @@
 #include "carto/error.hpp"
 #include "carto/pipeline.hpp"
 #include "carto/progress.hpp"
+#include "carto/update.hpp"
 
 namespace {
 
@@ -81,11 +82,18 @@ int main(int argc, char** argv) {
     if (argc > 1 && std::string(argv[1]) == "tiles") return run_script(argv);
     // The web map page over vector tiles (rockhatch.serve): `python3 -m rockhatch serve DIR`.
     if (argc > 1 && std::string(argv[1]) == "serve") return run_script(argv);
+    // Redraws the faces whose inputs changed (carto/update.hpp): the run's options and its own.
+    const bool update = argc > 1 && std::string(argv[1]) == "update";
+    const char* prog = update ? "rockhatch update" : "rockhatch";
     carto::ProgressBar bar(false);
     try {
-        const carto::CommandLine cl = carto::parse_command_line(std::vector<std::string>(argv + 1, argv + argc));
+        const std::vector<std::string> args(argv + 1 + update, argv + argc);
+        carto::UpdateCommandLine u;
+        if (update) u = carto::parse_update_command_line(args);
+        else u.command = carto::parse_command_line(args);
+        const carto::CommandLine& cl = u.command;
         if (cl.help) {
-            std::cout << carto::help_text();
+            std::cout << (update ? carto::update_help_text() : carto::help_text());
             return 0;
         }
         if (cl.list_styles) {
@@ -93,11 +101,27 @@ int main(int argc, char** argv) {
             return 0;
         }
         if (!cl.script.empty()) {
-            carto::check_files(cl.options);  // before Python starts: never write onto an input
+            // Before Python starts: never write onto an input (update's outputs exist: they are
+            // the files it updates).
+            carto::Options checked = cl.options;
+            checked.overwrite = checked.overwrite || update;
+            carto::check_files(checked);
             return run_script(argv);
         }
         bar = carto::ProgressBar(!cl.quiet);
-        const carto::Stats s = carto::run(cl.options, [&](double f, const std::string& stage) { return bar(f, stage); });
+        const carto::Progress progress = [&](double f, const std::string& stage) { return bar(f, stage); };
+        if (update) {
+            const carto::UpdateReport r = carto::update(cl.options, {u.reset, u.faces}, progress);
+            bar.finish();
+            if (!cl.quiet)
+                for (const auto& n : r.notes) std::fprintf(stderr, "rockhatch update: note: %s\n", n.c_str());
+            std::fprintf(stderr,
+                         "rockhatch update: %zu faces, %zu redrawn (%zu new), %zu removed; features: %zu removed, %zu "
+                         "written, %zu unchanged; %.2f s\n",
+                         r.faces, r.redrawn, r.appeared, r.removed, r.deleted, r.written, r.kept, r.seconds);
+            return 0;
+        }
+        const carto::Stats s = carto::run(cl.options, progress);
         if (!cl.quiet)
             for (const auto& n : s.notes) std::fprintf(stderr, "rockhatch: note: %s\n", n.c_str());
         std::fprintf(stderr, "rockhatch: %zu faces, %zu hatches, %.2f s, working CRS %s\n", s.faces, s.hatches, s.seconds,
@@ -109,16 +133,16 @@ int main(int argc, char** argv) {
         return 0;
     } catch (const carto::Error& e) {
         bar.finish();
-        std::fprintf(stderr, "rockhatch: %s\n", e.what());
+        std::fprintf(stderr, "%s: %s\n", prog, e.what());
         return e.exit_code();
     } catch (const std::bad_alloc&) {
         bar.finish();
-        std::fprintf(stderr, "rockhatch: out of memory: the inputs or options ask for more than this machine holds "
-                             "(try a --window, a larger --scale or coarser rasters)\n");
+        std::fprintf(stderr, "%s: out of memory: the inputs or options ask for more than this machine holds "
+                             "(try a --window, a larger --scale or coarser rasters)\n", prog);
         return 1;
     } catch (const std::exception& e) {
         bar.finish();
-        std::fprintf(stderr, "rockhatch: %s\n", e.what());
+        std::fprintf(stderr, "%s: %s\n", prog, e.what());
         return 1;
     }
 }

@@ -213,6 +213,54 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     return cl;
 }
 
+std::vector<OptionHelp> update_option_table() {
+    return {{"--reset", "", "redraw every face and drop every feature, hand edits included (also accepts a file of "
+                            "another program version, CRS or style)"},
+            {"--face", "ID", "redraw this face whatever its fingerprint; repeatable"}};
+}
+
+std::string update_help_text() {
+    std::ostringstream out;
+    out << "usage: rockhatch update --dem DEM.tif --partition faces.gpkg [options] -o hatching.gpkg [-o .svg|.png|.pdf]\n\n"
+           "Redraws the faces whose inputs changed since the run that wrote hatching.gpkg (the same options):\n"
+           "the file keeps a fingerprint of each face's inputs; the features of changed, new and removed faces\n"
+           "are replaced in one transaction, every other feature (hand edits included) stays as it is. The\n"
+           "SVG, PNG and PDF outputs are drawn again from the updated layers.\n\nupdate's own options:\n";
+    for (const auto& o : update_option_table()) {
+        const std::string head = o.name + (o.arg.empty() ? std::string() : " " + o.arg);
+        out << "  " << head << std::string(head.size() < 26 ? 26 - head.size() : 1, ' ') << o.help << "\n";
+    }
+    out << "\nand every option of rockhatch (rockhatch --help).\n\n" << exit_codes_text();
+    return out.str();
+}
+
+UpdateCommandLine parse_update_command_line(const std::vector<std::string>& args) {
+    UpdateCommandLine u;
+    std::vector<std::string> rest;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        if (a == "--reset") {
+            u.reset = true;
+        } else if (a == "--face" || a.rfind("--face=", 0) == 0) {
+            std::string v;
+            if (a == "--face") {
+                if (i + 1 >= args.size()) throw Error(Code::Usage, "--face needs a value (ID)");
+                v = args[++i];
+            } else {
+                v = a.substr(7);
+            }
+            char* end = nullptr;
+            errno = 0;
+            const long long id = std::strtoll(v.c_str(), &end, 10);
+            if (v.empty() || *end != 0 || errno == ERANGE)
+                throw Error(Code::Usage, "--face: '" + v + "' is not a face id (an integer)");
+            u.faces.push_back(id);
+        } else {
+            rest.push_back(a);
+        }
+    }
+    u.command = parse_command_line(rest);
+    return u;
+}
+
 }  // namespace carto
-
-

@@ -30,7 +30,7 @@ int GpkgWriter::add_layer(const std::string& name, OGRwkbGeometryType type,
         if (l->CreateField(&fd) != OGRERR_NONE)
             throw Error(Code::OutputExists, "-o '" + path_ + "': cannot create field " + field + " of layer " + name);
     }
-    layers_.push_back({l, name, {}});
+    layers_.push_back({l, name, {}, type != wkbNone});
     return int(layers_.size()) - 1;
 }
 
@@ -61,6 +61,13 @@ void GpkgWriter::put(int layer, OGRFeature& f) {
     put(layer, f, box);
 }
 
+void GpkgWriter::sql(const std::string& statement) {
+    CPLErrorReset();
+    ds_->ExecuteSQL(statement.c_str(), nullptr, nullptr);
+    if (CPLGetLastErrorType() >= CE_Failure)
+        throw Error(Code::OutputExists, "-o '" + path_ + "': write failed (" + CPLGetLastErrorMsg() + ")");
+}
+
 void GpkgWriter::set_metadata(const char* key, const std::string& value) {
     if (ds_->SetMetadataItem(key, value.c_str()) != CE_None)
         throw Error(Code::OutputExists, "-o '" + path_ + "': cannot write the metadata " + key);
@@ -70,6 +77,7 @@ void GpkgWriter::commit() {
     ds_.reset();  // flushes the file
     if (spatial_index_)
         for (Layer& l : layers_) {
+            if (!l.geometry) continue;
             bulk_load_rtree(tmp_.path, l.name, "geom", "fid", l.boxes);
             std::vector<BoxD>().swap(l.boxes);
         }

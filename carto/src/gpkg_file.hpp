@@ -41,6 +41,8 @@ public:
     // Writes the feature (a new fid); the R-tree gets `box`, or the geometry's envelope.
     void put(int layer, OGRFeature& f, const BoxD& box);
     void put(int layer, OGRFeature& f);
+    // Runs an SQL statement on the file (an index, say), in the current transaction if any.
+    void sql(const std::string& statement);
     // A metadata item of the file (GeoPackage metadata, as GDAL's GetMetadataItem reads it).
     void set_metadata(const char* key, const std::string& value);
     // Closes the file, loads the R-trees and renames it onto the output. Without commit, the
@@ -52,6 +54,7 @@ private:
         OGRLayer* ogr;
         std::string name;
         std::vector<BoxD> boxes;
+        bool geometry;  // false: an attribute table (no R-tree)
     };
     std::string path_;
     bool spatial_index_;

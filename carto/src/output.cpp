@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cctype>
 #include <cstdlib>
 #include <cmath>
 #include <cstring>
@@ -13,6 +14,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <unordered_map>
 
 #include "carto/error.hpp"
 #include "libtex/parallel.hpp"
@@ -174,6 +176,44 @@ tex::BBox read_frame(GDALDataset& ds) {
     return b;
 }
 
+// The fields of a hatch layer, by index.
+struct HatchFields {
+    int face_id, family, style, width_mm;
+};
+
+// Sets a hatch feature: its fields and its geometry (a LineString; a Polygon of one ring for
+// the filled families, whose points close the ring).
+void set_hatch(OGRFeature& feat, const HatchFields& k, Family f, std::int64_t face_id, const char* style,
+               const std::vector<Point>& pts) {
+    feat.SetField(k.face_id, GIntBig(face_id));
+    feat.SetField(k.family, family_name(f));
+    feat.SetField(k.style, style);
+    feat.SetField(k.width_mm, family_width_mm(f));
+    // Stones and hachures are filled shapes (closed: the first point repeated).
+    auto* ls = family_filled(f) ? new OGRLinearRing() : new OGRLineString();
+    ls->setNumPoints(int(pts.size()), FALSE);
+    for (std::size_t i = 0; i < pts.size(); ++i) ls->setPoint(int(i), pts[i].x, pts[i].y);
+    if (family_filled(f)) {
+        auto* poly = new OGRPolygon();
+        poly->addRingDirectly(static_cast<OGRLinearRing*>(ls));
+        feat.SetGeometryDirectly(poly);
+    } else {
+        feat.SetGeometryDirectly(ls);
+    }
+}
+
+// The attribute table of the faces' fingerprints (face_id, fingerprint), and the metadata
+// item of a run key of Fingerprints::run ("version" -> RH_RUN_VERSION).
+constexpr const char* kFacesTable = "rockhatch_faces";
+std::string run_key(const std::string& key) {
+    std::string k = "RH_RUN_";
+    for (char c : key) k += char(std::toupper((unsigned char)c));
+    return k;
+}
+std::string face_index_sql(const std::string& table) {
+    return "CREATE INDEX \"" + table + "_face_id\" ON \"" + table + "\" (face_id)";
+}
+
 // The hatch GeoPackage: one layer per family that is `present` (fid, geom, face_id, family,
 // style, width_mm; LineStrings, Polygons for the filled families), written family by family
 // from `source`, which hands every hatch of the
@@ -184,7 +224,7 @@ void write_hatch_gpkg(const std::string& path, const std::string& crs_wkt, bool 
                       const std::function<bool(double)>& keep_going,
                       const std::function<void(Family, const HatchSink&)>& source,
                       const std::function<bool(Family)>& present,
-                      const CrestSource& crests, const tex::BBox& frame) {
+                      const CrestSource& crests, const tex::BBox& frame, const Fingerprints* fingerprints) {
     std::size_t written = 0;
     auto check = [&] {
         if (keep_going && ++written % 4096 == 0 &&
@@ -202,27 +242,16 @@ void write_hatch_gpkg(const std::string& path, const std::string& crs_wkt, bool 
                                          {"width_mm", OFTReal}});
         out.begin();
         OGRFeature feat(out.definition(layer));
-        feat.SetField(1, family_name(f));
-        feat.SetField(3, family_width_mm(f));
+        const HatchFields fields{0, 1, 2, 3};
         source(f, [&](std::int64_t face_id, const char* style, const std::vector<Point>& pts) {
             if (pts.size() < 2) return;
             check();
-            feat.SetField(0, GIntBig(face_id));
-            feat.SetField(2, style);
-            // Stones and hachures are filled shapes (closed: the first point repeated).
-            auto* ls = family_filled(f) ? new OGRLinearRing() : new OGRLineString();
-            ls->setNumPoints(int(pts.size()), FALSE);
-            for (std::size_t i = 0; i < pts.size(); ++i) ls->setPoint(int(i), pts[i].x, pts[i].y);
-            if (family_filled(f)) {
-                auto* poly = new OGRPolygon();
-                poly->addRingDirectly(static_cast<OGRLinearRing*>(ls));
-                feat.SetGeometryDirectly(poly);
-            } else {
-                feat.SetGeometryDirectly(ls);
-            }
+            set_hatch(feat, fields, f, face_id, style, pts);
             out.put(layer, feat, box_of(pts));
         });
         out.end();
+        // The edit loop finds a face's features by face_id.
+        if (fingerprints) out.sql(face_index_sql(std::string("hatch_") + family_name(f)));
     }
     if (crests) {
         const int layer = out.add_layer("crest", wkbPolygon, {{"ridge_id", OFTInteger64}, {"style", OFTString}});
@@ -243,6 +272,19 @@ void write_hatch_gpkg(const std::string& path, const std::string& crs_wkt, bool 
             out.put(layer, feat, box_of(rings[0]));
         });
         out.end();
+    }
+    if (fingerprints) {
+        for (const auto& [key, value] : fingerprints->run) out.set_metadata(run_key(key).c_str(), value);
+        const int layer = out.add_layer(kFacesTable, wkbNone, {{"face_id", OFTInteger64}, {"fingerprint", OFTString}});
+        out.begin();
+        OGRFeature feat(out.definition(layer));
+        for (const auto& [id, fp] : fingerprints->faces) {
+            feat.SetField(0, GIntBig(id));
+            feat.SetField(1, fp.c_str());
+            out.put(layer, feat);
+        }
+        out.end();
+        out.sql(std::string("CREATE UNIQUE INDEX \"") + kFacesTable + "_face_id\" ON \"" + kFacesTable + "\" (face_id)");
     }
     out.commit();
 }
@@ -331,7 +373,7 @@ void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index,
                 for (std::size_t r : poly) rings.push_back(c.rings[r]);
                 sink(c.id, d.style.c_str(), rings);
             }
-    }) : CrestSource(), d.bounds);
+    }) : CrestSource(), d.bounds, d.fingerprints ? &*d.fingerprints : nullptr);
 }
 
 std::size_t merge_gpkg(const std::vector<std::string>& parts, const std::string& path, bool spatial_index,
@@ -367,7 +409,7 @@ std::size_t merge_gpkg(const std::vector<std::string>& parts, const std::string&
         }
     }, [&](Family f) { return present[std::size_t(f)] != 0; }, crests ? CrestSource([&](const CrestSink& sink) {
         for (const auto& part : parts) read_crests(*open_hatches(part, "tile"), "tile '" + part + "'", sink);
-    }) : CrestSource(), frame);
+    }) : CrestSource(), frame, nullptr);
     return n;
 }
 
@@ -404,6 +446,344 @@ Drawing read_gpkg(const std::string& path, double scale) {
         d.crests = std::move(crests);
     if (const tex::BBox frame = read_frame(*ds); !frame.empty()) d.bounds = frame;
     return d;
+}
+
+std::optional<Fingerprints> read_fingerprints(const std::string& path, const std::string& what) {
+    auto ds = open_hatches(path, what);
+    OGRLayer* t = ds->GetLayerByName(kFacesTable);
+    if (!t) return std::nullopt;
+    Fingerprints fp;
+    const std::string prefix = run_key("");
+    for (char** m = ds->GetMetadata(); m && *m; ++m) {
+        const std::string item = *m;
+        const auto eq = item.find('=');
+        if (eq == std::string::npos || item.compare(0, prefix.size(), prefix) != 0) continue;
+        std::string key = item.substr(prefix.size(), eq - prefix.size());
+        for (auto& c : key) c = char(std::tolower((unsigned char)c));
+        fp.run[key] = item.substr(eq + 1);
+    }
+    const int id_idx = t->GetLayerDefn()->GetFieldIndex("face_id");
+    const int fp_idx = t->GetLayerDefn()->GetFieldIndex("fingerprint");
+    if (id_idx < 0 || fp_idx < 0)
+        throw Error(Code::BadLayer, what + " '" + path + "': table " + kFacesTable + " has no face_id or fingerprint field");
+    t->ResetReading();
+    for (auto& feat : *t) fp.faces.emplace_back(feat->GetFieldAsInteger64(id_idx), feat->GetFieldAsString(fp_idx));
+    return fp;
+}
+
+namespace {
+
+// The condition of the features of these faces (sorted ids), in batches of SQL text.
+std::vector<std::string> face_conditions(const std::vector<std::int64_t>& ids) {
+    std::vector<std::string> out;
+    // In batches: SQLite's statement length stays small.
+    for (std::size_t k = 0; k < ids.size(); k += 1000) {
+        std::string sql = "face_id IN (";
+        for (std::size_t i = k; i < std::min(ids.size(), k + 1000); ++i) {
+            if (i > k) sql += ',';
+            sql += std::to_string(ids[i]);
+        }
+        out.push_back(sql + ")");
+    }
+    return out;
+}
+
+// The table of an undo file listing the faces an update replaced.
+constexpr const char* kReplacedTable = "rockhatch_replaced";
+
+// What a hatch feature holds: its face, family, style, width and geometry (ISO WKB); two
+// features with the same key are the same bytes in the file.
+std::string hatch_key(const OGRFeature& f) {
+    std::string k;
+    for (const char* field : {"face_id", "family", "style", "width_mm"}) {
+        const int i = f.GetFieldIndex(field);
+        k += i < 0 || !f.IsFieldSetAndNotNull(i) ? std::string("\x01") : std::string(f.GetFieldAsString(i));
+        k += '\0';
+    }
+    if (const OGRGeometry* g = f.GetGeometryRef()) {
+        const std::size_t at = k.size();
+        k.resize(at + std::size_t(g->WkbSize()));
+        g->exportToWkb(wkbNDR, reinterpret_cast<unsigned char*>(&k[at]), wkbVariantIso);
+    }
+    return k;
+}
+
+// A hatch GeoPackage open for an edit in one transaction: rolled back unless committed, so
+// an error (or an exception, or the process's end) leaves the file as it was.
+class FaceEdit {
+public:
+    FaceEdit(const std::string& path, const std::string& what) : what_(what) {
+        register_gdal();
+        ds_.reset(GDALDataset::FromHandle(
+            GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE, nullptr, nullptr, nullptr)));
+        if (!ds_) throw Error(Code::OutputExists, what_ + ": cannot open for writing (" + CPLGetLastErrorMsg() + ")");
+        if (ds_->StartTransaction(FALSE) != OGRERR_NONE) throw fail("cannot start a transaction");
+    }
+    ~FaceEdit() {
+        if (ds_ && !done_) ds_->RollbackTransaction();
+    }
+    GDALDataset& ds() { return *ds_; }
+    Error fail(const std::string& m) const {
+        return Error(Code::OutputExists, what_ + ": " + m + " (" + CPLGetLastErrorMsg() + "); the file is as it was");
+    }
+    // Removes the features of these faces (sorted ids; every feature when `all`) from a layer,
+    // by one SQL statement per batch (the file's triggers keep its R-tree and feature count);
+    // returns how many. They go to `keep` first when given (an undo file's layer).
+    std::size_t remove(OGRLayer* layer, const std::vector<std::int64_t>& ids, bool all, OGRLayer* keep) {
+        const std::string table = std::string("\"") + layer->GetName() + "\"";
+        std::size_t n = 0;
+        for (const std::string& where : all ? std::vector<std::string>{"1"} : face_conditions(ids)) {
+            if (keep) {
+                OGRLayer* res = ds_->ExecuteSQL(("SELECT * FROM " + table + " WHERE " + where).c_str(), nullptr, nullptr);
+                if (!res) throw fail(std::string("cannot read the features of ") + layer->GetName());
+                for (auto& f : *res) copy(*f, keep);
+                ds_->ReleaseResultSet(res);
+            }
+            OGRLayer* res = ds_->ExecuteSQL(("SELECT count(*) FROM " + table + " WHERE " + where).c_str(), nullptr, nullptr);
+            if (!res) throw fail(std::string("cannot count the features of ") + layer->GetName());
+            for (auto& f : *res) n += std::size_t(f->GetFieldAsInteger64(0));
+            ds_->ReleaseResultSet(res);
+            CPLErrorReset();
+            ds_->ExecuteSQL(("DELETE FROM " + table + " WHERE " + where).c_str(), nullptr, nullptr);
+            if (CPLGetLastErrorType() >= CE_Failure)
+                throw fail(std::string("cannot delete the features of ") + layer->GetName());
+        }
+        return n;
+    }
+    // The features of these faces (sorted ids) by what they hold (hatch_key), each with its
+    // fids; a copy of each goes to `keep` when given.
+    std::unordered_map<std::string, std::vector<GIntBig>> index(OGRLayer* layer, const std::vector<std::int64_t>& ids,
+                                                                OGRLayer* keep) {
+        std::unordered_map<std::string, std::vector<GIntBig>> out;
+        const std::string table = std::string("\"") + layer->GetName() + "\"";
+        for (const std::string& where : face_conditions(ids)) {
+            OGRLayer* res = ds_->ExecuteSQL(("SELECT * FROM " + table + " WHERE " + where).c_str(), nullptr, nullptr);
+            if (!res) throw fail(std::string("cannot read the features of ") + layer->GetName());
+            for (auto& f : *res) {
+                if (keep) copy(*f, keep);
+                out[hatch_key(*f)].push_back(f->GetFID());
+            }
+            ds_->ReleaseResultSet(res);
+        }
+        return out;
+    }
+    // Removes these features.
+    void remove_fids(OGRLayer* layer, const std::vector<GIntBig>& fids) {
+        const std::string table = std::string("\"") + layer->GetName() + "\"";
+        for (std::size_t k = 0; k < fids.size(); k += 1000) {
+            std::string sql = "DELETE FROM " + table + " WHERE fid IN (";
+            for (std::size_t i = k; i < std::min(fids.size(), k + 1000); ++i) sql += (i > k ? "," : "") + std::to_string(fids[i]);
+            CPLErrorReset();
+            ds_->ExecuteSQL((sql + ")").c_str(), nullptr, nullptr);
+            if (CPLGetLastErrorType() >= CE_Failure)
+                throw fail(std::string("cannot delete the features of ") + layer->GetName());
+        }
+    }
+    // Writes a copy of a feature (geometry and the fields of the same names) as a new one.
+    void copy(const OGRFeature& f, OGRLayer* to) {
+        OGRFeature out(to->GetLayerDefn());
+        if (out.SetFrom(&f, TRUE) != OGRERR_NONE) throw fail(std::string("cannot copy a feature to ") + to->GetName());
+        out.SetFID(OGRNullFID);
+        if (to->CreateFeature(&out) != OGRERR_NONE) throw fail(std::string("cannot write a feature of ") + to->GetName());
+    }
+    void metadata(const std::string& key, const std::string& value) {
+        if (ds_->SetMetadataItem(key.c_str(), value.c_str()) != CE_None) throw fail("cannot write " + key);
+    }
+    void commit() {
+        // The metadata goes to the file now, inside the transaction.
+        CPLErrorReset();
+        ds_->FlushCache(false);
+        if (CPLGetLastErrorType() >= CE_Failure) throw fail("cannot write the metadata");
+        if (ds_->CommitTransaction() != OGRERR_NONE) throw fail("cannot commit");
+        done_ = true;
+        ds_.reset();
+    }
+
+private:
+    std::string what_;
+    DatasetPtr ds_;
+    bool done_ = false;
+};
+
+// The layers of the undo file of an update (replace_faces): an empty copy of each hatch layer
+// and of the fingerprints table, the list of the faces replaced, and the file's metadata.
+class UndoFile {
+public:
+    UndoFile(const std::string& path, GDALDataset& from, const std::vector<std::int64_t>& replaced) : path_(path) {
+        GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GPKG");
+        std::error_code ec;
+        std::filesystem::remove(path, ec);
+        ds_.reset(drv ? drv->Create(path.c_str(), 0, 0, 0, GDT_Unknown, nullptr) : nullptr);
+        if (!ds_) throw Error(Code::OutputExists, "undo '" + path + "': cannot create (" + CPLGetLastErrorMsg() + ")");
+        ds_->StartTransaction(FALSE);
+        for (OGRLayer* l : from.GetLayers()) {
+            const std::string name = l->GetName();
+            if (name.rfind("hatch_", 0) != 0 && name != kFacesTable) continue;
+            const char* lco[] = {"SPATIAL_INDEX=NO", "FID=fid", "GEOMETRY_NAME=geom", nullptr};
+            OGRLayer* c = ds_->CreateLayer(name.c_str(), l->GetSpatialRef(), l->GetGeomType(), const_cast<char**>(lco));
+            if (!c) throw Error(Code::OutputExists, "undo '" + path + "': cannot create layer " + name);
+            for (int i = 0; i < l->GetLayerDefn()->GetFieldCount(); ++i) c->CreateField(l->GetLayerDefn()->GetFieldDefn(i));
+            layers_[name] = c;
+        }
+        OGRLayer* r = ds_->CreateLayer(kReplacedTable, nullptr, wkbNone, nullptr);
+        OGRFieldDefn id("face_id", OFTInteger64);
+        r->CreateField(&id);
+        for (std::int64_t f : replaced) {
+            OGRFeature feat(r->GetLayerDefn());
+            feat.SetField(0, GIntBig(f));
+            if (r->CreateFeature(&feat) != OGRERR_NONE)
+                throw Error(Code::OutputExists, "undo '" + path + "': write failed (" + CPLGetLastErrorMsg() + ")");
+        }
+        for (char** m = from.GetMetadata(); m && *m; ++m) {
+            const std::string item = *m;
+            const auto eq = item.find('=');
+            if (eq != std::string::npos && item.rfind("RH_", 0) == 0)
+                ds_->SetMetadataItem(item.substr(0, eq).c_str(), item.substr(eq + 1).c_str());
+        }
+    }
+    ~UndoFile() {
+        if (ds_ && !done_) {
+            ds_.reset();
+            std::error_code ec;
+            std::filesystem::remove(path_, ec);
+        }
+    }
+    OGRLayer* layer(const std::string& name) {
+        const auto it = layers_.find(name);
+        return it == layers_.end() ? nullptr : it->second;
+    }
+    void commit() {
+        if (ds_->CommitTransaction() != OGRERR_NONE)
+            throw Error(Code::OutputExists, "undo '" + path_ + "': write failed (" + CPLGetLastErrorMsg() + ")");
+        ds_.reset();
+        done_ = true;
+    }
+
+private:
+    std::string path_;
+    DatasetPtr ds_;
+    std::map<std::string, OGRLayer*> layers_;
+    bool done_ = false;
+};
+
+}  // namespace
+
+FaceReplacement replace_faces(const std::string& path, const std::vector<std::int64_t>& faces, bool all,
+                              const Drawing& d, const std::string& undo) {
+    const ReproducibleGpkg reproducible;
+    const QuietGdal quiet;
+    const std::string what = "-o '" + path + "'";
+    FaceEdit edit(path, what);
+    GDALDataset& ds = edit.ds();
+    std::vector<std::int64_t> ids = faces;
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    std::optional<UndoFile> keep;
+    if (!undo.empty()) keep.emplace(undo, ds, ids);
+    FaceReplacement r;
+    std::vector<Point> pts;
+    for (int fam = 0; fam < kFamilies; ++fam) {
+        const Family f = Family(fam);
+        const std::string table = std::string("hatch_") + family_name(f);
+        OGRLayer* layer = ds.GetLayerByName(table.c_str());
+        if (!layer) {
+            if (has_family(d, f)) throw Error(Code::BadLayer, what + ": no layer " + table + " for the redrawn faces");
+            continue;
+        }
+        // Every feature of the faces goes (all), or those the new drawing does not hold: a feature
+        // the redrawn face draws again, byte for byte, stays (its R-tree entry with it).
+        std::unordered_map<std::string, std::vector<GIntBig>> old;
+        if (all) r.deleted += edit.remove(layer, ids, true, keep ? keep->layer(table) : nullptr);
+        else old = edit.index(layer, ids, keep ? keep->layer(table) : nullptr);
+        OGRFeatureDefn* defn = layer->GetLayerDefn();
+        const HatchFields k{defn->GetFieldIndex("face_id"), defn->GetFieldIndex("family"), defn->GetFieldIndex("style"),
+                            defn->GetFieldIndex("width_mm")};
+        if (k.face_id < 0 || k.family < 0 || k.style < 0 || k.width_mm < 0)
+            throw Error(Code::BadLayer, what + ": layer " + table + " lacks face_id, family, style or width_mm");
+        OGRFeature feat(defn);
+        for (const auto& face : d.faces)
+            for (const auto& h : face.hatches) {
+                if (h.family != f) continue;
+                pts.assign(h.points.begin(), h.points.end());
+                if (h.closed && !pts.empty()) pts.push_back(pts.front());
+                if (pts.size() < 2) continue;
+                set_hatch(feat, k, f, face.face_id, d.style.c_str(), pts);
+                if (!old.empty()) {
+                    const auto same = old.find(hatch_key(feat));
+                    if (same != old.end() && !same->second.empty()) {
+                        same->second.pop_back();
+                        ++r.kept;
+                        continue;
+                    }
+                }
+                feat.SetFID(OGRNullFID);
+                if (layer->CreateFeature(&feat) != OGRERR_NONE) throw edit.fail("cannot write a feature of " + table);
+                ++r.written;
+            }
+        std::vector<GIntBig> stale;
+        for (const auto& [key, fids] : old) stale.insert(stale.end(), fids.begin(), fids.end());
+        std::sort(stale.begin(), stale.end());
+        edit.remove_fids(layer, stale);
+        r.deleted += stale.size();
+    }
+    if (d.fingerprints) {
+        OGRLayer* t = ds.GetLayerByName(kFacesTable);
+        if (!t) throw Error(Code::BadLayer, what + ": no table " + kFacesTable + " (not written with fingerprints)");
+        edit.remove(t, ids, all, keep ? keep->layer(kFacesTable) : nullptr);
+        OGRFeature feat(t->GetLayerDefn());
+        const int id_idx = t->GetLayerDefn()->GetFieldIndex("face_id");
+        const int fp_idx = t->GetLayerDefn()->GetFieldIndex("fingerprint");
+        for (const auto& [id, fp] : d.fingerprints->faces) {
+            feat.SetField(id_idx, GIntBig(id));
+            feat.SetField(fp_idx, fp.c_str());
+            feat.SetFID(OGRNullFID);
+            if (t->CreateFeature(&feat) != OGRERR_NONE) throw edit.fail("cannot write a fingerprint");
+        }
+        for (const auto& [key, value] : d.fingerprints->run) edit.metadata(run_key(key), value);
+    }
+    if (!d.bounds.empty()) edit.metadata(kFrameKey, frame_text(d.bounds));
+    if (keep) keep->commit();
+    edit.commit();
+    return r;
+}
+
+FaceReplacement restore_faces(const std::string& path, const std::string& undo) {
+    const ReproducibleGpkg reproducible;
+    const QuietGdal quiet;
+    register_gdal();
+    DatasetPtr from(GDALDataset::FromHandle(
+        GDALOpenEx(undo.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
+    OGRLayer* replaced = from ? from->GetLayerByName(kReplacedTable) : nullptr;
+    if (!replaced) throw Error(Code::InputMissing, "undo '" + undo + "': not an undo file of rockhatch update");
+    std::vector<std::int64_t> ids;
+    for (auto& f : *replaced) ids.push_back(f->GetFieldAsInteger64(0));
+    std::sort(ids.begin(), ids.end());
+    FaceEdit edit(path, "-o '" + path + "'");
+    FaceReplacement r;
+    for (OGRLayer* l : from->GetLayers()) {
+        const std::string name = l->GetName();
+        if (name == kReplacedTable) continue;
+        OGRLayer* to = edit.ds().GetLayerByName(name.c_str());
+        if (!to) throw Error(Code::BadLayer, "-o '" + path + "': no layer " + name + " to restore");
+        const std::size_t n = edit.remove(to, ids, false, nullptr);
+        l->ResetReading();
+        std::size_t m = 0;
+        for (auto& f : *l) {
+            edit.copy(*f, to);
+            ++m;
+        }
+        if (name != kFacesTable) {
+            r.deleted += n;
+            r.written += m;
+        }
+    }
+    for (char** m = from->GetMetadata(); m && *m; ++m) {
+        const std::string item = *m;
+        const auto eq = item.find('=');
+        if (eq != std::string::npos && item.rfind("RH_", 0) == 0) edit.metadata(item.substr(0, eq), item.substr(eq + 1));
+    }
+    edit.commit();
+    return r;
 }
 
 void write_svg(const Drawing& d, const std::string& path) {

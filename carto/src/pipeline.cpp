@@ -14,6 +14,7 @@
 #include "carto/error.hpp"
 #include "carto/extract.hpp"
 #include "carto/publish.hpp"
+#include "carto/update.hpp"
 #include "temp_file.hpp"
 #include "carto/control_fields.hpp"
 #include "libtex/parallel.hpp"
@@ -119,6 +120,11 @@ Prepared prepare(const Plan& plan, const Progress& progress) {
     if (!p.partition.bounds().intersects(dem.bounds()))
         throw Error(Code::NoOverlap, "--partition '" + o.partition.path + "' does not overlap --dem '" + o.dem + "'");
 
+    // Of the partition as read: what the faces' drawing depends on before the terrain fills in
+    // their controls (the terrain's cells are in the fingerprint themselves).
+    if (keeps_fingerprints(plan))
+        p.fingerprints = face_fingerprints(plan, p.partition, dem, o.slope.empty() ? nullptr : &p.terrain.slope,
+                                           o.roughness.empty() ? nullptr : &p.terrain.roughness);
     resolve_face_controls(p, o.partition.path == "auto");
     return p;
 }
@@ -362,7 +368,8 @@ Stats run(const Plan& plan, const Progress& progress) {
                 for (const auto& f : p.partition.faces) faces.add(f.region.bbox());
                 page_layout(faces, plan.options.scale, plan.page, out.path);
             }
-    const Drawing d = hatch(p, plan, progress);
+    Drawing d = hatch(p, plan, progress);
+    d.fingerprints = p.fingerprints;
     write_outputs(d, p, plan, progress);
     s.tiles = write_zoom_tiles(plan, progress, nullptr);
     s.faces = std::size_t(std::count_if(d.faces.begin(), d.faces.end(),

@@ -5,6 +5,7 @@ from .algorithms.rock_hatching import RockHatching
 from .algorithms.rock_hatching_tiled import RockHatchingTiled
 from .algorithms.rock_partition import RockPartition
 from .algorithms.terrain_fields import TerrainFields
+from .algorithms.update_hatching import UpdateHatching
 from .icon import WithIcon
 
 
@@ -29,3 +30,4 @@ class RockhatchProvider(WithIcon, QgsProcessingProvider):
         self.addAlgorithm(TerrainFields())
         self.addAlgorithm(RockPartition())
         self.addAlgorithm(RockHatchingTiled())
+        self.addAlgorithm(UpdateHatching())

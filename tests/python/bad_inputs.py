@@ -1,4 +1,4 @@
-"""Every input and option of the rockhatch command and its partition subcommand, with the
+"""Every input and option of the rockhatch command and its partition and update subcommands, with the
 bad values tried on each, the exit code and the words the one-line message must contain.
 
 One table serves three purposes: test_bad_inputs.py runs every row, README.md lists every
@@ -11,9 +11,13 @@ that folder must be empty and every input unchanged.
 """
 from __future__ import annotations
 
+import atexit
 import dataclasses
 import pathlib
+import os
 import shutil
+import subprocess
+import tempfile
 from typing import Callable, List, Sequence
 
 import numpy as np
@@ -28,7 +32,7 @@ SAMPLE = ROOT / "data" / "sample_montblanc"
 
 @dataclasses.dataclass(frozen=True)
 class Case:
-    cmd: str          # "rockhatch" or "rockhatch partition"
+    cmd: str          # "rockhatch", "rockhatch partition" or "rockhatch update"
     what: str         # the input or option, as the README names it
     bad: str          # the bad case, in words
     args: Callable[[pathlib.Path], Sequence]  # argv after the command, given the scratch folder
@@ -233,8 +237,39 @@ def param(w, option, value):
 APART_SVG = ('<svg xmlns="http://www.w3.org/2000/svg"><path d="M 0 0 L 10 0 L 10 10 L 0 10 Z '
              'M 0 20 L 10 20 L 10 30 L 0 30 Z"/></svg>')
 
+_HATCHED = {}
+
+
+def hatched(w, fingerprints=True):
+    """A hatch GeoPackage of the sample written by the built command, in w (the file
+    rockhatch update is given as -o: an input it must leave as it was when refused); without
+    fingerprints: as a tiled run or an older version writes it."""
+    key = fingerprints
+    if key not in _HATCHED:
+        build = pathlib.Path(os.environ.get("RH_BUILD_DIR", ROOT / "build"))
+        folder = pathlib.Path(tempfile.mkdtemp(prefix="rh_bad_update_"))
+        atexit.register(shutil.rmtree, folder, True)
+        path = folder / "h.gpkg"
+        subprocess.run([str(build / "carto" / "rockhatch"), "-q", "--dem", SAMPLE / "dem.tif", "--partition",
+                        SAMPLE / "partition.gpkg", "-o", path], check=True, capture_output=True)
+        if not fingerprints:
+            ds = ogr.Open(str(path), 1)
+            ds.DeleteLayer("rockhatch_faces")
+            ds = None
+        _HATCHED[key] = path
+    p = w / ("h.gpkg" if fingerprints else "old.gpkg")
+    shutil.copy(_HATCHED[key], p)
+    return p
+
+
+def upd(w, *extra, o=None):
+    """rockhatch update on the sample (the copied partition: the same faces as the file's run)."""
+    return ["-q", "--dem", dem(w), "--partition", part(w), *extra, "-o", o or hatched(w)]
+
+
 RH = "rockhatch"
 PART = "rockhatch partition"
+UPD = "rockhatch update"
 
 CASES: List[Case] = [
     # ---- the main command: inputs
@@ -429,4 +464,19 @@ CASES: List[Case] = [
     Case(PART, "--png", "the DEM, with --overwrite", lambda w: sub(w, "--overwrite", "--png", dem(w)), 9,
          ("dem.tif", "--dem", "onto an input")),
     Case(PART, "(any)", "unknown option", lambda w: sub(w, "--bogus"), 2, ("--bogus",)),
+    # ---- rockhatch update
+    Case(UPD, "-o", "missing file", lambda w: upd(w, o=w / "none.gpkg"), 3, ("none.gpkg", "no such file")),
+    Case(UPD, "-o", "no fingerprints (a tiled run's)", lambda w: upd(w, o=hatched(w, fingerprints=False)), 6,
+         ("old.gpkg", "keeps no fingerprints")),
+    Case(UPD, "-o", "not a GeoPackage (only an SVG)", lambda w: upd(w, o=out(w, "h.svg")), 2, ("GeoPackage",)),
+    Case(UPD, "-o", "vector tiles", lambda w: upd(w, "-o", out(w, "t.mbtiles")), 2, ("t.mbtiles", "vector tiles")),
+    Case(UPD, "--style", "another than the file's", lambda w: upd(w, "--style", "noisy"), 2,
+         ("h.gpkg", "style rock", "--reset")),
+    Case(UPD, "--style", "a terrain style", lambda w: upd(w, "--style", "scree"), 2, ("scree", "terrain")),
+    Case(UPD, "--crest-ornament", "given", lambda w: upd(w, "--crest-ornament", "default"), 2,
+         ("--crest-ornament", "per ridge")),
+    Case(UPD, "--face", "not a face of the partition", lambda w: upd(w, "--face", "999"), 2, ("--face 999",)),
+    Case(UPD, "--face", "not an integer", lambda w: upd(w, "--face", "x"), 2, ("--face", "'x'")),
+    Case(UPD, "--dem", "the file to update", lambda w: ["-q", "--dem", hatched(w), "--partition", part(w), "-o",
+                                                        hatched(w)], 9, ("h.gpkg", "onto an input")),
 ]

@@ -144,3 +144,18 @@ def land_cover(path, tagged):
         layer.CreateFeature(f)
     ds = None
     return path
+
+
+def features_by_face(gpkg):
+    """{face id: sorted (layer, family, style, width, GeoPackage geometry blob)}: the bytes of
+    every hatch feature of a hatch GeoPackage, fids aside (rockhatch update's tests)."""
+    import sqlite3
+    con = sqlite3.connect(str(gpkg))
+    out = {}
+    try:
+        for (name,) in con.execute("SELECT table_name FROM gpkg_contents WHERE table_name LIKE 'hatch_%'"):
+            for row in con.execute(f'SELECT face_id, family, style, width_mm, geom FROM "{name}"'):
+                out.setdefault(row[0], []).append((name,) + row[1:])
+    finally:
+        con.close()
+    return {face: sorted(rows) for face, rows in out.items()}

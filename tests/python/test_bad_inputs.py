@@ -36,7 +36,7 @@ def _env():
 def run_case(exe, case, w, args=None):
     """Runs one row in scratch folder w (its inputs are made there unless `args` is given)."""
     args = case.args(w) if args is None else args
-    argv = [str(exe)] + (["partition"] if case.cmd.endswith("partition") else []) + [str(a) for a in args]
+    argv = [str(exe)] + case.cmd.split()[1:] + [str(a) for a in args]
     return subprocess.run(argv, capture_output=True, text=True, timeout=120, preexec_fn=_limit_memory, env=_env())
 
 

@@ -17,8 +17,8 @@ os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 os.environ["GDAL_PAM_ENABLED"] = "NO"
 import qgis.core as qgis_core  # noqa: E402  (python3-qgis: scripts/setup.sh installs it)
 
-from conftest import (PYTHON_DIR, ROOT, SANITIZED, finished_tiles, land_cover, partition_with_scree,  # noqa: E402
-                      python_env)
+from conftest import (PYTHON_DIR, ROOT, SANITIZED, features_by_face, finished_tiles, land_cover,  # noqa: E402
+                      partition_with_scree, python_env)
 from osgeo import gdal, ogr  # noqa: E402
 
 from qgis.core import (QgsApplication, QgsProcessingException, QgsProcessingFeedback, QgsProject,  # noqa: E402
@@ -58,9 +58,15 @@ def run(alg, params, feedback=None):
     return processing.run(alg, params, feedback=feedback or QgsProcessingFeedback())
 
 
+def drawn_layers(ds):
+    """The layers of drawn features: the table of the faces' fingerprints (rockhatch update's,
+    in a whole run's GeoPackage) aside."""
+    return [ds.GetLayer(i) for i in range(ds.GetLayerCount()) if ds.GetLayer(i).GetName() != "rockhatch_faces"]
+
+
 def layer_counts(gpkg):
     ds = ogr.Open(str(gpkg))
-    return {ds.GetLayer(i).GetName(): ds.GetLayer(i).GetFeatureCount() for i in range(ds.GetLayerCount())}
+    return {layer.GetName(): layer.GetFeatureCount() for layer in drawn_layers(ds)}
 
 
 def layer_features(gpkg):
@@ -69,8 +75,7 @@ def layer_features(gpkg):
     more): equal when the hatches are."""
     ds = ogr.Open(str(gpkg))
     out = {}
-    for i in range(ds.GetLayerCount()):
-        layer = ds.GetLayer(i)
+    for layer in drawn_layers(ds):
         name = layer.GetName()
         out[name] = [(f.GetField("face_id"), f.GetGeometryRef().ExportToWkb()) for f in layer]
         rows = ds.ExecuteSQL(f"SELECT family, style, width_mm, count(*) FROM {name} GROUP BY 1, 2, 3 ORDER BY 1, 2, 3")
@@ -109,7 +114,7 @@ def test_plugin_loads_and_registers_provider(qgis):
     assert provider is not None and provider.name() == "Rock hatching"
     assert os.path.isfile(provider.svgIconPath()) and provider.svgIconPath().endswith("icon.svg")
     ids = ["rockhatch:rockhatching", "rockhatch:rockhatchingtiled", "rockhatch:rockpartition",
-           "rockhatch:terrainfields"]
+           "rockhatch:terrainfields", "rockhatch:updatehatching"]
     assert sorted(a.id() for a in provider.algorithms()) == ids
     for alg_id in ids:
         alg = registry.algorithmById(alg_id)
@@ -719,3 +724,110 @@ def test_qgis_process_runs_rock_hatching(sample_dir, reference, tmp_path):
     assert p.returncode != 0 and "no line layer with a 'nope' field" in p.stdout + p.stderr
     shutil.rmtree(config)
 
+
+
+# ---- the edit loop: re-hatching faces in place (edit_loop.py, rockhatch update)
+
+
+def hatch_layers_of(gpkg, project):
+    layers = []
+    for name in FAMILIES:
+        layer = QgsVectorLayer(f"{gpkg}|layername={name}", name, "ogr")
+        assert layer.isValid(), name
+        layers.append(layer)
+    project.addMapLayers(layers)
+    return layers
+
+
+def move_vertex(layer, fid, dx, dy):
+    """Moves the middle vertex of a face's outer ring, in the layer's edit buffer."""
+    from qgis.core import QgsPointXY
+    geom = layer.getFeature(fid).geometry()
+    ring = geom.asPolygon()[0]
+    k = len(ring) // 2
+    assert geom.moveVertex(ring[k].x() + dx, ring[k].y() + dy, k)
+    assert layer.changeGeometry(fid, geom)
+    return QgsPointXY(ring[k])
+
+
+def test_rehatch_action_redraws_the_edited_and_selected_faces_and_undo_puts_them_back(
+        qgis, rockhatch_exe, sample_dir, tmp_path):
+    sys.path.insert(0, str(PLUGINS))
+    from rockhatch_qgis.edit_loop import EditLoop
+    part = tmp_path / "partition.gpkg"
+    shutil.copy(sample_dir / "partition.gpkg", part)
+    out = tmp_path / "h.gpkg"
+    subprocess.run([str(rockhatch_exe), "-q", "--dem", str(sample_dir / "dem.tif"), "--partition", str(part),
+                    "-o", str(out)], check=True)
+    before = features_by_face(out)
+    shutil.copy(out, tmp_path / "before.gpkg")
+    project = QgsProject.instance()
+    faces = QgsVectorLayer(f"{part}|layername=faces", "faces", "ogr")
+    assert faces.isValid()
+    project.addMapLayer(faces)
+    hatches = hatch_layers_of(out, project)
+    try:
+        loop = EditLoop(project)
+        # One face edited in the edit buffer, another selected.
+        assert faces.startEditing()
+        move_vertex(faces, 7, 15.0, -10.0)
+        faces.selectByIds([3])
+        reports = loop.rehatch(faces)
+        assert list(reports) == [str(out.resolve())]
+        r = reports[str(out.resolve())]
+        redrawn = set(r.redrawn_ids)
+        assert {3, 7} <= redrawn and len(redrawn) < 20
+        assert r.written + r.deleted > 0
+        assert not faces.isModified()  # the edit was saved for the run to read it
+        after = features_by_face(out)
+        # Each redrawn face: the bytes of a whole run on the edited partition; every other face untouched.
+        whole = tmp_path / "whole.gpkg"
+        subprocess.run([str(rockhatch_exe), "-q", "--dem", str(sample_dir / "dem.tif"), "--partition", str(part),
+                        "-o", str(whole)], check=True)
+        full = features_by_face(whole)
+        from rockhatch import carto
+        was, now = carto.read_fingerprints(str(whole))[1], carto.read_fingerprints(str(tmp_path / "before.gpkg"))[1]
+        changed = {face for face in now if now[face] != was[face]}
+        assert 7 in changed and redrawn == changed | {3}
+        for face in full:
+            assert after[face] == (full[face] if face in redrawn else before[face]), face
+        assert after[7] != before[7]
+        # The open layers show the file.
+        counts = layer_counts(out)
+        for layer in hatches:
+            assert layer.featureCount() == counts[layer.name()]
+        # Undo: the features as they were, the fingerprints too (the face is redrawn again next time).
+        assert loop.undo()
+        assert features_by_face(out) == before
+        assert not loop.undo()
+        # The Processing algorithm on the file: the edited face and its neighbours again.
+        result = run("rockhatch:updatehatching", {"HATCHES": str(out)})
+        assert result["REDRAWN"] == len(changed)
+        assert features_by_face(out) == {f: (full[f] if f in changed else before[f]) for f in full}
+        result = run("rockhatch:updatehatching", {"HATCHES": str(out), "FACES": "3"})
+        assert result["REDRAWN"] == 1 and features_by_face(out) == full
+        # The hatch layers stay editable in QGIS after updates: a feature deleted there and saved.
+        fill = next(layer for layer in hatches if layer.name() == "hatch_fill")
+        fill.reload()
+        count = fill.featureCount()
+        assert fill.startEditing()
+        assert fill.deleteFeature(next(fill.getFeatures()).id())
+        with pytest.raises(ValueError, match="unsaved edits"):  # re-hatching waits for them
+            loop.rehatch(faces)
+        assert fill.commitChanges(), fill.commitErrors()
+        assert layer_counts(out)["hatch_fill"] == count - 1
+        assert subprocess.run([sys.executable, "/usr/lib/python3/dist-packages/osgeo_utils/samples/validate_gpkg.py",
+                               str(out)], capture_output=True).returncode == 0
+    finally:
+        faces.rollBack()
+        project.removeAllMapLayers()
+
+
+def test_update_algorithm_refuses_a_file_without_fingerprints(qgis, sample_dir, tmp_path):
+    import processing
+    from rockhatch import carto
+    drawing = carto.hatch(carto.prepare(sample_dir / "dem.tif", sample_dir / "partition.gpkg"),
+                          window=(1003150, 6538950, 1003600, 6539400))
+    carto.write_gpkg(drawing, str(tmp_path / "t.gpkg"))
+    with pytest.raises(QgsProcessingException, match="keeps no fingerprints"):
+        processing.run("rockhatch:updatehatching", {"HATCHES": str(tmp_path / "t.gpkg")})

@@ -35,7 +35,9 @@ def test_geopackage_layers_crs_and_attributes(sample_run):
     out, _ = sample_run
     ds = ogr.Open(str(out / "h.gpkg"))
     names = [ds.GetLayer(i).GetName() for i in range(ds.GetLayerCount())]
-    assert names == FAMILIES
+    # The hatch layers, then the faces' fingerprints (rockhatch update).
+    assert names == FAMILIES + ["rockhatch_faces"]
+    assert ds.GetLayerByName("rockhatch_faces").GetFeatureCount() == 20
     for name in FAMILIES:
         layer = ds.GetLayerByName(name)
         assert layer.GetGeomType() == ogr.wkbLineString

@@ -44,6 +44,8 @@ def features(path):
     groups = {}
     for i in range(ds.GetLayerCount()):
         layer = ds.GetLayer(i)
+        if layer.GetName() == "rockhatch_faces":
+            continue  # a whole run's fingerprints (rockhatch update), not drawn features
         crest = layer.GetName() == "crest"
         for f in layer:
             face = f.GetField("ridge_id" if crest else "face_id")

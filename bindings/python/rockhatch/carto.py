@@ -174,6 +174,22 @@ def run(dem, partition, outputs, progress=None, **kwargs):
     return run_options(make_options(dem, partition, outputs, **kwargs), progress)
 
 
+def update(dem, partition, outputs, progress=None, reset=False, faces=(), undo="", **kwargs):
+    """rockhatch update with the arguments of run (those of the run that wrote the outputs):
+    redraws the faces whose fingerprint changed, appeared or went away (also the face ids in
+    `faces`; every face with reset=True) in the GeoPackage output, in one transaction, and
+    draws the SVG / PNG / PDF outputs again from it; returns UpdateReport. undo: a GeoPackage
+    path where what the update replaces is kept, for restore_faces(output, undo)."""
+    kwargs["overwrite"] = True  # the outputs are the files to update
+    return update_options(make_options(dem, partition, outputs, **kwargs), progress, reset=reset, faces=faces,
+                          undo=undo)
+
+
+def update_options(options, progress=None, reset=False, faces=(), undo=""):
+    """carto::update on ready-made Options."""
+    return _carto.update(options, bool(reset), [int(f) for f in faces], os.fspath(undo or ""), progress)
+
+
 def run_options(options, progress=None):
     """carto::run on ready-made Options (what the command line parses into)."""
     return _carto.run(options, progress)

@@ -17,18 +17,26 @@ def fail(error, bar, prog="rockhatch"):
 
 def main(argv=None, style=None):
     """Runs the command; returns its exit code. style: a script module to use instead of
-    --script (a style script run on its own passes itself)."""
+    --script (a style script run on its own passes itself). `update ...`: rockhatch update."""
     argv = sys.argv[1:] if argv is None else list(argv)
     bar = carto.ProgressBar(False)
+    update = bool(argv) and argv[0] == "update"
+    prog = "rockhatch update" if update else "rockhatch"
     try:
-        cl = carto.parse_command_line(argv)
+        if update:
+            u = carto.parse_update_command_line(argv[1:])
+            cl = u.command
+        else:
+            cl = carto.parse_command_line(argv)
         if cl.help:
-            sys.stdout.write(carto.help_text())
+            sys.stdout.write(carto.update_help_text() if update else carto.help_text())
             return 0
         if cl.list_styles:
             sys.stdout.write(carto.styles_text())
             return 0
         options = cl.options
+        if update:
+            options.overwrite = True  # the outputs are the files to update
         chosen = style if style is not None else (cl.script or None)
         if chosen is not None:
             if options.style:
@@ -37,6 +45,13 @@ def main(argv=None, style=None):
             carto.check_files(options)  # before the script runs: never write onto an input
             options.custom_style = carto.as_style(chosen) if not isinstance(chosen, str) else carto.load_style(chosen)
         bar = carto.ProgressBar(not cl.quiet)
+        if update:
+            r = carto.update_options(options, bar, reset=u.reset, faces=u.faces)
+            bar.finish()
+            sys.stderr.write("rockhatch update: %d faces, %d redrawn (%d new), %d removed; features: %d removed, "
+                             "%d written, %d unchanged; %.2f s\n" % (r.faces, r.redrawn, r.appeared, r.removed,
+                                                                     r.deleted, r.written, r.kept, r.seconds))
+            return 0
         stats = carto.run_options(options, bar)
         bar.finish()
         if not cl.quiet:
@@ -46,7 +61,7 @@ def main(argv=None, style=None):
                          % (stats.faces, stats.hatches, stats.seconds, stats.crs))
         return 0
     except (RockhatchError, TexError) as e:
-        return fail(e, bar)
+        return fail(e, bar, prog)
     except Exception:  # an error in a style script: its traceback helps its author
         bar.finish()
         traceback.print_exc()

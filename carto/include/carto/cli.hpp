@@ -3,6 +3,7 @@
 // same options with the same messages.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,7 @@ struct CommandLine {
 
 // Parses the arguments (without the program name). Throws Error(Usage) naming the option.
 CommandLine parse_command_line(const std::vector<std::string>& args);
+
 // The --help text, and the style list of --list-styles.
 std::string help_text();
 // The option table as --help prints it (name, argument or "" for a flag, help), for the
@@ -38,5 +40,17 @@ std::string styles_text();
 // One line per parameter, as --list-styles prints them: "name = default unit  help", each
 // line indented by `indent` spaces (the style scripts' headers are made from it).
 std::string params_text(const std::vector<StyleParam>& params, int indent = 6);
+
+// `rockhatch update`: the command's options (the plan of the run that wrote the files) and
+// its own, --reset and --face ID (carto/update.hpp).
+struct UpdateCommandLine {
+    CommandLine command;
+    bool reset = false;
+    std::vector<std::int64_t> faces;
+};
+UpdateCommandLine parse_update_command_line(const std::vector<std::string>& args);
+// update's own options (--reset, --face) as --help prints them, and its help text.
+std::vector<OptionHelp> update_option_table();
+std::string update_help_text();
 
 }  // namespace carto

@@ -4,7 +4,9 @@
 // to a temporary file in the same folder, renamed at the end.
 #pragma once
 
+#include <cstdint>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,6 +22,13 @@ struct FaceHatches {
     std::vector<Hatch> hatches;
 };
 
+// What the edit loop (carto/update.hpp) keeps in a hatch GeoPackage: per face, a digest of
+// every input its drawing depends on, and the run's own (program version, CRS, style, plan).
+struct Fingerprints {
+    std::map<std::string, std::string> run;                    // key -> value (kRunKeys)
+    std::vector<std::pair<std::int64_t, std::string>> faces;   // face id, fingerprint
+};
+
 struct Drawing {
     std::vector<FaceHatches> faces;
     std::string crs_wkt;
@@ -30,6 +39,9 @@ struct Drawing {
     // group "crest", filled); unset: no such layer or group.
     std::optional<std::vector<CrestOrnament>> crests;
     std::vector<std::string> notes;  // what drawing noted (ridges skipped)
+    // The faces' fingerprints, written with the GeoPackage (table rockhatch_faces and the
+    // metadata items of Fingerprints::run); unset: none (a tile of a tiled run, a terrain style).
+    std::optional<Fingerprints> fingerprints;
 };
 
 // Whether the drawing's outputs have a layer (group) for the family: the rock families
@@ -53,6 +65,31 @@ std::size_t merge_gpkg(const std::vector<std::string>& parts, const std::string&
 // its parts'), else those of its hatches and crests.
 Drawing read_gpkg(const std::string& path, double scale);
 void write_svg(const Drawing& d, const std::string& path);
+
+// The fingerprints a hatch GeoPackage keeps; nullopt when it has none (a tiled run's, an
+// older version's). `what` names the file in errors.
+std::optional<Fingerprints> read_fingerprints(const std::string& path, const std::string& what);
+// What replace_faces changed.
+struct FaceReplacement {
+    std::size_t deleted = 0;  // features removed
+    std::size_t written = 0;  // features written
+    std::size_t kept = 0;     // features of the faces replaced drawn again as they were: left in place
+};
+// In a hatch GeoPackage that keeps fingerprints: replaces the features of the hatch layers
+// whose face_id is in `faces` by those of d.faces (as write_gpkg writes them, the same bytes;
+// a feature the file holds already, the same bytes with the same face, stays where it is;
+// with `all`, every feature of the file goes), replaces the fingerprint rows of `faces` by
+// those of d.fingerprints->faces, its run metadata by d.fingerprints->run, and the frame by
+// d.bounds: all in one SQLite transaction (an interruption leaves the file as it was).
+// Features of other faces are not touched. The R-trees follow through their triggers. With
+// `undo`, the features and fingerprints removed, the faces replaced and the file's metadata
+// are first written to that GeoPackage (replaced if it exists), for restore_faces.
+FaceReplacement replace_faces(const std::string& path, const std::vector<std::int64_t>& faces, bool all,
+                              const Drawing& d, const std::string& undo = "");
+// Undoes the replace_faces that wrote `undo`: removes the features and fingerprints of the
+// faces it replaced and puts back those it removed (the same geometry and attributes, hand
+// edits included) and the metadata, in one transaction.
+FaceReplacement restore_faces(const std::string& path, const std::string& undo);
 // A PNG preview `pixels` wide, over a light hillshade when one is given.
 void write_png(const Drawing& d, const std::string& path, int pixels, const Raster* hillshade);
 

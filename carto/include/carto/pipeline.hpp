@@ -49,6 +49,8 @@ struct Prepared {
     // A tile of a tiled run given the user's --window: its terrain is framed by what it drew,
     // as the whole run in that window is, not by `extent`.
     bool user_window = false;
+    // The fingerprints of the faces drawn, when the plan keeps them (carto/update.hpp).
+    std::optional<Fingerprints> fingerprints;
 };
 
 // Reads a DEM for the pipeline: refuses one without valid cells, and reprojects a
@@ -64,7 +66,8 @@ void check_roughness(const Raster& r, const std::string& path);
 // ---- The stages ----
 
 // 1. Reads the DEM (reprojected to a projected working CRS when geographic), the optional
-// rasters and the partition (read, extracted from the DEM, or none).
+// rasters and the partition (read, extracted from the DEM, or none); the faces' fingerprints
+// when the plan keeps them (keeps_fingerprints).
 Prepared prepare(const Plan& plan, const Progress& progress = {});
 // 2. The control fields the style reads (thesis 5.3): face-wise orientation and density, the
 // relief, roughness and slope, the fall line and the shade smoothed at map scale.

@@ -1,0 +1,80 @@
+// The edit loop (rockhatch update): a run's GeoPackage keeps, per face, a fingerprint of every
+// input the face's drawing depends on; `update` redraws exactly the faces whose fingerprint
+// changed, appeared or went away, and replaces their features in one transaction, leaving
+// every other feature (hand edits included) as it is.
+//
+// A face's fingerprint is a digest (128 bits, not cryptographic) of:
+// - the run's plan: program version, working CRS, the DEM's grid, the style (and the bytes of
+//   its script), its parameters, scale, seed, relief radius, the partition's options;
+// - the face as read (rings, labelled borders and the faces across, id, orientation,
+//   density, anchor), and within its box grown by the context margin (tile_context_margin:
+//   the style's reach, the terrain kernels, the snap) what the other faces and the labelled
+//   lines put there: their border segments in that box, with labels and the faces across,
+//   whether each corner of the box lies in them, their ids and controls;
+// - the DEM cells (and the --slope / --roughness cells) within that box grown by the halo
+//   (tile_halo_cells: the relief radius or the style's reach), in blocks of 8 x 8 cells.
+// These are the inputs a tile of a tiled run reads to draw a face exactly as the whole run
+// does (carto/tiles.hpp); the bounds are generous, so a face whose fingerprint is unchanged
+// draws the same bytes.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "carto/output.hpp"
+#include "carto/partition.hpp"
+#include "carto/pipeline.hpp"
+#include "carto/plan.hpp"
+#include "carto/progress.hpp"
+#include "carto/raster.hpp"
+
+namespace carto {
+
+// Whether a run of this plan keeps fingerprints in its GeoPackage: a GeoPackage output, and
+// a drawing made of faces alone (no terrain style, whose elements depend on every face, no
+// crest ornaments, drawn per ridge).
+bool keeps_fingerprints(const Plan& plan);
+
+// The fingerprints of the faces the plan draws (those whose anchor lies in its window, or
+// all), in partition order, from the partition as read (before its orientations and
+// densities are derived from the terrain), the working DEM and the given --slope and
+// --roughness rasters on its grid (null when not given).
+Fingerprints face_fingerprints(const Plan& plan, const Partition& partition, const Raster& dem, const Raster* slope,
+                               const Raster* roughness);
+
+struct UpdateOptions {
+    // Redraw every face and drop every feature (hand edits included); also accepts a file
+    // of another version, CRS or style.
+    bool reset = false;
+    // Faces redrawn whatever their fingerprint (the faces selected in QGIS).
+    std::vector<std::int64_t> faces;
+    // A GeoPackage to write what the update replaces to, so that restore_faces can undo it
+    // (the QGIS plugin's Undo); "" none.
+    std::string undo;
+};
+
+struct UpdateReport {
+    std::size_t faces = 0;      // faces of the plan (in its window)
+    std::size_t redrawn = 0;    // faces drawn again (changed, appeared, asked for)
+    std::size_t appeared = 0;   // of which new since the file was written
+    std::size_t removed = 0;    // faces gone: their features removed
+    std::size_t deleted = 0;    // features removed
+    std::size_t written = 0;    // features written
+    std::size_t kept = 0;       // features of redrawn faces drawn again as they were (left in place)
+    std::vector<std::int64_t> redrawn_ids, removed_ids;
+    double seconds = 0;
+    std::string crs;
+    std::vector<std::string> notes;
+};
+
+// Brings the plan's GeoPackage output (written by a run of the same plan) up to date with
+// the inputs, and rewrites its SVG, PNG and PDF outputs from the updated layers. Refuses
+// (Error Usage) a file of another program version, CRS or style unless reset; a file
+// without fingerprints (a tiled run's, an older version's); a plan that keeps none
+// (keeps_fingerprints). An error or a cancellation leaves the GeoPackage as it was.
+UpdateReport update(const Plan& plan, const UpdateOptions& u, const Progress& progress = {});
+// The same from the options: their plan, the outputs being the files to update.
+UpdateReport update(const Options& o, const UpdateOptions& u, const Progress& progress = {});
+
+}  // namespace carto

@@ -1,0 +1,237 @@
+// rockhatch update on the sample: a run keeps one fingerprint per face; an update redraws
+// exactly the faces whose inputs changed, with the bytes a whole run writes, leaves every
+// other feature (hand edits included) as it is, and refuses a file of another style.
+#include <gtest/gtest.h>
+
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include <filesystem>
+#include <map>
+#include <set>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "carto/error.hpp"
+#include "carto/pipeline.hpp"
+#include "carto/update.hpp"
+
+#include "scratch.hpp"
+
+using namespace carto;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct TempDir {
+    fs::path path;
+    TempDir() {
+        path = rh_test::scratch_dir() / "update";
+        fs::remove_all(path);
+        fs::create_directories(path);
+    }
+    ~TempDir() { fs::remove_all(path); }
+    std::string operator/(const std::string& name) const { return (path / name).string(); }
+};
+
+Options sample_options(const std::string& partition, const std::string& out) {
+    Options o;
+    o.dem = std::string(RH_SAMPLE_DIR) + "/dem.tif";
+    o.partition.path = partition;
+    o.threads = 2;
+    o.outputs = {out};
+    o.overwrite = true;
+    return o;
+}
+
+// Every feature of the hatch layers: fid -> (layer, face id, style, geometry WKB).
+using Feature = std::tuple<std::string, std::int64_t, std::string, std::string>;
+std::map<std::pair<std::string, GIntBig>, Feature> features(const std::string& path) {
+    GDALAllRegister();
+    std::unique_ptr<GDALDataset> ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR));
+    std::map<std::pair<std::string, GIntBig>, Feature> out;
+    for (OGRLayer* l : ds->GetLayers()) {
+        const std::string name = l->GetName();
+        if (name.rfind("hatch_", 0) != 0) continue;
+        for (auto& f : *l) {
+            std::string wkb(std::size_t(f->GetGeometryRef()->WkbSize()), '\0');
+            f->GetGeometryRef()->exportToWkb(wkbNDR, reinterpret_cast<unsigned char*>(wkb.data()));
+            out[{name, f->GetFID()}] = {name, f->GetFieldAsInteger64("face_id"), f->GetFieldAsString("style"), wkb};
+        }
+    }
+    return out;
+}
+
+// The features of each face, as a sorted list (fids aside).
+std::map<std::int64_t, std::multiset<Feature>> by_face(const std::map<std::pair<std::string, GIntBig>, Feature>& fs) {
+    std::map<std::int64_t, std::multiset<Feature>> out;
+    for (const auto& [key, f] : fs) out[std::get<1>(f)].insert(f);
+    return out;
+}
+
+// Moves the first vertex of face `fid`'s outer ring by (dx, dy) in the partition file.
+void move_vertex(const std::string& partition, GIntBig fid, double dx, double dy) {
+    std::unique_ptr<GDALDataset> ds(GDALDataset::Open(partition.c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE));
+    OGRLayer* faces = ds->GetLayerByName("faces");
+    std::unique_ptr<OGRFeature> f(faces->GetFeature(fid));
+    ASSERT_TRUE(f);
+    OGRPolygon* poly = f->GetGeometryRef()->toPolygon();
+    OGRLinearRing* ring = poly->getExteriorRing();
+    const int last = ring->getNumPoints() - 1;
+    // The middle vertex: the ring's closing point stays as it is.
+    const int k = last / 2;
+    ring->setPoint(k, ring->getX(k) + dx, ring->getY(k) + dy);
+    ASSERT_EQ(faces->SetFeature(f.get()), OGRERR_NONE);
+}
+
+}  // namespace
+
+TEST(Update, RunKeepsOneFingerprintPerFaceAndAnUnchangedUpdateTouchesNothing) {
+    TempDir dir;
+    const std::string out = dir / "h.gpkg";
+    const Stats s = run(sample_options(std::string(RH_SAMPLE_DIR) + "/partition.gpkg", out));
+    const auto fp = read_fingerprints(out, "-o");
+    ASSERT_TRUE(fp);
+    EXPECT_EQ(fp->faces.size(), s.faces);
+    EXPECT_EQ(fp->run.at("version"), RH_VERSION_STRING_TEST);
+    EXPECT_EQ(fp->run.at("style"), "rock");
+    const auto before = features(out);
+    const UpdateReport r = update(sample_options(std::string(RH_SAMPLE_DIR) + "/partition.gpkg", out), {});
+    EXPECT_EQ(r.faces, s.faces);
+    EXPECT_EQ(r.redrawn, 0u);
+    EXPECT_EQ(r.deleted, 0u);
+    EXPECT_EQ(r.written, 0u);
+    EXPECT_EQ(features(out), before);
+}
+
+TEST(Update, RedrawsTheEditedFacesAsAWholeRunAndKeepsHandEditsElsewhere) {
+    TempDir dir;
+    const std::string part = dir / "partition.gpkg", out = dir / "h.gpkg", whole = dir / "whole.gpkg";
+    fs::copy_file(std::string(RH_SAMPLE_DIR) + "/partition.gpkg", part);
+    run(sample_options(part, out));
+    // A hand edit in some face: one of its features deleted.
+    auto before = features(out);
+    const auto first = before.begin();
+    const std::int64_t hand_face = std::get<1>(first->second);
+    {
+        std::unique_ptr<GDALDataset> ds(GDALDataset::Open(out.c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE));
+        ASSERT_EQ(ds->GetLayerByName(first->first.first.c_str())->DeleteFeature(first->first.second), OGRERR_NONE);
+    }
+    before = features(out);
+    // A face far from the hand edit is edited.
+    const auto faces_before = by_face(before);
+    std::int64_t edited = -1;
+    for (auto it = faces_before.rbegin(); it != faces_before.rend(); ++it)
+        if (it->first != hand_face && it->first > 0) {
+            edited = it->first;
+            break;
+        }
+    ASSERT_GT(edited, 0);
+    move_vertex(part, edited, 3.0, -2.0);
+    const UpdateReport r = update(sample_options(part, out), {});
+    EXPECT_GE(r.redrawn, 1u);
+    EXPECT_LT(r.redrawn, r.faces);
+    const std::set<std::int64_t> redrawn(r.redrawn_ids.begin(), r.redrawn_ids.end());
+    EXPECT_TRUE(redrawn.count(edited));
+    EXPECT_GT(r.written, 0u);
+
+    // Each redrawn face: the features of a whole run; every other: as before.
+    run(sample_options(part, whole));
+    const auto after = by_face(features(out)), full = by_face(features(whole));
+    for (const auto& [face, fs] : full) {
+        if (redrawn.count(face)) {
+            EXPECT_EQ(after.at(face), fs) << "face " << face;
+        } else if (faces_before.count(face)) {
+            EXPECT_EQ(after.at(face), faces_before.at(face)) << "face " << face;
+        }
+    }
+    if (!redrawn.count(hand_face)) EXPECT_EQ(after.at(hand_face).size(), full.at(hand_face).size() - 1);
+    // The same update again: nothing to do.
+    EXPECT_EQ(update(sample_options(part, out), {}).redrawn, 0u);
+    // --reset: every face, the whole run's features.
+    const UpdateReport all = update(sample_options(part, out), {true, {}});
+    EXPECT_EQ(all.redrawn, all.faces);
+    EXPECT_EQ(by_face(features(out)), full);
+}
+
+TEST(Update, RemovedFacesLoseTheirFeaturesAndAskedFacesAreRedrawn) {
+    TempDir dir;
+    const std::string part = dir / "partition.gpkg", out = dir / "h.gpkg";
+    fs::copy_file(std::string(RH_SAMPLE_DIR) + "/partition.gpkg", part);
+    run(sample_options(part, out));
+    const auto before = by_face(features(out));
+    const std::int64_t gone = before.rbegin()->first;
+    {
+        std::unique_ptr<GDALDataset> ds(GDALDataset::Open(part.c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE));
+        ASSERT_EQ(ds->GetLayerByName("faces")->DeleteFeature(gone), OGRERR_NONE);
+    }
+    const std::int64_t asked = before.begin()->first;
+    const UpdateReport r = update(sample_options(part, out), {false, {asked}});
+    EXPECT_EQ(r.removed, 1u);
+    EXPECT_EQ(r.removed_ids, std::vector<std::int64_t>{gone});
+    const std::set<std::int64_t> redrawn(r.redrawn_ids.begin(), r.redrawn_ids.end());
+    EXPECT_TRUE(redrawn.count(asked));
+    const auto after = by_face(features(out));
+    EXPECT_FALSE(after.count(gone));
+    EXPECT_EQ(after.at(asked), before.at(asked));  // same inputs: same bytes
+    // An unknown face is refused by name.
+    try {
+        update(sample_options(part, out), {false, {999999}});
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), Code::Usage);
+        EXPECT_NE(std::string(e.what()).find("--face 999999"), std::string::npos) << e.what();
+    }
+}
+
+TEST(Update, RefusesAnotherStyleUnlessResetAndLeavesTheFileOnCancel) {
+    TempDir dir;
+    const std::string part = std::string(RH_SAMPLE_DIR) + "/partition.gpkg", out = dir / "h.gpkg";
+    run(sample_options(part, out));
+    const auto before = features(out);
+    Options other = sample_options(part, out);
+    other.style = "noisy";
+    try {
+        update(other, {});
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), Code::Usage);
+        EXPECT_NE(std::string(e.what()).find("style rock"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("--reset"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(features(out), before);
+    // Cancelled while hatching, then while writing: the file as it was.
+    for (const char* stage : {"hatching", "writing"}) {
+        try {
+            update(other, {true, {}}, [&](double, const std::string& s) { return s != stage; });
+            FAIL() << "no error";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.code(), Code::Cancelled);
+        }
+        EXPECT_EQ(features(out), before) << stage;
+    }
+    const UpdateReport r = update(other, {true, {}});
+    EXPECT_EQ(r.redrawn, r.faces);
+    EXPECT_EQ(read_fingerprints(out, "-o")->run.at("style"), "noisy");
+}
+
+TEST(Update, RefusesFilesWithoutFingerprintsAndPlansThatKeepNone) {
+    TempDir dir;
+    const std::string part = std::string(RH_SAMPLE_DIR) + "/partition.gpkg", out = dir / "h.gpkg";
+    Options o = sample_options(part, out);
+    try {
+        update(o, {});
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), Code::InputMissing);
+    }
+    o.crest_ornament = "default";
+    try {
+        update(o, {});
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), Code::Usage);
+        EXPECT_NE(std::string(e.what()).find("--crest-ornament"), std::string::npos) << e.what();
+    }
+}
