@@ -15,6 +15,7 @@
 #include "carto/publish.hpp"
 #include "carto/tiles.hpp"
 #include "libtex/parallel.hpp"
+#include "source_digest.hpp"
 
 namespace carto {
 // Named, not anonymous: a unity build compiles this file with others.
@@ -208,7 +209,7 @@ std::string number(double v) {
 // Every value of the plan a face's drawing depends on, as text (its digest is the plan's).
 std::string plan_text(const Plan& plan, const Raster& dem, bool slope, bool roughness) {
     const Options& o = plan.options;
-    std::string t = "version=" RH_VERSION_STRING "\nstyle=" + plan.style.info.name + "\nrock=" + plan.rock.name + "\n";
+    std::string t = "version=" RH_VERSION_STRING "+" RH_SOURCE_DIGEST "\nstyle=" + plan.style.info.name + "\nrock=" + plan.rock.name + "\n";
     if (!o.style_file.empty()) {
         std::ifstream in(o.style_file, std::ios::binary);
         Digest script;
@@ -348,7 +349,7 @@ Fingerprints face_fingerprints(const Plan& plan, const Partition& part, const Ra
     Fingerprints fp;
     Digest plan_digest;
     plan_digest.add(plan_text(plan, dem, slope != nullptr, roughness != nullptr));
-    fp.run["version"] = RH_VERSION_STRING;
+    fp.run["version"] = RH_VERSION_STRING "+" RH_SOURCE_DIGEST;
     fp.run["crs"] = crs_name(dem.crs_wkt);
     fp.run["style"] = plan.style.info.name;
     fp.run["plan"] = plan_digest.hex();
