@@ -51,8 +51,9 @@ Sampled sample(const Curve& c, const Field& f, double sampling) {
 }
 
 // Where f crosses `level` between a and b (g0 = f(a) - level and g1 = f(b) - level of opposite
-// signs, or one zero): the parameter t in [0, 1], by regula falsi with the Illinois step, a
-// few readings of f: the cut lies on the level line whatever the samples around it.
+// signs, or one zero): the parameter t in [0, 1], by regula falsi whose kept end has its value
+// halved at each step (so that neither end sticks), a few readings of f: the cut lies on the
+// level line whatever the samples around it.
 double crossing(const Field& f, const Point& a, const Point& b, double level, double g0, double g1) {
     double t0 = 0, t1 = 1;
     double t = g0 / (g0 - g1);
