@@ -10,7 +10,7 @@ import sys
 import pytest
 from osgeo import ogr
 
-from conftest import SANITIZED, features_by_face
+from conftest import features_by_face
 
 VALIDATOR = "/usr/lib/python3/dist-packages/osgeo_utils/samples/validate_gpkg.py"
 
@@ -112,7 +112,6 @@ carto.update(sys.argv[1], sys.argv[2], [sys.argv[3]], progress=progress, reset=T
 """
 
 
-@pytest.mark.skipif(SANITIZED, reason="the timing of the kill assumes an optimised build")
 def test_an_update_killed_while_writing_leaves_the_file_as_it_was(sample_dir, edited, tmp_path):
     from conftest import python_env
     out = edited["out"]
