@@ -2,7 +2,9 @@
 // intent; the elements in elements/ are the project's own drawings.
 #include "gallery.hpp"
 
+#include <atomic>
 #include <cmath>
+#include <optional>
 
 #include "gallery_discrete.hpp"
 #include "gallery_domain.hpp"
@@ -18,7 +20,48 @@ using namespace tex;
 
 namespace {
 
-Curves load(const std::string& dir, const std::string& name) { return ImportSVG(dir + "/" + name); }
+Curves load(const std::string& dir, const std::string& name) { return element(dir + "/" + name); }
+
+std::atomic<int> g_detail{1};
+
+// The points of one curve k times finer (see element()).
+std::vector<Point> finer(const std::vector<Point>& p, bool closed, int k) {
+    const std::size_t n = p.size();
+    if (n < 2 || k < 2) return p;
+    auto at = [&](std::ptrdiff_t i) -> std::optional<Point> {
+        if (closed) return p[std::size_t((i % std::ptrdiff_t(n) + std::ptrdiff_t(n)) % std::ptrdiff_t(n))];
+        if (i < 0 || i >= std::ptrdiff_t(n)) return std::nullopt;
+        return p[std::size_t(i)];
+    };
+    // The unit tangent at vertex i, or none at a corner (or an open curve's end).
+    auto tangent = [&](std::ptrdiff_t i) -> std::optional<Point> {
+        const auto a = at(i - 1), b = at(i + 1);
+        if (!a || !b) return std::nullopt;
+        const Point u = p[std::size_t(i % std::ptrdiff_t(n))] - *a, v = *b - p[std::size_t(i % std::ptrdiff_t(n))];
+        const double lu = norm(u), lv = norm(v);
+        if (lu == 0 || lv == 0 || dot(u, v) < std::cos(40 * pi / 180) * lu * lv) return std::nullopt;
+        const Point t = *b - *a;
+        return t / norm(t);
+    };
+    std::vector<Point> out;
+    const std::size_t nseg = closed ? n : n - 1;
+    out.reserve(nseg * std::size_t(k) + 1);
+    for (std::size_t i = 0; i < nseg; ++i) {
+        const Point a = p[i], b = p[(i + 1) % n], chord = b - a;
+        const double len = norm(chord);
+        const auto ta = tangent(std::ptrdiff_t(i)), tb = tangent(std::ptrdiff_t(i + 1));
+        const Point m0 = ta ? *ta * len : chord, m1 = tb ? *tb * len : chord;
+        out.push_back(a);
+        for (int j = 1; j < k; ++j) {
+            const double t = double(j) / k, t2 = t * t, t3 = t2 * t;
+            out.push_back(a * (2 * t3 - 3 * t2 + 1) + m0 * (t3 - 2 * t2 + t) + b * (-2 * t3 + 3 * t2) +
+                          m1 * (t3 - t2));
+        }
+    }
+    if (!closed) out.push_back(p.back());
+    return out;
+}
+
 
 Arrangement stripes(const std::string&) {
     // Stripes at 45 degrees with a cycle of two widths (200 and 67).
@@ -335,5 +378,20 @@ const Example& find(const std::string& name) {
 }
 
 std::string default_elements_dir() { return RH_GALLERY_ELEMENTS; }
+
+Curves element(const std::string& path) {
+    Curves c = ImportSVG(path);
+    const int k = g_detail.load();
+    if (k > 1)
+        for (Curve& cv : c.curves) cv.points = finer(cv.points, cv.closed, k);
+    return c;
+}
+
+void SetElementDetail(int k) {
+    if (k < 1) throw tex::Error("SetElementDetail", "the detail must be at least 1, not " + std::to_string(k));
+    g_detail.store(k);
+}
+
+int ElementDetail() { return g_detail.load(); }
 
 }  // namespace gallery

@@ -39,4 +39,17 @@ const Example& find(const std::string& name);
 // Default folder of the SVG elements (the source tree).
 std::string default_elements_dir();
 
+// An SVG element of the gallery (ImportSVG of `path`), drawn `ElementDetail()` times finer:
+// with detail k, every segment of a smooth stretch becomes k pieces of the cubic through its
+// neighbours (Catmull-Rom), so a polygon standing for a circle gets k times its points and
+// stays on its circle to within a fraction of its old error; a straight stretch between two
+// corners (turns of 40 degrees or more) stays straight, with k - 1 points along it. The
+// benchmarks time every script at two details, since a merge's cost must follow curves
+// and crossings, not points. Detail 1 (the default) is ImportSVG itself.
+tex::Curves element(const std::string& path);
+// The detail of element(); set before building the examples (not thread-safe to change
+// while an example builds).
+void SetElementDetail(int k);
+int ElementDetail();
+
 }  // namespace gallery

@@ -64,7 +64,7 @@ Figure fig_1c() {
 }
 
 Figure fig_1d(const std::string& elements) {
-    const Region user = UserRegion(tex::ImportSVG(elements + "/leaf.svg"));
+    const Region user = UserRegion(gallery::element(elements + "/leaf.svg"));
     // One random operator per statement: their streams are numbered in the order they are
     // made, and C++ leaves the order of a call's arguments open.
     const RealGen angle = RandomR(0, 2 * tex::pi);

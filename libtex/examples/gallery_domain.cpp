@@ -1,5 +1,6 @@
 // Parquetry, Table, Bottle and Teapot: textures filling an outline (see gallery_domain.hpp).
 #include "gallery_domain.hpp"
+#include "gallery.hpp"
 
 #include <array>
 #include <cmath>
@@ -10,7 +11,7 @@ using namespace tex;
 
 namespace {
 
-Curves load(const std::string& dir, const std::string& name) { return ImportSVG(dir + "/" + name); }
+Curves load(const std::string& dir, const std::string& name) { return gallery::element(dir + "/" + name); }
 
 // One element of `elements` on the vertex, chosen at random (stream 3), turned by `angle`,
 // its bounding-box centre on the vertex moved by up to dx and dy at random (streams 1, 2).

@@ -30,7 +30,7 @@ ControlledArrangement turned_elements(Curves element, double density) {
 
 Arrangement darts(const std::string& dir) {
     const Field to_centre = towards(Point{kSize / 2, kSize / 2});
-    return turned_elements(ImportSVG(dir + "/dart.svg"), kDartDensity)(to_centre);
+    return turned_elements(gallery::element(dir + "/dart.svg"), kDartDensity)(to_centre);
 }
 
 }  // namespace gallery::fields

@@ -1,5 +1,6 @@
 // Microprocessor: traces, chips and solder joints (see gallery_micro.hpp).
 #include "gallery_micro.hpp"
+#include "gallery.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +11,7 @@ using namespace tex;
 
 namespace {
 
-Curves load(const std::string& dir, const std::string& name) { return ImportSVG(dir + "/" + name); }
+Curves load(const std::string& dir, const std::string& name) { return gallery::element(dir + "/" + name); }
 
 }  // namespace
 

@@ -12,7 +12,7 @@ using namespace tex;
 
 namespace {
 
-Curves load(const std::string& dir, const char* name) { return ImportSVG(dir + "/" + name); }
+Curves load(const std::string& dir, const char* name) { return gallery::element(dir + "/" + name); }
 
 // The stroke `c` stretched from the edge's source to its target ("start" on the source).
 Curves stroke_along(const Curves& c, const Edge& e) {

@@ -1,4 +1,5 @@
 #include "gallery_synthesis.hpp"
+#include "gallery.hpp"
 
 #include <cmath>
 #include <vector>
@@ -39,7 +40,7 @@ Curves wave(double y, double amplitude, int n) {
 }  // namespace
 
 Arrangement circle(const std::string& dir) {
-    const Curves vine = ImportSVG(dir + "/synth_vine.svg");
+    const Curves vine = gallery::element(dir + "/synth_vine.svg");
     SynthesisOptions round = options(1, std::nullopt);
     round.closed_pattern = true;
     Curves c = SynthesizeAlongCurve(vine, ring(750, 360), 150, round);
@@ -48,14 +49,14 @@ Arrangement circle(const std::string& dir) {
 }
 
 Arrangement curve(const std::string& dir) {
-    const Curves vine = ImportSVG(dir + "/synth_vine.svg");
+    const Curves vine = gallery::element(dir + "/synth_vine.svg");
     Curves c = SynthesizeAlongCurve(vine, wave(650, 180, 400), 130, options(1, std::nullopt));
     c.append(SynthesizeAlongCurve(vine, wave(1350, 180, 400), 130, options(1, 0)));
     return Constant(c);
 }
 
 Arrangement rectangle(const std::string& dir) {
-    const Curves ladder = ImportSVG(dir + "/synth_ladder.svg");
+    const Curves ladder = gallery::element(dir + "/synth_ladder.svg");
     return Constant(Translate(SynthesizeInRectangle(ladder, 1600, 1600, 160, options(1, std::nullopt)), {200, 200}));
 }
 

@@ -15,7 +15,7 @@ namespace {
 
 std::vector<Curves> load_all(const std::string& dir, const char* stem, int n) {
     std::vector<Curves> out;
-    for (int i = 1; i <= n; ++i) out.push_back(ImportSVG(dir + "/" + stem + std::to_string(i) + ".svg"));
+    for (int i = 1; i <= n; ++i) out.push_back(gallery::element(dir + "/" + stem + std::to_string(i) + ".svg"));
     return out;
 }
 
@@ -148,7 +148,7 @@ Arrangement woven_hatching(const std::string& dir) {
 // ---- Teaser e ----
 
 Arrangement wheels(const std::string& dir) {
-    const Curves wheel = ImportSVG(dir + "/twheel.svg");
+    const Curves wheel = gallery::element(dir + "/twheel.svg");
     // About 100 cells; a wheel on each, turned at random and slightly reduced at random.
     auto cell_to_wheel = [wheel](const Face& f) {
         const Curves w = Scale(Rotate(wheel, Random(f, 0, 2 * pi, 0)), Random(f, 0.8, 1, 1));
@@ -158,7 +158,7 @@ Arrangement wheels(const std::string& dir) {
 }
 
 Arrangement stipples(const std::string& dir) {
-    const Curves stipple = ImportSVG(dir + "/tstipple.svg");
+    const Curves stipple = gallery::element(dir + "/tstipple.svg");
     // About 1200 cells; a dot cluster on each, turned at random.
     auto cell_to_stipple = [stipple](const Face& f) {
         const Curves s = Scale(Rotate(stipple, Random(f, 0, 2 * pi, 0)), Random(f, 0.9, 1, 1));
@@ -201,7 +201,7 @@ Arrangement basket_cells() {
 }
 
 Arrangement cracked_basket(const std::string& dir) {
-    const std::vector<Curves> cracks = {ImportSVG(dir + "/line1.svg"), ImportSVG(dir + "/line2.svg")};
+    const std::vector<Curves> cracks = {gallery::element(dir + "/line1.svg"), element(dir + "/line2.svg")};
     // A cell's outline stays straight; a line inside it becomes a crack stroke, one of
     // two drawings, laid one way or the other.
     auto line_to_crack = [cracks](const Edge& e) {

@@ -1,6 +1,7 @@
 // Fig. 4.5 of the thesis redone with tiled maps: the operators run once on one period of
 // the wall; every random decision is a ghost mapper's, taken copy by copy at conversion.
 #include "gallery_tiled.hpp"
+#include "gallery.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -21,7 +22,7 @@ double cluster_field(const Point& p) {
 }  // namespace
 
 TiledMap wall(const std::string& dir) {
-    const Curves pebble = ImportSVG(dir + "/pebble.svg");
+    const Curves pebble = gallery::element(dir + "/pebble.svg");
     auto brick = [pebble](const Face& f) {
         Curves c = teasers::shrink_brick(f);
         if (HasLabel(IncidentEdges(f), "v1")) c.append(Scale(MatchFace(pebble, f), 0.35));

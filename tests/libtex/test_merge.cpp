@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <random>
 #include <string>
 #include <tuple>
 
@@ -869,4 +870,133 @@ TEST(Merge, MovingAverageIsLocalAndKeepsTheEnds) {
     const Curves cut = MovingAverage(Polyline({{0, 0}, {4, 0}, {4, 4}, {0, 4}}, true), 1);
     const std::vector<Point> in{{4.0 / 3, 4.0 / 3}, {8.0 / 3, 4.0 / 3}, {8.0 / 3, 8.0 / 3}, {4.0 / 3, 8.0 / 3}};
     for (std::size_t i = 0; i < 4; ++i) EXPECT_NEAR(distance(cut.curves[0].points[i], in[i]), 0, 1e-12);
+}
+
+// ---- Merges whose cost follows curves and crossings, not points
+
+namespace {
+
+// A circle of n points.
+Curves circle(Point c, double r, int n, const char* label = nullptr) {
+    std::vector<Point> p;
+    for (int k = 0; k < n; ++k) p.push_back(c + Point{std::cos(2 * pi * k / n), std::sin(2 * pi * k / n)} * r);
+    Curves out = Polyline(p, true);
+    if (label) out.curves[0].labels.add(label);
+    return out;
+}
+
+// Three overlapping squares and a triangle: a mask with inner boundaries and corners.
+MapPtr squares_mask() {
+    Curves m = Polyline({{0, 0}, {40, 0}, {40, 40}, {0, 40}}, true);
+    m.append(Polyline({{30, 30}, {70, 30}, {70, 70}, {30, 70}}, true));
+    m.append(Polyline({{80, 0}, {100, 0}, {100, 20}, {80, 20}}, true));
+    m.append(Polyline({{0, 60}, {20, 90}, {-10, 90}}, true));
+    return PlanarMap::induce(m);
+}
+
+}  // namespace
+
+TEST(MergeCost, ACurveThatMeetsNothingIsClassifiedWholeWhateverItsPoints) {
+    const MapPtr mask = squares_mask();
+    // 60 circles of 200 points, each at least 1.5 from every mask boundary and apart from
+    // the others (13 inside the mask), and one circle of 50 points across the first square's
+    // right side.
+    Curves subject;
+    for (int i = 0; i < 60; ++i) {
+        const Point c{-46.0 + 12.0 * (i % 15), -33.0 + 35.0 * (i / 15)};
+        subject.append(circle(c, 1.5, 200));
+    }
+    const Curves across = circle({40, 10}, 3, 50, "across");
+    Curves both = subject;
+    both.append(across);
+    for (MaskSide side : {MaskSide::Inside, MaskSide::Outside})
+        for (Border b : {CROP, CROP_ADD_BOUNDARY, KEEP_INSIDE, KEEP_OUTSIDE}) {
+            SCOPED_TRACE(int(b) * 2 + int(side));
+            const std::uint64_t s0 = detail::segments_searched();
+            const Curves quiet = apply_mask(subject, *mask, side, b);
+            const std::uint64_t s1 = detail::segments_searched();
+            const Curves fast = apply_mask(both, *mask, side, b);
+            const std::uint64_t s2 = detail::segments_searched();
+            // The 12,000 segments of the circles that meet nothing are never searched; the
+            // circle across a boundary is searched segment by segment against the mask.
+            EXPECT_EQ(s1 - s0, 0u);
+            EXPECT_EQ(s2 - s1, 50u);
+            Curves exact;
+            {
+                detail::ExactCropScope only_exact;
+                exact = apply_mask(both, *mask, side, b);
+            }
+            EXPECT_NEAR(th::length(fast), th::length(exact), 1e-9);
+            if (b == KEEP_INSIDE || b == KEEP_OUTSIDE) EXPECT_EQ(ToSVG(fast, 200), ToSVG(exact, 200));
+            // Whole circles: the 13 inside the mask for Inside, the 47 others for Outside.
+            std::size_t whole = 0;
+            for (const auto& c : quiet.curves) whole += c.closed && c.points.size() == 200;
+            EXPECT_EQ(whole, side == MaskSide::Inside ? 13u : 47u);
+        }
+}
+
+TEST(MergeCost, KeepModesDecideByCrossingsAsTheExactMapDoes) {
+    const MapPtr mask = squares_mask();
+    for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+        SCOPED_TRACE(seed);
+        std::mt19937_64 rng(seed);
+        std::uniform_real_distribution<double> u(-20, 110);
+        Curves subject;
+        for (int i = 0; i < 40; ++i) {
+            // Rounded to quarters, so that some vertices fall on mask corners and sides.
+            auto q = [&] { return std::round(u(rng) * 4) / 4; };
+            const Point c{q(), q()};
+            if (i % 3 == 0) subject.append(circle(c, 2 + (i % 7), 4 + 4 * (i % 5)));
+            else if (i % 3 == 1) subject.append(Polyline({c, {q(), q()}, {q(), q()}}));
+            else subject.append(Polyline({c, c + Point{10, 0}, c + Point{10, 10}}, true));
+        }
+        // Degenerate contacts: along the first square's bottom side, through its corner,
+        // ending on its right side.
+        subject.append(Polyline({{-5, 0}, {20, 0}}));
+        subject.append(Polyline({{-5, -5}, {5, 5}}));
+        subject.append(Polyline({{45, 20}, {40, 20}}));
+        for (MaskSide side : {MaskSide::Inside, MaskSide::Outside})
+            for (Border b : {KEEP_INSIDE, KEEP_OUTSIDE}) {
+                const Curves fast = apply_mask(subject, *mask, side, b);
+                Curves exact;
+                {
+                    detail::ExactCropScope only_exact;
+                    exact = apply_mask(subject, *mask, side, b);
+                }
+                EXPECT_EQ(ToSVG(fast, 200), ToSVG(exact, 200)) << int(side) << " " << int(b);
+            }
+    }
+}
+
+TEST(MergeCost, ACurveThatCrossesItselfIsStillSplitIntoItsEdges) {
+    // A pentagram goes twice round its centre, every turn the same way: the quick test of
+    // simple curves must not take it for one. Its 5 crossings cut it into 10 edges (5 tips,
+    // 5 sides of the inner pentagon); a mask holding all but the top tip keeps 9 of them
+    // (KEEP_INSIDE). Taken whole, the pentagram would be dropped.
+    std::vector<Point> star;
+    for (int k = 0; k < 5; ++k) {
+        const double t = pi / 2 + 4 * pi * k / 5;
+        star.push_back(Point{std::cos(t), std::sin(t)} * 10.0);
+    }
+    const Curves pentagram = Polyline(star, true);
+    const MapPtr below = PlanarMap::induce(Polyline({{-20, -20}, {20, -20}, {20, 4}, {-20, 4}}, true));
+    const Curves kept = apply_mask(pentagram, *below, MaskSide::Inside, KEEP_INSIDE);
+    EXPECT_EQ(kept.curves.size(), 9u);
+    // An open spiral that runs into itself, and the same turned into a loop that meets its
+    // start: split at the meeting points, not kept or dropped as one curve.
+    std::vector<Point> spiral;
+    for (int k = 0; k <= 40; ++k) {
+        const double t = 2.4 * pi * k / 40, r = 10 - 3 * double(k) / 40;
+        spiral.push_back(Point{std::cos(t), std::sin(t)} * r);
+    }
+    spiral.push_back({9, -1});  // back across the first turn
+    const MapPtr right = PlanarMap::induce(Polyline({{0, -20}, {20, -20}, {20, 20}, {0, 20}}, true));
+    const Curves s = apply_mask(Polyline(spiral), *right, MaskSide::Inside, KEEP_OUTSIDE);
+    Curves se;
+    {
+        detail::ExactCropScope only_exact;
+        se = apply_mask(Polyline(spiral), *right, MaskSide::Inside, KEEP_OUTSIDE);
+    }
+    EXPECT_EQ(ToSVG(s, 40), ToSVG(se, 40));
+    EXPECT_GT(s.curves.size(), 1u);
 }

@@ -102,4 +102,9 @@ private:
 };
 // How many crops this thread cut by walking open polylines.
 std::uint64_t polyline_crops();
+// How many segments of subject curves this thread's merges searched one by one (against the
+// mask, or against each other for the edges of KEEP modes). A curve whose box meets no mask
+// segment, or that meets no other curve's box and is plainly simple, is classified whole and
+// adds nothing: the cost of a merge follows its curves and crossings, not its points.
+std::uint64_t segments_searched();
 }  // namespace tex::detail

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <unordered_set>
 
+#include "libtex/merge.hpp"
 #include "libtex/planar_map.hpp"
 #include "libtex/random.hpp"
 
@@ -133,6 +134,25 @@ bool SegmentGrid::touches(const Point& p, const Point& q, bool only_changing, st
     return hit;
 }
 
+bool SegmentGrid::box_meets(const BBox& b, bool only_changing) const {
+    if (segs_.empty() || b.empty() || !b.intersects(box_)) return false;
+    const int c0 = col(b.xmin), c1 = col(b.xmax), r0 = row(b.ymin), r1 = row(b.ymax);
+    // Segments are clipped against the box grown by a rounding margin (Liang-Barsky decides
+    // on doubles): a segment that misses it misses the box.
+    const BBox grown = b.expanded(1e-9 * (1 + std::max(b.width(), b.height())));
+    for (int r = r0; r <= r1; ++r)
+        for (int c = c0; c <= c1; ++c)
+            for (std::uint32_t k = start_[cell(c, r)]; k < start_[cell(c, r) + 1]; ++k) {
+                const Seg& s = segs_[items_[k]];
+                if (only_changing && !s.changes()) continue;
+                if (!(std::max(s.a.x, s.b.x) < grown.xmin || std::min(s.a.x, s.b.x) > grown.xmax ||
+                      std::max(s.a.y, s.b.y) < grown.ymin || std::min(s.a.y, s.b.y) > grown.ymax) &&
+                    segment_meets_box(s.a, s.b, grown))
+                    return true;
+            }
+    return false;
+}
+
 int SegmentGrid::first_above(const Point& p, const std::function<bool(std::uint32_t)>& use, bool& on) const {
     on = false;
     if (segs_.empty() || p.x < box_.xmin || p.x > box_.xmax || p.y > box_.ymax) return -1;
@@ -212,41 +232,163 @@ std::vector<Seg> curve_segments(const Curves& c) {
     return out;
 }
 
+namespace {
+
+// Appends the segments of one curve (zero-length and non-finite ones left out).
+void append_segments(const Curve& cv, std::uint32_t owner, std::vector<Seg>& out) {
+    const std::size_t n = cv.points.size();
+    if (n < 2) return;
+    const std::size_t nseg = cv.closed ? n : n - 1;
+    for (std::size_t i = 0; i < nseg; ++i) {
+        const Point& a = cv.points[i];
+        const Point& b = cv.points[(i + 1) % n];
+        if (a == b || !std::isfinite(a.x) || !std::isfinite(a.y) || !std::isfinite(b.x) || !std::isfinite(b.y))
+            continue;
+        Seg s;
+        s.a = a;
+        s.b = b;
+        s.owner = owner;
+        out.push_back(s);
+    }
+}
+
+// Whether every segment of the curve turns the same way around c (exact orientation, never
+// collinear with c) and the angles they sweep sum to less than a full turn (an open curve)
+// or to one full turn (a closed one). Then each ray from c meets the curve at most once
+// (the curve is star-shaped from c), so it is simple.
+bool star_shaped_from(const std::vector<Point>& p, bool closed, const Point& c) {
+    const std::size_t n = p.size(), nseg = closed ? n : n - 1;
+    int side = 0;
+    double swept = 0;
+    for (std::size_t i = 0; i < nseg; ++i) {
+        const Point& a = p[i];
+        const Point& b = p[(i + 1) % n];
+        const int o = CGAL::orientation(kp(c), kp(a), kp(b));
+        if (o == 0 || (side != 0 && o != side)) return false;
+        side = o;
+        const Point u = a - c, v = b - c;
+        swept += std::atan2(cross(u, v), dot(u, v));
+    }
+    return closed ? std::abs(swept) < 3 * pi : std::abs(swept) < 2 * pi - 1e-6;
+}
+
+// Whether a curve is shown simple in O(n): an open chain running forward along its chord
+// all the way, or a curve star-shaped from its vertices' mean or (open) from a point off its
+// chord's middle. Nearly collinear points (a flattened arc, a straight stretch with points
+// along it) do not spoil it. False means "not shown", and the segment search decides.
+bool plainly_simple(const Curve& cv) {
+    const auto& p = cv.points;
+    const std::size_t n = p.size();
+    if (n < 2) return false;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (!std::isfinite(p[i].x) || !std::isfinite(p[i].y)) return false;
+        if ((i + 1 < n || cv.closed) && p[i] == p[(i + 1) % n]) return false;
+    }
+    if (!cv.closed && n == 2) return true;
+    if (cv.closed && n < 3) return false;
+    Point mean{0, 0};
+    for (const Point& q : p) mean = mean + q;
+    mean = mean / double(n);
+    if (cv.closed) return star_shaped_from(p, true, mean);
+    // Forward along the chord, with a margin for the rounding of the dot products.
+    const Point d = p.back() - p.front();
+    const double ld = norm(d);
+    bool forward = ld > 0;
+    for (std::size_t i = 0; forward && i + 1 < n; ++i) {
+        const Point e = p[i + 1] - p[i];
+        forward = dot(e, d) > 1e-9 * norm(e) * ld;
+    }
+    if (forward) return true;
+    if (star_shaped_from(p, false, mean)) return true;
+    if (ld == 0) return false;
+    const Point mid = (p.front() + p.back()) / 2, off{-d.y, d.x};
+    return star_shaped_from(p, false, mid + off) || star_shaped_from(p, false, mid - off);
+}
+
+// Curves whose boxes (closed, grown by a rounding margin) meet another's box, or that
+// cover too many cells of the boxes' grid to be checked pair by pair (those are marked
+// too: they go to the segment search, which is exact).
+std::vector<char> crowded_curves(const std::vector<BBox>& box, const std::vector<char>& usable) {
+    const std::size_t n = box.size();
+    std::vector<char> crowded(n, 0);
+    BBox all;
+    std::size_t m = 0;
+    for (std::size_t i = 0; i < n; ++i)
+        if (usable[i]) {
+            all.add(Point{box[i].xmin, box[i].ymin});
+            all.add(Point{box[i].xmax, box[i].ymax});
+            ++m;
+        }
+    if (m < 2) return crowded;
+    const double span = std::max(all.width(), all.height());
+    const double margin = 1e-9 * (1 + span);
+    all = all.expanded(2 * margin);
+    const double w = all.width(), h = all.height();
+    const double s = std::max(std::sqrt(w * h / double(m)), span / 1024);
+    const int nx = int(std::clamp(std::ceil(w / s), 1.0, 1024.0)), ny = int(std::clamp(std::ceil(h / s), 1.0, 1024.0));
+    const double cw = w / nx, ch = h / ny;
+    auto col = [&](double x) { return int(std::clamp(std::floor((x - all.xmin) / cw), 0.0, double(nx - 1))); };
+    auto row = [&](double y) { return int(std::clamp(std::floor((y - all.ymin) / ch), 0.0, double(ny - 1))); };
+    constexpr int kMostCells = 64;
+    constexpr std::size_t kMostPerCell = 32;
+    std::vector<std::vector<std::uint32_t>> cells(std::size_t(nx) * std::size_t(ny));
+    std::vector<BBox> grown(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        if (!usable[i]) continue;
+        grown[i] = box[i].expanded(margin);
+        const int c0 = col(grown[i].xmin), c1 = col(grown[i].xmax), r0 = row(grown[i].ymin), r1 = row(grown[i].ymax);
+        if ((c1 - c0 + 1) * (r1 - r0 + 1) > kMostCells) {
+            crowded[i] = 1;
+            continue;
+        }
+        for (int r = r0; r <= r1; ++r)
+            for (int c = c0; c <= c1; ++c) cells[std::size_t(r) * std::size_t(nx) + std::size_t(c)].push_back(std::uint32_t(i));
+    }
+    // A curve too large for the cells still meets the others' boxes: found from its side.
+    for (std::size_t i = 0; i < n; ++i) {
+        if (!crowded[i]) continue;
+        const int c0 = col(grown[i].xmin), c1 = col(grown[i].xmax), r0 = row(grown[i].ymin), r1 = row(grown[i].ymax);
+        for (int r = r0; r <= r1; ++r)
+            for (int c = c0; c <= c1; ++c)
+                for (std::uint32_t j : cells[std::size_t(r) * std::size_t(nx) + std::size_t(c)])
+                    if (grown[i].intersects(grown[j])) crowded[j] = 1;
+    }
+    for (const auto& cell : cells) {
+        if (cell.size() > kMostPerCell) {
+            for (std::uint32_t i : cell) crowded[i] = 1;
+            continue;
+        }
+        for (std::size_t a = 0; a < cell.size(); ++a)
+            for (std::size_t b = a + 1; b < cell.size(); ++b)
+                if (grown[cell[a]].intersects(grown[cell[b]])) crowded[cell[a]] = crowded[cell[b]] = 1;
+    }
+    return crowded;
+}
+
+}  // namespace
+
+namespace {
+thread_local std::uint64_t g_searched = 0;
+}  // namespace
+void note_segments_searched(std::size_t n) { g_searched += n; }
+std::uint64_t segments_searched() { return g_searched; }
+
 void curve_segments(const Curves& c, std::vector<Seg>& out) {
     out.clear();
     std::size_t most = 0;
     for (const Curve& cv : c.curves) most += cv.points.size();
     out.reserve(most);
-    for (std::uint32_t ci = 0; ci < c.curves.size(); ++ci) {
-        const Curve& cv = c.curves[ci];
-        const std::size_t n = cv.points.size();
-        if (n < 2) continue;
-        const std::size_t nseg = cv.closed ? n : n - 1;
-        for (std::size_t i = 0; i < nseg; ++i) {
-            const Point& a = cv.points[i];
-            const Point& b = cv.points[(i + 1) % n];
-            if (a == b || !std::isfinite(a.x) || !std::isfinite(a.y) || !std::isfinite(b.x) || !std::isfinite(b.y))
-                continue;
-            Seg s;
-            s.a = a;
-            s.b = b;
-            s.owner = ci;
-            out.push_back(s);
-        }
-    }
+    for (std::uint32_t ci = 0; ci < c.curves.size(); ++ci) append_segments(c.curves[ci], ci, out);
 }
 
 Curves maximal_edges(const Curves& c) {
-    const std::vector<Seg> segs = curve_segments(c);
-    // Position of each segment along its curve, and the number of segments per curve.
-    std::vector<std::uint32_t> pos(segs.size()), nseg(c.curves.size(), 0);
-    for (std::size_t i = 0; i < segs.size(); ++i) pos[i] = nseg[segs[i].owner]++;
-    std::vector<char> busy(c.curves.size(), 0);
+    const std::size_t ncurves = c.curves.size();
+    std::vector<char> busy(ncurves, 0);
     // A labelled point inside a curve is a vertex of it.
     if (!c.points.empty()) {
         std::unordered_set<Point, PointHash> labelled;
         for (const auto& lp : c.points) labelled.insert(lp.point);
-        for (std::size_t ci = 0; ci < c.curves.size(); ++ci) {
+        for (std::size_t ci = 0; ci < ncurves; ++ci) {
             const auto& pts = c.curves[ci].points;
             if (pts.size() < 2) continue;
             // The ends of an open curve are vertices anyway.
@@ -256,6 +398,28 @@ Curves maximal_edges(const Curves& c) {
                 if (labelled.count(pts[k])) busy[ci] = 1;
         }
     }
+    // Whole curves first: one whose box meets no other curve's box and that is plainly
+    // simple is an edge on its own, without a look at its segments. The others (crowded)
+    // are searched segment by segment.
+    std::vector<BBox> box(ncurves);
+    std::vector<char> usable(ncurves, 0);
+    for (std::size_t ci = 0; ci < ncurves; ++ci) {
+        for (const Point& q : c.curves[ci].points)
+            if (std::isfinite(q.x) && std::isfinite(q.y)) box[ci].add(q);
+        usable[ci] = c.curves[ci].points.size() >= 2 && !box[ci].empty();
+    }
+    std::vector<char> crowded = crowded_curves(box, usable);
+    for (std::size_t ci = 0; ci < ncurves; ++ci)
+        if (usable[ci] && !crowded[ci] && !plainly_simple(c.curves[ci])) crowded[ci] = 1;
+    std::vector<Seg> segs;
+    for (std::uint32_t ci = 0; ci < ncurves; ++ci)
+        if (crowded[ci]) append_segments(c.curves[ci], ci, segs);
+    note_segments_searched(segs.size());
+    // Position of each segment along its curve, and the number of segments per curve.
+    std::vector<std::uint32_t> pos(segs.size()), nseg(ncurves, 0);
+    for (std::size_t i = 0; i < segs.size(); ++i) pos[i] = nseg[segs[i].owner]++;
+    for (std::size_t ci = 0; ci < ncurves; ++ci)
+        if (usable[ci] && !crowded[ci]) nseg[ci] = std::uint32_t(c.curves[ci].points.size());  // any nonzero count
     const SegmentGrid grid(segs);
     for (std::uint32_t i = 0; i < segs.size(); ++i) {
         const Seg& s = segs[i];
@@ -292,7 +456,7 @@ Curves maximal_edges(const Curves& c) {
     }
     Curves out, cluster;
     out.points = c.points;
-    for (std::size_t ci = 0; ci < c.curves.size(); ++ci) {
+    for (std::size_t ci = 0; ci < ncurves; ++ci) {
         if (nseg[ci] == 0) continue;
         if (busy[ci]) cluster.curves.push_back(c.curves[ci]);
         else out.curves.push_back(c.curves[ci]);

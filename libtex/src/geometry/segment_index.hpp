@@ -98,6 +98,11 @@ public:
     // `owners`, every touched segment's owner is marked there (and the search goes on).
     bool touches(const Point& p, const Point& q, bool only_changing, std::vector<char>* owners = nullptr) const;
 
+    // Whether the box (closed) meets any segment of the grid (when only_changing, any segment
+    // across which the inside changes), up to a rounding margin. False: nothing inside the
+    // box can touch the grid's segments, so a whole curve is classified by its box alone.
+    bool box_meets(const BBox& box, bool only_changing) const;
+
     // Point location against the segments across which the inside changes.
     enum class Where { Out, In, On };
     Where locate(const Point& p) const;
@@ -131,6 +136,9 @@ void curve_segments(const Curves& c, std::vector<Seg>& out);
 // computed without the exact planar map for the curves that meet no other curve and do
 // not touch themselves: such a curve is one edge on its own.
 Curves maximal_edges(const Curves& c);
+
+// Adds n to this thread's count of segments searched one by one (tex::detail::segments_searched).
+void note_segments_searched(std::size_t n);
 
 }  // namespace tex::detail
 

@@ -128,7 +128,15 @@ std::vector<Run> split_runs(const Curves& subject, const detail::SegmentGrid& gr
         const std::size_t n = pts.size();
         if (n < 2) continue;
         const bool closed = subject.curves[i].closed && n >= 3;
+        // A curve whose box meets no mask segment's box is one far run, its segments unseen.
+        BBox box;
+        for (const Point& q : pts) box.add(q);
+        if (!grid.box_meets(box, only_changing)) {
+            runs.push_back({i, std::move(pts), closed, false});
+            continue;
+        }
         const std::size_t nseg = closed ? n : n - 1;
+        detail::note_segments_searched(nseg);
         near.assign(nseg, 0);
         bool any = false, all = true;
         for (std::size_t k = 0; k < nseg; ++k) {
@@ -367,6 +375,13 @@ bool crop_open_polylines(const Curves& src, const detail::SegmentGrid& grid, Sta
             piece.points = std::move(pts);
             result.curves.push_back(std::move(piece));
         };
+        BBox box;  // a curve whose box meets no mask segment is kept or dropped whole
+        for (const Point& q : c.points) box.add(q);
+        if (!grid.box_meets(box, false)) {
+            if (st == wanted) emit(std::vector<Point>(c.points));
+            continue;
+        }
+        detail::note_segments_searched(c.points.size() - 1);
         std::vector<Point> cur{c.points.front()};
         // The curve's ends and crossings, which must all differ: crop_by_crossings joins two
         // pieces again where a rounded crossing repeats and misses the mask.
@@ -615,16 +630,25 @@ JointMap joint_map(const Curves& src, const Curves& mask, const detail::SegmentG
 
 // KEEP modes: whole edges, kept by the status of all their pieces (KEEP_INSIDE) or of any
 // one (KEEP_OUTSIDE); a piece lying on the mask boundary counts for both sides.
-void keep_whole_edges(const Curves& src, const std::vector<Run>& runs, const JointMap& j, Border b, Status wanted,
-                      Curves& out) {
-    std::vector<char> any(src.curves.size(), 0), all(src.curves.size(), 1), seen(src.curves.size(), 0);
-    auto note = [&](std::uint32_t curve, bool ok) {
+struct KeepVotes {
+    std::vector<char> any, all, seen;
+    explicit KeepVotes(std::size_t n) : any(n, 0), all(n, 1), seen(n, 0) {}
+    void note(std::uint32_t curve, bool ok) {
         seen[curve] = 1;
         any[curve] |= ok;
         all[curve] &= ok;
-    };
+    }
+    void forget(std::uint32_t curve) {
+        seen[curve] = any[curve] = 0;
+        all[curve] = 1;
+    }
+    bool keep(std::size_t curve, Border b) const { return b == Border::KEEP_INSIDE ? (seen[curve] && all[curve]) : any[curve]; }
+};
+
+// The votes of the pieces of the runs `use` selects, from the joint map.
+void vote_from_joint_map(const std::vector<Run>& runs, const JointMap& j, Status wanted, KeepVotes& v) {
     for (std::uint32_t r = 0; r < runs.size(); ++r)
-        if (!runs[r].near) note(runs[r].curve, j.run_status[r] == wanted);
+        if (!runs[r].near && j.run_status[r] != Status::Unknown) v.note(runs[r].curve, j.run_status[r] == wanted);
     if (j.jm)
         for (const EdgeRec& e : j.jm->edges()) {
             bool on_mask = false;
@@ -632,11 +656,47 @@ void keep_whole_edges(const Curves& src, const std::vector<Run>& runs, const Joi
             const bool ok = on_mask ? (j.status[e.left] == wanted || j.status[e.right] == wanted)
                                     : j.status[e.left] == wanted;
             for (const auto& s : e.sources)
-                if (s.curve < j.n_subject) note(runs[j.joint_run[s.curve]].curve, ok);
+                if (s.curve < j.n_subject) v.note(runs[j.joint_run[s.curve]].curve, ok);
         }
-    for (std::size_t i = 0; i < src.curves.size(); ++i) {
-        const bool keep = b == Border::KEEP_INSIDE ? (seen[i] && all[i]) : any[i];
-        if (keep) out.curves.push_back(src.curves[i]);
+}
+
+// KEEP modes without the exact planar map: a run is located by its first point and its
+// status flips at each proper crossing of a boundary across which the inside changes
+// (exact predicates), so every piece votes. A curve with any other contact with the
+// mask (through a mask vertex, along a segment, ending on it, crossings too close to
+// order) is marked `hard` and left to the joint map; its votes so far are forgotten.
+void keep_by_crossings(const detail::SegmentGrid& grid, const std::vector<Run>& runs, Status wanted, KeepVotes& v,
+                       std::vector<char>& hard) {
+    const auto& msegs = grid.segments();
+    std::vector<Cross> cs;
+    for (const Run& run : runs) {
+        if (hard[run.curve]) continue;
+        const auto where = grid.locate(run.pts.front());
+        if (where == detail::SegmentGrid::Where::On) {
+            hard[run.curve] = 1;
+            v.forget(run.curve);
+            continue;
+        }
+        Status st = where == detail::SegmentGrid::Where::In ? Status::In : Status::Out;
+        if (run.near) {
+            const std::size_t n = run.pts.size(), nseg = run.closed ? n : n - 1;
+            bool plain = true;
+            for (std::size_t k = 0; plain && k < nseg; ++k) {
+                cs.clear();
+                plain = segment_crossings(grid, run.pts[k], run.pts[(k + 1) % n], cs);
+                for (const Cross& x : cs)
+                    if (plain && msegs[x.seg].changes()) {
+                        v.note(run.curve, st == wanted);
+                        st = st == Status::In ? Status::Out : Status::In;
+                    }
+            }
+            if (!plain) {
+                hard[run.curve] = 1;
+                v.forget(run.curve);
+                continue;
+            }
+        }
+        v.note(run.curve, st == wanted);
     }
 }
 
@@ -757,19 +817,36 @@ Curves mask_core(const Curves& subject, const Curves& mask, MaskSide side, Borde
     // KEEP modes only care where the inside changes; CROP also cuts at inner boundaries.
     std::vector<char> touched(mask.curves.size(), 0);
     const std::vector<Run> runs = split_runs(src, grid, keep_whole, touched);
+    Curves out;
+    out.points = subject.points;
+    if (keep_whole) {
+        KeepVotes votes(src.curves.size());
+        std::vector<char> hard(src.curves.size(), detail::exact_crops_only() ? 1 : 0);
+        if (!detail::exact_crops_only()) keep_by_crossings(grid, runs, wanted, votes, hard);
+        std::vector<Run> hard_runs;
+        for (const Run& r : runs)
+            if (hard[r.curve]) hard_runs.push_back(r);
+        if (!hard_runs.empty()) {
+            std::fill(touched.begin(), touched.end(), 0);
+            for (const Run& r : hard_runs)
+                if (r.near) {
+                    const std::size_t n = r.pts.size(), nseg = r.closed ? n : n - 1;
+                    for (std::size_t k = 0; k < nseg; ++k) grid.touches(r.pts[k], r.pts[(k + 1) % n], true, &touched);
+                }
+            const std::vector<char> included = mask_curves_needed(mask, grid, hard_runs, touched, true);
+            vote_from_joint_map(hard_runs, joint_map(src, mask, grid, hard_runs, included), wanted, votes);
+        }
+        for (std::size_t i = 0; i < src.curves.size(); ++i)
+            if (votes.keep(i, b)) out.curves.push_back(src.curves[i]);
+        return out;
+    }
     const std::vector<char> included = mask_curves_needed(mask, grid, runs, touched, keep_whole);
-    if (!keep_whole && !detail::exact_crops_only()) {
+    if (!detail::exact_crops_only()) {
         Curves fast;
         if (crop_by_crossings_fast(src, mask, grid, runs, side, b, wanted, fast)) return fast;
     }
 
     const JointMap j = joint_map(src, mask, grid, runs, included);
-    Curves out;
-    out.points = subject.points;
-    if (keep_whole) {
-        keep_whole_edges(src, runs, j, b, wanted, out);
-        return out;
-    }
     crop_pieces(src, mask, grid, runs, included, j, b, wanted, in, out);
     drop_repeated_points(out);
     return out;
