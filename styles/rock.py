@@ -24,8 +24,8 @@ Run on its own, or through the rockhatch command:
 import sys
 
 from rockhatch.carto import params_help
-from rockhatch.carto.blocks import (BALANCED, CLIFF, CREST, CROSS, FRAY, ROWS, STRUCTURE, TONE, TONE_CELLS, check_fray,
-                                    check_tone, cliff_strokes, crest_lines, crest_strokes, frayed, given_cliffs,
+from rockhatch.carto.blocks import (BALANCED, CLIFF, CREST, CROSS, FRAY, ROCK_TONE, ROWS, STRUCTURE, TONE_CELLS,
+                                    check_fray, check_tone, cliff_strokes, crest_lines, crest_strokes, frayed, given_cliffs,
                                     given_first, read_face, shadow_strokes, structure_lines, tapered, toned_hatching,
                                     valleys)
 from rockhatch.tex import CROP, Apart, Arrangement, Constant, Crop, Curves, Labelled
@@ -34,7 +34,7 @@ NAME = "rock"
 FIGURE = "after 5.4g"
 TITLE = ("rock drawing: crests, couloirs and cliff tops with strokes hanging from them, the print tone, no drawn "
          "outline")
-PARAMS = TONE + TONE_CELLS + BALANCED + CREST + CLIFF + STRUCTURE + CROSS + FRAY + ROWS
+PARAMS = ROCK_TONE + TONE_CELLS + BALANCED + CREST + CLIFF + STRUCTURE + CROSS + FRAY + ROWS
 __doc__ += params_help(PARAMS)
 
 

@@ -45,6 +45,7 @@ void bind_blocks(py::module_& m) {
     m.attr("BALANCED") = table(blocks::kBalanced);
     m.attr("HIGH") = table(blocks::kHigh);
     m.attr("TONE") = table(blocks::kTone);
+    m.attr("ROCK_TONE") = table(blocks::kRockTone);
     m.attr("CREST") = table(blocks::kCrest);
     m.attr("CROSS") = table(blocks::kCross);
     m.attr("FRAY") = table(blocks::kFray);

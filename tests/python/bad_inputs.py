@@ -347,6 +347,8 @@ CASES: List[Case] = [
     Case(RH, "--param", "no value", lambda w: main(w, "--param", "spacing_min"), 2, ("expected NAME=VALUE",)),
     Case(RH, "--param", "rows laid over twice as dense as the tone", lambda w: main(w, "--param", "band_ragged=3"), 2,
          ("band_ragged=3", "above 1")),
+    Case(RH, "--param", "cliff tops longer than a sheet", lambda w: main(w, "--param", "cliff_min_length=1000"), 2,
+         ("cliff_min_length=1000", "above 50 mm", "cliff_slope")),
     *number_cases(RH, "--param", param, extra_bad=[
         ("zero", "0", ("spacing_min",)),
         ("negative", "-1", ("spacing_min",)),

@@ -71,6 +71,12 @@ const std::vector<StyleParam> kTone = {
     {"min_gap", 0.15, "mm", "least white paper between two neighbouring fill strokes"},
     {"follow_fall_line", 1.0, "ratio", "1: strokes follow the local fall line; 0: one direction per face"},
 };
+const std::vector<StyleParam> kRockTone = [] {
+    std::vector<StyleParam> t = kTone;
+    for (StyleParam& q : t)
+        if (q.name == "tone_gamma") q.value = 2.0;
+    return t;
+}();
 const std::vector<StyleParam> kCrest = {
     {"crest_spacing", 0.4, "mm", "distance between two shadow-side strokes along a crest line"},
     {"crest_length", 0.8, "mm", "longest shadow-side stroke on low ground"},
@@ -290,6 +296,15 @@ void check_tone(const ParamValues& p) {
         m << "--param gap=" << p.at("gap") << " is not a fraction in (0, 1]";
         bad(m.str());
     }
+    // Structure lines are traced over a margin round each face as long as the shortest line
+    // drawn, so that a line's length is read alike in every face and tile: beyond 50 mm on
+    // paper that margin is more than a sheet.
+    for (const char* key : {"cliff_min_length", "crease_min_length"})
+        if (p.count(key) && p.at(key) > 50 * p.at(kGroundPerMm)) {  // lengths are ground units here
+            m << "--param " << key << "=" << p.at(key) / p.at(kGroundPerMm) << " is above 50 mm (to draw no "
+              << (key[1] == 'l' ? "cliff tops, raise cliff_slope" : "extracted crests or couloirs, raise crease_bend") << ")";
+            bad(m.str());
+        }
     // Rows: strokes laid more than twice as dense as the tone asks would cost time for nothing.
     if (p.count("band_ragged") && p.at("band_ragged") > 1) {
         m << "--param band_ragged=" << p.at("band_ragged") << " is above 1";

@@ -4,7 +4,8 @@
 // tops of the cliff bands (where the slope passes cliff_slope), with rows of strokes hanging
 // down to the band's foot; the couloirs, thin lines the fill strokes keep away from, so that
 // they read as gaps between the rock ribs. The fill and cross strokes of the print style take
-// the ink the structure leaves under the tone curve, the fill in rows hanging from the level
+// the ink the structure leaves under the tone curve (kRockTone: steeper than print's, lit
+// faces nearly white), the fill in rows hanging from the level
 // lines of the elevation (toned_hatching with band_height). Where rock meets scree, grass or ice,
 // the fill and cross strokes end at an irregular distance from the face's border, inside it or
 // past it (FrayedCrop), so the rock ends where its strokes end, in a ragged band across the
@@ -18,7 +19,7 @@ Builtin rock() {
     b.info = {"rock", "after 5.4g",
               "rock drawing: crests, couloirs and cliff tops with strokes hanging from them, the print tone, no "
               "drawn outline",
-              kTone + kToneCells + kBalanced + kCrest + kCliff + kStructure + kCross + kFray + kRows};
+              kRockTone + kToneCells + kBalanced + kCrest + kCliff + kStructure + kCross + kFray + kRows};
     b.program = [](const ControlFields& f, const ParamValues& p) {
         check_tone(p);
         check_fray(p);
