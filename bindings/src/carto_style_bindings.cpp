@@ -15,10 +15,35 @@ using namespace carto;
 // the native operators of one face (partitions, crops, stock mappers) run while another
 // face's Python mapper holds it. `serial` draws them one after the other instead (a style
 // whose time goes into Python code, see Style::serial). The drawing is the same either way.
+// A digest of what a Python style function is made of, for the edit loop's fingerprints:
+// the source of its module when it has one (the helpers the function calls change with it),
+// else its own source, else its compiled code; a callable without code: its type's name.
+std::string source_digest(const py::object& fn) {
+    const py::module_ inspect = py::module_::import("inspect");
+    py::object data = py::none();
+    for (const char* what : {"module", "function"}) {
+        try {
+            const py::object of = std::string(what) == "module" ? inspect.attr("getmodule")(fn) : fn;
+            if (!of.is_none()) data = inspect.attr("getsource")(of).attr("encode")("utf-8");
+        } catch (const py::error_already_set&) {
+        }
+        if (!data.is_none()) break;
+    }
+    if (data.is_none()) {
+        try {
+            data = py::module_::import("marshal").attr("dumps")(fn.attr("__code__"));
+        } catch (const py::error_already_set&) {
+            data = py::str(py::type::of(fn).attr("__qualname__")).attr("encode")("utf-8");
+        }
+    }
+    return py::module_::import("hashlib").attr("sha256")(data).attr("hexdigest")().cast<std::string>();
+}
+
 std::shared_ptr<const Style> python_style(StyleInfo info, py::object fn, bool serial) {
     auto s = std::make_shared<Style>();
     s->info = std::move(info);
     s->serial = serial;
+    s->source_digest = source_digest(fn);
     PyRef ref(std::move(fn));
     const std::string name = s->info.name;
     s->program = [ref, name](const ControlFields& fields, const ParamValues& params) -> tex::Arrangement {

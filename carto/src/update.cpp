@@ -216,6 +216,7 @@ std::string plan_text(const Plan& plan, const Raster& dem, bool slope, bool roug
         script.add(std::string(std::istreambuf_iterator<char>(in), {}));
         t += "script=" + script.hex() + "\n";
     }
+    if (!plan.style.source_digest.empty()) t += "style_source=" + plan.style.source_digest + "\n";
     for (const auto& [k, v] : plan.rock_params) t += "param." + k + "=" + number(v) + "\n";
     for (const auto& [k, v] : plan.terrain_params) t += "terrain." + k + "=" + number(v) + "\n";
     t += "scale=" + number(o.scale) + "\nseed=" + std::to_string(o.seed) + "\nrelief_radius=" + number(o.relief_radius) +

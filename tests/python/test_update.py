@@ -205,3 +205,37 @@ def test_update_with_a_style_script(rockhatch_exe, sample_dir, tmp_path):
     r = subprocess.run([str(rockhatch_exe), "update", *args, "-o", str(out)], capture_output=True, text=True)
     assert r.returncode == 0 and "20 faces, 20 redrawn" in r.stderr, r.stderr
     assert features_by_face(out) == before
+
+
+STYLE_A = '''
+from rockhatch.carto import StyleInfo, python_style
+from rockhatch.tex import Constant, Curves, Polyline
+
+def draw(fields, params):
+    return Constant(Polyline([(0, 0), (1, 1)]))
+
+STYLE = python_style(StyleInfo("mine", "", "a style given as a function", []), draw)
+'''
+
+
+def test_a_python_function_style_is_fingerprinted_by_its_source(sample_dir, tmp_path):
+    """A style given as a Python object (python_style) is part of the fingerprints by its
+    module's source: an unchanged style redraws nothing, an edited one every face."""
+    import importlib.util
+    from rockhatch import carto
+
+    def load(text, name):
+        path = tmp_path / f"{name}.py"
+        path.write_text(text)
+        spec = importlib.util.spec_from_file_location(name, path)
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+        return module.STYLE
+
+    out = tmp_path / "f.gpkg"
+    args = (sample_dir / "dem.tif", sample_dir / "partition.gpkg", [out])
+    carto.run(*args, style=load(STYLE_A, "style_a"))
+    assert carto.update(*args, style=load(STYLE_A, "style_a_again")).redrawn_ids == []
+    edited = STYLE_A.replace("(1, 1)", "(2, 1)")
+    report = carto.update(*args, style=load(edited, "style_b"))
+    assert len(report.redrawn_ids) == report.faces == 20

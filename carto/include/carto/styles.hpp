@@ -132,6 +132,10 @@ struct Style {
     // `terrain_reach` beyond a window.
     TerrainProgram terrain;
     TerrainReach terrain_reach;
+    // What the program is made of, for the edit loop's fingerprints (carto/update.hpp): a
+    // digest of a Python style function's source (python_style: its module's, else its own,
+    // else its compiled code); empty for the built-ins, which the program's version covers.
+    std::string source_digest;
 };
 
 // All built-in styles: the rock styles (a) to (g), then the terrain styles; the default is
