@@ -43,6 +43,27 @@ def option(args, name, default=None):
     return args[args.index(name) + 1] if name in args else default
 
 
+def unsaved_edits(path, project=None):
+    """What an update of the hatch GeoPackage `path` would not see or would write under:
+    the layers of the project with unsaved edits that read this file, or the partition file
+    of the run that wrote it. One message per layer."""
+    project = project or QgsProject.instance()
+    args = run_command(path) or []
+    partition = option(args, "--partition")
+    watched = {os.path.realpath(path): "hatch layer '{}' has unsaved edits: save or discard them first"}
+    if partition and partition != "auto":
+        watched[os.path.realpath(partition)] = ("partition layer '{}' has unsaved edits, which the update would not "
+                                                "see: save them first (the toolbar's \"Re-hatch the selected or edited faces\" saves them)")
+    found = []
+    for layer in project.mapLayers().values():
+        source = gpkg_of(layer)
+        if source and layer.isEditable() and layer.isModified():
+            message = watched.get(os.path.realpath(source))
+            if message:
+                found.append(message.format(layer.name()))
+    return found
+
+
 def update_file(path, faces=(), reset=False, undo="", progress=None):
     """carto.update on a hatch GeoPackage with the options of the run that wrote it: redraws
     the faces whose inputs changed, and `faces` (face ids), or every face with reset."""

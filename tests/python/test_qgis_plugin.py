@@ -823,6 +823,41 @@ def test_rehatch_action_redraws_the_edited_and_selected_faces_and_undo_puts_them
         project.removeAllMapLayers()
 
 
+def test_update_algorithm_refuses_while_the_partition_or_the_hatches_have_unsaved_edits(
+        qgis, rockhatch_exe, sample_dir, tmp_path):
+    part = tmp_path / "partition.gpkg"
+    shutil.copy(sample_dir / "partition.gpkg", part)
+    out = tmp_path / "h.gpkg"
+    subprocess.run([str(rockhatch_exe), "-q", "--dem", str(sample_dir / "dem.tif"), "--partition", str(part),
+                    "-o", str(out)], check=True)
+    before = features_by_face(out)
+    project = QgsProject.instance()
+    faces = QgsVectorLayer(f"{part}|layername=faces", "faces", "ogr")
+    project.addMapLayer(faces)
+    hatches = hatch_layers_of(out, project)
+    try:
+        # A face moved in QGIS's edit buffer, not saved: the update would read the file as it
+        # was and report nothing to redraw. Refused, the file untouched.
+        assert faces.startEditing()
+        move_vertex(faces, 7, 15.0, -10.0)
+        with pytest.raises(QgsProcessingException, match="partition layer 'faces' has unsaved edits"):
+            run("rockhatch:updatehatching", {"HATCHES": str(out)})
+        assert faces.commitChanges(), faces.commitErrors()
+        # A hatch layer being edited: the update would write under it.
+        fill = next(layer for layer in hatches if layer.name() == "hatch_fill")
+        assert fill.startEditing()
+        assert fill.deleteFeature(next(fill.getFeatures()).id())
+        with pytest.raises(QgsProcessingException, match="hatch layer 'hatch_fill' has unsaved edits"):
+            run("rockhatch:updatehatching", {"HATCHES": str(out)})
+        assert features_by_face(out) == before
+        fill.rollBack()
+        assert run("rockhatch:updatehatching", {"HATCHES": str(out)})["REDRAWN"] >= 1
+        assert features_by_face(out)[7] != before[7]
+    finally:
+        faces.rollBack()
+        project.removeAllMapLayers()
+
+
 def test_update_algorithm_refuses_a_file_without_fingerprints(qgis, sample_dir, tmp_path):
     import processing
     from rockhatch import carto

@@ -2,7 +2,7 @@
 from qgis.core import (QgsProcessingException, QgsProcessingOutputNumber, QgsProcessingParameterBoolean,
                        QgsProcessingParameterFile, QgsProcessingParameterString)
 
-from ..edit_loop import update_file
+from ..edit_loop import unsaved_edits, update_file
 from .common import Progress, RockhatchAlgorithm
 
 
@@ -59,6 +59,11 @@ class UpdateHatching(RockhatchAlgorithm):
         path = self.parameterAsFile(parameters, self.HATCHES, context)
         faces = parse_ids(self.parameterAsString(parameters, self.FACES, context))
         reset = self.parameterAsBool(parameters, self.RESET, context)
+        # Layers open in QGIS with unsaved edits of the hatches or of the partition: the update
+        # would write under the one and not see the other.
+        pending = unsaved_edits(path, context.project())
+        if pending:
+            raise QgsProcessingException("; ".join(pending))
 
         def update():
             try:
