@@ -739,6 +739,16 @@ def hatch_layers_of(gpkg, project):
     return layers
 
 
+def hatched_copy(rockhatch_exe, sample_dir, tmp_path):
+    """A copy of the sample's partition and the hatch GeoPackage of a run on it."""
+    part = tmp_path / "partition.gpkg"
+    shutil.copy(sample_dir / "partition.gpkg", part)
+    out = tmp_path / "h.gpkg"
+    subprocess.run([str(rockhatch_exe), "-q", "--dem", str(sample_dir / "dem.tif"), "--partition", str(part),
+                    "-o", str(out)], check=True)
+    return part, out
+
+
 def move_vertex(layer, fid, dx, dy):
     """Moves the middle vertex of a face's outer ring, in the layer's edit buffer."""
     from qgis.core import QgsPointXY
@@ -754,11 +764,7 @@ def test_rehatch_action_redraws_the_edited_and_selected_faces_and_undo_puts_them
         qgis, rockhatch_exe, sample_dir, tmp_path):
     sys.path.insert(0, str(PLUGINS))
     from rockhatch_qgis.edit_loop import EditLoop
-    part = tmp_path / "partition.gpkg"
-    shutil.copy(sample_dir / "partition.gpkg", part)
-    out = tmp_path / "h.gpkg"
-    subprocess.run([str(rockhatch_exe), "-q", "--dem", str(sample_dir / "dem.tif"), "--partition", str(part),
-                    "-o", str(out)], check=True)
+    part, out = hatched_copy(rockhatch_exe, sample_dir, tmp_path)
     before = features_by_face(out)
     shutil.copy(out, tmp_path / "before.gpkg")
     project = QgsProject.instance()
@@ -825,11 +831,7 @@ def test_rehatch_action_redraws_the_edited_and_selected_faces_and_undo_puts_them
 
 def test_update_algorithm_refuses_while_the_partition_or_the_hatches_have_unsaved_edits(
         qgis, rockhatch_exe, sample_dir, tmp_path):
-    part = tmp_path / "partition.gpkg"
-    shutil.copy(sample_dir / "partition.gpkg", part)
-    out = tmp_path / "h.gpkg"
-    subprocess.run([str(rockhatch_exe), "-q", "--dem", str(sample_dir / "dem.tif"), "--partition", str(part),
-                    "-o", str(out)], check=True)
+    part, out = hatched_copy(rockhatch_exe, sample_dir, tmp_path)
     before = features_by_face(out)
     project = QgsProject.instance()
     faces = QgsVectorLayer(f"{part}|layername=faces", "faces", "ogr")
