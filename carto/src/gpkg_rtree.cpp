@@ -88,8 +88,13 @@ std::string quoted(const std::string& s) {
 
 }  // namespace
 
+BoxF rtree_box(const BoxD& b) {
+    if (!(b.minx <= b.maxx)) return {1, 0, 1, 0};
+    return {down(b.minx), up(b.maxx), down(b.miny), up(b.maxy)};
+}
+
 void bulk_load_rtree(const std::string& path, const std::string& table, const std::string& geom,
-                     const std::string& fid, const std::vector<BoxD>& boxes) {
+                     const std::string& fid, const std::vector<BoxF>& boxes) {
     Db d;
     if (sqlite3_open_v2(path.c_str(), &d.db, SQLITE_OPEN_READWRITE, nullptr) != SQLITE_OK)
         fail(d.db, path, "cannot open the file");
@@ -113,9 +118,9 @@ void bulk_load_rtree(const std::string& path, const std::string& table, const st
     std::vector<Entry> level;
     level.reserve(boxes.size());
     for (std::size_t i = 0; i < boxes.size(); ++i) {
-        const BoxD& b = boxes[i];
+        const BoxF& b = boxes[i];
         if (!(b.minx <= b.maxx)) continue;  // empty geometry: not indexed
-        level.push_back({std::int64_t(i + 1), down(b.minx), up(b.maxx), down(b.miny), up(b.maxy)});
+        level.push_back({std::int64_t(i + 1), b.minx, b.maxx, b.miny, b.maxy});
     }
 
     // Sort-tile-recursive packing, level by level, bottom up. Nodes get numbers 2, 3, ...;
