@@ -201,6 +201,9 @@ void GpkgWriter::close_sqlite() {
         if (!l.count_trigger.empty()) exec(l.count_trigger);
         l.count_trigger.clear();
     }
+    // GDAL finds its counts and extents up to date when it opens the file again (a count it
+    // does not know, it would count row by row).
+    write_counts();
     exec("COMMIT");
     if (sqlite3_close(db_) != SQLITE_OK) fail("cannot close the file");
     db_ = nullptr;
@@ -416,8 +419,7 @@ void GpkgWriter::write_counts() {
 
 void GpkgWriter::commit() {
     open_sqlite();
-    write_counts();
-    close_sqlite();
+    close_sqlite();  // writes the counts and extents
     if (spatial_index_)
         for (Layer& l : layers_) {
             if (!l.geometry) continue;

@@ -176,6 +176,16 @@ void bulk_load_rtree(const std::string& path, const std::string& table, const st
             sqlite3_prepare_v2(d.db, ("INSERT INTO " + quoted(rtree + "_parent") + " VALUES (?, ?)").c_str(), -1, &ins_parent.s, nullptr) ||
             sqlite3_prepare_v2(d.db, ("INSERT INTO " + quoted(rtree + "_rowid") + " VALUES (?, ?)").c_str(), -1, &ins_rowid.s, nullptr))
             fail(d.db, path, "cannot prepare the inserts");
+        // The leaf of each feature, written in the order of the ids once the nodes are (rows
+        // appended to the _rowid table, kRowidBatch a statement, rather than put all over it).
+        std::vector<std::int64_t> leaf_of(boxes.size() + 1, 0);
+        constexpr int kRowidBatch = 100;
+        Stmt ins_rowids;
+        {
+            std::string sql = "INSERT INTO " + quoted(rtree + "_rowid") + " VALUES (?, ?)";
+            for (int i = 1; i < kRowidBatch; ++i) sql += ", (?, ?)";
+            if (sqlite3_prepare_v2(d.db, sql.c_str(), -1, &ins_rowids.s, nullptr)) fail(d.db, path, "cannot prepare the inserts");
+        }
         std::vector<unsigned char> blob(static_cast<std::size_t>(node_size));
         auto step = [&](Stmt& st, const char* what) {
             if (sqlite3_step(st.s) != SQLITE_DONE) fail(d.db, path, what);
@@ -195,14 +205,38 @@ void bulk_load_rtree(const std::string& path, const std::string& table, const st
                 putf(p + 16, e.miny);
                 putf(p + 20, e.maxy);
                 p += cell;
-                Stmt& st = node.depth == 0 ? ins_rowid : ins_parent;
-                sqlite3_bind_int64(st.s, 1, id);
-                sqlite3_bind_int64(st.s, 2, no);
-                step(st, node.depth == 0 ? "rowid insert" : "parent insert");
+                if (node.depth == 0) {
+                    leaf_of[std::size_t(id)] = no;
+                    continue;
+                }
+                sqlite3_bind_int64(ins_parent.s, 1, id);
+                sqlite3_bind_int64(ins_parent.s, 2, no);
+                step(ins_parent, "parent insert");
             }
             sqlite3_bind_int64(ins_node.s, 1, no);
             sqlite3_bind_blob(ins_node.s, 2, blob.data(), node_size, SQLITE_TRANSIENT);
             step(ins_node, "node insert");
+        }
+        std::vector<std::int64_t> ids;
+        ids.reserve(kRowidBatch);
+        for (std::size_t id = 1; id < leaf_of.size(); ++id) {
+            if (leaf_of[id] == 0) continue;  // empty geometry: not indexed
+            ids.push_back(std::int64_t(id));
+            const bool last = id + 1 == leaf_of.size();
+            if (ids.size() < std::size_t(kRowidBatch) && !last) continue;
+            Stmt& st = ids.size() == std::size_t(kRowidBatch) ? ins_rowids : ins_rowid;
+            for (std::size_t k = 0; k < ids.size(); ++k) {
+                if (&st == &ins_rowid) {
+                    sqlite3_bind_int64(st.s, 1, ids[k]);
+                    sqlite3_bind_int64(st.s, 2, leaf_of[std::size_t(ids[k])]);
+                    step(st, "rowid insert");
+                    continue;
+                }
+                sqlite3_bind_int64(st.s, int(2 * k + 1), ids[k]);
+                sqlite3_bind_int64(st.s, int(2 * k + 2), leaf_of[std::size_t(ids[k])]);
+            }
+            if (&st == &ins_rowids) step(st, "rowid insert");
+            ids.clear();
         }
     }
 

@@ -236,8 +236,8 @@ bool hatch_row(GpkgRows& rows, int layer, Family f, std::int64_t face_id, std::s
 
 // After the hatch layers: the frame, the crest layer, the fingerprints, the indexes.
 void write_rest(GpkgWriter& out, const tex::BBox& frame, const CrestSource& crests, const Fingerprints* fingerprints,
-                const std::vector<int>& hatch_layers, const std::function<bool(double)>& keep_going,
-                const std::string& path) {
+                const std::vector<int>& hatch_layers, const std::vector<char>& indexed,
+                const std::function<bool(double)>& keep_going, const std::string& path) {
     auto check = [&](double f) {
         if (keep_going && !keep_going(f)) throw Error(Code::Cancelled, "cancelled while writing '" + path + "'");
     };
@@ -265,9 +265,10 @@ void write_rest(GpkgWriter& out, const tex::BBox& frame, const CrestSource& cres
             rows.text(fp);
         }
         out.insert(rows);
-        // The edit loop finds a face's features by face_id.
+        // The edit loop finds a face's features by face_id (the layers made before the faces
+        // were drawn have their index already).
         for (int fam = 0; fam < kFamilies; ++fam)
-            if (hatch_layers[std::size_t(fam)] >= 0) out.sql(face_index_sql(hatch_table(Family(fam))));
+            if (hatch_layers[std::size_t(fam)] >= 0 && !indexed[std::size_t(fam)]) out.sql(face_index_sql(hatch_table(Family(fam))));
         out.sql(std::string("CREATE UNIQUE INDEX \"") + kFacesTable + "_face_id\" ON \"" + kFacesTable + "\" (face_id)");
     }
     check(0.75);
@@ -401,6 +402,12 @@ void write_faces_gpkg(const std::string& path, const FaceStream& s, const std::f
     std::vector<int> layer(kFamilies, -1);
     for (int fam = 0; fam < kRockFamilies; ++fam) layer[std::size_t(fam)] = add_hatch_layer(out, Family(fam));
     const std::int32_t srs = out.srs_id();  // SQLite has the file from here on
+    std::vector<char> indexed(kFamilies, 0);
+    if (s.fingerprints)
+        for (int fam = 0; fam < kRockFamilies; ++fam) {
+            out.sql(face_index_sql(hatch_table(Family(fam))));
+            indexed[std::size_t(fam)] = 1;
+        }
     {
         OrderedInserter inserter(out, s.faces, total, during, path);
         auto encode = [&](std::size_t k) {
@@ -438,7 +445,9 @@ void write_faces_gpkg(const std::string& path, const FaceStream& s, const std::f
         }
     }
     const Drawing& d = rest();
-    write_rest(out, d.bounds, drawing_crests(d), d.fingerprints ? &*d.fingerprints : nullptr, layer, after, path);
+    if (s.fingerprints != d.fingerprints.has_value())
+        throw Error(Code::Failure, "-o '" + path + "': the fingerprints came unannounced or not at all");
+    write_rest(out, d.bounds, drawing_crests(d), d.fingerprints ? &*d.fingerprints : nullptr, layer, indexed, after, path);
     out.commit();
 }
 
@@ -519,7 +528,8 @@ void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index,
     std::size_t total = 0;
     for (const auto& face : d.faces) total += face.hatches.size();
     FaceStream s{d.crs_wkt, d.style, d.faces.size(), false,
-                 [&](std::size_t k, const std::function<void(const FaceHatches&)>& use) { use(d.faces[k]); }};
+                 [&](std::size_t k, const std::function<void(const FaceHatches&)>& use) { use(d.faces[k]); },
+                 d.fingerprints.has_value()};
     std::function<bool(double)> during, after;
     if (keep_going) {
         during = [&](double f) { return keep_going(0.9 * f); };
@@ -581,7 +591,7 @@ std::size_t merge_gpkg(const std::vector<std::string>& parts, const std::string&
     if (keep_going) after = [&](double f) { return keep_going(0.9 + 0.1 * f); };
     write_rest(out, frame, crests ? CrestSource([&](const CrestSink& sink) {
         for (const auto& part : parts) read_crests(*open_hatches(part, "tile"), "tile '" + part + "'", sink);
-    }) : CrestSource(), nullptr, layer, after, path);
+    }) : CrestSource(), nullptr, layer, std::vector<char>(kFamilies, 0), after, path);
     out.commit();
     return n;
 }

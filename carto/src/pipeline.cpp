@@ -360,7 +360,8 @@ void hatch_and_write(const Prepared& p, const Plan& plan, const Output& out, con
                                    const FaceHatches f = drawer.draw(k);
                                    hatches += f.hatches.size();
                                    use(f);
-                               }};
+                               },
+                               p.fingerprints.has_value()};
         write_gpkg(faces, [&]() -> const Drawing& {
             for (int i : chosen) rest.bounds.add(part.faces[std::size_t(i)].region.bbox());
             add_crests(rest, p, plan, progress);

@@ -61,6 +61,9 @@ struct FaceStream {
     std::size_t faces = 0;
     bool serial = false;
     std::function<void(std::size_t k, const std::function<void(const FaceHatches&)>& use)> face;
+    // rest() will have fingerprints: the hatch layers' face_id indexes are made before their
+    // rows go in (kept up to date while the faces are drawn, not made at the end).
+    bool fingerprints = false;
 };
 // Writes the hatch GeoPackage of the streamed faces: each face's rows are encoded as it is
 // drawn and inserted in face order by one thread while later faces are drawn, so that the
