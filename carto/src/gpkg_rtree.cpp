@@ -115,54 +115,71 @@ void bulk_load_rtree(const std::string& path, const std::string& table, const st
     const int fanout = (node_size - 4) / cell;
     if (fanout < 4) fail(d.db, path, "unexpected node size");
 
-    std::vector<Entry> level;
-    level.reserve(boxes.size());
-    for (std::size_t i = 0; i < boxes.size(); ++i) {
+    // The leaves are the features' numbers in `boxes` (4 bytes each), sorted as packed; the
+    // levels above are entries of their own (a fanout-th as many).
+    std::vector<std::uint32_t> leaves;
+    leaves.reserve(boxes.size());
+    for (std::size_t i = 0; i < boxes.size(); ++i)
+        if (boxes[i].minx <= boxes[i].maxx) leaves.push_back(std::uint32_t(i));  // empty geometry: not indexed
+    const std::size_t ids = boxes.size();
+    auto leaf_entry = [&](std::uint32_t i) {
         const BoxF& b = boxes[i];
-        if (!(b.minx <= b.maxx)) continue;  // empty geometry: not indexed
-        level.push_back({std::int64_t(i + 1), b.minx, b.maxx, b.miny, b.maxy});
-    }
+        return Entry{std::int64_t(i) + 1, b.minx, b.maxx, b.miny, b.maxy};
+    };
+    auto same_entry = [](const Entry& e) { return e; };
 
     // Sort-tile-recursive packing, level by level, bottom up. Nodes get numbers 2, 3, ...;
     // the root is renumbered 1 at the end, as the module requires. With no entry at all the
-    // empty root the module made is kept.
+    // empty root the module made is kept. A node's cells are a range of its level, kept
+    // sorted as packed (no copy of the millions of leaves).
     struct Node {
         std::int64_t no;
         int depth;  // 0 = leaf
-        std::vector<Entry> cells;
+        std::size_t begin, end;  // in leaves (depth 0) or levels[depth - 1]
     };
     std::vector<Node> nodes;
+    std::vector<std::vector<Entry>> levels;
     std::int64_t next_no = 2;
-    int depth = 0;
-    while (!level.empty() && (nodes.empty() || level.size() > 1)) {
-        const std::size_t n = level.size();
+    // Packs the items of one level (their boxes through `entry`) into nodes; returns their parents.
+    auto pack = [&](auto& items, const auto& entry, int depth) {
+        const std::size_t n = items.size();
         const std::size_t groups = (n + fanout - 1) / fanout;
         const std::size_t slices = std::size_t(std::ceil(std::sqrt(double(groups))));
         const std::size_t per_slice = slices * std::size_t(fanout);
-        std::sort(level.begin(), level.end(), [](const Entry& a, const Entry& b) {
-            return (a.minx + a.maxx) < (b.minx + b.maxx);
+        std::sort(items.begin(), items.end(), [&](const auto& a, const auto& b) {
+            const Entry ea = entry(a), eb = entry(b);
+            return (ea.minx + ea.maxx) < (eb.minx + eb.maxx);
         });
         std::vector<Entry> parents;
         for (std::size_t s = 0; s < n; s += per_slice) {
             const std::size_t e = std::min(s + per_slice, n);
-            std::sort(level.begin() + std::ptrdiff_t(s), level.begin() + std::ptrdiff_t(e),
-                      [](const Entry& a, const Entry& b) { return (a.miny + a.maxy) < (b.miny + b.maxy); });
+            std::sort(items.begin() + std::ptrdiff_t(s), items.begin() + std::ptrdiff_t(e), [&](const auto& a, const auto& b) {
+                const Entry ea = entry(a), eb = entry(b);
+                return (ea.miny + ea.maxy) < (eb.miny + eb.maxy);
+            });
             for (std::size_t k = s; k < e; k += std::size_t(fanout)) {
-                Node node{next_no++, depth, {}};
-                node.cells.assign(level.begin() + std::ptrdiff_t(k), level.begin() + std::ptrdiff_t(std::min(k + fanout, e)));
+                const Node node{next_no++, depth, k, std::min(k + fanout, e)};
                 Entry p{node.no, INFINITY, -INFINITY, INFINITY, -INFINITY};
-                for (const auto& c : node.cells) {
+                for (std::size_t c_at = node.begin; c_at < node.end; ++c_at) {
+                    const Entry c = entry(items[c_at]);
                     p.minx = std::min(p.minx, c.minx);
                     p.maxx = std::max(p.maxx, c.maxx);
                     p.miny = std::min(p.miny, c.miny);
                     p.maxy = std::max(p.maxy, c.maxy);
                 }
                 parents.push_back(p);
-                nodes.push_back(std::move(node));
+                nodes.push_back(node);
             }
         }
-        level = std::move(parents);
-        ++depth;
+        return parents;
+    };
+    if (!leaves.empty()) {
+        std::vector<Entry> level = pack(leaves, leaf_entry, 0);
+        for (int depth = 1; level.size() > 1; ++depth) {
+            std::vector<Entry> parents = pack(level, same_entry, depth);
+            levels.push_back(std::move(level));
+            level = std::move(parents);
+        }
     }
     if (!nodes.empty()) {
         // The last node made is the root.
@@ -178,7 +195,7 @@ void bulk_load_rtree(const std::string& path, const std::string& table, const st
             fail(d.db, path, "cannot prepare the inserts");
         // The leaf of each feature, written in the order of the ids once the nodes are (rows
         // appended to the _rowid table, kRowidBatch a statement, rather than put all over it).
-        std::vector<std::int64_t> leaf_of(boxes.size() + 1, 0);
+        std::vector<std::uint32_t> leaf_of(ids + 1, 0);
         constexpr int kRowidBatch = 100;
         Stmt ins_rowids;
         {
@@ -195,9 +212,10 @@ void bulk_load_rtree(const std::string& path, const std::string& table, const st
             std::fill(blob.begin(), blob.end(), 0);
             const std::int64_t no = renumber(node.no);
             if (no == 1) put16(blob.data(), unsigned(tree_depth));
-            put16(blob.data() + 2, unsigned(node.cells.size()));
+            put16(blob.data() + 2, unsigned(node.end - node.begin));
             unsigned char* p = blob.data() + 4;
-            for (const Entry& e : node.cells) {
+            for (std::size_t c_at = node.begin; c_at < node.end; ++c_at) {
+                const Entry e = node.depth == 0 ? leaf_entry(leaves[c_at]) : levels[std::size_t(node.depth - 1)][c_at];
                 const std::int64_t id = node.depth == 0 ? e.id : renumber(e.id);
                 put64(p, id);
                 putf(p + 8, e.minx);
@@ -206,7 +224,7 @@ void bulk_load_rtree(const std::string& path, const std::string& table, const st
                 putf(p + 20, e.maxy);
                 p += cell;
                 if (node.depth == 0) {
-                    leaf_of[std::size_t(id)] = no;
+                    leaf_of[std::size_t(id)] = std::uint32_t(no);
                     continue;
                 }
                 sqlite3_bind_int64(ins_parent.s, 1, id);
