@@ -43,7 +43,7 @@ Raster load_dem(const std::string& path, std::vector<std::string>* notes) {
 // over the faces to hatch: beyond this, a scale or a parameter asks for more geometry than
 // a machine holds, so the run is refused before it starts. The rock style's min_gap at
 // 1:10000 makes about 1.3e6 squares of the sample and 3.8e7 of Chamonix.tif (386 MB at the
-// peak); the limit lets Chamonix.tif be drawn at zoom 16 of a vector-tile output (1:5,940,
+// peak with the whole drawing in memory, about 200 MB written to a GeoPackage alone); the limit lets Chamonix.tif be drawn at zoom 16 of a vector-tile output (1:5,940,
 // 1.1e8) and refuses what would take several GB.
 constexpr double kMaxFinestCells = 4e8;
 
