@@ -88,8 +88,13 @@ std::string quoted(const std::string& s) {
 
 }  // namespace
 
+BoxF rtree_box(const BoxD& b) {
+    if (!(b.minx <= b.maxx)) return {1, 0, 1, 0};
+    return {down(b.minx), up(b.maxx), down(b.miny), up(b.maxy)};
+}
+
 void bulk_load_rtree(const std::string& path, const std::string& table, const std::string& geom,
-                     const std::string& fid, const std::vector<BoxD>& boxes) {
+                     const std::string& fid, const std::vector<BoxF>& boxes) {
     Db d;
     if (sqlite3_open_v2(path.c_str(), &d.db, SQLITE_OPEN_READWRITE, nullptr) != SQLITE_OK)
         fail(d.db, path, "cannot open the file");
@@ -110,54 +115,71 @@ void bulk_load_rtree(const std::string& path, const std::string& table, const st
     const int fanout = (node_size - 4) / cell;
     if (fanout < 4) fail(d.db, path, "unexpected node size");
 
-    std::vector<Entry> level;
-    level.reserve(boxes.size());
-    for (std::size_t i = 0; i < boxes.size(); ++i) {
-        const BoxD& b = boxes[i];
-        if (!(b.minx <= b.maxx)) continue;  // empty geometry: not indexed
-        level.push_back({std::int64_t(i + 1), down(b.minx), up(b.maxx), down(b.miny), up(b.maxy)});
-    }
+    // The leaves are the features' numbers in `boxes` (4 bytes each), sorted as packed; the
+    // levels above are entries of their own (a fanout-th as many).
+    std::vector<std::uint32_t> leaves;
+    leaves.reserve(boxes.size());
+    for (std::size_t i = 0; i < boxes.size(); ++i)
+        if (boxes[i].minx <= boxes[i].maxx) leaves.push_back(std::uint32_t(i));  // empty geometry: not indexed
+    const std::size_t ids = boxes.size();
+    auto leaf_entry = [&](std::uint32_t i) {
+        const BoxF& b = boxes[i];
+        return Entry{std::int64_t(i) + 1, b.minx, b.maxx, b.miny, b.maxy};
+    };
+    auto same_entry = [](const Entry& e) { return e; };
 
     // Sort-tile-recursive packing, level by level, bottom up. Nodes get numbers 2, 3, ...;
     // the root is renumbered 1 at the end, as the module requires. With no entry at all the
-    // empty root the module made is kept.
+    // empty root the module made is kept. A node's cells are a range of its level, kept
+    // sorted as packed (no copy of the millions of leaves).
     struct Node {
         std::int64_t no;
         int depth;  // 0 = leaf
-        std::vector<Entry> cells;
+        std::size_t begin, end;  // in leaves (depth 0) or levels[depth - 1]
     };
     std::vector<Node> nodes;
+    std::vector<std::vector<Entry>> levels;
     std::int64_t next_no = 2;
-    int depth = 0;
-    while (!level.empty() && (nodes.empty() || level.size() > 1)) {
-        const std::size_t n = level.size();
+    // Packs the items of one level (their boxes through `entry`) into nodes; returns their parents.
+    auto pack = [&](auto& items, const auto& entry, int depth) {
+        const std::size_t n = items.size();
         const std::size_t groups = (n + fanout - 1) / fanout;
         const std::size_t slices = std::size_t(std::ceil(std::sqrt(double(groups))));
         const std::size_t per_slice = slices * std::size_t(fanout);
-        std::sort(level.begin(), level.end(), [](const Entry& a, const Entry& b) {
-            return (a.minx + a.maxx) < (b.minx + b.maxx);
+        std::sort(items.begin(), items.end(), [&](const auto& a, const auto& b) {
+            const Entry ea = entry(a), eb = entry(b);
+            return (ea.minx + ea.maxx) < (eb.minx + eb.maxx);
         });
         std::vector<Entry> parents;
         for (std::size_t s = 0; s < n; s += per_slice) {
             const std::size_t e = std::min(s + per_slice, n);
-            std::sort(level.begin() + std::ptrdiff_t(s), level.begin() + std::ptrdiff_t(e),
-                      [](const Entry& a, const Entry& b) { return (a.miny + a.maxy) < (b.miny + b.maxy); });
+            std::sort(items.begin() + std::ptrdiff_t(s), items.begin() + std::ptrdiff_t(e), [&](const auto& a, const auto& b) {
+                const Entry ea = entry(a), eb = entry(b);
+                return (ea.miny + ea.maxy) < (eb.miny + eb.maxy);
+            });
             for (std::size_t k = s; k < e; k += std::size_t(fanout)) {
-                Node node{next_no++, depth, {}};
-                node.cells.assign(level.begin() + std::ptrdiff_t(k), level.begin() + std::ptrdiff_t(std::min(k + fanout, e)));
+                const Node node{next_no++, depth, k, std::min(k + fanout, e)};
                 Entry p{node.no, INFINITY, -INFINITY, INFINITY, -INFINITY};
-                for (const auto& c : node.cells) {
+                for (std::size_t c_at = node.begin; c_at < node.end; ++c_at) {
+                    const Entry c = entry(items[c_at]);
                     p.minx = std::min(p.minx, c.minx);
                     p.maxx = std::max(p.maxx, c.maxx);
                     p.miny = std::min(p.miny, c.miny);
                     p.maxy = std::max(p.maxy, c.maxy);
                 }
                 parents.push_back(p);
-                nodes.push_back(std::move(node));
+                nodes.push_back(node);
             }
         }
-        level = std::move(parents);
-        ++depth;
+        return parents;
+    };
+    if (!leaves.empty()) {
+        std::vector<Entry> level = pack(leaves, leaf_entry, 0);
+        for (int depth = 1; level.size() > 1; ++depth) {
+            std::vector<Entry> parents = pack(level, same_entry, depth);
+            levels.push_back(std::move(level));
+            level = std::move(parents);
+        }
     }
     if (!nodes.empty()) {
         // The last node made is the root.
@@ -171,6 +193,16 @@ void bulk_load_rtree(const std::string& path, const std::string& table, const st
             sqlite3_prepare_v2(d.db, ("INSERT INTO " + quoted(rtree + "_parent") + " VALUES (?, ?)").c_str(), -1, &ins_parent.s, nullptr) ||
             sqlite3_prepare_v2(d.db, ("INSERT INTO " + quoted(rtree + "_rowid") + " VALUES (?, ?)").c_str(), -1, &ins_rowid.s, nullptr))
             fail(d.db, path, "cannot prepare the inserts");
+        // The leaf of each feature, written in the order of the ids once the nodes are (rows
+        // appended to the _rowid table, kRowidBatch a statement, rather than put all over it).
+        std::vector<std::uint32_t> leaf_of(ids + 1, 0);
+        constexpr int kRowidBatch = 100;
+        Stmt ins_rowids;
+        {
+            std::string sql = "INSERT INTO " + quoted(rtree + "_rowid") + " VALUES (?, ?)";
+            for (int i = 1; i < kRowidBatch; ++i) sql += ", (?, ?)";
+            if (sqlite3_prepare_v2(d.db, sql.c_str(), -1, &ins_rowids.s, nullptr)) fail(d.db, path, "cannot prepare the inserts");
+        }
         std::vector<unsigned char> blob(static_cast<std::size_t>(node_size));
         auto step = [&](Stmt& st, const char* what) {
             if (sqlite3_step(st.s) != SQLITE_DONE) fail(d.db, path, what);
@@ -180,9 +212,10 @@ void bulk_load_rtree(const std::string& path, const std::string& table, const st
             std::fill(blob.begin(), blob.end(), 0);
             const std::int64_t no = renumber(node.no);
             if (no == 1) put16(blob.data(), unsigned(tree_depth));
-            put16(blob.data() + 2, unsigned(node.cells.size()));
+            put16(blob.data() + 2, unsigned(node.end - node.begin));
             unsigned char* p = blob.data() + 4;
-            for (const Entry& e : node.cells) {
+            for (std::size_t c_at = node.begin; c_at < node.end; ++c_at) {
+                const Entry e = node.depth == 0 ? leaf_entry(leaves[c_at]) : levels[std::size_t(node.depth - 1)][c_at];
                 const std::int64_t id = node.depth == 0 ? e.id : renumber(e.id);
                 put64(p, id);
                 putf(p + 8, e.minx);
@@ -190,14 +223,38 @@ void bulk_load_rtree(const std::string& path, const std::string& table, const st
                 putf(p + 16, e.miny);
                 putf(p + 20, e.maxy);
                 p += cell;
-                Stmt& st = node.depth == 0 ? ins_rowid : ins_parent;
-                sqlite3_bind_int64(st.s, 1, id);
-                sqlite3_bind_int64(st.s, 2, no);
-                step(st, node.depth == 0 ? "rowid insert" : "parent insert");
+                if (node.depth == 0) {
+                    leaf_of[std::size_t(id)] = std::uint32_t(no);
+                    continue;
+                }
+                sqlite3_bind_int64(ins_parent.s, 1, id);
+                sqlite3_bind_int64(ins_parent.s, 2, no);
+                step(ins_parent, "parent insert");
             }
             sqlite3_bind_int64(ins_node.s, 1, no);
             sqlite3_bind_blob(ins_node.s, 2, blob.data(), node_size, SQLITE_TRANSIENT);
             step(ins_node, "node insert");
+        }
+        std::vector<std::int64_t> ids;
+        ids.reserve(kRowidBatch);
+        for (std::size_t id = 1; id < leaf_of.size(); ++id) {
+            if (leaf_of[id] == 0) continue;  // empty geometry: not indexed
+            ids.push_back(std::int64_t(id));
+            const bool last = id + 1 == leaf_of.size();
+            if (ids.size() < std::size_t(kRowidBatch) && !last) continue;
+            Stmt& st = ids.size() == std::size_t(kRowidBatch) ? ins_rowids : ins_rowid;
+            for (std::size_t k = 0; k < ids.size(); ++k) {
+                if (&st == &ins_rowid) {
+                    sqlite3_bind_int64(st.s, 1, ids[k]);
+                    sqlite3_bind_int64(st.s, 2, leaf_of[std::size_t(ids[k])]);
+                    step(st, "rowid insert");
+                    continue;
+                }
+                sqlite3_bind_int64(st.s, int(2 * k + 1), ids[k]);
+                sqlite3_bind_int64(st.s, int(2 * k + 2), leaf_of[std::size_t(ids[k])]);
+            }
+            if (&st == &ins_rowids) step(st, "rowid insert");
+            ids.clear();
         }
     }
 

@@ -8,12 +8,16 @@
 #include <cctype>
 #include <cstdlib>
 #include <cmath>
+#include <condition_variable>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <map>
+#include <mutex>
 #include <optional>
+#include <thread>
 #include <unordered_map>
 
 #include "carto/error.hpp"
@@ -34,18 +38,6 @@ namespace {
 
 void num(std::string& s, double v) { tex::append_svg_number(s, v); }
 
-
-// The R-tree box of a feature's points.
-BoxD box_of(const std::vector<Point>& pts) {
-    BoxD b{INFINITY, -INFINITY, INFINITY, -INFINITY};
-    for (const auto& p : pts) {
-        b.minx = std::min(b.minx, p.x);
-        b.maxx = std::max(b.maxx, p.x);
-        b.miny = std::min(b.miny, p.y);
-        b.maxy = std::max(b.maxy, p.y);
-    }
-    return b;
-}
 
 // The polygons of one crest ornament: each outer ring (counter-clockwise) with the holes
 // (clockwise rings) whose first point it holds, a hole going to the smallest such ring.
@@ -214,80 +206,259 @@ std::string face_index_sql(const std::string& table) {
     return "CREATE INDEX \"" + table + "_face_id\" ON \"" + table + "\" (face_id)";
 }
 
-// The hatch GeoPackage: one layer per family that is `present` (fid, geom, face_id, family,
-// style, width_mm; LineStrings, Polygons for the filled families), written family by family
-// from `source`, which hands every hatch of the
-// family it is asked for to the sink, in order. `total` (hatches, for the progress) may be an
-// estimate. The R-trees are bulk-loaded once the file is closed; the file is renamed in
-// place at the end. A non-empty `frame` is kept in the file (kFrameKey).
-void write_hatch_gpkg(const std::string& path, const std::string& crs_wkt, bool spatial_index, std::size_t total,
-                      const std::function<bool(double)>& keep_going,
-                      const std::function<void(Family, const HatchSink&)>& source,
-                      const std::function<bool(Family)>& present,
-                      const CrestSource& crests, const tex::BBox& frame, const Fingerprints* fingerprints) {
-    std::size_t written = 0;
-    auto check = [&] {
-        if (keep_going && ++written % 4096 == 0 &&
-            !keep_going(std::min(1.0, double(written) / double(std::max<std::size_t>(1, total)))))
-            throw Error(Code::Cancelled, "cancelled while writing '" + path + "'");
+// The hatch GeoPackage. Layers: one per family (fid, geom, face_id, family, style, width_mm;
+// LineStrings, Polygons for the filled families): the rock families always, in family order,
+// then the other families a hatch of the drawing has, in family order, then "crest" (fid, geom,
+// ridge_id, style) with the crest ornaments, then the fingerprints table; the frame and the run
+// keys as metadata; the face_id indexes and the R-trees once the rows are in. In each layer the
+// features are in face order, then in the order of the face's hatches.
+std::string hatch_table(Family f) { return std::string("hatch_") + family_name(f); }
+
+int add_hatch_layer(GpkgWriter& out, Family f) {
+    // Stones and hachures are filled shapes: polygons; hatches are lines.
+    return out.add_layer(hatch_table(f), family_filled(f) ? wkbPolygon : wkbLineString,
+                         {{"face_id", OFTInteger64}, {"family", OFTString}, {"style", OFTString}, {"width_mm", OFTReal}});
+}
+
+// A hatch's row: the points written (a closed hatch with its first point repeated at the end;
+// fewer than two: no row), a LineString, or a Polygon of one ring for the filled families.
+bool hatch_row(GpkgRows& rows, int layer, Family f, std::int64_t face_id, std::string_view style, const Point* pts,
+               std::size_t n, bool closed) {
+    const bool close = closed && n > 0;
+    if (n + (close ? 1 : 0) < 2) return false;
+    rows.line(layer, pts, n, close, family_filled(f));
+    rows.integer(face_id);
+    rows.text(family_name(f));
+    rows.text(style);
+    rows.real(family_width_mm(f));
+    return true;
+}
+
+// After the hatch layers: the frame, the crest layer, the fingerprints, the indexes.
+void write_rest(GpkgWriter& out, const tex::BBox& frame, const CrestSource& crests, const Fingerprints* fingerprints,
+                const std::vector<int>& hatch_layers, const std::vector<char>& indexed,
+                const std::function<bool(double)>& keep_going, const std::string& path) {
+    auto check = [&](double f) {
+        if (keep_going && !keep_going(f)) throw Error(Code::Cancelled, "cancelled while writing '" + path + "'");
     };
-    GpkgWriter out(path, crs_wkt, spatial_index);
+    check(0.25);
     if (!frame.empty()) out.set_metadata(kFrameKey, frame_text(frame));
-    for (int fam = 0; fam < kFamilies; ++fam) {
-        const Family f = Family(fam);
-        if (!present(f)) continue;
-        // Stones and hachures are filled shapes: polygons; hatches are lines.
-        const int layer = out.add_layer(std::string("hatch_") + family_name(f), family_filled(f) ? wkbPolygon : wkbLineString,
-                                        {{"face_id", OFTInteger64}, {"family", OFTString}, {"style", OFTString},
-                                         {"width_mm", OFTReal}});
-        out.begin();
-        OGRFeature feat(out.definition(layer));
-        const HatchFields fields{0, 1, 2, 3};
-        source(f, [&](std::int64_t face_id, const char* style, const std::vector<Point>& pts) {
-            if (pts.size() < 2) return;
-            check();
-            set_hatch(feat, fields, f, face_id, style, pts);
-            out.put(layer, feat, box_of(pts));
-        });
-        out.end();
-        // The edit loop finds a face's features by face_id.
-        if (fingerprints) out.sql(face_index_sql(std::string("hatch_") + family_name(f)));
-    }
     if (crests) {
         const int layer = out.add_layer("crest", wkbPolygon, {{"ridge_id", OFTInteger64}, {"style", OFTString}});
-        out.begin();
-        OGRFeature feat(out.definition(layer));
+        GpkgRows rows(out.srs_id());
         crests([&](std::int64_t ridge_id, const char* style, const std::vector<std::vector<Point>>& rings) {
             if (rings.empty()) return;
-            feat.SetField(0, GIntBig(ridge_id));
-            feat.SetField(1, style);
-            auto* pg = new OGRPolygon();
-            for (const auto& pts : rings) {
-                OGRLinearRing ring;
-                ring.setNumPoints(int(pts.size() + 1), FALSE);
-                for (std::size_t i = 0; i <= pts.size(); ++i) ring.setPoint(int(i), pts[i % pts.size()].x, pts[i % pts.size()].y);
-                pg->addRing(&ring);
-            }
-            feat.SetGeometryDirectly(pg);
-            out.put(layer, feat, box_of(rings[0]));
+            rows.polygon(layer, rings);
+            rows.integer(ridge_id);
+            rows.text(style);
         });
-        out.end();
+        out.insert(rows);
     }
+    check(0.5);
     if (fingerprints) {
         for (const auto& [key, value] : fingerprints->run) out.set_metadata(run_key(key).c_str(), value);
         const int layer = out.add_layer(kFacesTable, wkbNone, {{"face_id", OFTInteger64}, {"fingerprint", OFTString}});
-        out.begin();
-        OGRFeature feat(out.definition(layer));
+        GpkgRows rows(out.srs_id());
         for (const auto& [id, fp] : fingerprints->faces) {
-            feat.SetField(0, GIntBig(id));
-            feat.SetField(1, fp.c_str());
-            out.put(layer, feat);
+            rows.attributes(layer);
+            rows.integer(id);
+            rows.text(fp);
         }
-        out.end();
+        out.insert(rows);
+        // The edit loop finds a face's features by face_id (the layers made before the faces
+        // were drawn have their index already).
+        for (int fam = 0; fam < kFamilies; ++fam)
+            if (hatch_layers[std::size_t(fam)] >= 0 && !indexed[std::size_t(fam)]) out.sql(face_index_sql(hatch_table(Family(fam))));
         out.sql(std::string("CREATE UNIQUE INDEX \"") + kFacesTable + "_face_id\" ON \"" + kFacesTable + "\" (face_id)");
     }
+    check(0.75);
+}
+
+// The crest polygons of a drawing (each ornament's outer rings with their holes).
+CrestSource drawing_crests(const Drawing& d) {
+    if (!d.crests) return {};
+    return [&d](const CrestSink& sink) {
+        std::vector<std::vector<Point>> rings;
+        for (const auto& c : *d.crests)
+            for (const auto& poly : crest_polygons(c)) {
+                rings.clear();
+                for (std::size_t r : poly) rings.push_back(c.rings[r]);
+                sink(c.id, d.style.c_str(), rings);
+            }
+    };
+}
+
+// The rows of one face, encoded on a drawing thread: those of the layers made already, and
+// those of the other families (tagged with their family), kept until their layers are made.
+struct FaceRows {
+    GpkgRows now, later;
+    unsigned families = 0;  // bit f: the face has a hatch of family f
+    bool ready = false;
+};
+
+// Inserts the faces' rows in face order on a thread of its own while the callers encode later
+// faces. A face waits to be queued while the queue holds more than kQueueBytes (the face the
+// inserter waits for never waits), so memory stays bounded whatever the order faces end in.
+class OrderedInserter {
+public:
+    static constexpr std::size_t kQueueBytes = std::size_t(8) << 20;
+    OrderedInserter(GpkgWriter& out, std::size_t faces, std::size_t total, const std::function<bool(double)>& keep_going,
+                    const std::string& path)
+        : out_(out), slots_(faces), total_(total), keep_going_(keep_going), path_(path), later_(kFamilies) {
+        thread_ = std::thread([this] { run(); });
+    }
+    ~OrderedInserter() { stop(); }
+    // Hands face k's rows over (after the face failed: empty, and `failed`).
+    void put(std::size_t k, FaceRows&& rows, bool failed) {
+        std::unique_lock lock(m_);
+        const std::size_t bytes = rows.now.bytes() + rows.later.bytes();
+        cv_.wait(lock, [&] { return k == next_ || queued_ + bytes <= kQueueBytes || stop_; });
+        if (failed) stop_ = true;
+        queued_ += bytes;
+        slots_[k] = std::move(rows);
+        slots_[k].ready = true;
+        cv_.notify_all();
+    }
+    bool stopped() {
+        std::lock_guard lock(m_);
+        return stop_;
+    }
+    // Waits for every face; rethrows the inserter's error. Then later(f) holds the rows of
+    // family f kept for later (tagged f), and families() the families drawn.
+    void finish() {
+        if (thread_.joinable()) thread_.join();
+        if (error_) std::rethrow_exception(error_);
+    }
+    GpkgRows& later(int f) { return later_[std::size_t(f)]; }
+    unsigned families() const { return families_; }
+
+private:
+    void stop() {
+        {
+            std::lock_guard lock(m_);
+            stop_ = true;
+        }
+        cv_.notify_all();
+        if (thread_.joinable()) thread_.join();
+    }
+    void run() {
+        try {
+            std::size_t written = 0;
+            for (;;) {
+                FaceRows rows;
+                {
+                    std::unique_lock lock(m_);
+                    cv_.wait(lock, [&] { return stop_ || next_ == slots_.size() || slots_[next_].ready; });
+                    if (stop_ || next_ == slots_.size()) return;
+                    rows = std::move(slots_[next_]);
+                    slots_[next_] = FaceRows{GpkgRows(), GpkgRows()};
+                }
+                out_.insert(rows.now);
+                if (!rows.later.empty())
+                    for (int f = 0; f < kFamilies; ++f) later_[std::size_t(f)].append(rows.later, f, f);
+                families_ |= rows.families;
+                const std::size_t before = written;
+                written += rows.now.size();
+                if (keep_going_ && written / 4096 != before / 4096 &&
+                    !keep_going_(std::min(1.0, double(written) / double(std::max<std::size_t>(1, total_)))))
+                    throw Error(Code::Cancelled, "cancelled while writing '" + path_ + "'");
+                {
+                    std::lock_guard lock(m_);
+                    queued_ -= rows.now.bytes() + rows.later.bytes();
+                    ++next_;
+                }
+                cv_.notify_all();
+            }
+        } catch (...) {
+            error_ = std::current_exception();
+            {
+                std::lock_guard lock(m_);
+                stop_ = true;
+            }
+            cv_.notify_all();
+        }
+    }
+    GpkgWriter& out_;
+    std::vector<FaceRows> slots_;
+    std::size_t total_;
+    const std::function<bool(double)>& keep_going_;
+    const std::string& path_;
+    std::vector<GpkgRows> later_;
+    unsigned families_ = 0;
+    std::mutex m_;
+    std::condition_variable cv_;
+    std::size_t next_ = 0, queued_ = 0;
+    bool stop_ = false;
+    std::exception_ptr error_;
+    std::thread thread_;
+};
+
+// The hatch GeoPackage of the faces of `s` (see above); `total` (hatches) for the fractions
+// `during` is asked with while the faces' rows go in, `after` while the rest is written.
+void write_faces_gpkg(const std::string& path, const FaceStream& s, const std::function<const Drawing&()>& rest,
+                      bool spatial_index, std::size_t total, const std::function<bool(double)>& during,
+                      const std::function<bool(double)>& after) {
+    GpkgWriter out(path, s.crs_wkt, spatial_index);
+    std::vector<int> layer(kFamilies, -1);
+    for (int fam = 0; fam < kRockFamilies; ++fam) layer[std::size_t(fam)] = add_hatch_layer(out, Family(fam));
+    const std::int32_t srs = out.srs_id();  // SQLite has the file from here on
+    std::vector<char> indexed(kFamilies, 0);
+    if (s.fingerprints)
+        for (int fam = 0; fam < kRockFamilies; ++fam) {
+            out.sql(face_index_sql(hatch_table(Family(fam))));
+            indexed[std::size_t(fam)] = 1;
+        }
+    {
+        OrderedInserter inserter(out, s.faces, total, during, path);
+        auto encode = [&](std::size_t k) {
+            FaceRows rows{GpkgRows(srs), GpkgRows(srs)};
+            if (inserter.stopped()) return inserter.put(k, std::move(rows), false);
+            try {
+                s.face(k, [&](const FaceHatches& face) {
+                    for (const Hatch& h : face.hatches) {
+                        const int fam = int(h.family);
+                        rows.families |= 1u << fam;
+                        const int l = layer[std::size_t(fam)];
+                        hatch_row(l >= 0 ? rows.now : rows.later, l >= 0 ? l : fam, h.family, face.face_id, s.style,
+                                  h.points.data(), h.points.size(), h.closed);
+                    }
+                });
+            } catch (...) {
+                inserter.put(k, FaceRows{GpkgRows(srs), GpkgRows(srs)}, true);
+                throw;
+            }
+            inserter.put(k, std::move(rows), false);
+        };
+        if (s.serial)
+            for (std::size_t k = 0; k < s.faces; ++k) encode(k);
+        else
+            tex::parallel_for(s.faces, encode);
+        inserter.finish();
+        // The other families the faces have, after the rock ones (write_gpkg's order).
+        for (int fam = kRockFamilies; fam < kFamilies; ++fam) {
+            if (!(inserter.families() & (1u << fam))) continue;
+            layer[std::size_t(fam)] = add_hatch_layer(out, Family(fam));
+            GpkgRows rows(srs);
+            rows.append(inserter.later(fam), fam, layer[std::size_t(fam)]);
+            inserter.later(fam).clear();
+            out.insert(rows);
+        }
+    }
+    const Drawing& d = rest();
+    if (s.fingerprints != d.fingerprints.has_value())
+        throw Error(Code::Failure, "-o '" + path + "': the fingerprints came unannounced or not at all");
+    write_rest(out, d.bounds, drawing_crests(d), d.fingerprints ? &*d.fingerprints : nullptr, layer, indexed, after, path);
     out.commit();
 }
+
+}  // namespace
+
+void write_gpkg(const FaceStream& faces, const std::function<const Drawing&()>& rest, const std::string& path,
+                bool spatial_index, const std::function<bool(double)>& keep_going) {
+    write_faces_gpkg(path, faces, rest, spatial_index, 0, {}, keep_going);
+}
+
+namespace {
 
 // A hatch GeoPackage written by write_gpkg, open for reading; `what` names it in errors.
 DatasetPtr open_hatches(const std::string& path, const std::string& what) {
@@ -356,24 +527,15 @@ void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index,
                 const std::function<bool(double)>& keep_going) {
     std::size_t total = 0;
     for (const auto& face : d.faces) total += face.hatches.size();
-    std::vector<Point> pts;
-    write_hatch_gpkg(path, d.crs_wkt, spatial_index, total, keep_going, [&](Family f, const HatchSink& sink) {
-        for (const auto& face : d.faces)
-            for (const auto& h : face.hatches) {
-                if (h.family != f) continue;
-                pts.assign(h.points.begin(), h.points.end());
-                if (h.closed && !pts.empty()) pts.push_back(pts.front());
-                sink(face.face_id, d.style.c_str(), pts);
-            }
-    }, [&](Family f) { return has_family(d, f); }, d.crests ? CrestSource([&](const CrestSink& sink) {
-        std::vector<std::vector<Point>> rings;
-        for (const auto& c : *d.crests)
-            for (const auto& poly : crest_polygons(c)) {
-                rings.clear();
-                for (std::size_t r : poly) rings.push_back(c.rings[r]);
-                sink(c.id, d.style.c_str(), rings);
-            }
-    }) : CrestSource(), d.bounds, d.fingerprints ? &*d.fingerprints : nullptr);
+    FaceStream s{d.crs_wkt, d.style, d.faces.size(), false,
+                 [&](std::size_t k, const std::function<void(const FaceHatches&)>& use) { use(d.faces[k]); },
+                 d.fingerprints.has_value()};
+    std::function<bool(double)> during, after;
+    if (keep_going) {
+        during = [&](double f) { return keep_going(0.9 * f); };
+        after = [&](double f) { return keep_going(0.9 + 0.1 * f); };
+    }
+    write_faces_gpkg(path, s, [&]() -> const Drawing& { return d; }, spatial_index, total, during, after);
 }
 
 std::size_t merge_gpkg(const std::vector<std::string>& parts, const std::string& path, bool spatial_index,
@@ -387,7 +549,7 @@ std::size_t merge_gpkg(const std::vector<std::string>& parts, const std::string&
     for (const auto& part : parts) {
         auto ds = open_hatches(part, "tile");
         for (int fam = 0; fam < kFamilies; ++fam)
-            if (OGRLayer* l = ds->GetLayerByName((std::string("hatch_") + family_name(Family(fam))).c_str())) {
+            if (OGRLayer* l = ds->GetLayerByName(hatch_table(Family(fam)).c_str())) {
                 total += std::size_t(std::max<GIntBig>(0, l->GetFeatureCount()));
                 present[std::size_t(fam)] = 1;
             }
@@ -398,18 +560,39 @@ std::size_t merge_gpkg(const std::vector<std::string>& parts, const std::string&
         frame.add(read_frame(*ds));
     }
     std::size_t n = 0;
-    write_hatch_gpkg(path, crs_wkt, spatial_index, total, keep_going, [&](Family f, const HatchSink& sink) {
-        // One part open at a time: memory does not grow with the number of tiles.
+    auto check = [&] {
+        if (keep_going && n % 4096 == 0 && !keep_going(std::min(0.9, 0.9 * double(n) / double(std::max<std::size_t>(1, total)))))
+            throw Error(Code::Cancelled, "cancelled while writing '" + path + "'");
+    };
+    GpkgWriter out(path, crs_wkt, spatial_index);
+    std::vector<int> layer(kFamilies, -1);
+    // Family by family, the parts' features one after the other; one part open at a time:
+    // memory does not grow with the number of tiles.
+    for (int fam = 0; fam < kFamilies; ++fam) {
+        const Family f = Family(fam);
+        if (!present[std::size_t(fam)]) continue;
+        const int l = layer[std::size_t(fam)] = add_hatch_layer(out, f);
+        GpkgRows rows(out.srs_id());
         for (const auto& part : parts) {
             auto ds = open_hatches(part, "tile");
             read_family(*ds, f, "tile '" + part + "'", [&](std::int64_t id, const char* style, const std::vector<Point>& p) {
                 ++n;
-                sink(id, style, p);
+                check();
+                hatch_row(rows, l, f, id, style, p.data(), p.size(), false);
+                if (rows.size() >= 4096) {
+                    out.insert(rows);
+                    rows.clear();
+                }
             });
         }
-    }, [&](Family f) { return present[std::size_t(f)] != 0; }, crests ? CrestSource([&](const CrestSink& sink) {
+        out.insert(rows);
+    }
+    std::function<bool(double)> after;
+    if (keep_going) after = [&](double f) { return keep_going(0.9 + 0.1 * f); };
+    write_rest(out, frame, crests ? CrestSource([&](const CrestSink& sink) {
         for (const auto& part : parts) read_crests(*open_hatches(part, "tile"), "tile '" + part + "'", sink);
-    }) : CrestSource(), frame, nullptr);
+    }) : CrestSource(), nullptr, layer, std::vector<char>(kFamilies, 0), after, path);
+    out.commit();
     return n;
 }
 

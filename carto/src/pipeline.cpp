@@ -43,7 +43,7 @@ Raster load_dem(const std::string& path, std::vector<std::string>* notes) {
 // over the faces to hatch: beyond this, a scale or a parameter asks for more geometry than
 // a machine holds, so the run is refused before it starts. The rock style's min_gap at
 // 1:10000 makes about 1.3e6 squares of the sample and 3.8e7 of Chamonix.tif (386 MB at the
-// peak); the limit lets Chamonix.tif be drawn at zoom 16 of a vector-tile output (1:5,940,
+// peak with the whole drawing in memory, about 200 MB written to a GeoPackage alone); the limit lets Chamonix.tif be drawn at zoom 16 of a vector-tile output (1:5,940,
 // 1.1e8) and refuses what would take several GB.
 constexpr double kMaxFinestCells = 4e8;
 
@@ -184,13 +184,14 @@ ControlFields control_fields(const Prepared& p, const Plan& plan) {
                          elevation_field(p.terrain, plan.field_smoothing / 4)};
 }
 
-Drawing hatch(const Prepared& p, const Plan& plan, const std::vector<int>& chosen, const Progress& progress) {
-    const Options& o = plan.options;
-    const Style& style = plan.style;
-    const Partition& part = p.partition;
-    // A terrain style in a window also reads the hatches of the faces around it (drawn after
-    // the chosen ones, and dropped once the terrain is drawn).
+namespace {
+
+// The faces a run draws: the chosen ones, then, for a terrain style in a window, the faces
+// around it whose hatches the terrain reads (drawn after the chosen ones, dropped once the
+// terrain is drawn).
+std::vector<int> faces_to_draw(const Prepared& p, const Plan& plan, const std::vector<int>& chosen) {
     std::vector<int> selected = chosen;
+    const Partition& part = p.partition;
     const Raster& elevation = p.terrain.elevation;
     if (const auto around = terrain_read_area(plan, p.extent.empty() ? elevation.bounds() : p.extent,
                                               std::max(elevation.cell_x(), elevation.cell_y()))) {
@@ -199,61 +200,102 @@ Drawing hatch(const Prepared& p, const Plan& plan, const std::vector<int>& chose
         for (std::size_t i = 0; i < part.faces.size(); ++i)
             if (!taken[i] && !around->empty() && part.faces[i].region.bbox().intersects(*around)) selected.push_back(int(i));
     }
+    return selected;
+}
+
+// Draws the faces `selected` of the partition one at a time, on any thread (the style's
+// program is made once); counts them for the progress, which may cancel. Lives on the thread
+// that runs the faces (its thread count is that thread's).
+class FaceDrawer {
+public:
+    FaceDrawer(const Prepared& p, const Plan& plan, const std::vector<int>& selected, const Progress& progress)
+        : p_(p), plan_(plan), selected_(selected), progress_(progress), threads_(plan.options.threads),
+          program_([&] {
+              // A style script may call SetSeed (the faces draw from o.seed, see hatch_face): the
+              // process's seed and stream numbering come back after it.
+              const tex::SavedSeed saved;
+              ParamValues params = plan.rock_params;
+              params[kDemCell] = std::max(p.terrain.elevation.cell_x(), p.terrain.elevation.cell_y());
+              return plan.style.program(control_fields(p, plan), params);
+          }()) {}
+    std::size_t size() const { return selected_.size(); }
+    bool serial() const { return plan_.style.serial; }
+    // Face k of the selection; throws Error(Cancelled) once the progress said stop.
+    FaceHatches draw(std::size_t k) {
+        if (cancelled_) throw Error(Code::Cancelled, "cancelled during hatching");
+        const RockFace& f = p_.partition.faces[std::size_t(selected_[k])];
+        FaceHatches out;
+        try {
+            out = {f.id, hatch_face(program_, p_.partition, std::size_t(selected_[k]), plan_.options.seed)};
+        } catch (const Error&) {
+            throw;
+        } catch (const std::exception& e) {
+            throw Error(Code::Failure, "style '" + plan_.style.info.name + "', face " + std::to_string(f.id) + ": " + e.what());
+        }
+        if (progress_) {
+            // Counted under the lock: the fractions reach the caller in increasing order
+            // whichever thread finishes first.
+            std::lock_guard lock(progress_mutex_);
+            const std::size_t n = ++done_;
+            if (!progress_(0.2 + 0.7 * double(n) / double(selected_.size()), "hatching")) cancelled_ = true;
+        }
+        return out;
+    }
+    bool cancelled() const { return cancelled_; }
+
+private:
+    const Prepared& p_;
+    const Plan& plan_;
+    const std::vector<int>& selected_;
+    const Progress& progress_;
+    // The run's thread count, on this thread only: the process's (tex::SetThreads) is left
+    // as it was, and the next call does not inherit this one's.
+    const tex::ThreadsScope threads_;
+    const tex::Arrangement program_;
+    std::mutex progress_mutex_;
+    std::size_t done_ = 0;
+    std::atomic<bool> cancelled_{false};
+};
+
+// The crest ornaments of the run, when it asks for them, into the drawing (and its frame).
+void add_crests(Drawing& d, const Prepared& p, const Plan& plan, const Progress& progress) {
+    if (!plan.crest_band) return;
+    tick(progress, 0.9, "crest ornaments");
+    CrestResult crests = draw_crests(p.partition, *plan.crest_exemplar, *plan.crest_band, plan.options.seed, plan.options.window);
+    for (const auto& c : crests.ornaments)
+        for (const auto& ring : c.rings)
+            for (const Point& q : ring) d.bounds.add(q);
+    d.crests = std::move(crests.ornaments);
+    d.notes = std::move(crests.notes);
+}
+
+}  // namespace
+
+Drawing hatch(const Prepared& p, const Plan& plan, const std::vector<int>& chosen, const Progress& progress) {
+    const Options& o = plan.options;
+    const Style& style = plan.style;
+    const Partition& part = p.partition;
+    const std::vector<int> selected = faces_to_draw(p, plan, chosen);
     check_workload(plan.rock, plan.rock_params, part, selected, o.scale);
     Drawing d;
     d.crs_wkt = part.crs_wkt;
     d.style = style.info.name;
     d.scale = o.scale;
     d.faces.resize(selected.size());
-    const ControlFields fields = control_fields(p, plan);
-    // The run's thread count, on this thread only: the process's (tex::SetThreads) is left
-    // as it was, and the next call does not inherit this one's.
-    const tex::ThreadsScope threads(o.threads);
-    const tex::Arrangement program = [&] {
-        // A style script may call SetSeed (the faces draw from o.seed, see hatch_face): the
-        // process's seed and stream numbering come back after it.
-        const tex::SavedSeed saved;
-        ParamValues params = plan.rock_params;
-        params[kDemCell] = std::max(p.terrain.elevation.cell_x(), p.terrain.elevation.cell_y());
-        return style.program(fields, params);
-    }();
-    std::atomic<std::size_t> done{0};
-    std::atomic<bool> cancelled{false};
-    std::mutex progress_mutex;
-    auto draw = [&](std::size_t k) {
-        if (cancelled) return;
-        const RockFace& f = part.faces[selected[k]];
-        try {
-            d.faces[k] = {f.id, hatch_face(program, part, std::size_t(selected[k]), o.seed)};
-        } catch (const Error&) {
-            throw;
-        } catch (const std::exception& e) {
-            throw Error(Code::Failure, "style '" + style.info.name + "', face " + std::to_string(f.id) + ": " + e.what());
+    {
+        FaceDrawer drawer(p, plan, selected, progress);
+        auto draw = [&](std::size_t k) {
+            if (!drawer.cancelled()) d.faces[k] = drawer.draw(k);
+        };
+        if (drawer.serial()) {
+            for (std::size_t k = 0; k < selected.size(); ++k) draw(k);
+        } else {
+            tex::parallel_for(selected.size(), draw);
         }
-        if (progress) {
-            // Counted under the lock: the fractions reach the caller in increasing order
-            // whichever thread finishes first.
-            std::lock_guard lock(progress_mutex);
-            const std::size_t n = ++done;
-            if (!progress(0.2 + 0.7 * double(n) / double(selected.size()), "hatching")) cancelled = true;
-        }
-    };
-    if (style.serial) {
-        for (std::size_t k = 0; k < selected.size(); ++k) draw(k);
-    } else {
-        tex::parallel_for(selected.size(), draw);
+        if (drawer.cancelled()) throw Error(Code::Cancelled, "cancelled during hatching");
     }
-    if (cancelled) throw Error(Code::Cancelled, "cancelled during hatching");
     for (std::size_t k = 0; k < chosen.size(); ++k) d.bounds.add(part.faces[chosen[k]].region.bbox());
-    if (plan.crest_band) {
-        tick(progress, 0.9, "crest ornaments");
-        CrestResult crests = draw_crests(part, *plan.crest_exemplar, *plan.crest_band, o.seed, o.window);
-        for (const auto& c : crests.ornaments)
-            for (const auto& ring : c.rings)
-                for (const Point& q : ring) d.bounds.add(q);
-        d.crests = std::move(crests.ornaments);
-        d.notes = std::move(crests.notes);
-    }
+    add_crests(d, p, plan, progress);
     if (style.terrain) {
         tick(progress, 0.9, "drawing the terrain");
         std::vector<Hatch> rock;
@@ -279,6 +321,62 @@ Drawing hatch(const Prepared& p, const Plan& plan, const std::vector<int>& chose
     }
     return d;
 }
+
+namespace {
+
+// The one GeoPackage a run writes while it draws (streamed: the faces are never all in
+// memory), when its outputs are that file alone and its style draws no terrain (which reads
+// every face's hatches); nullptr otherwise.
+const Output* streamed_output(const Plan& plan) {
+    if (plan.style.terrain) return nullptr;
+    const Output* gpkg = nullptr;
+    for (const Output& out : plan.outputs) {
+        if (out.format == OutputFormat::VectorTiles) continue;
+        if (out.format != OutputFormat::GeoPackage || gpkg) return nullptr;
+        gpkg = &out;
+    }
+    return gpkg;
+}
+
+// hatch() and write_outputs() for a streamed GeoPackage: the same faces, crests, frame and
+// file, each face's rows written as soon as the faces before it are. Fills the counts of `s`.
+void hatch_and_write(const Prepared& p, const Plan& plan, const Output& out, const Progress& progress, Stats& s,
+                     std::vector<std::string>& notes) {
+    const Partition& part = p.partition;
+    std::vector<int> chosen;
+    for (std::size_t i = 0; i < part.faces.size(); ++i)
+        if (!plan.options.window || owns(*plan.options.window, face_anchor(part.faces[i]))) chosen.push_back(int(i));
+    check_workload(plan.rock, plan.rock_params, part, chosen, plan.options.scale);
+    std::atomic<std::size_t> hatches{0};
+    Drawing rest;
+    rest.crs_wkt = part.crs_wkt;
+    rest.style = plan.style.info.name;
+    rest.scale = plan.options.scale;
+    rest.fingerprints = p.fingerprints;
+    {
+        FaceDrawer drawer(p, plan, chosen, progress);
+        const FaceStream faces{part.crs_wkt, plan.style.info.name, chosen.size(), drawer.serial(),
+                               [&](std::size_t k, const std::function<void(const FaceHatches&)>& use) {
+                                   const FaceHatches f = drawer.draw(k);
+                                   hatches += f.hatches.size();
+                                   use(f);
+                               },
+                               p.fingerprints.has_value()};
+        write_gpkg(faces, [&]() -> const Drawing& {
+            for (int i : chosen) rest.bounds.add(part.faces[std::size_t(i)].region.bbox());
+            add_crests(rest, p, plan, progress);
+            tick(progress, 0.92, "writing");
+            return rest;
+        }, out.path, plan.options.spatial_index, [&](double f) { return !progress || progress(0.92 + 0.07 * f, "writing"); });
+    }
+    s.faces = chosen.size();
+    s.hatches = hatches;
+    if (rest.crests) s.crests = rest.crests->size();
+    notes = std::move(rest.notes);
+    tick(progress, 1.0, "done");
+}
+
+}  // namespace
 
 void write_outputs(const Drawing& d, const Prepared& p, const Plan& plan, const Progress& progress) {
     tick(progress, 0.92, "writing");
@@ -368,17 +466,23 @@ Stats run(const Plan& plan, const Progress& progress) {
                 for (const auto& f : p.partition.faces) faces.add(f.region.bbox());
                 page_layout(faces, plan.options.scale, plan.page, out.path);
             }
-    Drawing d = hatch(p, plan, progress);
-    d.fingerprints = p.fingerprints;
-    write_outputs(d, p, plan, progress);
+    std::vector<std::string> notes;
+    if (const Output* gpkg = streamed_output(plan)) {
+        hatch_and_write(p, plan, *gpkg, progress, s, notes);
+    } else {
+        Drawing d = hatch(p, plan, progress);
+        d.fingerprints = p.fingerprints;
+        write_outputs(d, p, plan, progress);
+        s.faces = std::size_t(std::count_if(d.faces.begin(), d.faces.end(),
+                                            [](const FaceHatches& f) { return f.face_id != kTerrainFaceId; }));
+        for (const auto& f : d.faces) s.hatches += f.hatches.size();
+        if (d.crests) s.crests = d.crests->size();
+        notes = std::move(d.notes);
+    }
     s.tiles = write_zoom_tiles(plan, progress, nullptr);
-    s.faces = std::size_t(std::count_if(d.faces.begin(), d.faces.end(),
-                                        [](const FaceHatches& f) { return f.face_id != kTerrainFaceId; }));
-    for (const auto& f : d.faces) s.hatches += f.hatches.size();
-    if (d.crests) s.crests = d.crests->size();
-    s.crs = crs_name(d.crs_wkt);
+    s.crs = crs_name(p.partition.crs_wkt);
     s.notes = p.notes;
-    s.notes.insert(s.notes.end(), d.notes.begin(), d.notes.end());
+    s.notes.insert(s.notes.end(), notes.begin(), notes.end());
     s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return s;
 }

@@ -95,6 +95,37 @@ def test_same_bytes_with_one_or_two_threads(rockhatch_exe, sample_dir, tmp_path)
     assert (tmp_path / "t1.svg").read_bytes() == (tmp_path / "t2.svg").read_bytes()
 
 
+def test_a_geopackage_alone_is_written_while_drawn_with_the_same_bytes(rockhatch_exe, sample_dir, tmp_path):
+    """A GeoPackage alone is written face by face while the faces are drawn (the faces never
+    all in memory): the same bytes at one and two threads, the same as the GeoPackage written
+    from the whole drawing beside an SVG, and a valid GeoPackage with every family the style
+    drew (rock: the structure families after the rock ones)."""
+    import sys
+    validator = "/usr/lib/python3/dist-packages/osgeo_utils/samples/validate_gpkg.py"
+    for t in (1, 2):
+        r = run(rockhatch_exe, *sample_args(sample_dir), "-q", "--threads", t, "-o", tmp_path / f"alone{t}.gpkg")
+        assert r.returncode == 0, r.stderr
+    r = run(rockhatch_exe, *sample_args(sample_dir), "-q", "--threads", 2, "-o", tmp_path / "both.gpkg",
+            "-o", tmp_path / "both.svg")
+    assert r.returncode == 0, r.stderr
+    alone = (tmp_path / "alone1.gpkg").read_bytes()
+    assert alone == (tmp_path / "alone2.gpkg").read_bytes()
+    # The command line is kept in the file: the two runs differ by their outputs only there.
+    import sqlite3
+    def content(path):
+        con = sqlite3.connect(str(path))
+        try:
+            return [line for line in con.iterdump() if "RH_RUN_COMMAND" not in line]
+        finally:
+            con.close()
+    assert content(tmp_path / "alone1.gpkg") == content(tmp_path / "both.gpkg")
+    ds = ogr.Open(str(tmp_path / "alone1.gpkg"))
+    assert [ds.GetLayer(i).GetName() for i in range(ds.GetLayerCount())] == FAMILIES + ["rockhatch_faces"]
+    assert sum(ds.GetLayerByName(f).GetFeatureCount() for f in FAMILIES) > 10000
+    v = subprocess.run([sys.executable, validator, str(tmp_path / "alone1.gpkg")], capture_output=True, text=True)
+    assert v.returncode == 0 and not v.stdout.strip() and not v.stderr.strip(), v.stdout + v.stderr
+
+
 def test_seed_changes_the_hatches(rockhatch_exe, sample_dir, tmp_path):
     for s in (1, 2):
         assert run(rockhatch_exe, *sample_args(sample_dir), "-q", "--seed", s, "--style", "noisy",

@@ -52,6 +52,26 @@ bool has_family(const Drawing& d, Family f);
 // (Error Cancelled, nothing left behind).
 void write_gpkg(const Drawing& d, const std::string& path, bool spatial_index = true,
                 const std::function<bool(double)>& keep_going = {});
+// The faces of a drawing made on demand, for a GeoPackage written while they are drawn:
+// face(k, use) draws face k (0 <= k < faces) and hands it to `use`, on any thread (on the
+// calling thread only, in order, when `serial`). The file is what write_gpkg writes for the
+// drawing of these faces; an exception of face(k) stops the writing and is rethrown.
+struct FaceStream {
+    std::string crs_wkt, style;
+    std::size_t faces = 0;
+    bool serial = false;
+    std::function<void(std::size_t k, const std::function<void(const FaceHatches&)>& use)> face;
+    // rest() will have fingerprints: the hatch layers' face_id indexes are made before their
+    // rows go in (kept up to date while the faces are drawn, not made at the end).
+    bool fingerprints = false;
+};
+// Writes the hatch GeoPackage of the streamed faces: each face's rows are encoded as it is
+// drawn and inserted in face order by one thread while later faces are drawn, so that the
+// faces are never all in memory. `rest()`, called once every face is written, gives the rest
+// of the drawing (its bounds, crests and fingerprints; its faces are not read).
+// `keep_going(fraction)` is asked while that rest is written.
+void write_gpkg(const FaceStream& faces, const std::function<const Drawing&()>& rest, const std::string& path,
+                bool spatial_index = true, const std::function<bool(double)>& keep_going = {});
 // Merges hatch GeoPackages written by write_gpkg (the tiles of a tiled run) into one, the
 // parts' features one after the other in the order given, each feature's geometry and
 // attributes copied bit for bit, with one R-tree per layer (the rock families always, a
