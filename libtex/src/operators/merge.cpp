@@ -645,7 +645,7 @@ struct KeepVotes {
     bool keep(std::size_t curve, Border b) const { return b == Border::KEEP_INSIDE ? (seen[curve] && all[curve]) : any[curve]; }
 };
 
-// The votes of the pieces of the runs `use` selects, from the joint map.
+// The votes of the pieces of `runs` (those the joint map `j` was made of).
 void vote_from_joint_map(const std::vector<Run>& runs, const JointMap& j, Status wanted, KeepVotes& v) {
     for (std::uint32_t r = 0; r < runs.size(); ++r)
         if (!runs[r].near && j.run_status[r] != Status::Unknown) v.note(runs[r].curve, j.run_status[r] == wanted);
