@@ -700,6 +700,30 @@ void keep_by_crossings(const detail::SegmentGrid& grid, const std::vector<Run>& 
     }
 }
 
+// KEEP modes: each whole edge kept by the votes of its pieces, decided by the crossings
+// where they can (keep_by_crossings), by the joint map of the other curves' runs alone.
+void keep_whole_edges(const Curves& src, const Curves& mask, const detail::SegmentGrid& grid,
+                      const std::vector<Run>& runs, Border b, Status wanted, Curves& out) {
+    KeepVotes votes(src.curves.size());
+    std::vector<char> hard(src.curves.size(), detail::exact_crops_only() ? 1 : 0);
+    if (!detail::exact_crops_only()) keep_by_crossings(grid, runs, wanted, votes, hard);
+    std::vector<Run> hard_runs;
+    for (const Run& r : runs)
+        if (hard[r.curve]) hard_runs.push_back(r);
+    if (!hard_runs.empty()) {
+        std::vector<char> touched(mask.curves.size(), 0);
+        for (const Run& r : hard_runs)
+            if (r.near) {
+                const std::size_t n = r.pts.size(), nseg = r.closed ? n : n - 1;
+                for (std::size_t k = 0; k < nseg; ++k) grid.touches(r.pts[k], r.pts[(k + 1) % n], true, &touched);
+            }
+        const std::vector<char> included = mask_curves_needed(mask, grid, hard_runs, touched, true);
+        vote_from_joint_map(hard_runs, joint_map(src, mask, grid, hard_runs, included), wanted, votes);
+    }
+    for (std::size_t i = 0; i < src.curves.size(); ++i)
+        if (votes.keep(i, b)) out.curves.push_back(src.curves[i]);
+}
+
 // The kept pieces of each curve, per curve and in its direction.
 using CurvePieces = std::vector<std::vector<std::vector<Point>>>;
 
@@ -820,24 +844,7 @@ Curves mask_core(const Curves& subject, const Curves& mask, MaskSide side, Borde
     Curves out;
     out.points = subject.points;
     if (keep_whole) {
-        KeepVotes votes(src.curves.size());
-        std::vector<char> hard(src.curves.size(), detail::exact_crops_only() ? 1 : 0);
-        if (!detail::exact_crops_only()) keep_by_crossings(grid, runs, wanted, votes, hard);
-        std::vector<Run> hard_runs;
-        for (const Run& r : runs)
-            if (hard[r.curve]) hard_runs.push_back(r);
-        if (!hard_runs.empty()) {
-            std::fill(touched.begin(), touched.end(), 0);
-            for (const Run& r : hard_runs)
-                if (r.near) {
-                    const std::size_t n = r.pts.size(), nseg = r.closed ? n : n - 1;
-                    for (std::size_t k = 0; k < nseg; ++k) grid.touches(r.pts[k], r.pts[(k + 1) % n], true, &touched);
-                }
-            const std::vector<char> included = mask_curves_needed(mask, grid, hard_runs, touched, true);
-            vote_from_joint_map(hard_runs, joint_map(src, mask, grid, hard_runs, included), wanted, votes);
-        }
-        for (std::size_t i = 0; i < src.curves.size(); ++i)
-            if (votes.keep(i, b)) out.curves.push_back(src.curves[i]);
+        keep_whole_edges(src, mask, grid, runs, b, wanted, out);
         return out;
     }
     const std::vector<char> included = mask_curves_needed(mask, grid, runs, touched, keep_whole);
