@@ -4,6 +4,7 @@
 #include <ogrsf_frmts.h>
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cctype>
 #include <cstdlib>
@@ -674,14 +675,44 @@ std::vector<std::string> face_conditions(const std::vector<std::int64_t>& ids) {
 // The table of an undo file listing the faces an update replaced.
 constexpr const char* kReplacedTable = "rockhatch_replaced";
 
+// The fields a hatch feature's key reads, by their indices in a feature definition (-1: absent).
+struct KeyFields {
+    std::array<int, 4> index;
+    explicit KeyFields(const OGRFeatureDefn& defn) {
+        const char* names[] = {"face_id", "family", "style", "width_mm"};
+        for (std::size_t i = 0; i < index.size(); ++i) index[i] = defn.GetFieldIndex(names[i]);
+    }
+};
+
 // What a hatch feature holds: its face, family, style, width and geometry (ISO WKB); two
-// features with the same key are the same bytes in the file.
-std::string hatch_key(const OGRFeature& f) {
+// features with the same key are the same bytes in the file. Numbers go in as their bytes
+// (formatting them as text was most of the key's cost).
+std::string hatch_key(const OGRFeature& f, const KeyFields& fields) {
     std::string k;
-    for (const char* field : {"face_id", "family", "style", "width_mm"}) {
-        const int i = f.GetFieldIndex(field);
-        k += i < 0 || !f.IsFieldSetAndNotNull(i) ? std::string("\x01") : std::string(f.GetFieldAsString(i));
-        k += '\0';
+    for (const int i : fields.index) {
+        if (i < 0 || !f.IsFieldSetAndNotNull(i)) {
+            k += '\x01';
+            continue;
+        }
+        switch (f.GetFieldDefnRef(i)->GetType()) {
+            case OFTInteger:
+            case OFTInteger64: {
+                const std::int64_t v = f.GetFieldAsInteger64(i);
+                k += 'i';
+                k.append(reinterpret_cast<const char*>(&v), sizeof v);
+                break;
+            }
+            case OFTReal: {
+                const double v = f.GetFieldAsDouble(i);
+                k += 'r';
+                k.append(reinterpret_cast<const char*>(&v), sizeof v);
+                break;
+            }
+            default:
+                k += 's';
+                k += f.GetFieldAsString(i);
+                k += '\0';
+        }
     }
     if (const OGRGeometry* g = f.GetGeometryRef()) {
         const std::size_t at = k.size();
@@ -742,9 +773,10 @@ public:
         for (const std::string& where : face_conditions(ids)) {
             OGRLayer* res = ds_->ExecuteSQL(("SELECT * FROM " + table + " WHERE " + where).c_str(), nullptr, nullptr);
             if (!res) throw fail(std::string("cannot read the features of ") + layer->GetName());
+            const KeyFields fields(*res->GetLayerDefn());
             for (auto& f : *res) {
                 if (keep) copy(*f, keep);
-                out[hatch_key(*f)].push_back(f->GetFID());
+                out[hatch_key(*f, fields)].push_back(f->GetFID());
             }
             ds_->ReleaseResultSet(res);
         }
@@ -884,6 +916,7 @@ FaceReplacement replace_faces(const std::string& path, const std::vector<std::in
         if (k.face_id < 0 || k.family < 0 || k.style < 0 || k.width_mm < 0)
             throw Error(Code::BadLayer, what + ": layer " + table + " lacks face_id, family, style or width_mm");
         OGRFeature feat(defn);
+        const KeyFields key_fields(*defn);
         for (const auto& face : d.faces)
             for (const auto& h : face.hatches) {
                 if (h.family != f) continue;
@@ -892,7 +925,7 @@ FaceReplacement replace_faces(const std::string& path, const std::vector<std::in
                 if (pts.size() < 2) continue;
                 set_hatch(feat, k, f, face.face_id, d.style.c_str(), pts);
                 if (!old.empty()) {
-                    const auto same = old.find(hatch_key(feat));
+                    const auto same = old.find(hatch_key(feat, key_fields));
                     if (same != old.end() && !same->second.empty()) {
                         same->second.pop_back();
                         ++r.kept;

@@ -75,31 +75,44 @@ void check_roughness(const Raster& r, const std::string& path) {
 Prepared prepare(const Plan& plan, const Progress& progress) {
     const Options& o = plan.options;
     Prepared p;
+    // The DEM and its fields, and the partition from its file, are read side by side (two
+    // work items of parallel_for: in turn with one thread; an error of the DEM's item comes
+    // first, as it did read first). The partition is read in the DEM's working CRS, which
+    // the DEM's header gives.
+    const bool partition_file = o.partition.path != "none" && o.partition.path != "auto";
+    const std::string working_wkt = partition_file ? working_grid(raster_info(o.dem, "--dem")).grid.crs_wkt : "";
+    std::vector<std::string> dem_notes;
+    Raster dem;
     tick(progress, 0.0, "reading the DEM");
-    Raster dem = load_dem(o.dem, &p.notes);
-    tick(progress, 0.08, "terrain fields");
-    p.terrain = compute_terrain(dem);
-    std::optional<WorkingGrid> dem_grid;
-    auto load_like = [&](const std::string& path, const char* what, Raster& target) {
-        // On the grid of a geographic DEM: reprojected as the DEM is (the cells a tiled run
-        // reads too); on another grid: resampled onto the DEM's.
-        if (!dem_grid) dem_grid = working_grid(raster_info(o.dem, "--dem"));
-        const WorkingGrid& g = *dem_grid;
-        Raster r = g.reprojected() && same_grid(raster_info(path, what), g.source) ? read_working(path, what, g)
-                                                                                   : read_raster(path, what);
-        if (!same_crs(r.crs_wkt, dem.crs_wkt) || r.width != dem.width || r.height != dem.height || r.gt != dem.gt)
-            r = resample_like(r, dem);
-        target = std::move(r);
-        if (std::none_of(target.data.begin(), target.data.end(), [](float v) { return std::isfinite(v); }))
-            throw Error(Code::NoOverlap, std::string(what) + " '" + path + "' does not overlap --dem '" + o.dem + "'");
-    };
-    if (!o.slope.empty()) load_like(o.slope, "--slope", p.terrain.slope);
-    if (!o.roughness.empty()) {
-        load_like(o.roughness, "--roughness", p.terrain.roughness);
-        check_roughness(p.terrain.roughness, o.roughness);
-    }
-    p.relief = local_relief(dem, o.relief_radius);
-
+    tex::parallel_for(partition_file ? 2 : 1, [&](std::size_t item) {
+        if (item == 1) {
+            p.partition = load_partition(o.partition, working_wkt);
+            return;
+        }
+        dem = load_dem(o.dem, &dem_notes);
+        p.terrain = compute_terrain(dem);
+        std::optional<WorkingGrid> dem_grid;
+        auto load_like = [&](const std::string& path, const char* what, Raster& target) {
+            // On the grid of a geographic DEM: reprojected as the DEM is (the cells a tiled run
+            // reads too); on another grid: resampled onto the DEM's.
+            if (!dem_grid) dem_grid = working_grid(raster_info(o.dem, "--dem"));
+            const WorkingGrid& g = *dem_grid;
+            Raster r = g.reprojected() && same_grid(raster_info(path, what), g.source) ? read_working(path, what, g)
+                                                                                       : read_raster(path, what);
+            if (!same_crs(r.crs_wkt, dem.crs_wkt) || r.width != dem.width || r.height != dem.height || r.gt != dem.gt)
+                r = resample_like(r, dem);
+            target = std::move(r);
+            if (std::none_of(target.data.begin(), target.data.end(), [](float v) { return std::isfinite(v); }))
+                throw Error(Code::NoOverlap, std::string(what) + " '" + path + "' does not overlap --dem '" + o.dem + "'");
+        };
+        if (!o.slope.empty()) load_like(o.slope, "--slope", p.terrain.slope);
+        if (!o.roughness.empty()) {
+            load_like(o.roughness, "--roughness", p.terrain.roughness);
+            check_roughness(p.terrain.roughness, o.roughness);
+        }
+        p.relief = local_relief(dem, o.relief_radius);
+    });
+    p.notes = std::move(dem_notes);
     tick(progress, 0.15, "reading the partition");
     if (o.partition.path == "none") {
         // No rock at all: a terrain style draws the whole DEM (validate refuses it otherwise).
@@ -113,8 +126,8 @@ Prepared prepare(const Plan& plan, const Progress& progress) {
         eo.what = "--dem '" + o.dem + "'";
         eo.mask = o.mask;
         p.partition = extract_partition(eo).partition;
-    } else {
-        p.partition = load_partition(o.partition, dem.crs_wkt);
+    } else if (p.partition.crs_wkt != dem.crs_wkt) {
+        p.partition = load_partition(o.partition, dem.crs_wkt);  // the header's CRS was not the grid's
     }
     for (const auto& n : p.partition.notes) p.notes.push_back(n);
     if (!p.partition.bounds().intersects(dem.bounds()))
