@@ -1,5 +1,6 @@
 #include "carto/control_fields.hpp"
 #include "carto/partition.hpp"
+#include "libtex/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -180,8 +181,15 @@ void for_face_samples(const RockFace& f, double cell, F&& fn) {
 
 std::pair<std::size_t, std::size_t> derive_face_controls(Partition& p, const Terrain& t) {
     std::size_t derived_o = 0, derived_d = 0;
+    for (const RockFace& f : p.faces) {
+        derived_o += !f.orientation;
+        derived_d += !f.density;
+    }
     const double cell = t.elevation.cell_x();
-    for (RockFace& f : p.faces) {
+    // Face by face, each on its own (a work item of parallel_for): the sums run in the
+    // same order whatever the thread count.
+    tex::parallel_for(p.faces.size(), [&](std::size_t i) {
+        RockFace& f = p.faces[i];
         if (!f.orientation) {
             double sx = 0, sy = 0;
             for_face_samples(f, cell, [&](const Point& q) {
@@ -191,7 +199,6 @@ std::pair<std::size_t, std::size_t> derive_face_controls(Partition& p, const Ter
                 sy += s * std::sin(a);
             });
             f.orientation = (sx == 0 && sy == 0) ? 0.0 : std::atan2(sy, sx);
-            ++derived_o;
         }
         if (!f.density) {
             double sum = 0;
@@ -204,9 +211,8 @@ std::pair<std::size_t, std::size_t> derive_face_controls(Partition& p, const Ter
                 }
             });
             f.density = n ? std::clamp(1.0 - sum / n, 0.0, 1.0) : 0.5;
-            ++derived_d;
         }
-    }
+    });
     return {derived_o, derived_d};
 }
 
