@@ -35,7 +35,7 @@ class RockhatchPlugin:
         from qgis.PyQt.QtGui import QIcon
         from qgis.PyQt.QtWidgets import QAction
         from .icon import ICON
-        self.loop = EditLoop(canvas=self.iface.mapCanvas())
+        self.loop = EditLoop(canvas=self.iface.mapCanvas(), report=self.message)  # errors of QGIS's Undo/Redo
         self.toolbar = self.iface.addToolBar("Rock hatching")
         self.toolbar.setObjectName("RockhatchToolbar")
         for text, slot in (("Re-hatch the selected or edited faces", self.rehatch),
@@ -78,6 +78,8 @@ class RockhatchPlugin:
                      f"{time.perf_counter() - start:.2f} s")
 
     def undo(self):
+        """The action: the last re-hatching undone, through the partition layer's undo stack when
+        its command is the last done there (QGIS's Undo and Redo stay in step), else directly."""
         try:
             if not self.loop.undo():
                 self.message("nothing to undo", Qgis.Warning)

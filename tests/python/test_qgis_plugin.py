@@ -749,6 +749,16 @@ def hatched_copy(rockhatch_exe, sample_dir, tmp_path):
     return part, out
 
 
+def partition_and_hatches(rockhatch_exe, sample_dir, tmp_path):
+    """hatched_copy's files, its faces layer and its hatch layers in the project."""
+    part, out = hatched_copy(rockhatch_exe, sample_dir, tmp_path)
+    project = QgsProject.instance()
+    faces = QgsVectorLayer(f"{part}|layername=faces", "faces", "ogr")
+    assert faces.isValid()
+    project.addMapLayer(faces)
+    return part, out, faces, hatch_layers_of(out, project)
+
+
 def move_vertex(layer, fid, dx, dy):
     """Moves the middle vertex of a face's outer ring, in the layer's edit buffer."""
     from qgis.core import QgsPointXY
@@ -763,15 +773,11 @@ def move_vertex(layer, fid, dx, dy):
 def test_rehatch_action_redraws_the_edited_and_selected_faces_and_undo_puts_them_back(
         qgis, rockhatch_exe, sample_dir, tmp_path):
     sys.path.insert(0, str(PLUGINS))
-    from rockhatch_qgis.edit_loop import EditLoop
-    part, out = hatched_copy(rockhatch_exe, sample_dir, tmp_path)
+    from rockhatch_qgis.edit_loop import EditLoop, has_edits
+    part, out, faces, hatches = partition_and_hatches(rockhatch_exe, sample_dir, tmp_path)
     before = features_by_face(out)
     shutil.copy(out, tmp_path / "before.gpkg")
     project = QgsProject.instance()
-    faces = QgsVectorLayer(f"{part}|layername=faces", "faces", "ogr")
-    assert faces.isValid()
-    project.addMapLayer(faces)
-    hatches = hatch_layers_of(out, project)
     try:
         loop = EditLoop(project)
         # One face edited in the edit buffer, another selected.
@@ -784,7 +790,9 @@ def test_rehatch_action_redraws_the_edited_and_selected_faces_and_undo_puts_them
         redrawn = set(r.redrawn_ids)
         assert {3, 7} <= redrawn and len(redrawn) < 20
         assert r.written + r.deleted > 0
-        assert not faces.isModified()  # the edit was saved for the run to read it
+        # The edit was saved for the run to read it; the layer counts as modified for QGIS only
+        # through the re-hatching's command on its undo stack (QGIS's Undo).
+        assert not has_edits(faces) and faces.isModified() and faces.undoStack().count() == 1
         after = features_by_face(out)
         # Each redrawn face: the bytes of a whole run on the edited partition; every other face untouched.
         whole = tmp_path / "whole.gpkg"
@@ -826,6 +834,157 @@ def test_rehatch_action_redraws_the_edited_and_selected_faces_and_undo_puts_them
                                str(out)], capture_output=True).returncode == 0
     finally:
         faces.rollBack()
+        project.removeAllMapLayers()
+
+
+def assert_layers_show(gpkg, layers):
+    """The open hatch layers were reloaded: they count the file's features."""
+    counts = layer_counts(gpkg)
+    assert {layer.name(): layer.featureCount() for layer in layers} == {layer.name(): counts[layer.name()]
+                                                                       for layer in layers}
+
+
+def test_qgis_undo_and_redo_put_back_and_redraw_the_rehatchings(qgis, rockhatch_exe, sample_dir, tmp_path):
+    """QGIS's Undo (Ctrl+Z: the active layer's undoStack().undo()) and Redo on the re-hatchings."""
+    sys.path.insert(0, str(PLUGINS))
+    from rockhatch import carto
+    from rockhatch_qgis.edit_loop import EditLoop, RehatchCommand, has_edits, unsaved_edits
+    part, out, faces, hatches = partition_and_hatches(rockhatch_exe, sample_dir, tmp_path)
+    before, prints = features_by_face(out), carto.read_fingerprints(str(out))[1]
+    reported = []
+    loop = EditLoop(QgsProject.instance(), report=lambda text, level: reported.append(text))
+    # No lasting Python wrapper of the stack (QGIS keeps none): it would keep the commands alive.
+    stack = faces.undoStack
+    try:
+        assert faces.startEditing()
+        move_vertex(faces, 7, 15.0, -10.0)
+        faces.selectByIds([3])
+        redrawn = loop.rehatch(faces)[str(out.resolve())].redrawn_ids
+        after = features_by_face(out)
+        assert after != before
+        # The save took the edit's own command; the re-hatching's is the stack's only one, done.
+        assert stack().count() == 1 and stack().index() == 1 and isinstance(stack().command(0), RehatchCommand)
+        first = stack().text(0)
+        assert first == f"Re-hatch {len(redrawn)} face(s)" and len(redrawn) >= 2
+        # QGIS counts the layer as modified; the update algorithm does not refuse for it.
+        assert faces.isModified() and not has_edits(faces) and unsaved_edits(str(out)) == []
+        stack().undo()  # Ctrl+Z: the features and fingerprints as they were, the open layers reloaded
+        assert features_by_face(out) == before and carto.read_fingerprints(str(out))[1] == prints
+        assert_layers_show(out, hatches)
+        assert loop.undo_stack == [] and not loop.undo()
+        stack().redo()  # the same update again: the same features
+        assert features_by_face(out) == after and len(loop.undo_stack) == 1
+        assert_layers_show(out, hatches)
+        # The toolbar's Undo goes through the stack when the command is its last done one.
+        assert loop.undo()
+        assert stack().index() == 0 and features_by_face(out) == before
+        stack().redo()
+        assert features_by_face(out) == after
+        # A second re-hatching with another edit: its save cleared the stack, the first
+        # command is pushed again below the second.
+        move_vertex(faces, 17, -10.0, 10.0)
+        redrawn = loop.rehatch(faces)[str(out.resolve())].redrawn_ids
+        after2 = features_by_face(out)
+        assert after2 != after and stack().index() == 2
+        assert [stack().text(i) for i in range(stack().count())] == [first, f"Re-hatch {len(redrawn)} face(s)"]
+        stack().undo()
+        assert features_by_face(out) == after
+        stack().undo()
+        assert features_by_face(out) == before and not stack().canUndo() and loop.undo_stack == []
+        # Redo: the partition file keeps both edits, so the first redo draws them both, and
+        # the second draws its faces again the same.
+        stack().redo()
+        assert features_by_face(out) == after2
+        stack().redo()
+        assert features_by_face(out) == after2 and stack().index() == 2 and len(loop.undo_stack) == 2
+        assert reported == []
+    finally:
+        faces.rollBack()
+        QgsProject.instance().removeAllMapLayers()
+
+
+def test_qgis_undo_stack_cleared_leaves_the_toolbar_undo(qgis, rockhatch_exe, sample_dir, tmp_path):
+    """A save, a rollback, the layer removed or the project cleared delete or pass over the
+    commands without a crash; the toolbar's Undo keeps working, also when the layer is not
+    being edited; errors in Undo reach the report callback, not Qt."""
+    sys.path.insert(0, str(PLUGINS))
+    import gc
+    from qgis.PyQt import sip
+    from rockhatch_qgis.edit_loop import EditLoop
+    part, out, faces, hatches = partition_and_hatches(rockhatch_exe, sample_dir, tmp_path)
+    before = features_by_face(out)
+    project = QgsProject.instance()
+    reported = []
+    loop = EditLoop(project, report=lambda text, level: reported.append(text))
+    stack = faces.undoStack()
+    try:
+        # A save deletes the command: the toolbar's Undo still undoes the re-hatching.
+        assert faces.startEditing()
+        move_vertex(faces, 7, 15.0, -10.0)
+        loop.rehatch(faces)
+        after = features_by_face(out)
+        command = stack.command(0)
+        assert faces.commitChanges(False)
+        assert stack.count() == 0 and sip.isdeleted(command)
+        gc.collect()
+        assert loop.undo() and features_by_face(out) == before
+        # A rollback discards the unsaved edits only: the re-hatching, in the files, stays
+        # (the rollback's undo passes over it), and Redo then leaves it as it is.
+        faces.selectByIds([3])
+        loop.rehatch(faces)
+        assert features_by_face(out) == after and stack.count() == 1
+        move_vertex(faces, 9, 5.0, 5.0)
+        assert faces.rollBack(False) and stack.index() == 0
+        assert features_by_face(out) == after
+        stack.redo()
+        assert features_by_face(out) == after and len(loop.undo_stack) == 1
+        assert faces.rollBack() and not faces.isEditable() and stack.count() == 0
+        assert features_by_face(out) == after
+        assert loop.undo() and features_by_face(out) == before and not loop.undo()
+        # Not being edited: no command (QGIS's Undo is off for the layer), the toolbar's Undo works.
+        loop.rehatch(faces)
+        assert stack.count() == 0 and features_by_face(out) == after
+        assert loop.undo() and features_by_face(out) == before
+        # An error inside Ctrl+Z (the undo file gone) is reported; the file stays as it was.
+        assert faces.startEditing()
+        loop.rehatch(faces)
+        os.remove(loop.undo_stack[-1].files[-1][1])
+        stack.undo()
+        assert len(reported) == 1 and "failed" in reported[0] and features_by_face(out) == after
+        loop.undo_stack.clear()
+        # Older than the last MAX_UNDO: Ctrl+Z says so and drops the command (the failed one,
+        # undone for Qt, went with the next push).
+        loop.MAX_UNDO = 1
+        loop.rehatch(faces)
+        loop.rehatch(faces)
+        assert stack.count() == 2 and len(loop.undo_stack) == 1
+        stack.undo()
+        stack.undo()
+        assert "cannot be undone" in reported[-1] and stack.count() == 1
+        loop.MAX_UNDO = 20
+        # The layer removed with a command on its stack, then the project cleared with one:
+        # the toolbar's Undo still puts back the files.
+        move_vertex(faces, 9, 5.0, 5.0)
+        loop.rehatch(faces)
+        assert features_by_face(out) != after and stack.count() == 1
+        project.removeMapLayer(faces)
+        QgsApplication.processEvents()
+        gc.collect()
+        assert loop.undo() and features_by_face(out) == after
+        faces = QgsVectorLayer(f"{part}|layername=faces", "faces", "ogr")
+        project.addMapLayer(faces)
+        assert faces.startEditing()
+        move_vertex(faces, 11, 5.0, 5.0)
+        loop.rehatch(faces)
+        assert features_by_face(out) != after and faces.undoStack().count() == 1
+        project.clear()
+        QgsApplication.processEvents()
+        gc.collect()
+        assert loop.undo() and features_by_face(out) == after
+        assert len(reported) == 2
+    finally:
+        if not sip.isdeleted(faces):
+            faces.rollBack()
         project.removeAllMapLayers()
 
 
