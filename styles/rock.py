@@ -4,7 +4,7 @@
 The structure lines come first: the crests (the partition's ridges and the crease lines of
 the elevation), drawn wider above walls on their shadow side, with strokes hanging from them
 on that side; the tops of the cliff bands (where the slope passes cliff_slope), with rows of
-strokes hanging down to the band's foot; the couloirs, thin lines the fill strokes keep away
+strokes hanging down to the band's foot, where the fill keeps off (white paper, no line); the couloirs, thin lines the fill strokes keep away
 from. The fill and cross strokes of print.py take the ink the structure leaves under the tone
 curve, the fill in rows hanging from the level lines of the elevation (band_height apart,
 libtex's CutAtLevels), each tone cell's strokes shortened from their lower ends to its ink. Where rock meets scree, grass or ice, the fill and cross strokes end at an irregular
@@ -67,6 +67,8 @@ def style(fields, params):
         fill = Apart(toned_hatching(fields, params, face, region, spent), lines, params["structure_gap"])
         if params["couloir_gap"] > 0:
             fill = Apart(fill, s.couloirs, params["couloir_gap"])
+        if params["foot_gap"] > 0:
+            fill = Apart(fill, s.feet, params["foot_gap"])
         out = frayed(fields, params, fill)(region)
         out.append(spent)
         return out

@@ -116,10 +116,14 @@ void bind_blocks(py::module_& m) {
     m.def("cliff_tops", &blocks::cliff_tops, py::arg("fields"), py::arg("params"), py::arg("region"),
           "the tops of the cliff bands around the face (the level line slope = cliff_slope where the ground falls "
           "into the band) over its box grown by structure_margin, smoothed, labelled cliff, uncut");
+    m.def("cliff_feet", &blocks::cliff_feet, py::arg("fields"), py::arg("params"), py::arg("region"),
+          "the feet of the cliff bands around the face (the same level line as cliff_tops where the band falls "
+          "onto gentler ground), smoothed, labelled cliff_foot, uncut");
     py::class_<blocks::Structure>(m, "Structure", "The structure lines around a face, uncut")
         .def_readonly("ridges", &blocks::Structure::ridges, "crest lines (labelled ridgeline)")
         .def_readonly("couloirs", &blocks::Structure::couloirs, "couloir lines (labelled couloir)")
-        .def_readonly("cliffs", &blocks::Structure::cliffs, "cliff tops (labelled cliff)");
+        .def_readonly("cliffs", &blocks::Structure::cliffs, "cliff tops (labelled cliff)")
+        .def_readonly("feet", &blocks::Structure::feet, "the cliff bands' feet (labelled cliff_foot)");
     m.def("structure_margin", &blocks::structure_margin, py::arg("params"),
           "how far beyond a face's box its structure lines are traced (ground units)");
     m.def("structure_lines", &blocks::structure_lines, py::arg("fields"), py::arg("params"), py::arg("region"),

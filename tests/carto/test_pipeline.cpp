@@ -983,6 +983,98 @@ TEST(Pipeline, TheRockStyleHangsItsFillInRowsAndKeepsTheTone) {
     EXPECT_GT(compared, 5u);
 }
 
+// A cliff band across a slope: 600 m square, 5 m cells, the ground falling to the south at
+// 30 %, at 150 % between y = 250 and y = 350. Its top is found at y = 350 and its foot at
+// y = 250, each running across the slope with the band on its left; the rock style's fill
+// keeps foot_gap off the foot.
+TEST(Pipeline, TheRockStyleFindsTheTopAndTheFootOfACliffBand) {
+    constexpr double kTop = 350, kFoot = 250, kSide = 600, kCell = 5;
+    Raster dem;
+    dem.width = dem.height = int(kSide / kCell);
+    dem.gt = {0, kCell, 0, kSide, 0, -kCell};
+    dem.crs_wkt = epsg_wkt(2154);
+    dem.data.resize(std::size_t(dem.width) * std::size_t(dem.height));
+    for (int row = 0; row < dem.height; ++row)
+        for (int col = 0; col < dem.width; ++col) {
+            const double y = dem.to_world(col + 0.5, row + 0.5).y;
+            dem.at(col, row) = float(1000 + 0.3 * y + 1.2 * std::clamp(y - kFoot, 0.0, kTop - kFoot));
+        }
+    Prepared prepared;
+    prepared.terrain = compute_terrain(dem);
+    prepared.relief = local_relief(dem, 1000);
+    prepared.partition.crs_wkt = dem.crs_wkt;
+    RockFace face;
+    face.id = 1;
+    face.region = tex::Region(std::vector<Point>{{50, 50}, {550, 50}, {550, 550}, {50, 550}});
+    for (std::size_t i = 0; i < 4; ++i) face.boundary.push_back({face.region.outer()[i], face.region.outer()[(i + 1) % 4]});
+    face.orientation = -M_PI / 2;
+    face.density = 0.6;
+    prepared.partition.faces.push_back(face);
+
+    Options o;
+    o.style = "rock";
+    o.threads = 2;
+    const Plan plan = make_plan(o, PlanFor::Drawing);
+    ParamValues p = plan.rock_params;
+    p[kDemCell] = kCell;
+    const ControlFields f = control_fields(prepared, plan);
+    const blocks::Structure s = blocks::structure_lines(f, p, face_region(prepared.partition, 0));
+    // Each line near its level, running across the slope: a top westward (the band, lower,
+    // on its left), a foot eastward (the band, higher, on its left).
+    auto check = [&](const tex::Curves& lines, const char* label, double level, double direction) {
+        double length = 0, along = 0;
+        for (const auto& c : lines.curves) {
+            EXPECT_TRUE(c.labels.has(label));
+            for (std::size_t i = 0; i < c.points.size(); ++i) {
+                EXPECT_NEAR(c.points[i].y, level, 10.0) << label;
+                if (i == 0) continue;
+                const Point d = c.points[i] - c.points[i - 1];
+                length += tex::norm(d);
+                along += d.x * direction;
+            }
+        }
+        EXPECT_GT(length, 400.0) << label;
+        EXPECT_GT(along, 0.95 * length) << label;
+    };
+    check(s.cliffs, "cliff", kTop, -1);
+    check(s.feet, "cliff_foot", kFoot, 1);
+    // The fill keeps foot_gap (0.15 mm, 1.5 m at 1:10000) off the foot; without the gap it
+    // runs across it.
+    auto near_foot = [&](const Drawing& d, double within) {
+        std::size_t n = 0;
+        auto seg_distance = [](const Point& q, const Point& a, const Point& b) {
+            const Point ab = b - a;
+            const double t = std::clamp(tex::dot(q - a, ab) / std::max(tex::dot(ab, ab), 1e-300), 0.0, 1.0);
+            return tex::distance(q, a + ab * t);
+        };
+        for (const auto& fh : d.faces)
+            for (const auto& h : fh.hatches) {
+                if (h.family != Family::Fill) continue;
+                for (std::size_t i = 1; i < h.points.size(); ++i) {
+                    const Point a = h.points[i - 1], b = h.points[i];
+                    bool near = false;
+                    for (const auto& c : s.feet.curves)
+                        for (std::size_t k = 1; k < c.points.size() && !near; ++k) {
+                            const Point u = c.points[k - 1], v = c.points[k];
+                            near = proper_cross(a, b, u, v) || seg_distance(a, u, v) < within ||
+                                   seg_distance(b, u, v) < within || seg_distance(u, a, b) < within ||
+                                   seg_distance(v, a, b) < within;
+                        }
+                    n += near;
+                }
+            }
+        return n;
+    };
+    const double gap = p.at("foot_gap");
+    EXPECT_NEAR(gap, 1.5, 1e-9);
+    const Drawing with_gap = hatch(prepared, plan);
+    EXPECT_EQ(near_foot(with_gap, 0.9 * gap), 0u);
+    Options no_gap = o;
+    no_gap.params["foot_gap"] = 0.02;
+    const std::size_t across = near_foot(hatch(prepared, make_plan(no_gap, PlanFor::Drawing)), 0.9 * gap);
+    EXPECT_GT(across, 20u);
+}
+
 // The rock style's structure lines: crests on crests and couloirs in couloirs of the DEM, one
 // line across the faces it crosses (traced in each face's grown box, the same points where
 // two boxes overlap), written as their own layers.

@@ -116,6 +116,11 @@ Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const F
 // box grown by structure_margin, smoothed locally (tex::MovingAverage over crest_smoothing),
 // pieces shorter than cliff_min_length dropped; labelled "cliff", uncut.
 tex::Curves cliff_tops(const ControlFields& f, const ParamValues& p, const tex::Region& region);
+// The feet of the cliff bands, from the same level line: where the band (on the line's left)
+// lies higher and falls onto ground gentler by cliff_break; labelled "cliff_foot", uncut. The
+// rock style keeps its fill strokes foot_gap from them: the band's strokes end there and the
+// slope's start below, with white paper between, and no line is drawn.
+tex::Curves cliff_feet(const ControlFields& f, const ParamValues& p, const tex::Region& region);
 // Strokes hanging from cliff tops into their bands: every crest_spacing along each top, one
 // stroke down the fall line (read half a stroke below the top), as long as the band is high
 // (to where the slope falls under cliff_slope again, at most cliff_length) x a golden-ratio
@@ -127,7 +132,7 @@ tex::Curves cliff_strokes(const ControlFields& f, const ParamValues& p, const Fa
 // The structure lines of the rock (issue 46): crests and couloirs, the crease lines of the
 // elevation (tex::Creases on a lattice of half crest_smoothing, or of half the DEM's cell
 // (kDemCell) when that is coarser, where the slope changes by at least crease_bend across
-// 1 mm on paper), and the cliff tops (cliff_tops). Each is traced
+// 1 mm on paper), and the cliff tops and feet (cliff_tops, cliff_feet). Each is traced
 // over the face's box grown by structure_margin, smoothed locally (tex::MovingAverage over
 // crest_smoothing) and kept when at least crease_min_length (cliff_min_length) long, so that a
 // line crossing several faces is the same line in each and in any tile; crests within
@@ -137,6 +142,7 @@ struct Structure {
     tex::Curves ridges;    // labelled "ridgeline"
     tex::Curves couloirs;  // labelled "couloir"
     tex::Curves cliffs;    // labelled "cliff"
+    tex::Curves feet;      // the cliff bands' feet, labelled "cliff_foot"
 };
 double structure_margin(const ParamValues& p);
 Structure structure_lines(const ControlFields& f, const ParamValues& p, const tex::Region& region);

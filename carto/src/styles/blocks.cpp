@@ -104,6 +104,8 @@ const std::vector<StyleParam> kCliff = {
     {"cliff_min_length", 2.0, "mm", "cliff tops shorter than this are not drawn"},
     {"cliff_smoothing", 0.5, "mm", "cliff tops follow the slope of the elevation differenced over this either side"},
     {"cliff_break", 30.0, "%", "a cliff top is drawn only where the slope below it exceeds the slope above by this (percent: a break of slope)"},
+    {"foot_gap", 0.15, "mm",
+     "fill strokes keep this far from the foot of a cliff band (its strokes end there, the slope's below start after white paper)"},
 };
 const std::vector<StyleParam> kStructure = {
     {"crease_bend", 0.25, "ratio",

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <tuple>
+#include <utility>
 
 #include "carto/blocks.hpp"
 #include "hanging.hpp"
@@ -57,55 +59,83 @@ double structure_margin(const ParamValues& p) {
     return std::max(p.at("crease_min_length"), p.at("cliff_min_length")) + 2 * p.at("crest_smoothing");
 }
 
-tex::Curves cliff_tops(const ControlFields& f, const ParamValues& p, const Region& region) {
+namespace {
+// A cliff edge runs across the slope: the cosine of the angle between its normal and the fall
+// line is at least this (0.5: within 60 degrees of the level line of the elevation).
+constexpr double kAcrossSlope = 0.5;
+
+// The edges of the cliff bands around a face: the level line slope = cliff_slope of the
+// smoothed elevation where the slope breaks by cliff_break, the band on the line's left.
+// Its runs along which the band lies lower are the tops (the ground falls into the band);
+// those along which it lies higher are the feet (the band falls onto gentler ground).
+std::pair<Curves, Curves> cliff_edges(const ControlFields& f, const ParamValues& p, const Region& region) {
     const double cell = std::max(p.at("crest_smoothing"), dem_cell(p)) / 4;
     // The slope of the smoothed elevation, differenced over cliff_smoothing either side: the
     // DEM's own slope wanders round every cell-sized bump, and its level line with it.
     const double h = p.at("cliff_smoothing");
     const Field slope = tex::Norm(tex::Gradient(f.elevation, h)) * Field(100.0);
+    // The fall line over 1 mm on paper, which the drawing's strokes follow.
+    const tex::VectorField gradient = tex::Gradient(f.elevation, p.at(kGroundPerMm));
     const Curves levels = IsoLines(slope, p.at("cliff_slope"), cell)(grown_box(p, region));
-    Curves runs;
+    Curves runs[2];  // tops, feet
     for (const Curve& c : levels.curves) {
-        // Runs of the line along which the band (on its left) lies lower: a cliff's top. A
-        // closed line is read from its smallest point, not from where its tracing started
-        // (which depends on the box), and kept closed when it is a top all round.
+        // A closed line is read from its smallest point, not from where its tracing started
+        // (which depends on the box), and kept closed when it is one kind of edge all round.
         std::vector<Point> pts = c.points;
         if (c.closed) {
             std::rotate(pts.begin(), std::min_element(pts.begin(), pts.end()), pts.end());
             pts.push_back(pts.front());
         }
-        const std::size_t before = runs.curves.size();
-        std::vector<Point> run;
-        auto flush = [&] {
-            if (run.size() >= 2) runs.append(tex::Polyline(run));
-            run.clear();
-        };
-        for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
-            const Point a = pts[i], b = pts[i + 1];
-            const double l = distance(a, b);
-            bool top = false;
-            if (l > 0) {
-                const Point mid = (a + b) / 2, left{-(b - a).y / l, (b - a).x / l};
-                const double into = f.height(mid + left * cell), out = f.height(mid - left * cell);
-                // A break of slope: steeper below the line than above it by cliff_break (a
-                // slope that only hovers round cliff_slope, as on an even flank, is no top).
-                // NaN heights: not a top; the slopes are read only where the ground falls.
-                top = into < out && !(slope(mid + left * h) - slope(mid - left * h) < p.at("cliff_break"));
+        for (int kind = 0; kind < 2; ++kind) {
+            Curves& out = runs[kind];
+            const std::size_t before = out.curves.size();
+            std::vector<Point> run;
+            auto flush = [&] {
+                if (run.size() >= 2) out.append(tex::Polyline(run));
+                run.clear();
+            };
+            for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+                const Point a = pts[i], b = pts[i + 1];
+                const double l = distance(a, b);
+                bool edge = false;
+                if (l > 0) {
+                    const Point mid = (a + b) / 2, left{-(b - a).y / l, (b - a).x / l};
+                    // Across the slope: the ground rises into the band (a foot) or falls into
+                    // it (a top) within kAcrossSlope of straight; a run of the level line down
+                    // the side of a rib or a couloir is neither. NaN: no edge.
+                    const Point g = gradient(mid);
+                    const double rise = dot(left, g) / std::hypot(g.x, g.y);
+                    const bool across = kind == 0 ? rise <= -kAcrossSlope : rise >= kAcrossSlope;
+                    // A break of slope: steeper in the band than beyond the line by cliff_break
+                    // (a slope that only hovers round cliff_slope, as on an even flank, is no
+                    // edge).
+                    edge = across && !(slope(mid + left * h) - slope(mid - left * h) < p.at("cliff_break"));
+                }
+                if (edge) {
+                    if (run.empty()) run.push_back(a);
+                    run.push_back(b);
+                } else {
+                    flush();
+                }
             }
-            if (top) {
-                if (run.empty()) run.push_back(a);
-                run.push_back(b);
-            } else {
-                flush();
+            flush();
+            if (c.closed && out.curves.size() == before + 1 && out.curves.back().points.size() == pts.size()) {
+                out.curves.back().points.pop_back();
+                out.curves.back().closed = true;
             }
-        }
-        flush();
-        if (c.closed && runs.curves.size() == before + 1 && runs.curves.back().points.size() == pts.size()) {
-            runs.curves.back().points.pop_back();
-            runs.curves.back().closed = true;
         }
     }
-    return structure_pieces(runs, p, cell, p.at("cliff_min_length"), "cliff");
+    return {structure_pieces(runs[0], p, cell, p.at("cliff_min_length"), "cliff"),
+            structure_pieces(runs[1], p, cell, p.at("cliff_min_length"), "cliff_foot")};
+}
+}  // namespace
+
+tex::Curves cliff_tops(const ControlFields& f, const ParamValues& p, const Region& region) {
+    return cliff_edges(f, p, region).first;
+}
+
+tex::Curves cliff_feet(const ControlFields& f, const ParamValues& p, const Region& region) {
+    return cliff_edges(f, p, region).second;
 }
 
 Structure structure_lines(const ControlFields& f, const ParamValues& p, const Region& region) {
@@ -113,7 +143,7 @@ Structure structure_lines(const ControlFields& f, const ParamValues& p, const Re
     const double cell = std::max(p.at("crest_smoothing"), dem_cell(p)) / 2, snap = p.at("crest_smoothing");
     const double bend = p.at("crease_bend") / p.at(kGroundPerMm);
     const Region box = grown_box(p, region);
-    s.cliffs = cliff_tops(f, p, region);
+    std::tie(s.cliffs, s.feet) = cliff_edges(f, p, region);
     // Crests and couloirs from one sampling of the elevation, told apart by their label.
     Curves crests, couloirs;
     for (Curve& c : Creases(f.elevation, CreaseKind::Both, cell, bend)(box).curves) {
@@ -139,7 +169,7 @@ Structure given_first(const ParamValues& p, const Structure& s, const Region& re
         return out;
     };
     return {apart(s.ridges, "ridge", p.at("crease_min_length")), apart(s.couloirs, "valley", p.at("crease_min_length")),
-            apart(s.cliffs, "cliff", p.at("cliff_min_length"))};
+            apart(s.cliffs, "cliff", p.at("cliff_min_length")), s.feet};
 }
 
 tex::Curves given_cliffs(const ControlFields& f, const Region& region) {
