@@ -5,10 +5,12 @@ wall time, peak memory (GNU time) and hatches per second, and writes a Markdown 
 Then times `rockhatch partition` (the partition from the DEM alone) on the sample and the
 real DEM, with the precision and recall of its lines against the sample's true lines.
 
-    bench/bench_carto.py BUILD_DIR [--runs N] [--markdown FILE] [--only partition|styles]
+    bench/bench_carto.py BUILD_DIR [--runs N] [--markdown FILE] [--only partition|styles|gpkg]
                          [--baseline EXE --baseline-label TEXT]...
 
-With --only, only that section of the Markdown file is rewritten. The styles section times
+With --only, only that section of the Markdown file is rewritten. The gpkg section times
+Chamonix.tif at 1:10000 to a GeoPackage (print and rock) against ogr2ogr's copy of the
+result. The styles section times
 the built-in styles against their Python scripts (styles/*.py) and the whole runs the
 style rewrite was budgeted on (`--style bidirectional`, and the default `print`); each
 --baseline adds a column of another rockhatch executable's times (a version before a
@@ -50,6 +52,7 @@ def median_run(cmd, runs):
 
 PARTITION_MARK = "<!-- partition: written by bench/bench_carto.py -->"
 STYLES_MARK = "<!-- styles: written by bench/bench_carto.py -->"
+GPKG_MARK = "<!-- gpkg: written by bench/bench_carto.py -->"
 PRINT_MARK = "<!-- print quality: copied by bench/bench_carto.py from docs/print-quality.md -->"
 
 
@@ -127,12 +130,54 @@ def styles_section(build_dir, runs, tmp, baselines=()):
     return "\n".join(lines) + "\n"
 
 
+def gpkg_section(build_dir, runs, tmp):
+    """Chamonix.tif at 1:10000 (its partition saved once by `rockhatch partition`) drawn to a
+    GeoPackage by print and rock on 2 threads, against GDAL's copy of the result without an
+    index (issue 43's yardstick), in alternating rounds; medians and ranges."""
+    if not SHARED_DEM.exists():
+        print(f"bench_carto: {SHARED_DEM} absent, GeoPackage section skipped")
+        return ""
+    exe = build_dir / "carto" / "rockhatch"
+    part = tmp / "chamonix_partition.gpkg"
+    subprocess.run([exe, "partition", "-q", "--overwrite", "--dem", SHARED_DEM, "--scale", "10000", "-o", part],
+                   check=True, capture_output=True)
+    styles = ("print", "rock")
+    runs_of = {s: [] for s in styles}
+    copies = {s: [] for s in styles}
+    for _ in range(runs):
+        for style in styles:
+            out, copy = tmp / f"{style}.gpkg", tmp / f"{style}_copy.gpkg"
+            runs_of[style].append(timed([exe, "--overwrite", "--threads", "2", "--dem", SHARED_DEM, "--partition", part,
+                                         "--scale", "10000", "--style", style, "-o", out]))
+            copy.unlink(missing_ok=True)
+            r = subprocess.run(["/usr/bin/time", "-f", "RH_TIME %e %M", "ogr2ogr", "-f", "GPKG", "-lco",
+                                "SPATIAL_INDEX=NO", copy, out], capture_output=True, text=True, check=True)
+            copies[style].append(float(re.search(r"RH_TIME ([\d.]+)", r.stderr).group(1)))
+    lines = [GPKG_MARK, "", "### Drawing to a GeoPackage against GDAL's copy of it (issue 43)", "",
+             f"Chamonix.tif at 1:10000, its partition saved once (`rockhatch partition --scale 10000`), the "
+             f"whole command to a GeoPackage alone (R-tree included), 2 threads; then "
+             f"`ogr2ogr -f GPKG -lco SPATIAL_INDEX=NO` of the result; {runs} alternating rounds, medians "
+             f"(range). How the writer works: [gpkg-writer.md](gpkg-writer.md).", "",
+             "| style | wall time | peak memory | strokes | strokes / s | ogr2ogr copy of the result | run / copy |",
+             "|---|---:|---:|---:|---:|---:|---:|"]
+    for style in styles:
+        walls = [w for w, _, _ in runs_of[style]]
+        wall, copy = statistics.median(walls), statistics.median(copies[style])
+        peak = [m for _, m, _ in runs_of[style]]
+        strokes = runs_of[style][0][2]
+        print(f"gpkg {style:6s} {wall:6.2f} s  copy {copy:6.2f} s  {wall / copy:4.2f}x  {max(peak):5.0f} MB", flush=True)
+        lines.append(f"| {style} | {wall:.2f} s ({min(walls):.2f}-{max(walls):.2f}) | {min(peak):.0f}-{max(peak):.0f} MB "
+                     f"| {strokes} | {strokes / wall:.0f} | {copy:.2f} s ({min(copies[style]):.2f}-"
+                     f"{max(copies[style]):.2f}) | {wall / copy:.2f}x |")
+    return "\n".join(lines) + "\n"
+
+
 def rewrite_section(markdown, mark, section):
     """Replaces (or adds) the section that starts at `mark` in the report: the report is its
     head, then the styles section, then the partition section, then the print-quality section
     (copied again from docs/print-quality.md)."""
     old = markdown.read_text() if markdown.exists() else ""
-    order = (STYLES_MARK, PARTITION_MARK, PRINT_MARK)
+    order = (STYLES_MARK, GPKG_MARK, PARTITION_MARK, PRINT_MARK)
     starts = sorted((old.index(m), m) for m in order if m in old)
     head = old[:starts[0][0]] if starts else old
     parts = {m: old[a:(starts[k + 1][0] if k + 1 < len(starts) else len(old))] for k, (a, m) in enumerate(starts)}
@@ -193,7 +238,7 @@ def main():
     ap.add_argument("build_dir", type=pathlib.Path)
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--markdown", type=pathlib.Path)
-    ap.add_argument("--only", choices=["partition", "styles"],
+    ap.add_argument("--only", choices=["partition", "styles", "gpkg"],
                     help="run only this section (the rest of the report is kept)")
     ap.add_argument("--baseline", type=pathlib.Path, action="append", default=[],
                     help="another rockhatch executable to compare in the styles section (repeatable)")
@@ -206,6 +251,8 @@ def main():
         with tempfile.TemporaryDirectory() as tmp:
             if args.only == "partition":
                 mark, section = PARTITION_MARK, partition_section(args.build_dir, max(args.runs, 5), pathlib.Path(tmp))
+            elif args.only == "gpkg":
+                mark, section = GPKG_MARK, gpkg_section(args.build_dir, args.runs, pathlib.Path(tmp))
             else:
                 mark, section = STYLES_MARK, styles_section(args.build_dir, args.runs, pathlib.Path(tmp), baselines)
         if args.markdown:
@@ -254,6 +301,7 @@ def main():
         else:
             print(f"bench_carto: {SHARED_DEM} absent, real-DEM rows skipped")
         styles = styles_section(args.build_dir, args.runs, tmp, baselines)
+        gpkg = gpkg_section(args.build_dir, args.runs, tmp)
         partition = partition_section(args.build_dir, max(args.runs, 5), tmp)
     if args.markdown:
         with open(args.markdown, "w") as f:
@@ -266,7 +314,7 @@ def main():
                     f.write(f"| {label} | {t} | {wall:.2f}x | | | |\n")
                 else:
                     f.write(f"| {label} | {t} | {wall:.2f} s | {rss:.0f} MB | {hatches} | {rate:.0f} |\n")
-            f.write("\n" + styles + "\n" + partition)
+            f.write("\n" + styles + ("\n" + gpkg if gpkg else "") + "\n" + partition)
             quality = print_quality_section()
             if quality:
                 f.write("\n" + quality)
