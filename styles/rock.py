@@ -4,7 +4,7 @@
 The structure lines come first: the crests (the partition's ridges and the crease lines of
 the elevation), drawn wider above walls on their shadow side, with strokes hanging from them
 on that side; the tops of the cliff bands (where the slope passes cliff_slope), with rows of
-strokes hanging down to the band's foot, where the fill keeps off (white paper, no line); the couloirs, thin lines the fill strokes keep away
+strokes hanging down to the band's foot, below which the fill starts after a seam of white paper; the couloirs, thin lines the fill strokes keep away
 from. The fill and cross strokes of print.py take the ink the structure leaves under the tone
 curve, the fill in rows hanging from the level lines of the elevation (band_height apart,
 libtex's CutAtLevels), each tone cell's strokes shortened from their lower ends to its ink. Where rock meets scree, grass or ice, the fill and cross strokes end at an irregular
@@ -26,8 +26,8 @@ import sys
 from rockhatch.carto import params_help
 from rockhatch.carto.blocks import (BALANCED, CLIFF, CREST, CROSS, FRAY, ROCK_TONE, ROWS, STRUCTURE, TONE_CELLS,
                                     check_fray, check_tone, cliff_strokes, crest_lines, crest_strokes, frayed, given_cliffs,
-                                    given_first, read_face, shadow_strokes, structure_lines, tapered, toned_hatching,
-                                    valleys)
+                                    given_first, read_face, seam_below, shadow_strokes, structure_lines, tapered,
+                                    toned_hatching, valleys)
 from rockhatch.tex import CROP, Apart, Arrangement, Constant, Crop, Curves, Labelled
 
 NAME = "rock"
@@ -67,8 +67,7 @@ def style(fields, params):
         fill = Apart(toned_hatching(fields, params, face, region, spent), lines, params["structure_gap"])
         if params["couloir_gap"] > 0:
             fill = Apart(fill, s.couloirs, params["couloir_gap"])
-        if params["foot_gap"] > 0:
-            fill = Apart(fill, s.feet, params["foot_gap"])
+        fill = Apart(fill, seam_below(s.feet, params["foot_gap"]), params["foot_gap"] / 2)
         out = frayed(fields, params, fill)(region)
         out.append(spent)
         return out

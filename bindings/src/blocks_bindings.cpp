@@ -119,6 +119,8 @@ void bind_blocks(py::module_& m) {
     m.def("cliff_feet", &blocks::cliff_feet, py::arg("fields"), py::arg("params"), py::arg("region"),
           "the feet of the cliff bands around the face (the same level line as cliff_tops where the band falls "
           "onto gentler ground), smoothed, labelled cliff_foot, uncut");
+    m.def("seam_below", &blocks::seam_below, py::arg("feet"), py::arg("width"),
+          "the centre lines of the seams of white paper under the feet: each foot moved width / 2 off its band");
     py::class_<blocks::Structure>(m, "Structure", "The structure lines around a face, uncut")
         .def_readonly("ridges", &blocks::Structure::ridges, "crest lines (labelled ridgeline)")
         .def_readonly("couloirs", &blocks::Structure::couloirs, "couloir lines (labelled couloir)")

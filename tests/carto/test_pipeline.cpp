@@ -1038,22 +1038,28 @@ TEST(Pipeline, TheRockStyleFindsTheTopAndTheFootOfACliffBand) {
     };
     check(s.cliffs, "cliff", kTop, -1);
     check(s.feet, "cliff_foot", kFoot, 1);
-    // The fill keeps foot_gap (0.15 mm, 1.5 m at 1:10000) off the foot; without the gap it
-    // runs across it.
-    auto near_foot = [&](const Drawing& d, double within) {
-        std::size_t n = 0;
+    // Below the foot the fill starts foot_gap (0.15 mm, 1.5 m at 1:10000) under it; above it,
+    // the band's fill reaches the foot. Without the gap, the fill runs across the seam.
+    const double gap = p.at("foot_gap");
+    EXPECT_NEAR(gap, 1.5, 1e-9);
+    const tex::Curves seams = blocks::seam_below(s.feet, gap);
+    ASSERT_EQ(seams.curves.size(), s.feet.curves.size());
+    for (const auto& c : seams.curves)
+        for (const Point& q : c.points) EXPECT_NEAR(q.y, kFoot - gap / 2, 10.0);
+    auto fill_near = [](const Drawing& d, const tex::Curves& lines, double within) {
         auto seg_distance = [](const Point& q, const Point& a, const Point& b) {
             const Point ab = b - a;
             const double t = std::clamp(tex::dot(q - a, ab) / std::max(tex::dot(ab, ab), 1e-300), 0.0, 1.0);
             return tex::distance(q, a + ab * t);
         };
+        std::size_t n = 0;
         for (const auto& fh : d.faces)
             for (const auto& h : fh.hatches) {
                 if (h.family != Family::Fill) continue;
                 for (std::size_t i = 1; i < h.points.size(); ++i) {
                     const Point a = h.points[i - 1], b = h.points[i];
                     bool near = false;
-                    for (const auto& c : s.feet.curves)
+                    for (const auto& c : lines.curves)
                         for (std::size_t k = 1; k < c.points.size() && !near; ++k) {
                             const Point u = c.points[k - 1], v = c.points[k];
                             near = proper_cross(a, b, u, v) || seg_distance(a, u, v) < within ||
@@ -1065,14 +1071,14 @@ TEST(Pipeline, TheRockStyleFindsTheTopAndTheFootOfACliffBand) {
             }
         return n;
     };
-    const double gap = p.at("foot_gap");
-    EXPECT_NEAR(gap, 1.5, 1e-9);
     const Drawing with_gap = hatch(prepared, plan);
-    EXPECT_EQ(near_foot(with_gap, 0.9 * gap), 0u);
+    EXPECT_EQ(fill_near(with_gap, seams, 0.45 * gap), 0u);
+    // The band's strokes end at the foot: within a fifth of the gap above it.
+    tex::Curves above = blocks::seam_below(s.feet, -0.4 * gap);
+    EXPECT_GT(fill_near(with_gap, above, 0.2 * gap), 20u);
     Options no_gap = o;
     no_gap.params["foot_gap"] = 0.02;
-    const std::size_t across = near_foot(hatch(prepared, make_plan(no_gap, PlanFor::Drawing)), 0.9 * gap);
-    EXPECT_GT(across, 20u);
+    EXPECT_GT(fill_near(hatch(prepared, make_plan(no_gap, PlanFor::Drawing)), seams, 0.45 * gap), 20u);
 }
 
 // The rock style's structure lines: crests on crests and couloirs in couloirs of the DEM, one

@@ -117,10 +117,12 @@ Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const F
 // pieces shorter than cliff_min_length dropped; labelled "cliff", uncut.
 tex::Curves cliff_tops(const ControlFields& f, const ParamValues& p, const tex::Region& region);
 // The feet of the cliff bands, from the same level line: where the band (on the line's left)
-// lies higher and falls onto ground gentler by cliff_break; labelled "cliff_foot", uncut. The
-// rock style keeps its fill strokes foot_gap from them: the band's strokes end there and the
-// slope's start below, with white paper between, and no line is drawn.
+// lies higher and falls onto ground gentler by cliff_break; labelled "cliff_foot", uncut.
 tex::Curves cliff_feet(const ControlFields& f, const ParamValues& p, const tex::Region& region);
+// The centre lines of the seams of white paper under the feet: each foot moved half `width`
+// to its right (down, off the band). The rock style keeps its fill width / 2 from them, so the
+// band's strokes reach the foot and the slope's start `width` below it; no line is drawn.
+tex::Curves seam_below(const tex::Curves& feet, double width);
 // Strokes hanging from cliff tops into their bands: every crest_spacing along each top, one
 // stroke down the fall line (read half a stroke below the top), as long as the band is high
 // (to where the slope falls under cliff_slope again, at most cliff_length) x a golden-ratio

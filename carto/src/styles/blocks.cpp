@@ -105,7 +105,7 @@ const std::vector<StyleParam> kCliff = {
     {"cliff_smoothing", 0.5, "mm", "cliff tops follow the slope of the elevation differenced over this either side"},
     {"cliff_break", 30.0, "%", "a cliff top is drawn only where the slope below it exceeds the slope above by this (percent: a break of slope)"},
     {"foot_gap", 0.15, "mm",
-     "fill strokes keep this far from the foot of a cliff band (its strokes end there, the slope's below start after white paper)"},
+     "the fill strokes below the foot of a cliff band start this far under it (the band's strokes reach the foot: a seam of white paper, no line)"},
 };
 const std::vector<StyleParam> kStructure = {
     {"crease_bend", 0.25, "ratio",

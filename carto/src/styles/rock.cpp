@@ -2,7 +2,7 @@
 // first: the crests (the partition's ridges and the crease lines of the elevation), drawn
 // wider above walls on their shadow side, with strokes hanging from them on that side; the
 // tops of the cliff bands (where the slope passes cliff_slope), with rows of strokes hanging
-// down to the band's foot, and the fill kept off the foot (white paper, not a line); the couloirs, thin lines the fill strokes keep away from, so that
+// down to the band's foot, and the fill below it starting after a seam of paper (no line); the couloirs, thin lines the fill strokes keep away from, so that
 // they read as gaps between the rock ribs. The fill and cross strokes of the print style take
 // the ink the structure leaves under the tone curve (kRockTone: steeper than print's, lit
 // faces nearly white), the fill in rows hanging from the level
@@ -43,7 +43,7 @@ Builtin rock() {
             // them), kept off the couloirs, frayed at the rock's edge.
             Arrangement fill = tex::Apart(toned_hatching(f, p, face, r, spent), lines, p.at("structure_gap"));
             if (p.at("couloir_gap") > 0) fill = tex::Apart(std::move(fill), s.couloirs, p.at("couloir_gap"));
-            if (p.at("foot_gap") > 0) fill = tex::Apart(std::move(fill), s.feet, p.at("foot_gap"));
+            fill = tex::Apart(std::move(fill), seam_below(s.feet, p.at("foot_gap")), p.at("foot_gap") / 2);
             tex::Curves out = frayed(f, p, std::move(fill))(r);
             out.append(spent);
             return out;

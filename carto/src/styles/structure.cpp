@@ -138,6 +138,26 @@ tex::Curves cliff_feet(const ControlFields& f, const ParamValues& p, const Regio
     return cliff_edges(f, p, region).second;
 }
 
+tex::Curves seam_below(const tex::Curves& feet, double width) {
+    Curves out;
+    for (const Curve& c : feet.curves) {
+        const std::size_t n = c.points.size();
+        if (n < 2) continue;
+        Curve k = c;
+        for (std::size_t i = 0; i < n; ++i) {
+            // The tangent from the neighbours (round a closed curve); the band lies on the
+            // left, the ground below on the right.
+            const std::size_t a = c.closed ? (i + n - 1) % n : (i > 0 ? i - 1 : 0);
+            const std::size_t b = c.closed ? (i + 1) % n : std::min(i + 1, n - 1);
+            const Point t = c.points[b] - c.points[a];
+            const double l = std::hypot(t.x, t.y);
+            if (l > 0) k.points[i] = c.points[i] + Point{t.y / l, -t.x / l} * (width / 2);
+        }
+        out.curves.push_back(std::move(k));
+    }
+    return out;
+}
+
 Structure structure_lines(const ControlFields& f, const ParamValues& p, const Region& region) {
     Structure s;
     const double cell = std::max(p.at("crest_smoothing"), dem_cell(p)) / 2, snap = p.at("crest_smoothing");
