@@ -1081,6 +1081,70 @@ TEST(Pipeline, TheRockStyleFindsTheTopAndTheFootOfACliffBand) {
     EXPECT_GT(fill_near(hatch(prepared, make_plan(no_gap, PlanFor::Drawing)), seams, 0.45 * gap), 20u);
 }
 
+// A crest above a wall that steepens eastwards: the shadow edge the rock style adds to the
+// crest line lies on the wall's side, its offset grows with the wall, continuously, up to
+// 0.1 mm, and from nothing at the line's ends.
+TEST(Pipeline, TheRockStyleWidensACrestLineWithTheWallBelowIt) {
+    constexpr double kSide = 600, kCell = 5, kCrest = 300;
+    Raster dem;
+    dem.width = dem.height = int(kSide / kCell);
+    dem.gt = {0, kCell, 0, kSide, 0, -kCell};
+    dem.crs_wkt = epsg_wkt(2154);
+    dem.data.resize(std::size_t(dem.width) * std::size_t(dem.height));
+    for (int row = 0; row < dem.height; ++row)
+        for (int col = 0; col < dem.width; ++col) {
+            const Point q = dem.to_world(col + 0.5, row + 0.5);
+            const double wall = 2.0 * q.x / kSide;  // the fall south of the crest, 0 to 200 %
+            dem.at(col, row) = float(q.y >= kCrest ? 1000 - 0.1 * (q.y - kCrest) : 1000 - wall * (kCrest - q.y));
+        }
+    Prepared prepared;
+    prepared.terrain = compute_terrain(dem);
+    prepared.relief = local_relief(dem, 1000);
+    prepared.partition.crs_wkt = dem.crs_wkt;
+    Options o;
+    o.style = "rock";
+    const Plan plan = make_plan(o, PlanFor::Drawing);
+    const ControlFields f = control_fields(prepared, plan);
+    const ParamValues& p = plan.rock_params;
+    const double mm = p.at(kGroundPerMm);
+    tex::Curve crest;
+    for (double x = 50; x <= 550; x += 2) crest.points.push_back({x, kCrest});
+    crest.labels.add("ridgeline");
+    tex::Curves lines;
+    lines.curves.push_back(crest);
+    const tex::Curves out = blocks::tapered(f, p, lines);
+    ASSERT_GE(out.curves.size(), 2u);
+    std::map<double, double> offset;  // x -> offset of the shadow edge (ground units)
+    for (std::size_t k = 1; k < out.curves.size(); ++k) {
+        EXPECT_TRUE(out.curves[k].labels.has("ridgeline"));
+        for (const Point& q : out.curves[k].points) {
+            EXPECT_LT(q.y, kCrest) << "on the wall's side";
+            offset[std::round(q.x)] = kCrest - q.y;
+        }
+    }
+    double widest = 0;
+    std::set<long> widths;
+    double last = 0;
+    for (const auto& [x, d] : offset) {
+        EXPECT_LE(d, 0.1 * mm * (1 + 1e-9));
+        widest = std::max(widest, d);
+        widths.insert(std::lround(d / (0.01 * mm)));
+        // Growing with the wall eastwards (but for the ramp down at the east end).
+        if (x < 550 - 1.0 * mm) EXPECT_GE(d, last - 1e-6 * mm) << x;
+        last = d;
+    }
+    EXPECT_NEAR(widest, 0.1 * mm, 0.01 * mm);
+    EXPECT_GE(widths.size(), 5u) << "a continuous width, not a few steps";
+    // The edge shows from half the width (0.05 mm) on: it starts where the wall reaches about
+    // a third of a full one (x = 150 on the DEM's cells, later on the smoothed elevation;
+    // none on the gentle west half) and stops where the width falls under that towards the
+    // east end (0.5 mm from it).
+    EXPECT_GE(offset.begin()->second, 0.05 * mm * (1 - 1e-9));
+    EXPECT_GT(offset.begin()->first, 140.0);
+    EXPECT_LT(offset.begin()->first, 300.0);
+    EXPECT_NEAR(offset.rbegin()->first, 550.0 - 0.5 * mm, 3.0);
+}
+
 // The rock style's structure lines: crests on crests and couloirs in couloirs of the DEM, one
 // line across the faces it crosses (traced in each face's grown box, the same points where
 // two boxes overlap), written as their own layers.

@@ -158,10 +158,12 @@ Structure given_first(const ParamValues& p, const Structure& s, const tex::Regio
 // whose band (the lower side) lies in the face, or in no face (then the face above draws it).
 tex::Curves given_cliffs(const ControlFields& f, const tex::Region& region);
 // Crest lines drawn wider where they stand above a wall, on the wall's shadow side: along
-// each line, up to two more strokes beside it (0.05 mm apart, toward the darker side) where
-// the ground falls by at least a third (two thirds) of 150 % over 1 mm on paper on that
-// side, none within 0.7 mm (1.4 mm) of the line's ends: the line tapers from its ends and
-// swells above the walls. Labelled as the lines are; uncut.
+// each line, one more stroke beside it toward the darker side, offset by up to 0.1 mm in
+// proportion to the wall below (the fall over 1 mm on paper; the whole offset from two thirds
+// of 150 %) and to the distance from the line's ends (over 1 mm), drawn where the offset
+// reaches 0.05 mm. The offset stays under the stroke's width, so on paper the pair is one
+// shape whose width follows the wall: the line swells above the walls and thins to its ends.
+// Labelled as the lines are; uncut.
 tex::Curves tapered(const ControlFields& f, const ParamValues& p, const tex::Curves& lines);
 // Strokes hanging from crest lines on their shadow side (the side whose shade, read half a
 // stroke away, is darker), every crest_spacing, as crest_strokes hangs them from the

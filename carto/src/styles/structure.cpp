@@ -231,9 +231,11 @@ tex::Curves given_cliffs(const ControlFields& f, const Region& region) {
 }
 
 namespace {
-constexpr double kTaperOffsetMm = 0.05;  // between the strokes that widen a crest line
-constexpr double kTaperEndMm = 0.7;      // the first widening stroke starts this far from the line's ends
-constexpr double kTaperFall = 1.5;       // the fall (per length) over 1 mm on paper of a full wall below
+constexpr double kTaperWidthMm = 0.1;  // the widest offset of a crest line's shadow edge (under the 0.12 mm stroke)
+constexpr double kTaperMinMm = 0.05;   // an offset under this draws no shadow edge (it would hardly show)
+constexpr double kTaperEndMm = 1.0;    // the width grows from nothing at a line's end over this
+constexpr double kTaperFull = 2.0 / 3;  // the wall (share of a full one) from which the width is whole
+constexpr double kTaperFall = 1.5;     // the fall (per length) over 1 mm on paper of a full wall below
 }  // namespace
 
 tex::Curves tapered(const ControlFields& f, const ParamValues& p, const Curves& lines) {
@@ -247,7 +249,7 @@ tex::Curves tapered(const ControlFields& f, const ParamValues& p, const Curves& 
         for (std::size_t i = 1; i < n; ++i) at[i] = at[i - 1] + distance(c.points[i - 1], c.points[i]);
         const double total = at.back();
         std::vector<Point> normal(n);
-        std::vector<double> wall(n, 0.0);
+        std::vector<double> width(n, 0.0);
         for (std::size_t i = 0; i < n; ++i) {
             const Point t = c.points[std::min(i + 1, n - 1)] - c.points[i > 0 ? i - 1 : 0];
             const double l = std::hypot(t.x, t.y);
@@ -257,30 +259,31 @@ tex::Curves tapered(const ControlFields& f, const ParamValues& p, const Curves& 
             if (std::isnan(sl) || (!std::isnan(sr) && sr > sl)) nrm = -nrm;
             const double z0 = f.elevation(c.points[i]), z1 = f.elevation(c.points[i] + nrm * mm);
             normal[i] = nrm;
-            wall[i] = std::isnan(z0) || std::isnan(z1) ? 0.0 : clamp01((z0 - z1) / (kTaperFall * mm));
+            const double wall = std::isnan(z0) || std::isnan(z1) ? 0.0 : clamp01((z0 - z1) / (kTaperFall * mm));
+            const double from_end = clamp01(std::min(at[i], total - at[i]) / (kTaperEndMm * mm));
+            width[i] = kTaperWidthMm * mm * std::min(1.0, wall / kTaperFull) * from_end;
         }
-        for (int k = 1; k <= 2; ++k) {
-            std::vector<Point> run;
-            auto flush = [&] {
-                if (run.size() >= 2) {
-                    Curve w;
-                    w.points = std::move(run);
-                    w.labels = c.labels;
-                    out.curves.push_back(std::move(w));
-                }
-                run.clear();
-            };
-            for (std::size_t i = 0; i < n; ++i) {
-                const bool on = wall[i] >= k / 3.0 && std::min(at[i], total - at[i]) >= k * kTaperEndMm * mm &&
-                                (run.empty() || dot(normal[i], normal[i - 1]) > 0);
-                if (!on) {
-                    flush();
-                    continue;
-                }
-                run.push_back(c.points[i] + normal[i] * (k * kTaperOffsetMm * mm));
+        // The shadow edge: one stroke beside the line, offset by the width, which follows the
+        // wall and grows from nothing at the ends. The offset stays under the stroke's width,
+        // so on paper the two strokes are one shape, as wide as the wall below is high.
+        std::vector<Point> run;
+        auto flush = [&] {
+            if (run.size() >= 2) {
+                Curve w;
+                w.points = std::move(run);
+                w.labels = c.labels;
+                out.curves.push_back(std::move(w));
             }
-            flush();
+            run.clear();
+        };
+        for (std::size_t i = 0; i < n; ++i) {
+            if (!(width[i] >= kTaperMinMm * mm) || (!run.empty() && dot(normal[i], normal[i - 1]) <= 0)) {
+                flush();
+                if (!(width[i] >= kTaperMinMm * mm)) continue;
+            }
+            run.push_back(c.points[i] + normal[i] * width[i]);
         }
+        flush();
     }
     return out;
 }
