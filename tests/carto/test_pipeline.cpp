@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <numeric>
 #include <set>
@@ -983,26 +984,34 @@ TEST(Pipeline, TheRockStyleHangsItsFillInRowsAndKeepsTheTone) {
     EXPECT_GT(compared, 5u);
 }
 
-// A cliff band across a slope: 600 m square, 5 m cells, the ground falling to the south at
-// 30 %, at 150 % between y = 250 and y = 350. Its top is found at y = 350 and its foot at
-// y = 250, each running across the slope with the band on its left; the rock style's fill
-// keeps foot_gap off the foot.
-TEST(Pipeline, TheRockStyleFindsTheTopAndTheFootOfACliffBand) {
-    constexpr double kTop = 350, kFoot = 250, kSide = 600, kCell = 5;
+namespace {
+// The terrain of a synthetic DEM 600 m square with 5 m cells (EPSG:2154), its elevation z(x, y)
+// at the cells' centres, and no face yet.
+Prepared synthetic_terrain(const std::function<double(const Point&)>& z) {
+    constexpr double kSide = 600, kCell = 5;
     Raster dem;
     dem.width = dem.height = int(kSide / kCell);
     dem.gt = {0, kCell, 0, kSide, 0, -kCell};
     dem.crs_wkt = epsg_wkt(2154);
     dem.data.resize(std::size_t(dem.width) * std::size_t(dem.height));
     for (int row = 0; row < dem.height; ++row)
-        for (int col = 0; col < dem.width; ++col) {
-            const double y = dem.to_world(col + 0.5, row + 0.5).y;
-            dem.at(col, row) = float(1000 + 0.3 * y + 1.2 * std::clamp(y - kFoot, 0.0, kTop - kFoot));
-        }
+        for (int col = 0; col < dem.width; ++col) dem.at(col, row) = float(z(dem.to_world(col + 0.5, row + 0.5)));
     Prepared prepared;
     prepared.terrain = compute_terrain(dem);
     prepared.relief = local_relief(dem, 1000);
     prepared.partition.crs_wkt = dem.crs_wkt;
+    return prepared;
+}
+}  // namespace
+
+// A cliff band across a slope: 600 m square, 5 m cells, the ground falling to the south at
+// 30 %, at 150 % between y = 250 and y = 350. Its top is found at y = 350 and its foot at
+// y = 250, each running across the slope with the band on its left; the rock style's fill
+// keeps foot_gap off the foot.
+TEST(Pipeline, TheRockStyleFindsTheTopAndTheFootOfACliffBand) {
+    constexpr double kTop = 350, kFoot = 250, kCell = 5;
+    Prepared prepared = synthetic_terrain(
+        [&](const Point& q) { return 1000 + 0.3 * q.y + 1.2 * std::clamp(q.y - kFoot, 0.0, kTop - kFoot); });
     RockFace face;
     face.id = 1;
     face.region = tex::Region(std::vector<Point>{{50, 50}, {550, 50}, {550, 550}, {50, 550}});
@@ -1085,22 +1094,11 @@ TEST(Pipeline, TheRockStyleFindsTheTopAndTheFootOfACliffBand) {
 // crest line lies on the wall's side, its offset grows with the wall, continuously, up to
 // 0.1 mm, and from nothing at the line's ends.
 TEST(Pipeline, TheRockStyleWidensACrestLineWithTheWallBelowIt) {
-    constexpr double kSide = 600, kCell = 5, kCrest = 300;
-    Raster dem;
-    dem.width = dem.height = int(kSide / kCell);
-    dem.gt = {0, kCell, 0, kSide, 0, -kCell};
-    dem.crs_wkt = epsg_wkt(2154);
-    dem.data.resize(std::size_t(dem.width) * std::size_t(dem.height));
-    for (int row = 0; row < dem.height; ++row)
-        for (int col = 0; col < dem.width; ++col) {
-            const Point q = dem.to_world(col + 0.5, row + 0.5);
-            const double wall = 2.0 * q.x / kSide;  // the fall south of the crest, 0 to 200 %
-            dem.at(col, row) = float(q.y >= kCrest ? 1000 - 0.1 * (q.y - kCrest) : 1000 - wall * (kCrest - q.y));
-        }
-    Prepared prepared;
-    prepared.terrain = compute_terrain(dem);
-    prepared.relief = local_relief(dem, 1000);
-    prepared.partition.crs_wkt = dem.crs_wkt;
+    constexpr double kSide = 600, kCrest = 300;
+    const Prepared prepared = synthetic_terrain([&](const Point& q) {
+        const double wall = 2.0 * q.x / kSide;  // the fall south of the crest, 0 to 200 %
+        return q.y >= kCrest ? 1000 - 0.1 * (q.y - kCrest) : 1000 - wall * (kCrest - q.y);
+    });
     Options o;
     o.style = "rock";
     const Plan plan = make_plan(o, PlanFor::Drawing);
