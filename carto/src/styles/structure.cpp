@@ -86,6 +86,23 @@ std::pair<Curves, Curves> cliff_edges(const ControlFields& f, const ParamValues&
             std::rotate(pts.begin(), std::min_element(pts.begin(), pts.end()), pts.end());
             pts.push_back(pts.front());
         }
+        // Each segment's kind, read once: 0 a top, 1 a foot, -1 neither.
+        std::vector<int> kind_of(pts.size() > 0 ? pts.size() - 1 : 0, -1);
+        for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+            const Point a = pts[i], b = pts[i + 1];
+            const double l = distance(a, b);
+            if (!(l > 0)) continue;
+            const Point mid = (a + b) / 2, left{-(b - a).y / l, (b - a).x / l};
+            // Across the slope: the ground rises into the band (a foot) or falls into it (a
+            // top) within kAcrossSlope of straight; a run of the level line down the side of a
+            // rib or a couloir is neither. NaN: no edge.
+            const Point g = gradient(mid);
+            const double rise = dot(left, g) / std::hypot(g.x, g.y);
+            const int kind = rise <= -kAcrossSlope ? 0 : rise >= kAcrossSlope ? 1 : -1;
+            // A break of slope: steeper in the band than beyond the line by cliff_break (a
+            // slope that only hovers round cliff_slope, as on an even flank, is no edge).
+            if (kind >= 0 && !(slope(mid + left * h) - slope(mid - left * h) < p.at("cliff_break"))) kind_of[i] = kind;
+        }
         for (int kind = 0; kind < 2; ++kind) {
             Curves& out = runs[kind];
             const std::size_t before = out.curves.size();
@@ -95,25 +112,9 @@ std::pair<Curves, Curves> cliff_edges(const ControlFields& f, const ParamValues&
                 run.clear();
             };
             for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
-                const Point a = pts[i], b = pts[i + 1];
-                const double l = distance(a, b);
-                bool edge = false;
-                if (l > 0) {
-                    const Point mid = (a + b) / 2, left{-(b - a).y / l, (b - a).x / l};
-                    // Across the slope: the ground rises into the band (a foot) or falls into
-                    // it (a top) within kAcrossSlope of straight; a run of the level line down
-                    // the side of a rib or a couloir is neither. NaN: no edge.
-                    const Point g = gradient(mid);
-                    const double rise = dot(left, g) / std::hypot(g.x, g.y);
-                    const bool across = kind == 0 ? rise <= -kAcrossSlope : rise >= kAcrossSlope;
-                    // A break of slope: steeper in the band than beyond the line by cliff_break
-                    // (a slope that only hovers round cliff_slope, as on an even flank, is no
-                    // edge).
-                    edge = across && !(slope(mid + left * h) - slope(mid - left * h) < p.at("cliff_break"));
-                }
-                if (edge) {
-                    if (run.empty()) run.push_back(a);
-                    run.push_back(b);
+                if (kind_of[i] == kind) {
+                    if (run.empty()) run.push_back(pts[i]);
+                    run.push_back(pts[i + 1]);
                 } else {
                     flush();
                 }
