@@ -80,23 +80,21 @@ Prepared prepare(const Plan& plan, const Progress& progress) {
     // first, as it did read first). The partition is read in the DEM's working CRS, which
     // the DEM's header gives.
     const bool partition_file = o.partition.path != "none" && o.partition.path != "auto";
-    const std::string working_wkt = partition_file ? working_grid(raster_info(o.dem, "--dem")).grid.crs_wkt : "";
+    const WorkingGrid dem_grid = working_grid(raster_info(o.dem, "--dem"));
     std::vector<std::string> dem_notes;
     Raster dem;
     tick(progress, 0.0, "reading the DEM");
     tex::parallel_for(partition_file ? 2 : 1, [&](std::size_t item) {
         if (item == 1) {
-            p.partition = load_partition(o.partition, working_wkt);
+            p.partition = load_partition(o.partition, dem_grid.grid.crs_wkt);
             return;
         }
         dem = load_dem(o.dem, &dem_notes);
         p.terrain = compute_terrain(dem);
-        std::optional<WorkingGrid> dem_grid;
         auto load_like = [&](const std::string& path, const char* what, Raster& target) {
             // On the grid of a geographic DEM: reprojected as the DEM is (the cells a tiled run
             // reads too); on another grid: resampled onto the DEM's.
-            if (!dem_grid) dem_grid = working_grid(raster_info(o.dem, "--dem"));
-            const WorkingGrid& g = *dem_grid;
+            const WorkingGrid& g = dem_grid;
             Raster r = g.reprojected() && same_grid(raster_info(path, what), g.source) ? read_working(path, what, g)
                                                                                        : read_raster(path, what);
             if (!same_crs(r.crs_wkt, dem.crs_wkt) || r.width != dem.width || r.height != dem.height || r.gt != dem.gt)
