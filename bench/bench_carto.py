@@ -34,14 +34,19 @@ STYLES = ["noisy", "ridge-triangles", "density-cells", "fine-ridges", "balanced"
           "print"]
 
 
-def timed(cmd):
-    """Wall seconds, peak RSS in MB and hatch count of one run."""
+def time_command(cmd):
+    """Wall seconds, peak RSS in MB and the standard error of one command (GNU time)."""
     r = subprocess.run(["/usr/bin/time", "-f", "RH_TIME %e %M", *map(str, cmd)], capture_output=True, text=True)
     if r.returncode != 0:
         sys.exit(f"bench_carto: {' '.join(map(str, cmd))} failed:\n{r.stderr}")
     wall, rss = re.search(r"RH_TIME ([\d.]+) (\d+)", r.stderr).groups()
-    hatches = int(re.search(r"(\d+) hatches", r.stderr).group(1))
-    return float(wall), int(rss) / 1024, hatches
+    return float(wall), int(rss) / 1024, r.stderr
+
+
+def timed(cmd):
+    """Wall seconds, peak RSS in MB and hatch count of one run."""
+    wall, rss, err = time_command(cmd)
+    return wall, rss, int(re.search(r"(\d+) hatches", err).group(1))
 
 
 def median_run(cmd, runs):
@@ -150,9 +155,7 @@ def gpkg_section(build_dir, runs, tmp):
             runs_of[style].append(timed([exe, "--overwrite", "--threads", "2", "--dem", SHARED_DEM, "--partition", part,
                                          "--scale", "10000", "--style", style, "-o", out]))
             copy.unlink(missing_ok=True)
-            r = subprocess.run(["/usr/bin/time", "-f", "RH_TIME %e %M", "ogr2ogr", "-f", "GPKG", "-lco",
-                                "SPATIAL_INDEX=NO", copy, out], capture_output=True, text=True, check=True)
-            copies[style].append(float(re.search(r"RH_TIME ([\d.]+)", r.stderr).group(1)))
+            copies[style].append(time_command(["ogr2ogr", "-f", "GPKG", "-lco", "SPATIAL_INDEX=NO", copy, out])[0])
     lines = [GPKG_MARK, "", "### Drawing to a GeoPackage against GDAL's copy of it (issue 43)", "",
              f"Chamonix.tif at 1:10000, its partition saved once (`rockhatch partition --scale 10000`), the "
              f"whole command to a GeoPackage alone (R-tree included), 2 threads; then "
