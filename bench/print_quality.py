@@ -18,6 +18,11 @@ Per case and scale:
     no ridge or valley on them, sampled every 0.5 mm on paper) with a fill or cross stroke
     end within 0.3 mm, and the share of fill and cross stroke ends within 0.1 mm of it.
 
+  - edge on the terrain (issue 46): the median, over the outer-border samples, of the slope
+    0.5 mm on paper inside the rock less the slope 0.5 mm outside it, across the border, on
+    the DEM smoothed over 0.25 mm: a mask whose edge lies on the breaks of slope (a cliff's
+    foot or top) has a sharp step there, one drawn by a smoothed threshold a gentle one.
+
   - structure (issue 46): length of structure lines per km2 of rock by kind (crest lines:
     the ridgeline family, or the ridge lines of the partition drawn by the ridge family;
     couloirs; cliff tops), and the share of the DEM's crests and cliff tops, found by this
@@ -117,6 +122,42 @@ def outline_measures(partition, drawing, scale):
     if close.any():
         on = int(np.sum(d[close] <= math.hypot(END_ON_BORDER_MM, BORDER_STEP_MM / 2) * mm))
     return border_share, on / len(ends)
+
+
+def edge_contrast(terrain, partition, scale):
+    """Median over outer-border samples of slope(0.5 mm inside) - slope(0.5 mm outside), in
+    percentage points (see the module's text), and the number of samples."""
+    mm = scale / 1000.0
+    gt = terrain.elevation.geotransform
+    cell = abs(gt[1])
+    z, _ = smoothed_dem(terrain, max(0.5, 0.25 * mm / cell))
+    gy, gx = np.gradient(z, cell)
+    slope = 100.0 * np.hypot(gx, gy)
+    diffs = []
+    for face in partition.faces:
+        for s in face.boundary:
+            if s.neighbor >= 0 or s.kind != carto.LineKind.OTHER:
+                continue
+            dx, dy = s.b.x - s.a.x, s.b.y - s.a.y
+            length = math.hypot(dx, dy)
+            if length == 0:
+                continue
+            nx, ny = -dy / length, dx / length
+            n = max(1, int(length / (BORDER_STEP_MM * mm)))
+            for k in range(n):
+                t = (k + 0.5) / n
+                x, y = s.a.x + dx * t, s.a.y + dy * t
+                off = 0.5 * mm
+                p1, p2 = (x + nx * off, y + ny * off), (x - nx * off, y - ny * off)
+                if not face.region.contains(Point(*p1)):
+                    p1, p2 = p2, p1
+                vals = []
+                for px, py in (p1, p2):
+                    col, row = (px - gt[0]) / gt[1] - 0.5, (py - gt[3]) / gt[5] - 0.5
+                    vals.append(float(map_coordinates(slope, [[row], [col]], order=1, mode="nearest")[0]))
+                if all(math.isfinite(v) for v in vals):
+                    diffs.append(vals[0] - vals[1])
+    return (float(np.median(diffs)) if diffs else float("nan")), len(diffs)
 
 
 STRUCTURE_NEAR_MM = 1.0
@@ -220,8 +261,20 @@ def structure_measures(terrain, partition, drawing, scale):
     return out
 
 
-def measure(dem, partition, scale, style=None, params=None, seed=0):
-    prepared = carto.prepare(dem, partition, scale=scale)
+def measure(dem, partition, scale, style=None, params=None, seed=0, extract=None):
+    if partition == "auto" and extract:
+        # The extraction with non-default options, through a partition file (the faces'
+        # controls are derived from the terrain as with "auto").
+        import shutil
+        import tempfile
+        tmp = pathlib.Path(tempfile.mkdtemp(prefix="print_quality_"))
+        try:
+            carto.partition_from_dem(dem, tmp / "partition.gpkg", scale=scale, **extract)
+            prepared = carto.prepare(dem, tmp / "partition.gpkg", scale=scale)
+        finally:
+            shutil.rmtree(tmp)
+    else:
+        prepared = carto.prepare(dem, partition, scale=scale)
     drawing = carto.hatch(prepared, scale=scale, style=style, params=params or {}, seed=seed)
     terrain = prepared.terrain
     faces = {f.id: f for f in prepared.partition.faces}
@@ -290,6 +343,7 @@ def measure(dem, partition, scale, style=None, params=None, seed=0):
     holes = sum(1 for f in prepared.partition.faces for h in f.region.holes if ring_area(h) < speck)
     cov = np.array(coverage) if coverage else np.array([float("nan")])
     border_share, ends_on = outline_measures(prepared.partition, drawing, scale)
+    contrast, _ = edge_contrast(terrain, prepared.partition, scale)
     structure = structure_measures(terrain, prepared.partition, drawing, scale)
     return {
         "faces": len(prepared.partition.faces),
@@ -303,6 +357,7 @@ def measure(dem, partition, scale, style=None, params=None, seed=0):
         "small holes": holes,
         "border with an end": border_share,
         "ends on the border": ends_on,
+        "edge step": contrast,
         **structure,
     }
 
@@ -316,7 +371,16 @@ def main():
     ap.add_argument("--seed", type=int, default=0, help="the drawing's seed (the measures' spread over seeds)")
     ap.add_argument("--param", action="append", default=[], metavar="KEY=VALUE",
                     help="a style parameter, as the command's --param (repeatable)")
+    ap.add_argument("--extract", action="append", default=[], metavar="KEY=VALUE",
+                    help="an option of the --partition auto extraction, as partition_from_dem's keywords "
+                         "(terrain_edge=0; repeatable)")
     args = ap.parse_args()
+    extract = {}
+    for kv in args.extract:
+        key, sep, value = kv.partition("=")
+        if not sep:
+            ap.error(f"--extract {kv}: expected KEY=VALUE")
+        extract[key] = bool(int(value)) if key in ("terrain_edge", "extend_ridges", "label_outline") else float(value)
     params = {}
     for kv in args.param:
         key, sep, value = kv.partition("=")
@@ -338,7 +402,7 @@ def main():
     cases = [c for c in cases if args.cases in c[0]]
     for label, dem, partition in cases:
         for scale in scales:
-            m = measure(dem, partition, scale, args.style, params, args.seed)
+            m = measure(dem, partition, scale, args.style, params, args.seed, extract)
             rows.append((label, scale, m))
             print(f"{label:34s} 1:{scale:<6.0f} " + ", ".join(
                 f"{k} {v:.3g}" if isinstance(v, float) else f"{k} {v}" for k, v in m.items()), flush=True)
@@ -357,16 +421,19 @@ def main():
                     "angle under 15 degrees, no specks or small holes. Drawn outline (issue 46): share of the "
                     "outer rock border (no face across, no ridge or valley on it; sampled every 0.5 mm on paper) "
                     "with a fill or cross stroke end within 0.3 mm (goal: at most 0.40), and share of those "
-                    "strokes' ends within 0.1 mm of it (goal: at most 0.03).\n\n")
+                    "strokes' ends within 0.1 mm of it (goal: at most 0.03). Slope step across it: median of the "
+                    "slope 0.5 mm inside less the slope 0.5 mm outside, percentage points (an edge on the breaks "
+                    "of slope steps more).\n\n")
             f.write("| case | scale | faces | border along grid axes | ink per face p95 | ink max | "
                     "ink vs 1-hillshade (rho, 100 m blocks) | median angle to fall line | specks | small holes | "
-                    "outer border with an end within 0.3 mm | ends within 0.1 mm of it |\n")
-            f.write("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n")
+                    "outer border with an end within 0.3 mm | ends within 0.1 mm of it | slope step across it |\n")
+            f.write("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n")
             for label, scale, m in rows:
                 f.write(f"| {label} | 1:{scale:.0f} | {m['faces']} | {100 * m['axis share']:.0f}% | "
                         f"{100 * m['ink p95']:.0f}% | {100 * m['ink max']:.0f}% | {m['ink vs shade']:.2f} "
                         f"({m['blocks']}) | {m['fall-line angle']:.1f} deg | {m['specks']} | {m['small holes']} | "
-                        f"{m['border with an end']:.2f} | {m['ends on the border']:.3f} |\n")
+                        f"{m['border with an end']:.2f} | {m['ends on the border']:.3f} | "
+                        f"{m['edge step']:.1f} |\n")
         print(f"print_quality: written to {args.markdown}")
 
 

@@ -101,6 +101,8 @@ void add_extraction_bindings(py::module_& m) {
         .def_readwrite("simplify", &ExtractOptions::simplify, "cells")
         .def_readwrite("label_outline", &ExtractOptions::label_outline,
                        "label the rock outline ridge / valley where it runs along a line")
+        .def_readwrite("terrain_edge", &ExtractOptions::terrain_edge,
+                       "the rock's edge on the breaks of slope (False: where the 25 m means put it)")
         .def_readwrite("what", &ExtractOptions::what);
     py::class_<ExtractResult>(m, "ExtractResult", "An extracted partition, its rock mask and terrain")
         .def_readonly("partition", &ExtractResult::partition)

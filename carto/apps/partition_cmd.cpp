@@ -49,6 +49,8 @@ const char* kUsage =
     "  --no-ridge-extension    do not prolong ridge feet down their crest to a thalweg\n"
     "  --no-outline-labels     label the rock outline 'other' everywhere (default: ridge / valley where\n"
     "                          it runs along a traced ridge or thalweg)\n"
+    "  --smooth-edge           leave the rock's edge where the 25 m means put it (default: within\n"
+    "                          their reach, the slope over about 10 m moves it onto the breaks of slope)\n"
     "  --simplify CELLS        border generalisation tolerance in DEM cells (default 0.8; borders are\n"
     "                          cut through the middle of cell edges or the ridge / thalweg cells\n"
     "                          they run along, simplified within CELLS, then rounded)\n"

@@ -205,8 +205,8 @@ TEST(Extract, FacesTileTheRockMask) {
     rock *= r.rock.cell_x() * r.rock.cell_y();
     EXPECT_NEAR(ua, rock, 0.01 * rock);
     // A point in each cell: none in two faces; rock ones in a face, others not (but for the
-    // few within a cell of a generalised border: 1.1% of the
-    // non-rock ones on the sample). Not the cell centres: labelled borders run
+    // few within a cell of a generalised border: 1.8% of the non-rock ones on the sample,
+    // whose edge follows the terrain cell by cell; 1.1% with the 25 m means' smooth edge). Not the cell centres: labelled borders run
     // through the centres of the ridge and thalweg cells, and a point on a border is in both
     // its faces.
     std::size_t twice = 0, rock_out = 0, rock_n = 0, other_in = 0, other_n = 0;
@@ -224,7 +224,7 @@ TEST(Extract, FacesTileTheRockMask) {
         }
     EXPECT_EQ(twice, 0u);
     EXPECT_LT(double(rock_out), 0.01 * rock_n);
-    EXPECT_LT(double(other_in), 0.015 * other_n);
+    EXPECT_LT(double(other_in), 0.02 * other_n);
 }
 
 TEST(Extract, BordersAreGeneralisedNotStairSteps) {
@@ -279,10 +279,13 @@ TEST(Extract, RidgesAndThalwegsMatchTheSyntheticTruth) {
     std::unique_ptr<OGRGeometry> zone(m->Intersection(hull.get()));
     const double tol = 10;
     // Floors: the measures before the borders were traced below the cell size (issue 16:
-    // generalising must not lose the lines), rounded down to two decimals.
+    // generalising must not lose the lines), rounded down to two decimals; with the rock's
+    // edge on the terrain (issue 46) the zone changed and the lines with it: network ridges
+    // 0.892 / 0.917, thalwegs 0.819 / 0.849, borders ridges 0.928 / 0.837, thalwegs 0.875 /
+    // 0.846 (with the smooth edge 0.889 / 0.915, 0.828 / 0.830, 0.932 / 0.846, 0.861 / 0.840).
     const std::map<std::string, std::pair<double, double>> floor{{"network ridges", {0.88, 0.90}},
-                                                                 {"network thalwegs", {0.82, 0.82}},
-                                                                 {"borders ridges", {0.93, 0.84}},
+                                                                 {"network thalwegs", {0.81, 0.82}},
+                                                                 {"borders ridges", {0.92, 0.83}},
                                                                  {"borders thalwegs", {0.84, 0.82}}};
     // The traced network, and the face borders (what rockhatch reads: a traced line ending
     // inside a face is no border).
@@ -383,6 +386,60 @@ TEST(Extract, ErrorCases) {
         EXPECT_EQ(e.code(), Code::Cancelled);
     }
     EXPECT_TRUE(asked);
+}
+
+// A wall across a gentle slope whose foot runs in teeth (buttresses and bays 40 m deep, 80
+// m apart): with the edge on the terrain (the default) the rock mask's lower and upper edges
+// lie on the wall's foot and top within a cell; the 25 m means alone round the teeth off.
+TEST(Extract, TheRockEdgeLiesOnTheFootAndTopOfAWall) {
+    constexpr double kCell = 5, kHeight = 100;
+    auto foot = [](double x) {
+        const double t = std::fmod(x, 80.0) / 80.0;  // a triangle wave, 0 to 40 m
+        return 200 + 80 * std::min(t, 1 - t);
+    };
+    Raster dem;
+    dem.width = dem.height = 120;
+    dem.gt = {0, kCell, 0, 600, 0, -kCell};
+    dem.crs_wkt = epsg_wkt(2154);
+    dem.data.resize(std::size_t(dem.width) * dem.height);
+    for (int r = 0; r < dem.height; ++r)
+        for (int c = 0; c < dem.width; ++c) {
+            const Point q = dem.to_world(c + 0.5, r + 0.5);
+            const double up = std::clamp(q.y - foot(q.x), 0.0, kHeight);  // metres into the wall
+            dem.at(c, r) = float(1000 + 0.2 * q.y + 1.3 * up + std::sin(q.x / 6) * std::cos(q.y / 7));
+        }
+    // Per column away from the DEM's sides: the distance from the foot (and top) to the
+    // lowest (highest) rock cell's outer edge, averaged.
+    auto edge_error = [&](bool terrain_edge) {
+        ExtractOptions o;
+        o.raster = dem;
+        o.terrain_edge = terrain_edge;
+        const ExtractResult r = extract_partition(o);
+        double foot_err = 0, top_err = 0;
+        int n = 0;
+        for (int c = 8; c < dem.width - 8; ++c) {
+            int lo = -1, hi = -1;
+            for (int row = 0; row < dem.height; ++row)
+                if (r.rock.at(c, row) == 1.0f) {
+                    if (hi < 0) hi = row;
+                    lo = row;
+                }
+            if (lo < 0) continue;
+            const double x = dem.to_world(c + 0.5, 0).x;
+            foot_err += std::abs(dem.to_world(c, lo + 1).y - foot(x));
+            top_err += std::abs(dem.to_world(c, hi).y - (foot(x) + kHeight));
+            ++n;
+        }
+        EXPECT_GT(n, 90);
+        return std::pair{foot_err / n, top_err / n};
+    };
+    const auto [foot_on, top_on] = edge_error(true);
+    const auto [foot_off, top_off] = edge_error(false);
+    std::printf("edge from the foot: %.1f m (25 m means alone: %.1f m); from the top: %.1f m (%.1f m)\n", foot_on,
+                foot_off, top_on, top_off);
+    EXPECT_LT(foot_on, kCell);
+    EXPECT_LT(top_on, kCell);
+    EXPECT_LT(foot_on, 0.7 * foot_off);
 }
 
 TEST(Extract, MaskLayerLimitsTheRock) {

@@ -107,7 +107,7 @@ TEST(ExtractTile, FourTilesMergeIntoTheWholeExtractionByteForByte) {
     // The whole extraction, written through the same merge (one part), so that both files
     // are written from faces in the same order.
     write_partition_gpkg(extract_partition(o).partition, tmp / "whole_raw.gpkg", false);
-    ASSERT_EQ(merge_partition_tiles({tmp / "whole_raw.gpkg"}, tmp / "whole.gpkg", false).faces, 44u);
+    ASSERT_EQ(merge_partition_tiles({tmp / "whole_raw.gpkg"}, tmp / "whole.gpkg", false).faces, 50u);
 
     const RasterInfo info = raster_info(kDem, "--dem");
     const std::vector<tex::BBox> grid = tile_grid(info, 1300);  // 2 x 2 tiles of the 2.4 km sample
@@ -120,9 +120,9 @@ TEST(ExtractTile, FourTilesMergeIntoTheWholeExtractionByteForByte) {
         EXPECT_GE(r.rounds, 1);
         owned += r.faces;
     }
-    EXPECT_EQ(owned, 44u);  // every face once
+    EXPECT_EQ(owned, 50u);  // every face once
     const PartitionMerge m = merge_partition_tiles(parts, tmp / "tiled.gpkg", false);
-    EXPECT_EQ(m.faces, 44u);
+    EXPECT_EQ(m.faces, 50u);
     EXPECT_EQ(m.overlaps, 0u);  // the tiles agree: no face covers another tile's
     EXPECT_GT(m.area, 0.0);
     EXPECT_TRUE(bytes_of(tmp / "tiled.gpkg") == bytes_of(tmp / "whole.gpkg"))

@@ -84,7 +84,7 @@ def test_every_option_of_the_help_has_a_row(rockhatch_exe):
     covered = {(c.cmd, c.what) for c in bad_inputs.CASES}
     # Flags take no value, and --help / --list-styles / -q only print: nothing bad to give them.
     no_value = {"--overwrite", "-q", "--help", "--list-styles", "--no-repair", "--no-spatial-index",
-                "--no-ridge-extension", "--no-outline-labels", "--fixed-controls"}
+                "--no-ridge-extension", "--no-outline-labels", "--smooth-edge", "--fixed-controls"}
     for cmd, argv in (("rockhatch", ["--help"]), ("rockhatch partition", ["partition", "--help"])):
         text = subprocess.run([str(rockhatch_exe), *argv], capture_output=True, text=True).stdout
         options = set(re.findall(r"^\s+(-{1,2}[a-z][a-z-]*)", text, re.M)) - no_value

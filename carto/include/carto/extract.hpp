@@ -8,7 +8,10 @@
 //  1. rock mask: cells whose slope and roughness (averaged over about 25 m) reach the
 //     thresholds, optionally inside a user's polygon layer; closed over about 15 m by a disc
 //     (crests and couloir floors are less steep than the walls); rock specks smaller than the
-//     minimum area are dropped and enclosed gaps smaller than it are filled;
+//     minimum area are dropped and enclosed gaps smaller than it are filled; then, within the
+//     width of that window and closing of the edge, the slope and roughness over about 10 m (3 cells at least)
+//     decide, so the edge lies on the terrain's breaks of slope (a cliff's foot or top), and
+//     the same clean-up runs over a disc of one cell;
 //  2. thalwegs: contributing area by multiple flow directions on the smoothed DEM
 //     (depressions up to `max_fill` deep crossed by priority flood); a line starts where the
 //     area reaches `thalweg_area` and the flow converges, and follows its D8 path down;
@@ -60,13 +63,15 @@ struct ExtractOptions {
     double simplify = 0.8;         // Douglas-Peucker tolerance of the borders, in cells (above
                                    // 0.71, half a cell's diagonal, one-cell stair steps go)
     int smooth_rounds = 3;         // corner-cutting passes that round the generalised borders
+    bool terrain_edge = true;      // the mask's edge on the terrain (step 1), not the wide mean's
     std::string what = "--dem";    // how error messages name the DEM
 };
 
 // The extraction's tuning options as the command line spells them, one table for
 // `rockhatch partition` and `rockhatch tiles --partition auto`: --mask, --min-slope,
 // --min-roughness, --min-area, --thalweg-area, --ridge-area, --max-fill, --smooth, --converge,
-// --simplify (each with a value) and the flags --no-ridge-extension, --no-outline-labels.
+// --simplify (each with a value) and the flags --no-ridge-extension, --no-outline-labels,
+// --smooth-edge (the mask's edge where the wide mean puts it: terrain_edge off).
 struct ExtractOptionName {
     std::string name;
     bool takes_value;

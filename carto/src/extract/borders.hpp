@@ -67,7 +67,8 @@ std::vector<Point> cut_steps(const std::vector<Point>& cuts, bool closed, const 
 //    around a crest cell would then turn more tightly than the crest ornaments' band can
 //    follow (51 of Chamonix.tif's 599 ridges lost their ornament), and ridge precision on
 //    the sample did not gain;
-//  - the rock outline lies where the averaged slope crosses the rock threshold between the
+//  - the rock outline lies where the slope (the small window's where the edge follows the
+//    terrain, else the averaged one) crosses the rock threshold between the
 //    centres of the rock cell and the cell outside, where it does cross it (elsewhere the
 //    outline was drawn by the closing or the gap filling, and the edge's middle is kept);
 //  - any other border crosses at the edge's middle.
@@ -75,12 +76,15 @@ struct BorderPlaces {
     const Grid& g;
     const std::vector<int>& face;
     const std::vector<int>& line_cells;  // 0 none, 1 ridge, 2 thalweg
-    const std::vector<float>& slope;     // averaged slope, percent
+    const std::vector<float>& slope;     // the slope the mask's edge was drawn with, percent
     const std::vector<float>& z;         // the smoothed DEM
     double min_slope;
     // Where the grid lies in the whole raster's pixel grid (grid.hpp, window_offset): cells are
     // indexed in the grid, the places returned are in the whole raster's grid.
     Point offset{0, 0};
+    // The user's mask burnt onto the grid (empty: none): the outline does not move past the
+    // middle of an edge towards a cell outside it.
+    const std::vector<char>* inside = nullptr;
 
     // How far a thalweg's floor may move off its cell's centre, and how close the outline may
     // come to a cell's centre, in cells: the points stay near the edge they cut, so borders
@@ -123,6 +127,7 @@ struct BorderPlaces {
         const double s_in = slope[g.at(in0 ? c0 : c1, in0 ? r0 : r1)],
                      s_out = slope[g.at(in0 ? c1 : c0, in0 ? r1 : r0)];
         if (!(s_in >= min_slope && s_out < min_slope)) return m + offset;
+        if (inside && !inside->empty() && !(*inside)[g.at(in0 ? c1 : c0, in0 ? r1 : r0)]) return m + offset;
         // Fraction of the way from the rock cell's centre to the outside cell's centre.
         const double t = std::clamp((s_in - min_slope) / (s_in - s_out), kOutlineMarginCells,
                                     1 - kOutlineMarginCells);

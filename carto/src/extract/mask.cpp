@@ -107,32 +107,53 @@ std::vector<char> rasterize_mask(const std::string& path, const Raster& grid) {
     return out;
 }
 
-void close_rock(const Grid& g, std::vector<char>& rock, const std::vector<float>& dem,
-                const std::vector<char>& inside_mask, int rc, double cell_area, double keep_area) {
+namespace {
+
+// The disc of radius `rc` cells (at least the 4 neighbours).
+std::vector<std::pair<int, int>> disc_of(int rc) {
     std::vector<std::pair<int, int>> disc;
     for (int dr = -rc; dr <= rc; ++dr)
         for (int dc = -rc; dc <= rc; ++dc)
             if (dr * dr + dc * dc <= rc * (rc + 1)) disc.push_back({dc, dr});
-    auto grow = [&](const std::vector<char>& on, bool dilate) {
-        // NoData counts as not rock when dilating and as rock when eroding; cells off the
-        // grid do not count.
-        std::vector<char> out(g.size());
-        for (int r = 0; r < g.h; ++r)
-            for (int c = 0; c < g.w; ++c) {
-                bool any = false, all = true;
-                for (auto [dc, dr] : disc) {
-                    if (!g.inside(c + dc, r + dr)) continue;
-                    const std::size_t j = g.at(c + dc, r + dr);
-                    const bool v = std::isnan(dem[j]) ? !dilate : on[j] != 0;
-                    any = any || v;
-                    all = all && v;
-                    if (dilate ? any : !all) break;
-                }
-                out[g.at(c, r)] = dilate ? any : all;
+    return disc;
+}
+
+// `on` dilated (or eroded) by a disc. NoData counts as not rock when dilating and as rock
+// when eroding; cells off the grid do not count.
+std::vector<char> grow(const Grid& g, const std::vector<char>& on, const std::vector<float>& dem,
+                       const std::vector<std::pair<int, int>>& disc, bool dilate) {
+    std::vector<char> out(g.size());
+    for (int r = 0; r < g.h; ++r)
+        for (int c = 0; c < g.w; ++c) {
+            bool any = false, all = true;
+            for (auto [dc, dr] : disc) {
+                if (!g.inside(c + dc, r + dr)) continue;
+                const std::size_t j = g.at(c + dc, r + dr);
+                const bool v = std::isnan(dem[j]) ? !dilate : on[j] != 0;
+                any = any || v;
+                all = all && v;
+                if (dilate ? any : !all) break;
             }
-        return out;
-    };
-    std::vector<char> closed = grow(grow(rock, true), false);
+            out[g.at(c, r)] = dilate ? any : all;
+        }
+    return out;
+}
+
+}  // namespace
+
+void follow_terrain_edge(const Grid& g, std::vector<char>& rock, const std::vector<char>& fine, const std::vector<float>& dem,
+                         int band) {
+    if (band <= 0) return;
+    const auto disc = disc_of(band);
+    const std::vector<char> core = grow(g, rock, dem, disc, false);
+    const std::vector<char> hull = grow(g, rock, dem, disc, true);
+    for (std::size_t i = 0; i < g.size(); ++i) rock[i] = hull[i] && (core[i] || fine[i]);
+}
+
+void close_rock(const Grid& g, std::vector<char>& rock, const std::vector<float>& dem,
+                const std::vector<char>& inside_mask, int rc, double cell_area, double keep_area) {
+    const auto disc = disc_of(rc);
+    std::vector<char> closed = grow(g, grow(g, rock, dem, disc, true), dem, disc, false);
     for (std::size_t i = 0; i < g.size(); ++i)
         rock[i] = closed[i] && !std::isnan(dem[i]) && (inside_mask.empty() || inside_mask[i]);
     // Specks: 4-connected rock pieces smaller than the minimum area.

@@ -34,4 +34,13 @@ std::vector<char> rasterize_mask(const std::string& path, const Raster& grid);
 void close_rock(const Grid& g, std::vector<char>& rock, const std::vector<float>& dem,
                 const std::vector<char>& inside_mask, int rc, double cell_area, double keep_area);
 
+// The closed mask's edge moved onto the terrain, in place: within `band` cells of it a cell
+// is rock where `fine` says so (the slope and roughness over a small window reach the
+// thresholds), farther in rock stays rock and farther out nothing is rock. The wide window
+// and the closing place the edge where a mean over 25 m crosses the threshold, a round arc a
+// few cells off the wall; the small window puts it on the break of slope at a cliff's foot or
+// top, and lets it follow the ribs and gullies of the rock's edge. `dem`: NaN for NoData.
+void follow_terrain_edge(const Grid& g, std::vector<char>& rock, const std::vector<char>& fine,
+                         const std::vector<float>& dem, int band);
+
 }  // namespace carto::extraction

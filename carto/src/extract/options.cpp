@@ -34,6 +34,7 @@ const std::vector<Setter>& setters() {
         number("--simplify", &ExtractOptions::simplify),
         {{"--no-ridge-extension", false}, [](ExtractOptions& o, const std::string&) { o.extend_ridges = false; }},
         {{"--no-outline-labels", false}, [](ExtractOptions& o, const std::string&) { o.label_outline = false; }},
+        {{"--smooth-edge", false}, [](ExtractOptions& o, const std::string&) { o.terrain_edge = false; }},
     };
     return table;
 }

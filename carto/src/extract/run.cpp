@@ -35,6 +35,7 @@ constexpr double kMmPerM = 1000.0;            // paper millimetres per metre at 
 constexpr double kKeepAreaFactor = 1.5;       // specks and gaps kept above 1.5 x the minimum area
 constexpr double kRockWindowRadiusM = 12.5;   // slope and roughness averaged over about 25 m
 constexpr double kClosingRadiusM = 15.0;      // the rock mask closed by a disc of about 15 m
+constexpr double kEdgeWindowRadiusM = 5.0;    // the edge's slope and roughness over about 10 m
 constexpr double kMinLabelRunM = 40.0;        // a border is labelled where it runs 40 m along a line
 constexpr int kMinRunCells = 3;               //   (3 cells at least)
 constexpr double kLabelSnapCells = 0.1;       // lines are the borders: matched within a tenth of a cell
@@ -115,7 +116,24 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
                   (inside_mask.empty() || inside_mask[i]);
     // Closing over about 15 m (at least the 4 neighbours), specks dropped and gaps filled:
     // close_rock (extract/mask.hpp).
-    close_rock(g, rock, dem.data, inside_mask, std::max(1, int(std::lround(kClosingRadiusM / dx))), cell_area, keep_area);
+    const int closing = std::max(1, int(std::lround(kClosingRadiusM / dx)));
+    close_rock(g, rock, dem.data, inside_mask, closing, cell_area, keep_area);
+    std::vector<float> edge_slope = slope;  // the slope the edge was drawn with (step 4 places it)
+    if (o.terrain_edge) {
+        // The edge on the terrain: within the reach of the wide window and of the closing,
+        // the small window decides (follow_terrain_edge), then the same clean-up over one cell.
+        // At least a cell either side: a one-cell window would trace the raster steps.
+        const int fine_radius = std::max(1, int(std::lround(kEdgeWindowRadiusM / dx)));
+        std::vector<float> fine_slope = box_mean(g, res.terrain.slope.data, fine_radius);
+        const std::vector<float> fine_rough = box_mean(g, res.terrain.roughness.data, fine_radius);
+        std::vector<char> fine(g.size(), 0);
+        for (std::size_t i = 0; i < g.size(); ++i)
+            fine[i] = !std::isnan(dem.data[i]) && fine_slope[i] >= o.min_slope && fine_rough[i] >= o.min_roughness &&
+                      (inside_mask.empty() || inside_mask[i]);
+        follow_terrain_edge(g, rock, fine, dem.data, radius + closing);
+        close_rock(g, rock, dem.data, inside_mask, 1, cell_area, keep_area);
+        edge_slope = std::move(fine_slope);
+    }
     std::size_t rock_cells = 0;
     for (char v : rock) rock_cells += v;
     if (rock_cells == 0) {
@@ -155,7 +173,7 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
     for (std::size_t i = 0; i < g.size(); ++i)
         if (straight[i]) label_cells[i] = 0;
     std::vector<Chain> chains = label_chains(trace_chains(g, face, label_cells), g.w + 1, min_run, o.label_outline);
-    const BorderPlaces places{g, face, label_cells, slope, z, o.min_slope, window_offset(dem)};
+    const BorderPlaces places{g, face, label_cells, edge_slope, z, o.min_slope, window_offset(dem), &inside_mask};
     const Outlines outlines = face_outlines(chains, nfaces, places, dem, {o.simplify, o.smooth_rounds, min_area});
     if (!outlines.note.empty()) res.notes.push_back(outlines.note);
 
