@@ -21,6 +21,7 @@ PACKAGES=(
   python3 python3-dev pybind11-dev                  # the Python module, for /usr/bin/python3
   python3-pytest python3-pytest-xdist               # Python tests (Debian's interpreter), a worker per core
   python3-gdal python3-numpy
+  python3-scipy                                     # bench/print_quality.py, the drawing-quality tests (KD-trees)
   python3-pil openimageio-tools                     # tests read written images back (PNG, TIFF; EXR)
   python3-distributed python3-dask python3-psutil  # rockhatch tiles: tiled runs on Dask distributed
   librsvg2-bin time                                 # PNG previews of SVG outputs; GNU time (benchmarks)
