@@ -119,11 +119,13 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
     const int closing = std::max(1, int(std::lround(kClosingRadiusM / dx)));
     close_rock(g, rock, dem.data, inside_mask, closing, cell_area, keep_area);
     std::vector<float> edge_slope = slope;  // the slope the edge was drawn with (step 4 places it)
-    if (o.terrain_edge) {
-        // The edge on the terrain: within the reach of the wide window and of the closing,
-        // the small window decides (follow_terrain_edge), then the same clean-up over one cell.
-        // At least a cell either side: a one-cell window would trace the raster steps.
-        const int fine_radius = std::max(1, int(std::lround(kEdgeWindowRadiusM / dx)));
+    // The edge on the terrain: within the reach of the wide window and of the closing, the
+    // small window decides (follow_terrain_edge), then the same clean-up over one cell. At
+    // least a cell either side (a one-cell window would trace the raster steps), so on a DEM
+    // whose cells are too coarse for a window narrower than the wide one (about 8 m and
+    // more) the edge stays where the wide window and the closing put it.
+    const int fine_radius = std::max(1, int(std::lround(kEdgeWindowRadiusM / dx)));
+    if (o.terrain_edge && fine_radius < radius) {
         std::vector<float> fine_slope = box_mean(g, res.terrain.slope.data, fine_radius);
         const std::vector<float> fine_rough = box_mean(g, res.terrain.roughness.data, fine_radius);
         std::vector<char> fine(g.size(), 0);
