@@ -110,31 +110,33 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
     const std::vector<float> rough = box_mean(g, res.terrain.roughness.data, radius);
     std::vector<char> inside_mask;
     if (!o.mask.empty()) inside_mask = rasterize_mask(o.mask, dem);
-    std::vector<char> rock(g.size(), 0);
-    for (std::size_t i = 0; i < g.size(); ++i)
-        rock[i] = !std::isnan(dem.data[i]) && slope[i] >= o.min_slope && rough[i] >= o.min_roughness &&
-                  (inside_mask.empty() || inside_mask[i]);
+    // Rock where a slope and a roughness reach the thresholds, inside the user's mask.
+    auto steep = [&](const std::vector<float>& s, const std::vector<float>& r) {
+        std::vector<char> on(g.size(), 0);
+        for (std::size_t i = 0; i < g.size(); ++i)
+            on[i] = !std::isnan(dem.data[i]) && s[i] >= o.min_slope && r[i] >= o.min_roughness &&
+                    (inside_mask.empty() || inside_mask[i]);
+        return on;
+    };
+    std::vector<char> rock = steep(slope, rough);
     // Closing over about 15 m (at least the 4 neighbours), specks dropped and gaps filled:
     // close_rock (extract/mask.hpp).
     const int closing = std::max(1, int(std::lround(kClosingRadiusM / dx)));
     close_rock(g, rock, dem.data, inside_mask, closing, cell_area, keep_area);
-    std::vector<float> edge_slope = slope;  // the slope the edge was drawn with (step 4 places it)
     // The edge on the terrain: within the reach of the wide window and of the closing, the
     // small window decides (follow_terrain_edge), then the same clean-up over one cell. At
     // least a cell either side (a one-cell window would trace the raster steps), so on a DEM
     // whose cells are too coarse for a window narrower than the wide one (about 8 m and
     // more) the edge stays where the wide window and the closing put it.
     const int fine_radius = std::max(1, int(std::lround(kEdgeWindowRadiusM / dx)));
+    std::vector<float> fine_slope;
+    const std::vector<float>* edge_slope = &slope;  // the slope the edge was drawn with (step 4 places it)
     if (o.terrain_edge && fine_radius < radius) {
-        std::vector<float> fine_slope = box_mean(g, res.terrain.slope.data, fine_radius);
-        const std::vector<float> fine_rough = box_mean(g, res.terrain.roughness.data, fine_radius);
-        std::vector<char> fine(g.size(), 0);
-        for (std::size_t i = 0; i < g.size(); ++i)
-            fine[i] = !std::isnan(dem.data[i]) && fine_slope[i] >= o.min_slope && fine_rough[i] >= o.min_roughness &&
-                      (inside_mask.empty() || inside_mask[i]);
-        follow_terrain_edge(g, rock, fine, dem.data, radius + closing);
+        fine_slope = box_mean(g, res.terrain.slope.data, fine_radius);
+        follow_terrain_edge(g, rock, steep(fine_slope, box_mean(g, res.terrain.roughness.data, fine_radius)), dem.data,
+                            radius + closing);
         close_rock(g, rock, dem.data, inside_mask, 1, cell_area, keep_area);
-        edge_slope = std::move(fine_slope);
+        edge_slope = &fine_slope;
     }
     std::size_t rock_cells = 0;
     for (char v : rock) rock_cells += v;
@@ -175,7 +177,7 @@ ExtractResult extract_partition(const ExtractOptions& o, const Progress& progres
     for (std::size_t i = 0; i < g.size(); ++i)
         if (straight[i]) label_cells[i] = 0;
     std::vector<Chain> chains = label_chains(trace_chains(g, face, label_cells), g.w + 1, min_run, o.label_outline);
-    const BorderPlaces places{g, face, label_cells, edge_slope, z, o.min_slope, window_offset(dem), &inside_mask};
+    const BorderPlaces places{g, face, label_cells, *edge_slope, z, o.min_slope, window_offset(dem), &inside_mask};
     const Outlines outlines = face_outlines(chains, nfaces, places, dem, {o.simplify, o.smooth_rounds, min_area});
     if (!outlines.note.empty()) res.notes.push_back(outlines.note);
 
