@@ -88,11 +88,9 @@ def spearman(x, y):
     return float(np.corrcoef(rx, ry)[0, 1])
 
 
-def outline_measures(partition, drawing, scale):
-    """(share of outer-border samples with a stroke end within 0.3 mm, share of stroke ends
-    within 0.1 mm of the outer border)."""
-    mm = scale / 1000.0
-    samples = []
+def outer_border_samples(partition, mm):
+    """(face, x, y, segment) every BORDER_STEP_MM on paper along the outer rock border: face
+    borders with no face across and no ridge or valley on them."""
     for face in partition.faces:
         for s in face.boundary:
             if s.neighbor >= 0 or s.kind != carto.LineKind.OTHER:
@@ -101,7 +99,14 @@ def outline_measures(partition, drawing, scale):
             n = max(1, int(length / (BORDER_STEP_MM * mm)))
             for k in range(n):
                 t = (k + 0.5) / n
-                samples.append((s.a.x + (s.b.x - s.a.x) * t, s.a.y + (s.b.y - s.a.y) * t))
+                yield face, s.a.x + (s.b.x - s.a.x) * t, s.a.y + (s.b.y - s.a.y) * t, s
+
+
+def outline_measures(partition, drawing, scale):
+    """(share of outer-border samples with a stroke end within 0.3 mm, share of stroke ends
+    within 0.1 mm of the outer border)."""
+    mm = scale / 1000.0
+    samples = [(x, y) for _, x, y, _ in outer_border_samples(partition, mm)]
     ends = []
     for fh in drawing.faces:
         for h in fh.hatches:
@@ -134,29 +139,22 @@ def edge_contrast(terrain, partition, scale):
     gy, gx = np.gradient(z, cell)
     slope = 100.0 * np.hypot(gx, gy)
     diffs = []
-    for face in partition.faces:
-        for s in face.boundary:
-            if s.neighbor >= 0 or s.kind != carto.LineKind.OTHER:
-                continue
-            dx, dy = s.b.x - s.a.x, s.b.y - s.a.y
-            length = math.hypot(dx, dy)
-            if length == 0:
-                continue
-            nx, ny = -dy / length, dx / length
-            n = max(1, int(length / (BORDER_STEP_MM * mm)))
-            for k in range(n):
-                t = (k + 0.5) / n
-                x, y = s.a.x + dx * t, s.a.y + dy * t
-                off = 0.5 * mm
-                p1, p2 = (x + nx * off, y + ny * off), (x - nx * off, y - ny * off)
-                if not face.region.contains(Point(*p1)):
-                    p1, p2 = p2, p1
-                vals = []
-                for px, py in (p1, p2):
-                    col, row = (px - gt[0]) / gt[1] - 0.5, (py - gt[3]) / gt[5] - 0.5
-                    vals.append(float(map_coordinates(slope, [[row], [col]], order=1, mode="nearest")[0]))
-                if all(math.isfinite(v) for v in vals):
-                    diffs.append(vals[0] - vals[1])
+    off = 0.5 * mm
+    for face, x, y, s in outer_border_samples(partition, mm):
+        dx, dy = s.b.x - s.a.x, s.b.y - s.a.y
+        length = math.hypot(dx, dy)
+        if length == 0:
+            continue
+        nx, ny = -dy / length, dx / length
+        p1, p2 = (x + nx * off, y + ny * off), (x - nx * off, y - ny * off)
+        if not face.region.contains(Point(*p1)):
+            p1, p2 = p2, p1
+        vals = []
+        for px, py in (p1, p2):
+            col, row = (px - gt[0]) / gt[1] - 0.5, (py - gt[3]) / gt[5] - 0.5
+            vals.append(float(map_coordinates(slope, [[row], [col]], order=1, mode="nearest")[0]))
+        if all(math.isfinite(v) for v in vals):
+            diffs.append(vals[0] - vals[1])
     return (float(np.median(diffs)) if diffs else float("nan")), len(diffs)
 
 
