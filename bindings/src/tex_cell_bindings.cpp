@@ -81,7 +81,7 @@ void add_builtin_bindings(py::module_& m) {
     m.def("RightFace", &RightFace);
     m.def("MatchFace", &MatchFace, py::arg("c"), py::arg("face"));
     m.def("Location", &Location);
-    m.def("LocationAt", &LocationAt, py::arg("edge"), py::arg("s"));
+    m.def("LocationAt", py::overload_cast<const Edge&, double>(&LocationAt), py::arg("edge"), py::arg("s"));
     m.def("Centroid", &Centroid);
     m.def("Contour", &Contour);
     m.def("ToCurve", &ToCurve);

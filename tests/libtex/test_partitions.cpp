@@ -640,6 +640,23 @@ Stripes random_stripes(std::mt19937& rng, double angle, const char* tag) {
     return s;
 }
 
+// A random region far from the origin and two random stripe families across it; now and
+// then axis-aligned (exactly vertical or horizontal lines) or at right angles.
+struct GridCase {
+    Region region;
+    Stripes s1, s2;
+};
+GridCase random_grid_case(std::mt19937& rng, int k) {
+    std::uniform_real_distribution<double> u(0, 1);
+    const Point c{(u(rng) - 0.5) * 2e5, (u(rng) - 0.5) * 2e5};
+    Region r = jittered_region(rng, c, 5 + 40 * u(rng));
+    const double a1 = k % 7 == 0 ? 0.0 : u(rng) * 6.283185307179586;
+    const double a2 = k % 11 == 0 ? a1 + 1.5707963267948966 : a1 + 0.2 + u(rng) * 2.7;
+    Stripes s1 = random_stripes(rng, a1, "h");
+    Stripes s2 = random_stripes(rng, a2, "v");
+    return {std::move(r), std::move(s1), std::move(s2)};
+}
+
 }  // namespace
 
 TEST(PartitionMaps, CellComplexMapIsTheInducedMap) {
@@ -648,12 +665,7 @@ TEST(PartitionMaps, CellComplexMapIsTheInducedMap) {
     int cases = 0;
     const std::uint64_t before = detail::complex_inductions();
     for (int k = 0; k < 160; ++k) {
-        const Point c{(u(rng) - 0.5) * 2e5, (u(rng) - 0.5) * 2e5};
-        const Region r = jittered_region(rng, c, 5 + 40 * u(rng));
-        // Axis-aligned angles now and then (exactly vertical or horizontal lines).
-        const double a1 = k % 7 == 0 ? 0.0 : u(rng) * 6.283185307179586;
-        const double a2 = k % 11 == 0 ? a1 + 1.5707963267948966 : a1 + 0.2 + u(rng) * 2.7;
-        const Stripes s1 = random_stripes(rng, a1, "h"), s2 = random_stripes(rng, a2, "v");
+        const auto [r, s1, s2] = random_grid_case(rng, k);
         for (Border b : {KEEP_OUTSIDE, KEEP_INSIDE}) {
             const std::string what = "case " + std::to_string(k) + " " + border_name(b);
             const Arrangement grid = GridPartition(s1, s2, b);
@@ -671,6 +683,89 @@ TEST(PartitionMaps, CellComplexMapIsTheInducedMap) {
     // Every non-empty one took the way through the complex (nothing was close to unclean).
     EXPECT_GT(cases, 400);
     EXPECT_EQ(detail::complex_inductions() - before, std::uint64_t(cases));
+}
+
+// A KEEP partition also knows its map's edges without the map (Arrangement::local_edges):
+// they must be the map's edges, in its order, curve for curve and key for key, so that a
+// mapper reading only its edge (LocalEdgeMapper, e.g. JitterEdges) gives what it gives on
+// the map.
+void expect_same_edges(const std::vector<LocalEdge>& local, const MapPtr& map, const std::string& what) {
+    ASSERT_EQ(local.size(), map->edges().size()) << what;
+    for (std::size_t i = 0; i < local.size(); ++i) {
+        const LocalEdge e = AsLocalEdge(Edge(map, int(i)));
+        const LocalEdge& l = local[i];
+        ASSERT_EQ(l.curve.points, e.curve.points) << what << " edge " << i;
+        ASSERT_EQ(l.curve.closed, e.curve.closed) << what << " edge " << i;
+        ASSERT_TRUE(l.curve.labels == e.curve.labels && l.curve.left == e.curve.left && l.curve.right == e.curve.right)
+            << what << " edge " << i;
+        ASSERT_EQ(l.key, e.key) << what << " edge " << i;
+        ASSERT_EQ(l.source_key, e.source_key) << what << " edge " << i;
+        ASSERT_EQ(l.target_key, e.target_key) << what << " edge " << i;
+    }
+}
+
+void expect_same_curves(const Curves& a, const Curves& b, const std::string& what) {
+    ASSERT_EQ(a.curves.size(), b.curves.size()) << what;
+    for (std::size_t i = 0; i < a.curves.size(); ++i) {
+        ASSERT_EQ(a.curves[i].points, b.curves[i].points) << what << " curve " << i;
+        ASSERT_TRUE(a.curves[i].labels == b.curves[i].labels && a.curves[i].left == b.curves[i].left &&
+                    a.curves[i].right == b.curves[i].right)
+            << what << " curve " << i;
+    }
+}
+
+TEST(PartitionMaps, KeepPartitionsKnowTheirMapsEdges) {
+    std::mt19937 rng(20261206);
+    std::uniform_real_distribution<double> u(0, 1);
+    int cases = 0;
+    for (int k = 0; k < 120; ++k) {
+        const auto [r, s1, s2] = random_grid_case(rng, k);
+        for (Border b : {KEEP_OUTSIDE, KEEP_INSIDE}) {
+            const std::string what = "case " + std::to_string(k) + " " + border_name(b);
+            for (const Arrangement& a : {GridPartition(s1, s2, b), StripesPartition(s1, b)}) {
+                const auto edges = a.local_edges(r);
+                ASSERT_TRUE(edges.has_value()) << what;
+                expect_same_edges(*edges, a.induce(r), what);
+                if (HasFailure()) return;
+                cases += !edges->empty();
+            }
+        }
+    }
+    EXPECT_GT(cases, 300);
+    // CROP modes cut cells, and an unclean complex is not its map: no edges without the map.
+    const Region r({{0, 0}, {90, 10}, {70, 80}, {10, 60}});
+    for (Border b : {CROP, CROP_ADD_BOUNDARY})
+        EXPECT_FALSE(GridPartition(StripesProperties(0.4, 7), StripesProperties(2.0, 5), b).local_edges(r)) << border_name(b);
+    EXPECT_FALSE(GridPartition(StripesProperties(0.7, 3), StripesProperties(0.7 + 2e-9, 4), KEEP_OUTSIDE)
+                     .local_edges(Region::rectangle(0, 0, 30, 30)));
+}
+
+TEST(PartitionMaps, AnEdgeLocalMapperRunsWithoutTheMapAndGivesWhatTheMapGives) {
+    // JitterEdges reads only its edge: MapToEdges of it over a KEEP grid builds no planar map,
+    // and gives the curves the same mapper gives when it is run on the map's edges (a plain
+    // EdgeMapper around it), for the styles' noisy lines with a gate field as well.
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(0, 1);
+    const Field gate = [](const Point& p) { return std::sin(p.x / 3) + std::cos(p.y / 5); };
+    const SeedScope seed(11);
+    for (int k = 0; k < 40; ++k) {
+        const Region r = jittered_region(rng, {(u(rng) - 0.5) * 1e4, (u(rng) - 0.5) * 1e4}, 5 + 40 * u(rng));
+        const double theta = u(rng) * 6.283185307179586, across = 0.5 + 2 * u(rng), along = 2 + 6 * u(rng);
+        const EdgeMapper jitter = JitterEdges("fill", theta, across, along, 0.8, 0.9, gate, k % 2 ? 0.0 : 0.2);
+        const EdgeMapper on_the_map = [jitter](const Edge& e) { return jitter(e); };
+        Stripes lines = StripesProperties(theta, across);
+        SetEdgeLabels(lines, {"fill"});
+        const Arrangement grid =
+            GridPartition(lines, StripesProperties(theta + 1.5707963267948966, along), KEEP_OUTSIDE);
+        const std::uint64_t before = detail::complex_inductions();
+        const Curves local = MapToEdges(jitter, grid)(r);
+        EXPECT_EQ(detail::complex_inductions(), before) << "case " << k << ": the map was built";
+        const Curves mapped = MapToEdges(on_the_map, grid)(r);
+        EXPECT_EQ(detail::complex_inductions(), before + 1) << "case " << k;
+        ASSERT_FALSE(local.curves.empty()) << "case " << k;
+        expect_same_curves(local, mapped, "case " + std::to_string(k));
+        if (HasFailure()) return;
+    }
 }
 
 TEST(PartitionMaps, CropModesAndVoronoiInduceFromTheirCurves) {

@@ -7,6 +7,8 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
+#include <vector>
 
 #include "libtex/cells.hpp"
 #include "libtex/curves.hpp"
@@ -27,6 +29,12 @@ public:
     // curves (a partition that keeps whole cells: its cell complex already is the map).
     // `map(r)` must give exactly PlanarMap::induce(fn(r)), record for record.
     Arrangement(Fn fn, MapFn map);
+    // The edges of that map, as LocalEdges in the map's edge order, when the arrangement
+    // knows them without the map (none: it does not, this time); a mapper that reads only
+    // its edge then runs without the map (MapToEdges of a LocalEdgeMapper). `edges(r)` must
+    // give exactly the edges of map(r), in order, curve for curve and key for key.
+    using EdgesFn = std::function<std::optional<std::vector<LocalEdge>>(const Region&)>;
+    Arrangement(Fn fn, MapFn map, EdgesFn edges);
 
     // Evaluates the arrangement on a region.
     Curves operator()(const Region& r) const;
@@ -34,10 +42,13 @@ public:
     Curves operator()(const Face& f) const;
     // Evaluates and induces the planar map of the result.
     MapPtr induce(const Region& r) const;
+    // The edges of induce(r) without inducing it, when the arrangement knows them.
+    std::optional<std::vector<LocalEdge>> local_edges(const Region& r) const;
 
 private:
     std::shared_ptr<const Fn> fn_;
     std::shared_ptr<const MapFn> map_;  // null: induce from the curves
+    std::shared_ptr<const EdgesFn> edges_;  // null: read the edges of the map
 };
 
 // An arrangement that returns fixed curves, whatever the region.

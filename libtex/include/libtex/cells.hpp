@@ -107,4 +107,25 @@ double BBoxHeight(const Cell<T>& c) { return CellBBox(c).height(); }
 template <class T>
 Point BBoxCenter(const Cell<T>& c) { return CellBBox(c).center(); }
 
+// ---- Edges read on their own ----
+// An edge as a mapper that reads nothing but the edge itself sees it: its whole curve
+// (ToCurve: the polyline from its source to its target, closed for a loop, with its labels
+// and side labels), its key and its end vertices' keys. A partition that knows its edges
+// without inducing the map hands these to such a mapper (LocalEdgeMapper, mapping.hpp).
+struct LocalEdge {
+    Curve curve;
+    std::uint64_t key = 0, source_key = 0, target_key = 0;
+    const Point& source() const { return curve.points.front(); }
+    const Point& target() const { return curve.closed ? curve.points.front() : curve.points.back(); }
+};
+// The edge e of its map, read on its own.
+LocalEdge AsLocalEdge(const Edge& e);
+// LocationAt, Random and CellBBox as for the edge of the map it was read from; the
+// vertices' Random through their keys.
+Point LocationAt(const LocalEdge& e, double s);
+double Random(const LocalEdge& e, double min, double max, double n);
+double RandomAtSource(const LocalEdge& e, double min, double max, double n);
+double RandomAtTarget(const LocalEdge& e, double min, double max, double n);
+BBox CellBBox(const LocalEdge& e);
+
 }  // namespace tex

@@ -24,6 +24,13 @@ enum class MapperThreads { Parallel, Serial };
 
 Arrangement MapToVertices(VertexMapper m, Arrangement a, MapperThreads t = MapperThreads::Parallel);
 Arrangement MapToEdges(EdgeMapper m, Arrangement a, MapperThreads t = MapperThreads::Parallel);
+// A mapper that reads only its edge (LocalEdge: its curve, labels, key, its vertices' keys,
+// and fields at points of it). As an EdgeMapper it runs on AsLocalEdge(e); MapToEdges runs
+// it straight on the edges of a partition that knows them without its planar map (the KEEP
+// modes of StripesPartition and GridPartition), with the same result, cell for cell.
+using LocalEdgeFn = std::function<Curves(const LocalEdge&)>;
+EdgeMapper LocalEdgeMapper(LocalEdgeFn f);
+
 // Visits the bounded faces only.
 Arrangement MapToFaces(FaceMapper m, Arrangement a, MapperThreads t = MapperThreads::Parallel);
 

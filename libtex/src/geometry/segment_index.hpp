@@ -163,6 +163,10 @@ struct KnownVertices {
 MapPtr induce_clean_complex(const Curves& curves, const KnownVertices& known);
 // How many planar maps this thread built through induce_clean_complex (for the tests).
 std::uint64_t complex_inductions();
+// The keys a planar map gives a vertex at p and an edge with the polyline `points` (read in
+// its canonical direction, whatever the edge's).
+std::uint64_t vertex_key(const Point& p);
+std::uint64_t edge_key(const std::vector<Point>& points);
 }  // namespace tex::detail
 
 namespace tex::detail {

@@ -9,6 +9,16 @@ Arrangement::Arrangement(Fn fn) : fn_(std::make_shared<const Fn>(std::move(fn)))
 Arrangement::Arrangement(Fn fn, MapFn map)
     : fn_(std::make_shared<const Fn>(std::move(fn))), map_(std::make_shared<const MapFn>(std::move(map))) {}
 
+Arrangement::Arrangement(Fn fn, MapFn map, EdgesFn edges)
+    : fn_(std::make_shared<const Fn>(std::move(fn))),
+      map_(std::make_shared<const MapFn>(std::move(map))),
+      edges_(std::make_shared<const EdgesFn>(std::move(edges))) {}
+
+std::optional<std::vector<LocalEdge>> Arrangement::local_edges(const Region& r) const {
+    if (edges_) return (*edges_)(r);
+    return std::nullopt;
+}
+
 Curves Arrangement::operator()(const Region& r) const { return (*fn_)(r); }
 
 Curves Arrangement::operator()(const Face& f) const { return (*fn_)(ToRegion(f)); }

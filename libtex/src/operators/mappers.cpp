@@ -18,21 +18,23 @@ EdgeMapper JitterEdges(const std::string& label, double theta, double across, do
     const LabelId id = intern_label(label);
     const Point d{std::cos(theta), std::sin(theta)}, n{-d.y, d.x};
     const double half_across = across * r / 2, half_along = along * r / 2;
-    return [=, gate = std::move(gate)](const Edge& e) -> Curves {
-        if (!record(e).labels.has(id)) return Nothing();
+    // It reads only its edge: MapToEdges runs it on a partition's edges without the map.
+    return LocalEdgeMapper([=, gate = std::move(gate)](const LocalEdge& e) -> Curves {
+        if (!e.curve.labels.has(id)) return Nothing();
         if (gate_min > 0 && !(gate(LocationAt(e, 0.5)) >= gate_min)) return Nothing();
-        auto moved = [&](const Vertex& v) {
-            return Location(v) + n * Random(v, -half_across, half_across, 0) +
-                   d * Random(v, -half_along, half_along, 1);
-        };
+        const Point s = e.source(), t = e.target();
+        const Point ms = s + n * RandomAtSource(e, -half_across, half_across, 0) +
+                         d * RandomAtSource(e, -half_along, half_along, 1);
+        const Point mt = t + n * RandomAtTarget(e, -half_across, half_across, 0) +
+                         d * RandomAtTarget(e, -half_along, half_along, 1);
         // One curve, moved and shortened where it lies (MatchPoints then Scale, without the
         // copy each of them makes).
-        const Vertex s = SourceVertex(e), t = TargetVertex(e);
-        Curves c = ToCurve(e);
-        detail::match_points_in_place(c, Location(s), Location(t), moved(s), moved(t));
+        Curves c;
+        c.curves.push_back(e.curve);
+        detail::match_points_in_place(c, s, t, ms, mt);
         if (gap < 1) detail::scale_in_place(c, gap);
         return c;
-    };
+    });
 }
 
 double ThinRank(long long k) {

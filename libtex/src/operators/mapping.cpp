@@ -9,6 +9,24 @@
 namespace tex {
 namespace {
 
+// Runs visit(i) for every cell i, on the workers or in order; then the results of the cells
+// in their order.
+template <class Visit>
+Curves map_items(std::size_t n, std::vector<Curves>& results, const Visit& visit, MapperThreads t) {
+    if (t == MapperThreads::Serial) {
+        for (std::size_t i = 0; i < n; ++i) visit(i);
+    } else {
+        parallel_for(n, visit);
+    }
+    Curves out;
+    std::size_t total = 0;
+    for (const auto& r : results) total += r.curves.size();
+    out.curves.reserve(total);
+    for (auto& r : results) out.append(std::move(r));
+    out.origin.clear();
+    return out;
+}
+
 template <class CellT, class Mapper, class KeyOf>
 Curves map_cells(const MapPtr& map, const std::vector<int>& ids, const Mapper& m, KeyOf key_of, MapperThreads t) {
     std::vector<Curves> results(ids.size());
@@ -23,19 +41,30 @@ Curves map_cells(const MapPtr& map, const std::vector<int>& ids, const Mapper& m
             results[i] = m(cell);
         }
     };
-    if (t == MapperThreads::Serial) {
-        for (std::size_t i = 0; i < ids.size(); ++i) visit(i);
-    } else {
-        parallel_for(ids.size(), visit);
-    }
-    Curves out;
-    std::size_t total = 0;
-    for (const auto& r : results) total += r.curves.size();
-    out.curves.reserve(total);
-    for (auto& r : results) out.append(std::move(r));
-    out.origin.clear();
-    return out;
+    return map_items(ids.size(), results, visit, t);
 }
+
+// map_cells over the edges of a map for a mapper that reads only its edge, the edges read
+// without the map: the same calls, keys and windows, so the same result.
+Curves map_local_edges(const std::vector<LocalEdge>& edges, const LocalEdgeFn& f, MapperThreads t) {
+    std::vector<Curves> results(edges.size());
+    auto visit = [&](std::size_t i) {
+        RandomScope scope(edges[i].key);
+        if (detail::locality_checked()) {
+            FieldWindow window(CellBBox(edges[i]));
+            results[i] = f(edges[i]);
+        } else {
+            results[i] = f(edges[i]);
+        }
+    };
+    return map_items(edges.size(), results, visit, t);
+}
+
+// The EdgeMapper of a LocalEdgeFn: MapToEdges knows it by its type.
+struct LocalMapper {
+    LocalEdgeFn f;
+    Curves operator()(const Edge& e) const { return f(AsLocalEdge(e)); }
+};
 
 std::vector<int> iota_ids(std::size_t n) {
     std::vector<int> ids(n);
@@ -53,8 +82,13 @@ Arrangement MapToVertices(VertexMapper m, Arrangement a, MapperThreads t) {
     });
 }
 
+EdgeMapper LocalEdgeMapper(LocalEdgeFn f) { return LocalMapper{std::move(f)}; }
+
 Arrangement MapToEdges(EdgeMapper m, Arrangement a, MapperThreads t) {
     return Arrangement([m = std::move(m), a = std::move(a), t](const Region& r) {
+        if (const LocalMapper* local = m.target<LocalMapper>())
+            if (std::optional<std::vector<LocalEdge>> edges = a.local_edges(r))
+                return map_local_edges(*edges, local->f, t);
         MapPtr map = a.induce(r);
         return map_cells<Edge>(map, iota_ids(map->edges().size()), m,
                                [&](int i) { return map->edges()[i].key; }, t);

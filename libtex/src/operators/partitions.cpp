@@ -157,6 +157,38 @@ MapPtr realize_map(const Complex& cx, const Region& r, Border b) {
     return PlanarMap::induce(realize(cx, r, b));
 }
 
+// The edges of realize_map(cx, r, b), read without building the map, when the map's
+// edges are the complex's kept edges one for one: a clean complex in a KEEP mode (each kept
+// edge is a curve of its own whose ends are vertices). Then each edge runs like its curve,
+// and the map orders its edges by their pairs of end points (its vertices are numbered in
+// the order of their points), and keys an edge and a vertex by hashing their points.
+std::optional<std::vector<LocalEdge>> realize_edges(const Complex& cx, const Region& r, Border b) {
+    if (!cx.clean || !(b == Border::KEEP_INSIDE || b == Border::KEEP_OUTSIDE)) return std::nullopt;
+    Curves curves = realize(cx, r, b);
+    const std::size_t n = curves.curves.size();
+    struct Ends {
+        Point lo, hi;
+        std::uint32_t curve;
+    };
+    std::vector<Ends> order(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto [lo, hi] = std::minmax(curves.curves[i].points.front(), curves.curves[i].points.back());
+        order[i] = {lo, hi, std::uint32_t(i)};
+    }
+    std::sort(order.begin(), order.end(), [](const Ends& x, const Ends& y) {
+        return x.lo < y.lo || (x.lo == y.lo && x.hi < y.hi);
+    });
+    std::vector<LocalEdge> edges(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        LocalEdge& e = edges[k];
+        e.curve = std::move(curves.curves[order[k].curve]);
+        e.source_key = detail::vertex_key(e.curve.points.front());
+        e.target_key = detail::vertex_key(e.curve.points.back());
+        e.key = detail::edge_key(e.curve.points);
+    }
+    return edges;
+}
+
 // ---------------------------------------------------------------------------------------
 // Clean complexes
 //
@@ -676,14 +708,16 @@ void detail::StripesProbe::record(const Point& normal, double period) {
 Arrangement StripesPartition(const Stripes& p, Border b) {
     check_stripes(p, "StripesPartition");
     return Arrangement([p, b](const Region& r) { return realize(stripes_complex(p, r), r, b); },
-                       [p, b](const Region& r) { return realize_map(stripes_complex(p, r), r, b); });
+                       [p, b](const Region& r) { return realize_map(stripes_complex(p, r), r, b); },
+                       [p, b](const Region& r) { return realize_edges(stripes_complex(p, r), r, b); });
 }
 
 Arrangement GridPartition(const Stripes& s1, const Stripes& s2, Border b) {
     check_stripes(s1, "GridPartition");
     check_stripes(s2, "GridPartition");
     return Arrangement([s1, s2, b](const Region& r) { return realize(grid_complex(s1, s2, r), r, b); },
-                       [s1, s2, b](const Region& r) { return realize_map(grid_complex(s1, s2, r), r, b); });
+                       [s1, s2, b](const Region& r) { return realize_map(grid_complex(s1, s2, r), r, b); },
+                       [s1, s2, b](const Region& r) { return realize_edges(grid_complex(s1, s2, r), r, b); });
 }
 
 Arrangement UniformPartition(const Irregular& p, Border b, std::optional<std::uint64_t> seed) {

@@ -89,21 +89,24 @@ Curves MatchFace(const Curves& c, const Face& f) {
 
 Point Location(const Vertex& v) { return record(v).point; }
 
-Point LocationAt(const Edge& e, double s) {
-    // By arc length along the edge's polyline.
-    const std::vector<Point>& p = record(e).points;
+// By arc length along a polyline; a closed one runs on back to its first point.
+Point location_along(const std::vector<Point>& p, bool closed, double s) {
+    const std::size_t n = p.size() + (closed ? 1 : 0);
+    auto at = [&](std::size_t i) -> const Point& { return p[i % p.size()]; };
     double total = 0;
-    for (std::size_t i = 1; i < p.size(); ++i) total += distance(p[i - 1], p[i]);
+    for (std::size_t i = 1; i < n; ++i) total += distance(at(i - 1), at(i));
     if (!(s > 0) || total == 0) return p.front();
-    if (s >= 1) return p.back();
+    if (s >= 1) return at(n - 1);
     double want = s * total;
-    for (std::size_t i = 1; i < p.size(); ++i) {
-        const double l = distance(p[i - 1], p[i]);
-        if (want <= l && l > 0) return p[i - 1] + (p[i] - p[i - 1]) * (want / l);
+    for (std::size_t i = 1; i < n; ++i) {
+        const double l = distance(at(i - 1), at(i));
+        if (want <= l && l > 0) return at(i - 1) + (at(i) - at(i - 1)) * (want / l);
         want -= l;
     }
-    return p.back();
+    return at(n - 1);
 }
+
+Point LocationAt(const Edge& e, double s) { return location_along(record(e).points, false, s); }
 
 Point Centroid(const Face& f) {
     const FaceRec& r = record(f);
@@ -220,5 +223,29 @@ bool IsBoundary(const Face& c) {
 double Random(const Vertex& c, double min, double max, double n) { return keyed_random(record(c).key, min, max, n); }
 double Random(const Edge& c, double min, double max, double n) { return keyed_random(record(c).key, min, max, n); }
 double Random(const Face& c, double min, double max, double n) { return keyed_random(record(c).key, min, max, n); }
+
+LocalEdge AsLocalEdge(const Edge& e) {
+    const EdgeRec& r = record(e);
+    LocalEdge out;
+    out.curve = e.map().edge_curve(e.id());
+    out.key = r.key;
+    out.source_key = e.map().vertices()[r.source].key;
+    out.target_key = e.map().vertices()[r.target].key;
+    return out;
+}
+
+Point LocationAt(const LocalEdge& e, double s) { return location_along(e.curve.points, e.curve.closed, s); }
+double Random(const LocalEdge& e, double min, double max, double n) { return keyed_random(e.key, min, max, n); }
+double RandomAtSource(const LocalEdge& e, double min, double max, double n) {
+    return keyed_random(e.source_key, min, max, n);
+}
+double RandomAtTarget(const LocalEdge& e, double min, double max, double n) {
+    return keyed_random(e.target_key, min, max, n);
+}
+BBox CellBBox(const LocalEdge& e) {
+    BBox b;
+    for (const Point& p : e.curve.points) b.add(p);
+    return b;
+}
 
 }  // namespace tex

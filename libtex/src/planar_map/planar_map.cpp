@@ -667,6 +667,15 @@ std::uint64_t complex_inductions() { return t_complex; }
 MapPtr induce_clean_complex(const Curves& curves, const KnownVertices& known) {
     return PlanarMapBuilder::build(curves, Way::Any, &known);
 }
+std::uint64_t vertex_key(const Point& p) { return hash_point(0x5645525445ULL, p); }
+std::uint64_t edge_key(const std::vector<Point>& points) {
+    std::uint64_t key = 0x45444745ULL;
+    if (std::lexicographical_compare(points.rbegin(), points.rend(), points.begin(), points.end()))
+        for (auto it = points.rbegin(); it != points.rend(); ++it) key = hash_point(key, *it);
+    else
+        for (const Point& p : points) key = hash_point(key, p);
+    return key;
+}
 }  // namespace detail
 
 MapPtr PlanarMapBuilder::build(const Curves& input, Way way, const detail::KnownVertices* known) {
@@ -877,7 +886,7 @@ void PlanarMapBuilder::number_vertices(const PointLabels& point_labels, BuildScr
     for (std::size_t i = 0; i < breaks.size(); ++i) {
         VertexRec& rec = pm.vertices_[i];
         rec.point = g.vpt[breaks[i]];
-        rec.key = hash_point(0x5645525445ULL, rec.point);
+        rec.key = detail::vertex_key(rec.point);
         if (!point_labels.empty()) {
             auto it = point_labels.find(rec.point);
             if (it != point_labels.end()) rec.labels = it->second;
@@ -1000,12 +1009,7 @@ void PlanarMapBuilder::fill_edge_records(const Curves& input, BuildScratch& sc, 
             rec.right_labels.merge(s.forward ? c.right : c.left);
         }
         // Key of the geometry, whatever the orientation and the numbering.
-        std::uint64_t key = 0x45444745ULL;
-        if (ch.canon_reversed)
-            for (auto it = ch.points.rbegin(); it != ch.points.rend(); ++it) key = hash_point(key, *it);
-        else
-            for (const Point& p : ch.points) key = hash_point(key, p);
-        rec.key = key;
+        rec.key = detail::edge_key(ch.points);
         rec.points = std::move(ch.points);  // the chain is not read after this
     }
 }
