@@ -36,15 +36,11 @@ void put_points(std::string& s, const tex::Point* pts, std::size_t n, bool close
     if (close) s.append(reinterpret_cast<const char*>(pts), sizeof(tex::Point));
 }
 
-std::string sql_name(const std::string& s) {
-    std::string out = "\"";
-    for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-    return out + "\"";
-}
-
 constexpr std::uint32_t kWkbLineString = 2, kWkbPolygon = 3;
 // Rows a multi-row INSERT holds (at most 5 parameters each, far below SQLite's limit).
 constexpr int kBatch = 64;
+// Boxes packed into R-tree leaves at a time while the rows go in (GpkgWriter::pack_boxes).
+constexpr std::size_t kRtreeChunk = 32768;
 
 }  // namespace
 
@@ -320,7 +316,24 @@ void GpkgWriter::insert(const GpkgRows& rows) {
             if (sqlite3_step(st) != SQLITE_DONE) fail("write failed in " + l.name);
             sqlite3_reset(st);
         }
+        if (spatial_index_ && l.geometry) pack_boxes(l);
     }
+}
+
+// The R-tree of a layer whose rows SQLite inserts is written as they go in, on the thread
+// that inserts them: every kRtreeChunk boxes (by count, so that the leaves are the same
+// whatever rows each call brings) are packed into leaves of their own. The chunks are
+// neighbouring features (a face's hatches are consecutive), so the leaves stay compact; the
+// levels above them are packed when the file is committed.
+void GpkgWriter::pack_boxes(Layer& l) {
+    std::size_t done = 0;
+    while (l.boxes.size() - done >= kRtreeChunk) {
+        if (!l.rtree) l.rtree = std::make_shared<RtreeLoader>(db_, path_, l.name, "geom");
+        l.rtree->add(db_, l.boxes.data() + done, kRtreeChunk, l.packed + 1);
+        l.packed += std::int64_t(kRtreeChunk);
+        done += kRtreeChunk;
+    }
+    l.boxes.erase(l.boxes.begin(), l.boxes.begin() + std::ptrdiff_t(done));
 }
 
 int GpkgWriter::add_layer(const std::string& name, OGRwkbGeometryType type,
@@ -423,8 +436,12 @@ void GpkgWriter::commit() {
     if (spatial_index_)
         for (Layer& l : layers_) {
             if (!l.geometry) continue;
-            bulk_load_rtree(tmp_.path, l.name, "geom", "fid", l.boxes);
+            if (l.rtree)
+                load_rtree(tmp_.path, *l.rtree, l.boxes.data(), l.boxes.size(), l.packed + 1, "fid");
+            else
+                bulk_load_rtree(tmp_.path, l.name, "geom", "fid", l.boxes);
             std::vector<BoxF>().swap(l.boxes);
+            l.rtree.reset();
         }
     tmp_.commit(path_);
 }

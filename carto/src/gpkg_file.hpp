@@ -121,7 +121,7 @@ private:
         OGRLayer* ogr;  // while GDAL has the file open
         std::string name;
         std::vector<std::string> field_names;
-        std::vector<BoxF> boxes;
+        std::vector<BoxF> boxes;  // of the rows not yet in the R-tree
         bool geometry;  // false: an attribute table (no R-tree)
         // GDAL's count and (for the rows inserted with SQLite) extent, written at the end
         // (write_counts). A layer takes its rows from put() or from insert(), not both.
@@ -132,12 +132,17 @@ private:
         sqlite3_stmt* insert = nullptr;
         sqlite3_stmt* insert_batch = nullptr;
         std::string count_trigger;  // its SQL, dropped while SQLite inserts
+        // The R-tree of a layer SQLite inserts into, written as the rows go in (pack_boxes),
+        // and how many rows it has.
+        std::shared_ptr<RtreeLoader> rtree;
+        std::int64_t packed = 0;
     };
     [[noreturn]] void fail(const std::string& what) const;
     void open_gdal();
     void close_gdal();
     void open_sqlite();
     void close_sqlite();
+    void pack_boxes(Layer& l);
     void exec(const std::string& sql);
     void prepare_layer(Layer& l);
     int bind_row(sqlite3_stmt* st, int param, const GpkgRows& rows, const GpkgRows::Row& r, Layer& l);

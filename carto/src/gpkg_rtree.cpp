@@ -75,195 +75,207 @@ void putf(unsigned char* p, float f) {
     p[3] = (unsigned char)u;
 }
 
-struct Entry {
-    std::int64_t id;  // feature id (leaves) or node number (inner nodes)
-    float minx, maxx, miny, maxy;
-};
+constexpr int kCell = 8 + 4 * 4;  // a node's cell: id and four floats
 
-std::string quoted(const std::string& s) {
+}  // namespace
+
+std::string sql_name(const std::string& s) {
     std::string out = "\"";
     for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
     return out + "\"";
 }
-
-}  // namespace
 
 BoxF rtree_box(const BoxD& b) {
     if (!(b.minx <= b.maxx)) return {1, 0, 1, 0};
     return {down(b.minx), up(b.maxx), down(b.miny), up(b.maxy)};
 }
 
-void bulk_load_rtree(const std::string& path, const std::string& table, const std::string& geom,
-                     const std::string& fid, const std::vector<BoxF>& boxes) {
-    Db d;
-    if (sqlite3_open_v2(path.c_str(), &d.db, SQLITE_OPEN_READWRITE, nullptr) != SQLITE_OK)
-        fail(d.db, path, "cannot open the file");
-    const std::string rtree = "rtree_" + table + "_" + geom;
-    exec(d.db, path, "PRAGMA synchronous = OFF; PRAGMA journal_mode = OFF; BEGIN");
-    exec(d.db, path, "CREATE VIRTUAL TABLE " + quoted(rtree) + " USING rtree(id, minx, maxx, miny, maxy)");
-
+RtreeLoader::RtreeLoader(sqlite3* db, const std::string& path, const std::string& table, const std::string& geom)
+    : path_(path), table_(table), geom_(geom), rtree_("rtree_" + table + "_" + geom) {
+    exec(db, path_, "CREATE VIRTUAL TABLE " + sql_name(rtree_) + " USING rtree(id, minx, maxx, miny, maxy)");
     // Node size as the module chose it for this database (the length of the empty root).
-    int node_size = 0;
-    {
-        Stmt st;
-        const std::string sql = "SELECT length(data) FROM " + quoted(rtree + "_node") + " WHERE nodeno = 1";
-        if (sqlite3_prepare_v2(d.db, sql.c_str(), -1, &st.s, nullptr) != SQLITE_OK || sqlite3_step(st.s) != SQLITE_ROW)
-            fail(d.db, path, "cannot read the root node");
-        node_size = sqlite3_column_int(st.s, 0);
-    }
-    const int cell = 8 + 4 * 4;
-    const int fanout = (node_size - 4) / cell;
-    if (fanout < 4) fail(d.db, path, "unexpected node size");
+    Stmt st;
+    const std::string sql = "SELECT length(data) FROM " + sql_name(rtree_ + "_node") + " WHERE nodeno = 1";
+    if (sqlite3_prepare_v2(db, sql.c_str(), -1, &st.s, nullptr) != SQLITE_OK || sqlite3_step(st.s) != SQLITE_ROW)
+        fail(db, path_, "cannot read the root node");
+    node_size_ = sqlite3_column_int(st.s, 0);
+    fanout_ = (node_size_ - 4) / kCell;
+    if (fanout_ < 4) fail(db, path_, "unexpected node size");
+}
 
-    // The leaves are the features' numbers in `boxes` (4 bytes each), sorted as packed; the
-    // levels above are entries of their own (a fanout-th as many).
-    std::vector<std::uint32_t> leaves;
-    leaves.reserve(boxes.size());
-    for (std::size_t i = 0; i < boxes.size(); ++i)
-        if (boxes[i].minx <= boxes[i].maxx) leaves.push_back(std::uint32_t(i));  // empty geometry: not indexed
-    const std::size_t ids = boxes.size();
-    auto leaf_entry = [&](std::uint32_t i) {
-        const BoxF& b = boxes[i];
-        return Entry{std::int64_t(i) + 1, b.minx, b.maxx, b.miny, b.maxy};
-    };
-    auto same_entry = [](const Entry& e) { return e; };
+namespace {
 
-    // Sort-tile-recursive packing, level by level, bottom up. Nodes get numbers 2, 3, ...;
-    // the root is renumbered 1 at the end, as the module requires. With no entry at all the
-    // empty root the module made is kept. A node's cells are a range of its level, kept
-    // sorted as packed (no copy of the millions of leaves).
-    struct Node {
-        std::int64_t no;
-        int depth;  // 0 = leaf
-        std::size_t begin, end;  // in leaves (depth 0) or levels[depth - 1]
-    };
-    std::vector<Node> nodes;
-    std::vector<std::vector<Entry>> levels;
-    std::int64_t next_no = 2;
-    // Packs the items of one level (their boxes through `entry`) into nodes; returns their parents.
-    auto pack = [&](auto& items, const auto& entry, int depth) {
-        const std::size_t n = items.size();
-        const std::size_t groups = (n + fanout - 1) / fanout;
-        const std::size_t slices = std::size_t(std::ceil(std::sqrt(double(groups))));
-        const std::size_t per_slice = slices * std::size_t(fanout);
-        std::sort(items.begin(), items.end(), [&](const auto& a, const auto& b) {
-            const Entry ea = entry(a), eb = entry(b);
-            return (ea.minx + ea.maxx) < (eb.minx + eb.maxx);
+// Sort-tile-recursive packing of `items` (their boxes through `entry`) into groups of at most
+// `fanout`, sorted in place as packed: calls group(begin, end) for each group in order.
+template <class Item, class EntryOf, class Group>
+void str_pack(std::vector<Item>& items, int fanout, const EntryOf& entry, const Group& group) {
+    const std::size_t n = items.size();
+    const std::size_t groups = (n + std::size_t(fanout) - 1) / std::size_t(fanout);
+    const std::size_t slices = std::size_t(std::ceil(std::sqrt(double(groups))));
+    const std::size_t per_slice = slices * std::size_t(fanout);
+    std::sort(items.begin(), items.end(), [&](const Item& a, const Item& b) {
+        const RtreeEntry ea = entry(a), eb = entry(b);
+        return (ea.minx + ea.maxx) < (eb.minx + eb.maxx);
+    });
+    for (std::size_t s = 0; s < n; s += per_slice) {
+        const std::size_t e = std::min(s + per_slice, n);
+        std::sort(items.begin() + std::ptrdiff_t(s), items.begin() + std::ptrdiff_t(e), [&](const Item& a, const Item& b) {
+            const RtreeEntry ea = entry(a), eb = entry(b);
+            return (ea.miny + ea.maxy) < (eb.miny + eb.maxy);
         });
-        std::vector<Entry> parents;
-        for (std::size_t s = 0; s < n; s += per_slice) {
-            const std::size_t e = std::min(s + per_slice, n);
-            std::sort(items.begin() + std::ptrdiff_t(s), items.begin() + std::ptrdiff_t(e), [&](const auto& a, const auto& b) {
-                const Entry ea = entry(a), eb = entry(b);
-                return (ea.miny + ea.maxy) < (eb.miny + eb.maxy);
-            });
-            for (std::size_t k = s; k < e; k += std::size_t(fanout)) {
-                const Node node{next_no++, depth, k, std::min(k + fanout, e)};
-                Entry p{node.no, INFINITY, -INFINITY, INFINITY, -INFINITY};
-                for (std::size_t c_at = node.begin; c_at < node.end; ++c_at) {
-                    const Entry c = entry(items[c_at]);
-                    p.minx = std::min(p.minx, c.minx);
-                    p.maxx = std::max(p.maxx, c.maxx);
-                    p.miny = std::min(p.miny, c.miny);
-                    p.maxy = std::max(p.maxy, c.maxy);
-                }
-                parents.push_back(p);
-                nodes.push_back(node);
-            }
-        }
-        return parents;
-    };
-    if (!leaves.empty()) {
-        std::vector<Entry> level = pack(leaves, leaf_entry, 0);
-        for (int depth = 1; level.size() > 1; ++depth) {
-            std::vector<Entry> parents = pack(level, same_entry, depth);
-            levels.push_back(std::move(level));
-            level = std::move(parents);
-        }
+        for (std::size_t k = s; k < e; k += std::size_t(fanout)) group(k, std::min(k + std::size_t(fanout), e));
     }
-    if (!nodes.empty()) {
-        // The last node made is the root.
-        const std::int64_t root_old = nodes.back().no;
-        const int tree_depth = nodes.back().depth;
-        auto renumber = [&](std::int64_t no) { return no == root_old ? 1 : no; };
-        exec(d.db, path, "DELETE FROM " + quoted(rtree + "_node") + "; DELETE FROM " + quoted(rtree + "_parent") +
-                             "; DELETE FROM " + quoted(rtree + "_rowid"));
-        Stmt ins_node, ins_parent, ins_rowid;
-        if (sqlite3_prepare_v2(d.db, ("INSERT INTO " + quoted(rtree + "_node") + " VALUES (?, ?)").c_str(), -1, &ins_node.s, nullptr) ||
-            sqlite3_prepare_v2(d.db, ("INSERT INTO " + quoted(rtree + "_parent") + " VALUES (?, ?)").c_str(), -1, &ins_parent.s, nullptr) ||
-            sqlite3_prepare_v2(d.db, ("INSERT INTO " + quoted(rtree + "_rowid") + " VALUES (?, ?)").c_str(), -1, &ins_rowid.s, nullptr))
-            fail(d.db, path, "cannot prepare the inserts");
-        // The leaf of each feature, written in the order of the ids once the nodes are (rows
-        // appended to the _rowid table, kRowidBatch a statement, rather than put all over it).
-        std::vector<std::uint32_t> leaf_of(ids + 1, 0);
-        constexpr int kRowidBatch = 100;
-        Stmt ins_rowids;
-        {
-            std::string sql = "INSERT INTO " + quoted(rtree + "_rowid") + " VALUES (?, ?)";
-            for (int i = 1; i < kRowidBatch; ++i) sql += ", (?, ?)";
-            if (sqlite3_prepare_v2(d.db, sql.c_str(), -1, &ins_rowids.s, nullptr)) fail(d.db, path, "cannot prepare the inserts");
+}
+
+// The box of entries [begin, end) under node number `no`.
+template <class Item, class EntryOf>
+RtreeEntry enclosing(const std::vector<Item>& items, std::size_t begin, std::size_t end, std::int64_t no, const EntryOf& entry) {
+    RtreeEntry p{no, INFINITY, -INFINITY, INFINITY, -INFINITY};
+    for (std::size_t c = begin; c < end; ++c) {
+        const RtreeEntry e = entry(items[c]);
+        p.minx = std::min(p.minx, e.minx);
+        p.maxx = std::max(p.maxx, e.maxx);
+        p.miny = std::min(p.miny, e.miny);
+        p.maxy = std::max(p.maxy, e.maxy);
+    }
+    return p;
+}
+
+// A node's blob: depth (root only), cell count, cells of an id and four floats.
+void fill_node(std::vector<unsigned char>& blob, int depth, bool root, const RtreeEntry* cells, std::size_t n) {
+    std::fill(blob.begin(), blob.end(), 0);
+    if (root) put16(blob.data(), unsigned(depth));
+    put16(blob.data() + 2, unsigned(n));
+    unsigned char* p = blob.data() + 4;
+    for (std::size_t i = 0; i < n; ++i, p += kCell) {
+        put64(p, cells[i].id);
+        putf(p + 8, cells[i].minx);
+        putf(p + 12, cells[i].maxx);
+        putf(p + 16, cells[i].miny);
+        putf(p + 20, cells[i].maxy);
+    }
+}
+
+void step(sqlite3* db, const std::string& path, sqlite3_stmt* st, const char* what) {
+    if (sqlite3_step(st) != SQLITE_DONE) fail(db, path, what);
+    sqlite3_reset(st);
+}
+
+}  // namespace
+
+void RtreeLoader::add(sqlite3* db, const BoxF* boxes, std::size_t n, std::int64_t first_id) {
+    std::vector<RtreeEntry> items;
+    items.reserve(n);
+    for (std::size_t i = 0; i < n; ++i)
+        if (boxes[i].minx <= boxes[i].maxx)  // empty geometry: not indexed
+            items.push_back({first_id + std::int64_t(i), boxes[i].minx, boxes[i].maxx, boxes[i].miny, boxes[i].maxy});
+    if (items.empty()) return;
+    if (leaves_.empty()) exec(db, path_, "DELETE FROM " + sql_name(rtree_ + "_node"));  // the module's empty root
+    Stmt ins_node;
+    if (sqlite3_prepare_v2(db, ("INSERT INTO " + sql_name(rtree_ + "_node") + " VALUES (?, ?)").c_str(), -1, &ins_node.s,
+                           nullptr))
+        fail(db, path_, "cannot prepare the inserts");
+    // The leaves, numbered on from the last; the leaf of each feature for its _rowid row.
+    std::vector<std::pair<std::int64_t, std::int64_t>> leaf_of;  // (feature id, node)
+    leaf_of.reserve(items.size());
+    std::vector<unsigned char> blob(static_cast<std::size_t>(node_size_));
+    const auto same = [](const RtreeEntry& e) { return e; };
+    str_pack(items, fanout_, same, [&](std::size_t b, std::size_t e) {
+        const std::int64_t no = next_no_++;
+        leaves_.push_back(enclosing(items, b, e, no, same));
+        fill_node(blob, 0, false, items.data() + b, e - b);
+        sqlite3_bind_int64(ins_node.s, 1, no);
+        sqlite3_bind_blob(ins_node.s, 2, blob.data(), node_size_, SQLITE_STATIC);
+        step(db, path_, ins_node.s, "node insert");
+        for (std::size_t c = b; c < e; ++c) leaf_of.push_back({items[c].id, no});
+    });
+    // Rows of the _rowid table in the order of the ids (appended, not put all over it),
+    // kRowidBatch a statement.
+    std::sort(leaf_of.begin(), leaf_of.end());
+    constexpr std::size_t kRowidBatch = 100;
+    Stmt one, many;
+    const std::string ins = "INSERT INTO " + sql_name(rtree_ + "_rowid") + " VALUES (?, ?)";
+    std::string ins_many = ins;
+    for (std::size_t i = 1; i < kRowidBatch; ++i) ins_many += ", (?, ?)";
+    if (sqlite3_prepare_v2(db, ins.c_str(), -1, &one.s, nullptr) ||
+        sqlite3_prepare_v2(db, ins_many.c_str(), -1, &many.s, nullptr))
+        fail(db, path_, "cannot prepare the inserts");
+    std::size_t i = 0;
+    for (; i + kRowidBatch <= leaf_of.size(); i += kRowidBatch) {
+        for (std::size_t k = 0; k < kRowidBatch; ++k) {
+            sqlite3_bind_int64(many.s, int(2 * k + 1), leaf_of[i + k].first);
+            sqlite3_bind_int64(many.s, int(2 * k + 2), leaf_of[i + k].second);
         }
-        std::vector<unsigned char> blob(static_cast<std::size_t>(node_size));
-        auto step = [&](Stmt& st, const char* what) {
-            if (sqlite3_step(st.s) != SQLITE_DONE) fail(d.db, path, what);
-            sqlite3_reset(st.s);
+        step(db, path_, many.s, "rowid insert");
+    }
+    for (; i < leaf_of.size(); ++i) {
+        sqlite3_bind_int64(one.s, 1, leaf_of[i].first);
+        sqlite3_bind_int64(one.s, 2, leaf_of[i].second);
+        step(db, path_, one.s, "rowid insert");
+    }
+}
+
+void RtreeLoader::finish(sqlite3* db, const std::string& fid) {
+    const std::string path = path_, table = table_, geom = geom_, rtree = rtree_;
+    if (leaves_.size() == 1) {
+        // One leaf is the root, which the module numbers 1.
+        const std::int64_t no = leaves_.front().id;
+        exec(db, path, "UPDATE " + sql_name(rtree + "_node") + " SET nodeno = 1 WHERE nodeno = " + std::to_string(no) +
+                           "; UPDATE " + sql_name(rtree + "_rowid") + " SET nodeno = 1 WHERE nodeno = " + std::to_string(no));
+    } else if (leaves_.size() > 1) {
+        // The levels above the leaves, packed bottom up; the last node made is the root,
+        // numbered 1 as the module requires.
+        struct Node {
+            std::int64_t no;
+            int depth;
+            std::size_t level, begin, end;  // its cells: levels[level][begin, end)
         };
-        for (const Node& node : nodes) {
-            std::fill(blob.begin(), blob.end(), 0);
-            const std::int64_t no = renumber(node.no);
-            if (no == 1) put16(blob.data(), unsigned(tree_depth));
-            put16(blob.data() + 2, unsigned(node.end - node.begin));
-            unsigned char* p = blob.data() + 4;
-            for (std::size_t c_at = node.begin; c_at < node.end; ++c_at) {
-                const Entry e = node.depth == 0 ? leaf_entry(leaves[c_at]) : levels[std::size_t(node.depth - 1)][c_at];
-                const std::int64_t id = node.depth == 0 ? e.id : renumber(e.id);
-                put64(p, id);
-                putf(p + 8, e.minx);
-                putf(p + 12, e.maxx);
-                putf(p + 16, e.miny);
-                putf(p + 20, e.maxy);
-                p += cell;
-                if (node.depth == 0) {
-                    leaf_of[std::size_t(id)] = std::uint32_t(no);
-                    continue;
-                }
-                sqlite3_bind_int64(ins_parent.s, 1, id);
-                sqlite3_bind_int64(ins_parent.s, 2, no);
-                step(ins_parent, "parent insert");
-            }
-            sqlite3_bind_int64(ins_node.s, 1, no);
-            sqlite3_bind_blob(ins_node.s, 2, blob.data(), node_size, SQLITE_TRANSIENT);
-            step(ins_node, "node insert");
+        std::vector<std::vector<RtreeEntry>> levels{std::move(leaves_)};
+        std::vector<Node> nodes;
+        const auto same = [](const RtreeEntry& e) { return e; };
+        for (int depth = 1; levels.back().size() > 1; ++depth) {
+            std::vector<RtreeEntry>& below = levels.back();
+            std::vector<RtreeEntry> parents;
+            str_pack(below, fanout_, same, [&](std::size_t b, std::size_t e) {
+                const std::int64_t no = next_no_++;
+                parents.push_back(enclosing(below, b, e, no, same));
+                nodes.push_back({no, depth, levels.size() - 1, b, e});
+            });
+            levels.push_back(std::move(parents));
         }
-        std::vector<std::int64_t> ids;
-        ids.reserve(kRowidBatch);
-        for (std::size_t id = 1; id < leaf_of.size(); ++id) {
-            if (leaf_of[id] == 0) continue;  // empty geometry: not indexed
-            ids.push_back(std::int64_t(id));
-            const bool last = id + 1 == leaf_of.size();
-            if (ids.size() < std::size_t(kRowidBatch) && !last) continue;
-            Stmt& st = ids.size() == std::size_t(kRowidBatch) ? ins_rowids : ins_rowid;
-            for (std::size_t k = 0; k < ids.size(); ++k) {
-                if (&st == &ins_rowid) {
-                    sqlite3_bind_int64(st.s, 1, ids[k]);
-                    sqlite3_bind_int64(st.s, 2, leaf_of[std::size_t(ids[k])]);
-                    step(st, "rowid insert");
-                    continue;
-                }
-                sqlite3_bind_int64(st.s, int(2 * k + 1), ids[k]);
-                sqlite3_bind_int64(st.s, int(2 * k + 2), leaf_of[std::size_t(ids[k])]);
+        const std::int64_t root_old = nodes.back().no;
+        auto renumber = [&](std::int64_t no) { return no == root_old ? 1 : no; };
+        Stmt ins_node, ins_parent;
+        if (sqlite3_prepare_v2(db, ("INSERT INTO " + sql_name(rtree + "_node") + " VALUES (?, ?)").c_str(), -1, &ins_node.s,
+                               nullptr) ||
+            sqlite3_prepare_v2(db, ("INSERT INTO " + sql_name(rtree + "_parent") + " VALUES (?, ?)").c_str(), -1,
+                               &ins_parent.s, nullptr))
+            fail(db, path, "cannot prepare the inserts");
+        std::vector<unsigned char> blob(static_cast<std::size_t>(node_size_));
+        std::vector<RtreeEntry> cells;
+        for (const Node& node : nodes) {
+            const std::int64_t no = renumber(node.no);
+            cells.assign(levels[node.level].begin() + std::ptrdiff_t(node.begin),
+                         levels[node.level].begin() + std::ptrdiff_t(node.end));
+            for (RtreeEntry& c : cells) {
+                c.id = renumber(c.id);
+                sqlite3_bind_int64(ins_parent.s, 1, c.id);
+                sqlite3_bind_int64(ins_parent.s, 2, no);
+                step(db, path, ins_parent.s, "parent insert");
             }
-            if (&st == &ins_rowids) step(st, "rowid insert");
-            ids.clear();
+            fill_node(blob, node.depth, no == 1, cells.data(), cells.size());
+            sqlite3_bind_int64(ins_node.s, 1, no);
+            sqlite3_bind_blob(ins_node.s, 2, blob.data(), node_size_, SQLITE_STATIC);
+            step(db, path, ins_node.s, "node insert");
         }
     }
 
     // Declare the extension and keep the index in step with later edits (GeoPackage 1.2).
-    const std::string T = quoted(table), G = quoted(geom), I = quoted(fid), R = quoted(rtree);
+    const std::string T = sql_name(table), G = sql_name(geom), I = sql_name(fid), R = sql_name(rtree);
     const std::string vals = "NEW." + I + ", ST_MinX(NEW." + G + "), ST_MaxX(NEW." + G + "), ST_MinY(NEW." + G +
                              "), ST_MaxY(NEW." + G + ")";
-    auto trig = [&](const std::string& suffix) { return quoted(rtree + "_" + suffix); };
-    exec(d.db, path,
+    auto trig = [&](const std::string& suffix) { return sql_name(rtree + "_" + suffix); };
+    exec(db, path,
          "CREATE TABLE IF NOT EXISTS gpkg_extensions (table_name TEXT, column_name TEXT, extension_name TEXT NOT NULL, "
          "definition TEXT NOT NULL, scope TEXT NOT NULL, CONSTRAINT ge_tce UNIQUE (table_name, column_name, extension_name));"
          "INSERT INTO gpkg_extensions VALUES ('" + table + "', '" + geom +
@@ -282,7 +294,38 @@ void bulk_load_rtree(const std::string& path, const std::string& table, const st
              " ISNULL OR ST_IsEmpty(NEW." + G + ")) BEGIN DELETE FROM " + R + " WHERE id IN (OLD." + I + ", NEW." + I + "); END;"
          "CREATE TRIGGER " + trig("delete") + " AFTER DELETE ON " + T + " WHEN OLD." + G + " NOT NULL BEGIN DELETE FROM " + R +
              " WHERE id = OLD." + I + "; END;");
+}
+
+namespace {
+
+// Runs fn(db) in one transaction of a connection of its own to the file.
+template <class Fn>
+void in_transaction(const std::string& path, const Fn& fn) {
+    Db d;
+    if (sqlite3_open_v2(path.c_str(), &d.db, SQLITE_OPEN_READWRITE, nullptr) != SQLITE_OK)
+        fail(d.db, path, "cannot open the file");
+    exec(d.db, path, "PRAGMA synchronous = OFF; PRAGMA journal_mode = OFF; BEGIN");
+    fn(d.db);
     exec(d.db, path, "COMMIT");
+}
+
+}  // namespace
+
+void load_rtree(const std::string& path, RtreeLoader& loader, const BoxF* boxes, std::size_t n, std::int64_t first_id,
+                const std::string& fid) {
+    in_transaction(path, [&](sqlite3* db) {
+        loader.add(db, boxes, n, first_id);
+        loader.finish(db, fid);
+    });
+}
+
+void bulk_load_rtree(const std::string& path, const std::string& table, const std::string& geom,
+                     const std::string& fid, const std::vector<BoxF>& boxes) {
+    in_transaction(path, [&](sqlite3* db) {
+        RtreeLoader loader(db, path, table, geom);
+        loader.add(db, boxes.data(), boxes.size(), 1);
+        loader.finish(db, fid);
+    });
 }
 
 }  // namespace carto

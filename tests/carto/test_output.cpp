@@ -235,6 +235,15 @@ std::vector<std::string> table_rows(GDALDataset& ds, const std::string& table, c
     return rows;
 }
 
+// An empty drawing in Lambert 93 by the style "test".
+Drawing test_drawing() {
+    GDALAllRegister();
+    Drawing d;
+    d.crs_wkt = epsg_wkt(2154);
+    d.style = "test";
+    return d;
+}
+
 std::unique_ptr<OGRLineString> ogr_line(const std::vector<Point>& pts, bool ring) {
     std::unique_ptr<OGRLineString> l(ring ? new OGRLinearRing() : new OGRLineString());
     for (const Point& p : pts) l->addPoint(p.x, p.y);
@@ -247,11 +256,8 @@ std::unique_ptr<OGRLineString> ogr_line(const std::vector<Point>& pts, bool ring
 // for the same features: the same blob bytes (header, flags, envelope, WKB), fields, extent
 // and feature count; and OGR reads every point back exactly.
 TEST(HatchGpkg, RowsAreTheBlobsAndFieldsGdalWrites) {
-    GDALAllRegister();
     const fs::path dir = fresh_dir("blobs");
-    Drawing d;
-    d.crs_wkt = epsg_wkt(2154);
-    d.style = "test";
+    Drawing d = test_drawing();
     const std::vector<Point> line{{1000000.1234567891, 6500000.000000001}, {1000000.5 + 1.0 / 3, 6500001.7}, {999999.25, 6500003}};
     const std::vector<Point> ring{{1000010, 6500010}, {1000012.1, 6500010}, {1000011, 6500012.3}};
     const std::vector<Point> stone{{1000020, 6500020}, {1000021, 6500020}, {1000021, 6500021}};
@@ -358,4 +364,74 @@ TEST(HatchGpkg, RowsAreTheBlobsAndFieldsGdalWrites) {
             EXPECT_EQ(got[k][i].y, want[i].y);
         }
     }
+}
+
+namespace {
+
+// The first value of the first row of an SQL query through GDAL (SQLite's functions and
+// GDAL's spatial ones), as text.
+std::string sql_value(GDALDataset& ds, const std::string& sql) {
+    OGRLayer* rs = ds.ExecuteSQL(sql.c_str(), nullptr, "SQLITE");
+    if (!rs) return "no result for " + sql;
+    std::unique_ptr<OGRFeature> f(rs->GetNextFeature());
+    const std::string v = f ? f->GetFieldAsString(0) : "no row";
+    ds.ReleaseResultSet(rs);
+    return v;
+}
+
+}  // namespace
+
+// The R-tree of a layer with many rows is written while they go in, a chunk of rows at a
+// time, and its top levels at the end: it must be a valid index of every row (rtreecheck),
+// each row under a box that holds its geometry, and a window search missing none.
+TEST(HatchGpkg, TheSpatialIndexWrittenAsTheRowsGoInIndexesEveryRow) {
+    const fs::path dir = fresh_dir("rtree");
+    Drawing d = test_drawing();
+    // 120 faces of 1,000 short strokes in a row (120,000 fill rows: several chunks and a last
+    // partial one), and a few ridge rows (a layer small enough to be packed at the end).
+    for (int k = 0; k < 120; ++k) {
+        FaceHatches face{k + 1, {}};
+        const double x0 = 1000000 + 400.0 * (k % 12), y0 = 6500000 + 400.0 * (k / 12);
+        for (int i = 0; i < 1000; ++i) {
+            const double x = x0 + 12.0 * (i % 30), y = y0 + 11.0 * (i / 30);
+            face.hatches.push_back({{{x, y}, {x + 3 + 0.001 * i, y + 7}}, false, Family::Fill});
+        }
+        if (k % 10 == 0) face.hatches.push_back({{{x0, y0}, {x0 + 100, y0}}, false, Family::Ridge});
+        d.faces.push_back(std::move(face));
+    }
+    d.bounds = {1000000, 6500000, 1005000, 6504400};
+    const std::string path = (dir / "many.gpkg").string();
+    write_gpkg(d, path, true);
+    std::unique_ptr<GDALDataset> ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR));
+    ASSERT_TRUE(ds);
+    for (const char* t : {"hatch_fill", "hatch_ridge"}) {
+        const std::string rtree = std::string("rtree_") + t + "_geom";
+        EXPECT_EQ(sql_value(*ds, "SELECT rtreecheck('" + rtree + "')"), "ok") << t;
+        EXPECT_EQ(sql_value(*ds, "SELECT count(*) FROM " + rtree), sql_value(*ds, std::string("SELECT count(*) FROM ") + t)) << t;
+        // Every row under its own box, and that box holds the row's geometry.
+        EXPECT_EQ(sql_value(*ds, std::string("SELECT count(*) FROM ") + t + " h JOIN " + rtree +
+                                     " r ON r.id = h.fid WHERE r.minx <= ST_MinX(h.geom) AND r.maxx >= ST_MaxX(h.geom) "
+                                     "AND r.miny <= ST_MinY(h.geom) AND r.maxy >= ST_MaxY(h.geom)"),
+                  sql_value(*ds, std::string("SELECT count(*) FROM ") + t))
+            << t;
+    }
+    EXPECT_EQ(sql_value(*ds, "SELECT count(*) FROM hatch_fill"), "120000");
+    // A window search through the index misses none of the rows that meet the window (its
+    // boxes are floats rounded outwards: it may find a few more).
+    for (const auto& [x, y] : {std::pair{1000250.0, 6500250.0}, {1002013.0, 6503170.0}, {1004500.0, 6503700.0}}) {
+        auto within = [&](const std::string& minx, const std::string& maxx, const std::string& miny,
+                          const std::string& maxy) {
+            return maxx + " >= " + std::to_string(x) + " AND " + minx + " <= " + std::to_string(x + 300) + " AND " + maxy +
+                   " >= " + std::to_string(y) + " AND " + miny + " <= " + std::to_string(y + 300);
+        };
+        const std::string meets = within("ST_MinX(geom)", "ST_MaxX(geom)", "ST_MinY(geom)", "ST_MaxY(geom)");
+        const std::string by_rows = sql_value(*ds, "SELECT count(*) FROM hatch_fill WHERE " + meets);
+        const std::string found = sql_value(*ds, "SELECT count(*) FROM hatch_fill WHERE " + meets +
+                                                     " AND fid IN (SELECT id FROM rtree_hatch_fill_geom WHERE " +
+                                                     within("minx", "maxx", "miny", "maxy") + ")");
+        EXPECT_EQ(found, by_rows) << x << " " << y;
+        EXPECT_NE(by_rows, "0") << x << " " << y;
+    }
+    // The tree has levels above its leaves (the leaves of several chunks under one root).
+    EXPECT_NE(sql_value(*ds, "SELECT count(*) FROM rtree_hatch_fill_geom_parent"), "0");
 }
