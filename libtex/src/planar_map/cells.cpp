@@ -89,6 +89,8 @@ Curves MatchFace(const Curves& c, const Face& f) {
 
 Point Location(const Vertex& v) { return record(v).point; }
 
+namespace {
+
 // By arc length along a polyline; a closed one runs on back to its first point.
 Point location_along(const std::vector<Point>& p, bool closed, double s) {
     const std::size_t n = p.size() + (closed ? 1 : 0);
@@ -105,6 +107,8 @@ Point location_along(const std::vector<Point>& p, bool closed, double s) {
     }
     return at(n - 1);
 }
+
+}  // namespace
 
 Point LocationAt(const Edge& e, double s) { return location_along(record(e).points, false, s); }
 
