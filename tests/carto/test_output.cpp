@@ -418,7 +418,8 @@ TEST(HatchGpkg, TheSpatialIndexWrittenAsTheRowsGoInIndexesEveryRow) {
     EXPECT_EQ(sql_value(*ds, "SELECT count(*) FROM hatch_fill"), "120000");
     // A window search through the index misses none of the rows that meet the window (its
     // boxes are floats rounded outwards: it may find a few more).
-    for (const auto& [x, y] : {std::pair{1000250.0, 6500250.0}, {1002013.0, 6503170.0}, {1004500.0, 6503700.0}}) {
+    for (const auto& corner : {std::pair{1000250.0, 6500250.0}, {1002013.0, 6503170.0}, {1004500.0, 6503700.0}}) {
+        const double x = corner.first, y = corner.second;
         auto within = [&](const std::string& minx, const std::string& maxx, const std::string& miny,
                           const std::string& maxy) {
             return maxx + " >= " + std::to_string(x) + " AND " + minx + " <= " + std::to_string(x + 300) + " AND " + maxy +
