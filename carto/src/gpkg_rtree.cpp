@@ -216,7 +216,7 @@ void RtreeLoader::add(sqlite3* db, const BoxF* boxes, std::size_t n, std::int64_
 }
 
 void RtreeLoader::finish(sqlite3* db, const std::string& fid) {
-    const std::string path = path_, table = table_, geom = geom_, rtree = rtree_;
+    const std::string &path = path_, &table = table_, &geom = geom_, &rtree = rtree_;
     if (leaves_.size() == 1) {
         // One leaf is the root, which the module numbers 1.
         const std::int64_t no = leaves_.front().id;

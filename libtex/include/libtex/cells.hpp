@@ -120,10 +120,9 @@ struct LocalEdge {
 };
 // The edge e of its map, read on its own.
 LocalEdge AsLocalEdge(const Edge& e);
-// LocationAt, Random and CellBBox as for the edge of the map it was read from; the
-// vertices' Random through their keys.
+// LocationAt and CellBBox as for the edge of the map it was read from; its vertices' Random
+// through their keys.
 Point LocationAt(const LocalEdge& e, double s);
-double Random(const LocalEdge& e, double min, double max, double n);
 double RandomAtSource(const LocalEdge& e, double min, double max, double n);
 double RandomAtTarget(const LocalEdge& e, double min, double max, double n);
 BBox CellBBox(const LocalEdge& e);

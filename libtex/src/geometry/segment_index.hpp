@@ -166,6 +166,9 @@ std::uint64_t complex_inductions();
 // The keys a planar map gives a vertex at p and an edge with the polyline `points` (read in
 // its canonical direction, whatever the edge's).
 std::uint64_t vertex_key(const Point& p);
+// `reversed`: the canonical reading runs from the last point (the reversed polyline is
+// lexicographically smaller), when the caller already knows it.
+std::uint64_t edge_key(const std::vector<Point>& points, bool reversed);
 std::uint64_t edge_key(const std::vector<Point>& points);
 }  // namespace tex::detail
 

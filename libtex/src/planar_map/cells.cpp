@@ -239,7 +239,6 @@ LocalEdge AsLocalEdge(const Edge& e) {
 }
 
 Point LocationAt(const LocalEdge& e, double s) { return location_along(e.curve.points, e.curve.closed, s); }
-double Random(const LocalEdge& e, double min, double max, double n) { return keyed_random(e.key, min, max, n); }
 double RandomAtSource(const LocalEdge& e, double min, double max, double n) {
     return keyed_random(e.source_key, min, max, n);
 }

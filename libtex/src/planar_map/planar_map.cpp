@@ -668,13 +668,16 @@ MapPtr induce_clean_complex(const Curves& curves, const KnownVertices& known) {
     return PlanarMapBuilder::build(curves, Way::Any, &known);
 }
 std::uint64_t vertex_key(const Point& p) { return hash_point(0x5645525445ULL, p); }
-std::uint64_t edge_key(const std::vector<Point>& points) {
+std::uint64_t edge_key(const std::vector<Point>& points, bool reversed) {
     std::uint64_t key = 0x45444745ULL;
-    if (std::lexicographical_compare(points.rbegin(), points.rend(), points.begin(), points.end()))
+    if (reversed)
         for (auto it = points.rbegin(); it != points.rend(); ++it) key = hash_point(key, *it);
     else
         for (const Point& p : points) key = hash_point(key, p);
     return key;
+}
+std::uint64_t edge_key(const std::vector<Point>& points) {
+    return edge_key(points, std::lexicographical_compare(points.rbegin(), points.rend(), points.begin(), points.end()));
 }
 }  // namespace detail
 
@@ -1009,7 +1012,7 @@ void PlanarMapBuilder::fill_edge_records(const Curves& input, BuildScratch& sc, 
             rec.right_labels.merge(s.forward ? c.right : c.left);
         }
         // Key of the geometry, whatever the orientation and the numbering.
-        rec.key = detail::edge_key(ch.points);
+        rec.key = detail::edge_key(ch.points, ch.canon_reversed);
         rec.points = std::move(ch.points);  // the chain is not read after this
     }
 }
