@@ -4,6 +4,8 @@
 #include <string>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <mutex>
 #include <random>
@@ -438,6 +440,82 @@ TEST(ThreadsScope, ScopedCountOnThisThreadOnlyAndRestored) {
     }
     EXPECT_EQ(GetThreads(), 3u);
     SetThreads(saved);
+}
+
+// A nested parallel_for shares its items with the threads of the outermost call that ran out
+// of work (one large face among small ones: its cells are split), and each item draws the
+// same random values whoever runs it.
+TEST(ParallelFor, IdleThreadsHelpANestedCallWithTheSameResults) {
+    const ThreadsScope two(2);
+    constexpr std::size_t kItems = 64;
+    auto nested = [&](std::vector<double>& values, std::set<std::thread::id>* ids, std::mutex* m) {
+        parallel_for(kItems, [&](std::size_t i) {
+            std::this_thread::sleep_for(std::chrono::microseconds(200));
+            values[i] = Random(0, 1) + Random(0, 1) * 1e-3;
+            if (ids) {
+                std::lock_guard lock(*m);
+                ids->insert(std::this_thread::get_id());
+            }
+        });
+    };
+    std::vector<double> serial(kItems);
+    {
+        const ThreadsScope one(1);
+        StreamScope s(3);
+        parallel_for(2, [&](std::size_t k) {
+            if (k == 1) nested(serial, nullptr, nullptr);
+        });
+    }
+    // The outer item 0 ends at once; its thread then waits for work. Item 1's nested call is
+    // shared as soon as that thread is idle: tried a few times, it must happen.
+    bool helped = false;
+    for (int attempt = 0; attempt < 20 && !helped; ++attempt) {
+        std::vector<double> shared(kItems);
+        std::set<std::thread::id> ids;
+        std::mutex m;
+        StreamScope s(3);
+        parallel_for(2, [&](std::size_t k) {
+            if (k == 0) return;
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
+            nested(shared, &ids, &m);
+        });
+        EXPECT_EQ(shared, serial);
+        helped = ids.size() == 2;
+    }
+    EXPECT_TRUE(helped) << "no idle thread took part in the nested call";
+}
+
+// An error in a nested item run by a helper reaches the caller; a NoRandomScope open around a
+// nested call holds in its items whatever thread runs them.
+TEST(ParallelFor, NestedItemsOnHelpersKeepTheCallersScopesAndErrors) {
+    const ThreadsScope two(2);
+    for (int attempt = 0; attempt < 5; ++attempt) {
+        EXPECT_THROW(parallel_for(2,
+                                  [&](std::size_t k) {
+                                      if (k == 0) return;
+                                      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+                                      parallel_for(32, [](std::size_t i) {
+                                          std::this_thread::sleep_for(std::chrono::microseconds(100));
+                                          if (i == 29) throw std::runtime_error("item 29");
+                                      });
+                                  }),
+                     std::runtime_error);
+        std::atomic<int> refused{0};
+        parallel_for(2, [&](std::size_t k) {
+            if (k == 0) return;
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
+            const detail::NoRandomScope regular("TiledMap");
+            parallel_for(32, [&](std::size_t) {
+                std::this_thread::sleep_for(std::chrono::microseconds(100));
+                try {
+                    GetSeed();
+                } catch (const Error&) {
+                    ++refused;
+                }
+            });
+        });
+        EXPECT_EQ(refused.load(), 32);
+    }
 }
 
 // SetSeed inside a SavedSeed (a style script run by the pipeline) does not outlive it: the

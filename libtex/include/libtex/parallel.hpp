@@ -1,8 +1,12 @@
 // Threads used to evaluate independent cells and regions.
 //
 // Work items are independent and their results are stored by index, so the output does
-// not depend on the number of threads. Nested calls (a mapper that evaluates a sub-scale
-// arrangement) run serially inside the worker that called them.
+// not depend on the number of threads, nor on which thread runs an item. A nested call (a
+// mapper that evaluates a sub-scale arrangement, the cells of one face among many) runs in
+// the worker that made it; the threads of the outermost call that have run out of items
+// help with it (one large face drawn after the small ones is shared, not left to one
+// thread). A caller waits for its helpers: it must not hold a lock its items take (Python's
+// GIL: release it before evaluating).
 #pragma once
 
 #include <cstddef>

@@ -64,6 +64,7 @@ struct StreamState {
     std::uint64_t key, counter, stream_key, stream_count;
     bool has_seed;
     std::uint64_t seed;
+    const char* no_random;  // the operator of an open NoRandomScope, or nullptr
 };
 StreamState capture_stream_state();
 void restore_stream_state(const StreamState& s);

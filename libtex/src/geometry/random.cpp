@@ -102,8 +102,8 @@ std::uint32_t KeyedRng::poisson(double mean) {
 namespace detail {
 
 StreamState capture_stream_state() {
-    return {t_stream.active, t_stream.key,      t_stream.counter, t_stream.stream_key,
-            t_stream.stream_count, t_stream.has_seed, t_stream.seed};
+    return {t_stream.active,   t_stream.key,  t_stream.counter, t_stream.stream_key, t_stream.stream_count,
+            t_stream.has_seed, t_stream.seed, t_no_random};
 }
 
 void restore_stream_state(const StreamState& s) {
@@ -114,6 +114,7 @@ void restore_stream_state(const StreamState& s) {
     t_stream.stream_count = s.stream_count;
     t_stream.has_seed = s.has_seed;
     t_stream.seed = s.seed;
+    t_no_random = s.no_random;
 }
 
 ItemScope::ItemScope(const StreamState& parent, std::size_t i) : saved_(capture_stream_state()) {
@@ -125,6 +126,7 @@ ItemScope::ItemScope(const StreamState& parent, std::size_t i) : saved_(capture_
     t_stream.counter = 0;
     t_stream.has_seed = parent.has_seed;
     t_stream.seed = parent.seed;
+    t_no_random = parent.no_random;  // whichever thread runs the item
 }
 
 ItemScope::~ItemScope() { restore_stream_state(saved_); }
