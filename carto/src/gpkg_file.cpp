@@ -46,8 +46,9 @@ constexpr std::size_t kRtreeChunk = 32768;
 
 // The blob as GDAL's GeoPackage driver writes a LineString or a Polygon: magic "GP", version
 // 0, flags 0x03 (little-endian, an XY envelope; not empty, standard type), the srs_id, the
-// envelope as minx, maxx, miny, maxy, then the WKB (byte order 1, type, counts, points).
-void GpkgRows::begin_geometry(int layer, std::uint32_t wkb_type, const BoxD& box) {
+// envelope as minx, maxx, miny, maxy (begin_geometry), then the WKB (byte order 1, type,
+// counts, points).
+void GpkgRows::begin_geometry(int layer, const BoxD& box) {
     rows_.push_back({layer, std::uint32_t(cells_.size()), 0, data_.size(), 0, box});
     data_ += "GP";
     data_ += char(0);
@@ -57,23 +58,37 @@ void GpkgRows::begin_geometry(int layer, std::uint32_t wkb_type, const BoxD& box
     put(data_, box.maxx);
     put(data_, box.miny);
     put(data_, box.maxy);
-    data_ += char(1);
-    put(data_, wkb_type);
+}
+
+void append_line_wkb(std::string& out, const tex::Point* pts, std::size_t n, bool close, bool polygon) {
+    out += char(1);
+    put(out, polygon ? kWkbPolygon : kWkbLineString);
+    if (polygon) put(out, std::uint32_t(1));
+    put_points(out, pts, n, close);
+}
+
+std::string_view gpkg_blob_wkb(std::string_view blob) {
+    if (blob.size() < 8 || blob[0] != 'G' || blob[1] != 'P') return blob;
+    // Flags bits 1-3: the envelope (none, XY, XYZ, XYM, XYZM).
+    static constexpr std::size_t kEnvelope[8] = {0, 32, 48, 48, 64, 0, 0, 0};
+    const std::size_t at = 8 + kEnvelope[(std::uint8_t(blob[3]) >> 1) & 7];
+    return at <= blob.size() ? blob.substr(at) : blob;
 }
 
 void GpkgRows::line(int layer, const tex::Point* pts, std::size_t n, bool close, bool polygon) {
     BoxD box{INFINITY, -INFINITY, INFINITY, -INFINITY};
     extend(box, pts, n);
-    begin_geometry(layer, polygon ? kWkbPolygon : kWkbLineString, box);
-    if (polygon) put(data_, std::uint32_t(1));
-    put_points(data_, pts, n, close);
+    begin_geometry(layer, box);
+    append_line_wkb(data_, pts, n, close, polygon);
     rows_.back().blob_size = data_.size() - rows_.back().blob;
 }
 
 void GpkgRows::polygon(int layer, const std::vector<std::vector<tex::Point>>& rings) {
     BoxD box{INFINITY, -INFINITY, INFINITY, -INFINITY};
     for (const auto& r : rings) extend(box, r.data(), r.size());
-    begin_geometry(layer, kWkbPolygon, box);
+    begin_geometry(layer, box);
+    data_ += char(1);
+    put(data_, kWkbPolygon);
     put(data_, std::uint32_t(rings.size()));
     for (const auto& r : rings) put_points(data_, r.data(), r.size(), !r.empty());
     rows_.back().blob_size = data_.size() - rows_.back().blob;

@@ -74,12 +74,19 @@ private:
         double d;
         std::size_t at, size;  // text in data_
     };
-    void begin_geometry(int layer, std::uint32_t wkb_type, const BoxD& box);
+    void begin_geometry(int layer, const BoxD& box);
     std::int32_t srs_id_;
     std::string data_;
     std::vector<Row> rows_;
     std::vector<Cell> cells_;
 };
+
+// Appends the little-endian WKB of a LineString of the n points (a Polygon of one ring when
+// `polygon`), the first repeated at the end when `close`: the WKB part of GpkgRows::line's blob.
+void append_line_wkb(std::string& out, const tex::Point* pts, std::size_t n, bool close, bool polygon);
+// The WKB part of a GeoPackage geometry blob (after its header and envelope); the blob as it
+// is when it is not one.
+std::string_view gpkg_blob_wkb(std::string_view blob);
 
 class GpkgWriter {
 public:

@@ -2,6 +2,7 @@
 
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
+#include <sqlite3.h>
 
 #include <algorithm>
 #include <array>
@@ -15,11 +16,11 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <optional>
 #include <thread>
-#include <unordered_map>
 
 #include "carto/error.hpp"
 #include "libtex/parallel.hpp"
@@ -674,53 +675,156 @@ std::vector<std::string> face_conditions(const std::vector<std::int64_t>& ids) {
 
 // The table of an undo file listing the faces an update replaced.
 constexpr const char* kReplacedTable = "rockhatch_replaced";
+// The table of an undo file listing the features an update wrote (layer, fid): restore_faces
+// removes them.
+constexpr const char* kWrittenTable = "rockhatch_written";
 
 // The fields a hatch feature's key reads, by their indices in a feature definition (-1: absent).
-struct KeyFields {
-    std::array<int, 4> index;
-    explicit KeyFields(const OGRFeatureDefn& defn) {
-        const char* names[] = {"face_id", "family", "style", "width_mm"};
-        for (std::size_t i = 0; i < index.size(); ++i) index[i] = defn.GetFieldIndex(names[i]);
-    }
+// What a hatch feature holds, as a key: its face, family, style and width (each a tag, then a
+// number's bytes or a text and a NUL; NULL one tag of its own) and its geometry's WKB. Two
+// features with the same key are the same bytes in the file (the blob's header follows from
+// the WKB). Made for a hatch drawn again (drawn_key) and for a row of the file (StoredKeys)
+// alike.
+void key_integer(std::string& k, std::int64_t v) {
+    k += 'i';
+    k.append(reinterpret_cast<const char*>(&v), sizeof v);
+}
+
+void key_real(std::string& k, double v) {
+    k += 'r';
+    k.append(reinterpret_cast<const char*>(&v), sizeof v);
+}
+
+void key_text(std::string& k, std::string_view v) {
+    k += 's';
+    k += v;
+    k += '\0';
+}
+
+// The key's bytes reduced to 128 bits (two multiply-xorshift lanes over 8-byte words), so the
+// features of large faces are looked up without a string each: two different features share
+// a digest with a chance of 2^-128, and the digest depends on the bytes only.
+struct KeyDigest {
+    std::uint64_t a, b;
+    bool operator<(const KeyDigest& o) const { return a != o.a ? a < o.a : b < o.b; }
+    bool operator==(const KeyDigest& o) const { return a == o.a && b == o.b; }
 };
 
-// What a hatch feature holds: its face, family, style, width and geometry (ISO WKB); two
-// features with the same key are the same bytes in the file. Numbers go in as their bytes
-// (formatting them as text was most of the key's cost).
-std::string hatch_key(const OGRFeature& f, const KeyFields& fields) {
-    std::string k;
-    for (const int i : fields.index) {
-        if (i < 0 || !f.IsFieldSetAndNotNull(i)) {
-            k += '\x01';
-            continue;
-        }
-        switch (f.GetFieldDefnRef(i)->GetType()) {
-            case OFTInteger:
-            case OFTInteger64: {
-                const std::int64_t v = f.GetFieldAsInteger64(i);
-                k += 'i';
-                k.append(reinterpret_cast<const char*>(&v), sizeof v);
-                break;
-            }
-            case OFTReal: {
-                const double v = f.GetFieldAsDouble(i);
-                k += 'r';
-                k.append(reinterpret_cast<const char*>(&v), sizeof v);
-                break;
-            }
-            default:
-                k += 's';
-                k += f.GetFieldAsString(i);
-                k += '\0';
-        }
+KeyDigest key_digest(std::string_view k) {
+    auto mix = [](std::uint64_t x) {
+        x ^= x >> 30;
+        x *= 0xBF58476D1CE4E5B9ULL;
+        x ^= x >> 27;
+        x *= 0x94D049BB133111EBULL;
+        return x ^ (x >> 31);
+    };
+    std::uint64_t a = 0x9E3779B97F4A7C15ULL ^ k.size(), b = 0xD6E8FEB86659FD93ULL + k.size();
+    std::size_t i = 0;
+    for (; i + 8 <= k.size(); i += 8) {
+        std::uint64_t w;
+        std::memcpy(&w, k.data() + i, 8);
+        a = mix(a ^ w);
+        b = (b ^ w) * 0xFF51AFD7ED558CCDULL;
+        b ^= b >> 33;
     }
-    if (const OGRGeometry* g = f.GetGeometryRef()) {
-        const std::size_t at = k.size();
-        k.resize(at + std::size_t(g->WkbSize()));
-        g->exportToWkb(wkbNDR, reinterpret_cast<unsigned char*>(&k[at]), wkbVariantIso);
-    }
-    return k;
+    std::uint64_t w = 0;
+    std::memcpy(&w, k.data() + i, k.size() - i);
+    return {mix(a ^ w), mix(b ^ (w * 0xC4CEB9FE1A85EC53ULL) ^ a)};
 }
+
+void drawn_key(std::string& k, std::int64_t face_id, Family f, const std::string& style, const Hatch& h) {
+    k.clear();
+    key_integer(k, face_id);
+    key_text(k, family_name(f));
+    key_text(k, style);
+    key_real(k, family_width_mm(f));
+    append_line_wkb(k, h.points.data(), h.points.size(), h.closed && !h.points.empty(), family_filled(f));
+}
+
+// The features of some faces in the hatch layers, by their keys' digests, read with SQLite from
+// the file as it is before the edit writes (a connection of its own, closed before GDAL
+// writes): GDAL's features would parse each geometry only for the key to write it out again.
+class StoredKeys {
+public:
+    // A layer's features by digest (sorted); take() hands each out once.
+    struct Fids {
+        std::vector<std::pair<KeyDigest, GIntBig>> rows;
+        std::vector<char> taken;
+        bool empty() const { return rows.empty(); }
+        // Takes a feature of this key not yet taken (the last in file order); false if none.
+        bool take(const KeyDigest& k) {
+            auto it = std::upper_bound(rows.begin(), rows.end(), std::make_pair(k, std::numeric_limits<GIntBig>::max()));
+            while (it != rows.begin() && (it - 1)->first == k) {
+                --it;
+                char& t = taken[std::size_t(it - rows.begin())];
+                if (!t) {
+                    t = 1;
+                    return true;
+                }
+            }
+            return false;
+        }
+        // The fids not taken, ascending.
+        std::vector<GIntBig> rest() const {
+            std::vector<GIntBig> out;
+            for (std::size_t i = 0; i < rows.size(); ++i)
+                if (!taken[i]) out.push_back(rows[i].second);
+            std::sort(out.begin(), out.end());
+            return out;
+        }
+    };
+    StoredKeys(const std::string& path, const std::string& what) : what_(what) {
+        if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) fail("cannot read");
+        sqlite3_busy_timeout(db_, 5000);
+    }
+    ~StoredKeys() { sqlite3_close(db_); }
+    StoredKeys(const StoredKeys&) = delete;
+    StoredKeys& operator=(const StoredKeys&) = delete;
+    // The features of these faces (the conditions of face_conditions) in a layer.
+    Fids read(OGRLayer& layer, const std::vector<std::string>& where) {
+        Fids out;
+        const std::string sql_start = "SELECT " + sql_name(layer.GetFIDColumn()) + ", face_id, family, style, width_mm, " +
+                                      sql_name(layer.GetGeometryColumn()) + " FROM " + sql_name(layer.GetName()) +
+                                      " WHERE ";
+        std::string k;
+        for (const std::string& w : where) {
+            sqlite3_stmt* st = nullptr;
+            if (sqlite3_prepare_v2(db_, (sql_start + w).c_str(), -1, &st, nullptr) != SQLITE_OK)
+                fail(std::string("cannot read the features of ") + layer.GetName());
+            int rc;
+            while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
+                k.clear();
+                for (int col = 1; col <= 4; ++col) value(k, st, col);
+                const auto* blob = static_cast<const char*>(sqlite3_column_blob(st, 5));
+                k += gpkg_blob_wkb(std::string_view(blob ? blob : "", std::size_t(sqlite3_column_bytes(st, 5))));
+                out.rows.emplace_back(key_digest(k), sqlite3_column_int64(st, 0));
+            }
+            sqlite3_finalize(st);
+            if (rc != SQLITE_DONE) fail(std::string("cannot read the features of ") + layer.GetName());
+        }
+        std::sort(out.rows.begin(), out.rows.end());
+        out.taken.assign(out.rows.size(), 0);
+        return out;
+    }
+
+private:
+    static void value(std::string& k, sqlite3_stmt* st, int col) {
+        switch (sqlite3_column_type(st, col)) {
+            case SQLITE_INTEGER: key_integer(k, sqlite3_column_int64(st, col)); break;
+            case SQLITE_FLOAT: key_real(k, sqlite3_column_double(st, col)); break;
+            case SQLITE_NULL: k += '\x01'; break;
+            default:
+                key_text(k, std::string_view(reinterpret_cast<const char*>(sqlite3_column_text(st, col)),
+                                             std::size_t(sqlite3_column_bytes(st, col))));
+        }
+    }
+    [[noreturn]] void fail(const std::string& m) const {
+        throw Error(Code::OutputExists, what_ + ": " + m + " (" + (db_ ? sqlite3_errmsg(db_) : "no memory") +
+                                            "); the file is as it was");
+    }
+    std::string what_;
+    sqlite3* db_ = nullptr;
+};
 
 // A hatch GeoPackage open for an edit in one transaction: rolled back unless committed, so
 // an error (or an exception, or the process's end) leaves the file as it was.
@@ -764,35 +868,29 @@ public:
         }
         return n;
     }
-    // The features of these faces (sorted ids) by what they hold (hatch_key), each with its
-    // fids; a copy of each goes to `keep` when given.
-    std::unordered_map<std::string, std::vector<GIntBig>> index(OGRLayer* layer, const std::vector<std::int64_t>& ids,
-                                                                OGRLayer* keep) {
-        std::unordered_map<std::string, std::vector<GIntBig>> out;
-        const std::string table = std::string("\"") + layer->GetName() + "\"";
-        for (const std::string& where : face_conditions(ids)) {
-            OGRLayer* res = ds_->ExecuteSQL(("SELECT * FROM " + table + " WHERE " + where).c_str(), nullptr, nullptr);
+    // Removes these features; a copy of each goes to `keep` first when given (an undo file's
+    // layer). Returns how many there were.
+    std::size_t remove_fids(OGRLayer* layer, const std::vector<GIntBig>& fids, OGRLayer* keep) {
+        const std::string table = sql_name(layer->GetName());
+        const std::string fid = sql_name(layer->GetFIDColumn());
+        std::size_t n = 0;
+        for (std::size_t k = 0; k < fids.size(); k += 1000) {
+            std::string list;
+            for (std::size_t i = k; i < std::min(fids.size(), k + 1000); ++i) list += (i > k ? "," : "") + std::to_string(fids[i]);
+            const std::string where = " WHERE " + fid + " IN (" + list + ")";
+            OGRLayer* res = ds_->ExecuteSQL(("SELECT * FROM " + table + where).c_str(), nullptr, nullptr);
             if (!res) throw fail(std::string("cannot read the features of ") + layer->GetName());
-            const KeyFields fields(*res->GetLayerDefn());
             for (auto& f : *res) {
                 if (keep) copy(*f, keep);
-                out[hatch_key(*f, fields)].push_back(f->GetFID());
+                ++n;
             }
             ds_->ReleaseResultSet(res);
-        }
-        return out;
-    }
-    // Removes these features.
-    void remove_fids(OGRLayer* layer, const std::vector<GIntBig>& fids) {
-        const std::string table = std::string("\"") + layer->GetName() + "\"";
-        for (std::size_t k = 0; k < fids.size(); k += 1000) {
-            std::string sql = "DELETE FROM " + table + " WHERE fid IN (";
-            for (std::size_t i = k; i < std::min(fids.size(), k + 1000); ++i) sql += (i > k ? "," : "") + std::to_string(fids[i]);
             CPLErrorReset();
-            ds_->ExecuteSQL((sql + ")").c_str(), nullptr, nullptr);
+            ds_->ExecuteSQL(("DELETE FROM " + table + where).c_str(), nullptr, nullptr);
             if (CPLGetLastErrorType() >= CE_Failure)
                 throw fail(std::string("cannot delete the features of ") + layer->GetName());
         }
+        return n;
     }
     // Writes a copy of a feature (geometry and the fields of the same names) as a new one.
     void copy(const OGRFeature& f, OGRLayer* to) {
@@ -840,6 +938,11 @@ public:
             for (int i = 0; i < l->GetLayerDefn()->GetFieldCount(); ++i) c->CreateField(l->GetLayerDefn()->GetFieldDefn(i));
             layers_[name] = c;
         }
+        written_ = ds_->CreateLayer(kWrittenTable, nullptr, wkbNone, nullptr);
+        OGRFieldDefn layer_field("layer", OFTString), fid_field("fid", OFTInteger64);
+        if (!written_ || written_->CreateField(&layer_field) != OGRERR_NONE ||
+            written_->CreateField(&fid_field) != OGRERR_NONE)
+            throw Error(Code::OutputExists, "undo '" + path + "': cannot create layer " + kWrittenTable);
         OGRLayer* r = ds_->CreateLayer(kReplacedTable, nullptr, wkbNone, nullptr);
         OGRFieldDefn id("face_id", OFTInteger64);
         r->CreateField(&id);
@@ -867,6 +970,14 @@ public:
         const auto it = layers_.find(name);
         return it == layers_.end() ? nullptr : it->second;
     }
+    // A feature the update wrote into `layer`.
+    void written(const std::string& layer, GIntBig fid) {
+        OGRFeature f(written_->GetLayerDefn());
+        f.SetField(0, layer.c_str());
+        f.SetField(1, fid);
+        if (written_->CreateFeature(&f) != OGRERR_NONE)
+            throw Error(Code::OutputExists, "undo '" + path_ + "': write failed (" + CPLGetLastErrorMsg() + ")");
+    }
     void commit() {
         if (ds_->CommitTransaction() != OGRERR_NONE)
             throw Error(Code::OutputExists, "undo '" + path_ + "': write failed (" + CPLGetLastErrorMsg() + ")");
@@ -878,6 +989,7 @@ private:
     std::string path_;
     DatasetPtr ds_;
     std::map<std::string, OGRLayer*> layers_;
+    OGRLayer* written_ = nullptr;
     bool done_ = false;
 };
 
@@ -896,51 +1008,66 @@ FaceReplacement replace_faces(const std::string& path, const std::vector<std::in
     std::optional<UndoFile> keep;
     if (!undo.empty()) keep.emplace(undo, ds, ids);
     FaceReplacement r;
+    // The hatch layers, and (unless all go) the keys of the faces' features in them, read before
+    // anything is written.
+    std::array<OGRLayer*, kFamilies> layers{};
+    std::array<StoredKeys::Fids, kFamilies> old;
+    {
+        std::optional<StoredKeys> stored;
+        if (!all) stored.emplace(path, what);
+        const std::vector<std::string> where = face_conditions(ids);
+        for (int fam = 0; fam < kFamilies; ++fam) {
+            const Family f = Family(fam);
+            const std::string table = std::string("hatch_") + family_name(f);
+            OGRLayer* layer = ds.GetLayerByName(table.c_str());
+            if (!layer) {
+                if (has_family(d, f)) throw Error(Code::BadLayer, what + ": no layer " + table + " for the redrawn faces");
+                continue;
+            }
+            const OGRFeatureDefn* defn = layer->GetLayerDefn();
+            for (const char* field : {"face_id", "family", "style", "width_mm"})
+                if (defn->GetFieldIndex(field) < 0)
+                    throw Error(Code::BadLayer, what + ": layer " + table + " lacks face_id, family, style or width_mm");
+            layers[std::size_t(fam)] = layer;
+            if (stored) old[std::size_t(fam)] = stored->read(*layer, where);
+        }
+    }
     std::vector<Point> pts;
+    std::string key;
     for (int fam = 0; fam < kFamilies; ++fam) {
         const Family f = Family(fam);
-        const std::string table = std::string("hatch_") + family_name(f);
-        OGRLayer* layer = ds.GetLayerByName(table.c_str());
-        if (!layer) {
-            if (has_family(d, f)) throw Error(Code::BadLayer, what + ": no layer " + table + " for the redrawn faces");
-            continue;
-        }
+        OGRLayer* layer = layers[std::size_t(fam)];
+        if (!layer) continue;
+        const std::string table = layer->GetName();
+        OGRLayer* undo_layer = keep ? keep->layer(table) : nullptr;
         // Every feature of the faces goes (all), or those the new drawing does not hold: a feature
         // the redrawn face draws again, byte for byte, stays (its R-tree entry with it).
-        std::unordered_map<std::string, std::vector<GIntBig>> old;
-        if (all) r.deleted += edit.remove(layer, ids, true, keep ? keep->layer(table) : nullptr);
-        else old = edit.index(layer, ids, keep ? keep->layer(table) : nullptr);
+        StoredKeys::Fids& was = old[std::size_t(fam)];
+        if (all) r.deleted += edit.remove(layer, ids, true, undo_layer);
         OGRFeatureDefn* defn = layer->GetLayerDefn();
         const HatchFields k{defn->GetFieldIndex("face_id"), defn->GetFieldIndex("family"), defn->GetFieldIndex("style"),
                             defn->GetFieldIndex("width_mm")};
-        if (k.face_id < 0 || k.family < 0 || k.style < 0 || k.width_mm < 0)
-            throw Error(Code::BadLayer, what + ": layer " + table + " lacks face_id, family, style or width_mm");
         OGRFeature feat(defn);
-        const KeyFields key_fields(*defn);
         for (const auto& face : d.faces)
             for (const auto& h : face.hatches) {
                 if (h.family != f) continue;
-                pts.assign(h.points.begin(), h.points.end());
-                if (h.closed && !pts.empty()) pts.push_back(pts.front());
-                if (pts.size() < 2) continue;
-                set_hatch(feat, k, f, face.face_id, d.style.c_str(), pts);
-                if (!old.empty()) {
-                    const auto same = old.find(hatch_key(feat, key_fields));
-                    if (same != old.end() && !same->second.empty()) {
-                        same->second.pop_back();
+                if (h.points.size() + (h.closed && !h.points.empty()) < 2) continue;
+                if (!was.empty()) {
+                    drawn_key(key, face.face_id, f, d.style, h);
+                    if (was.take(key_digest(key))) {
                         ++r.kept;
                         continue;
                     }
                 }
+                pts.assign(h.points.begin(), h.points.end());
+                if (h.closed) pts.push_back(pts.front());
+                set_hatch(feat, k, f, face.face_id, d.style.c_str(), pts);
                 feat.SetFID(OGRNullFID);
                 if (layer->CreateFeature(&feat) != OGRERR_NONE) throw edit.fail("cannot write a feature of " + table);
+                if (keep) keep->written(table, feat.GetFID());
                 ++r.written;
             }
-        std::vector<GIntBig> stale;
-        for (const auto& [key, fids] : old) stale.insert(stale.end(), fids.begin(), fids.end());
-        std::sort(stale.begin(), stale.end());
-        edit.remove_fids(layer, stale);
-        r.deleted += stale.size();
+        r.deleted += edit.remove_fids(layer, was.rest(), undo_layer);
     }
     if (d.fingerprints) {
         OGRLayer* t = ds.GetLayerByName(kFacesTable);
@@ -970,27 +1097,33 @@ FaceReplacement restore_faces(const std::string& path, const std::string& undo) 
     DatasetPtr from(GDALDataset::FromHandle(
         GDALOpenEx(undo.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
     OGRLayer* replaced = from ? from->GetLayerByName(kReplacedTable) : nullptr;
-    if (!replaced) throw Error(Code::InputMissing, "undo '" + undo + "': not an undo file of rockhatch update");
+    OGRLayer* written = from ? from->GetLayerByName(kWrittenTable) : nullptr;
+    if (!replaced || !written)
+        throw Error(Code::InputMissing, "undo '" + undo + "': not an undo file of this version of rockhatch update");
     std::vector<std::int64_t> ids;
     for (auto& f : *replaced) ids.push_back(f->GetFieldAsInteger64(0));
     std::sort(ids.begin(), ids.end());
+    // The features the update wrote, by layer: they go; those it removed come back.
+    std::map<std::string, std::vector<GIntBig>> wrote;
+    for (auto& f : *written) wrote[f->GetFieldAsString(0)].push_back(f->GetFieldAsInteger64(1));
     FaceEdit edit(path, "-o '" + path + "'");
     FaceReplacement r;
     for (OGRLayer* l : from->GetLayers()) {
         const std::string name = l->GetName();
-        if (name == kReplacedTable) continue;
+        if (name == kReplacedTable || name == kWrittenTable) continue;
         OGRLayer* to = edit.ds().GetLayerByName(name.c_str());
         if (!to) throw Error(Code::BadLayer, "-o '" + path + "': no layer " + name + " to restore");
-        const std::size_t n = edit.remove(to, ids, false, nullptr);
+        if (name == kFacesTable) {
+            edit.remove(to, ids, false, nullptr);
+        } else {
+            std::vector<GIntBig>& fids = wrote[name];
+            std::sort(fids.begin(), fids.end());
+            r.deleted += edit.remove_fids(to, fids, nullptr);
+        }
         l->ResetReading();
-        std::size_t m = 0;
         for (auto& f : *l) {
             edit.copy(*f, to);
-            ++m;
-        }
-        if (name != kFacesTable) {
-            r.deleted += n;
-            r.written += m;
+            if (name != kFacesTable) ++r.written;
         }
     }
     for (char** m = from->GetMetadata(); m && *m; ++m) {

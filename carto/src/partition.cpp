@@ -15,6 +15,7 @@
 #include <unordered_map>
 
 #include "carto/error.hpp"
+#include "libtex/parallel.hpp"
 #include "gdal_scope.hpp"
 
 namespace carto {
@@ -163,9 +164,59 @@ void add_lines(const OGRGeometry* g, LineKind kind, std::vector<LabelledLine>& o
 
 // Segment index on a uniform grid of cell size `cell`: a segment is listed in every cell it
 // passes through, so a query finds every segment within `cell` of the point.
+// The cells of a SegmentGrid that hold entries: an open-addressing table from a cell's key to
+// its first and last entry (a std::unordered_map's node per cell was most of the grid's cost).
+class CellTable {
+public:
+    using Range = std::pair<int, int>;
+    void reserve(std::size_t n) {
+        std::size_t cap = 16;
+        while (cap < 2 * n) cap *= 2;
+        if (cap > slots_.size()) rehash(cap);
+    }
+    const Range* find(std::uint64_t k) const {
+        if (slots_.empty()) return nullptr;
+        for (std::size_t i = slot(k);; i = (i + 1) & mask_) {
+            const Slot& s = slots_[i];
+            if (s.range.first < 0) return nullptr;
+            if (s.key == k) return &s.range;
+        }
+    }
+    // The range of cell k, made (first = last = e) if the cell was empty; whether it was made.
+    std::pair<Range*, bool> try_emplace(std::uint64_t k, int e) {
+        if (2 * (count_ + 1) > slots_.size()) rehash(std::max<std::size_t>(16, 2 * slots_.size()));
+        for (std::size_t i = slot(k);; i = (i + 1) & mask_) {
+            Slot& s = slots_[i];
+            if (s.range.first < 0) {
+                s = {k, {e, e}};
+                ++count_;
+                return {&s.range, true};
+            }
+            if (s.key == k) return {&s.range, false};
+        }
+    }
+
+private:
+    struct Slot {
+        std::uint64_t key;
+        Range range;  // first < 0: empty slot
+    };
+    std::size_t slot(std::uint64_t k) const { return std::size_t((k * 0xD6E8FEB86659FD93ULL) >> 32) & mask_; }
+    void rehash(std::size_t cap) {
+        std::vector<Slot> old(cap, Slot{0, {-1, -1}});
+        old.swap(slots_);
+        mask_ = cap - 1;
+        count_ = 0;
+        for (const Slot& s : old)
+            if (s.range.first >= 0) *try_emplace(s.key, 0).first = s.range;
+    }
+    std::vector<Slot> slots_;
+    std::size_t mask_ = 0, count_ = 0;
+};
+
 struct SegmentGrid {
     double cell;
-    std::unordered_map<std::uint64_t, std::pair<int, int>> cells;  // first and last entry
+    CellTable cells;  // first and last entry of each cell
     std::vector<std::pair<int, int>> entries;                       // id, next entry of the cell
     std::vector<int> long_ones;  // crossing too many cells: checked by every query
     static std::uint64_t key(long long i, long long j) {
@@ -208,10 +259,10 @@ struct SegmentGrid {
     void add(std::uint64_t k, int id) {
         entries.push_back({id, -1});
         const int e = int(entries.size()) - 1;
-        auto [it, fresh] = cells.try_emplace(k, e, e);
+        auto [range, fresh] = cells.try_emplace(k, e);
         if (!fresh) {
-            entries[std::size_t(it->second.second)].second = e;
-            it->second.second = e;
+            entries[std::size_t(range->second)].second = e;
+            range->second = e;
         }
     }
     template <class F>
@@ -219,9 +270,8 @@ struct SegmentGrid {
         const long long i = index(p.x), j = index(p.y);
         for (long long di = -1; di <= 1; ++di)
             for (long long dj = -1; dj <= 1; ++dj) {
-                auto it = cells.find(key(i + di, j + dj));
-                if (it != cells.end())
-                    for (int e = it->second.first; e >= 0; e = entries[std::size_t(e)].second) f(entries[std::size_t(e)].first);
+                if (const CellTable::Range* range = cells.find(key(i + di, j + dj)))
+                    for (int e = range->first; e >= 0; e = entries[std::size_t(e)].second) f(entries[std::size_t(e)].first);
             }
         for (int id : long_ones) f(id);
     }
@@ -381,35 +431,43 @@ bool snap_to_segments(std::vector<std::vector<Point>>& rings, const RingNodes& g
         double t;
         Point q;
     };
-    std::vector<Insert> inserts;
+    // Each node decides on its own: blocks of nodes in parallel, their inserts in node order.
+    constexpr int kBlock = 4096;
+    const int nodes = int(g.pt.size());
+    std::vector<std::vector<Insert>> block_inserts(std::size_t((nodes + kBlock - 1) / kBlock));
     std::vector<Point> moved_to(g.pt);
-    for (int n = 0; n < int(g.pt.size()); ++n) {
-        const Point p = g.pt[std::size_t(n)];
-        const Faces fn = g.faces(n);
-        int best = -1;
-        double best_d = snap, best_t = 0;
-        Point best_q;
-        grid.query(p, [&](int e) {
-            const Edge& ed = edges[std::size_t(e)];
-            const Point a = g.pt[std::size_t(ed.u)], b = g.pt[std::size_t(ed.v)];
-            const Point d = b - a;
-            const double t = tex::dot(p - a, d) / tex::dot(d, d);
-            if (!(t > 0 && t < 1)) return;
-            const Point q = a + d * t;
-            const double dist = tex::distance(p, q);
-            if (dist > best_d || q == a || q == b) return;
-            if (dist == best_d && best >= 0 && std::tie(ed.u, ed.v) >= std::tie(edges[std::size_t(best)].u, edges[std::size_t(best)].v))
-                return;
-            if (share_a_face(fn, faces_of_edge(std::size_t(e)))) return;
-            best = e;
-            best_d = dist;
-            best_t = t;
-            best_q = q;
-        });
-        if (best < 0) continue;
-        moved_to[std::size_t(n)] = best_q;
-        inserts.push_back({best, best_t, best_q});
-    }
+    tex::parallel_for(block_inserts.size(), [&](std::size_t block) {
+        std::vector<Insert>& inserts = block_inserts[block];
+        for (int n = int(block) * kBlock; n < std::min(nodes, int(block + 1) * kBlock); ++n) {
+            const Point p = g.pt[std::size_t(n)];
+            const Faces fn = g.faces(n);
+            int best = -1;
+            double best_d = snap, best_t = 0;
+            Point best_q;
+            grid.query(p, [&](int e) {
+                const Edge& ed = edges[std::size_t(e)];
+                const Point a = g.pt[std::size_t(ed.u)], b = g.pt[std::size_t(ed.v)];
+                const Point d = b - a;
+                const double t = tex::dot(p - a, d) / tex::dot(d, d);
+                if (!(t > 0 && t < 1)) return;
+                const Point q = a + d * t;
+                const double dist = tex::distance(p, q);
+                if (dist > best_d || q == a || q == b) return;
+                if (dist == best_d && best >= 0 && std::tie(ed.u, ed.v) >= std::tie(edges[std::size_t(best)].u, edges[std::size_t(best)].v))
+                    return;
+                if (share_a_face(fn, faces_of_edge(std::size_t(e)))) return;
+                best = e;
+                best_d = dist;
+                best_t = t;
+                best_q = q;
+            });
+            if (best < 0) continue;
+            moved_to[std::size_t(n)] = best_q;
+            inserts.push_back({best, best_t, best_q});
+        }
+    });
+    std::vector<Insert> inserts;
+    for (const auto& b : block_inserts) inserts.insert(inserts.end(), b.begin(), b.end());
     if (inserts.empty()) return false;
     std::sort(inserts.begin(), inserts.end(), [](const Insert& x, const Insert& y) {
         return std::tie(x.edge, x.t) < std::tie(y.edge, y.t);

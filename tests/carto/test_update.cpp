@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "carto/error.hpp"
+#include "carto/output.hpp"
 #include "carto/pipeline.hpp"
 #include "carto/update.hpp"
 
@@ -187,6 +188,61 @@ TEST(Update, RemovedFacesLoseTheirFeaturesAndAskedFacesAreRedrawn) {
         EXPECT_EQ(e.code(), Code::Usage);
         EXPECT_NE(std::string(e.what()).find("--face 999999"), std::string::npos) << e.what();
     }
+}
+
+// A face redrawn whose features were edited by hand: the features drawn again as they were keep
+// their fids; the one deleted by hand comes back and the one moved by hand is replaced. The undo
+// file holds just those (the moved feature, the fid written) and puts the file back.
+TEST(Update, KeepsWhatIsDrawnAgainAndItsUndoFileHoldsOnlyWhatChanged) {
+    TempDir dir;
+    const std::string part = std::string(RH_SAMPLE_DIR) + "/partition.gpkg", out = dir / "h.gpkg",
+                      undo = dir / "undo.gpkg";
+    run(sample_options(part, out));
+    const auto drawn = features(out);
+    // Face A: two of its fill features, one deleted by hand, one moved by hand.
+    std::vector<GIntBig> fids;
+    std::int64_t face = -1;
+    for (const auto& [key, f] : drawn)
+        if (key.first == "hatch_fill" && (face < 0 || std::get<1>(f) == face) && fids.size() < 2) {
+            face = std::get<1>(f);
+            fids.push_back(key.second);
+        }
+    ASSERT_EQ(fids.size(), 2u);
+    {
+        std::unique_ptr<GDALDataset> ds(GDALDataset::Open(out.c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE));
+        OGRLayer* fill = ds->GetLayerByName("hatch_fill");
+        ASSERT_EQ(fill->DeleteFeature(fids[0]), OGRERR_NONE);
+        std::unique_ptr<OGRFeature> f(fill->GetFeature(fids[1]));
+        OGRLineString* line = f->GetGeometryRef()->toLineString();
+        line->setPoint(0, line->getX(0) + 1.5, line->getY(0));
+        ASSERT_EQ(fill->SetFeature(f.get()), OGRERR_NONE);
+    }
+    const auto edited = features(out);
+    std::size_t of_face = 0;
+    for (const auto& [key, f] : drawn) of_face += std::get<1>(f) == face;
+    const UpdateReport r = update(sample_options(part, out), {false, {face}, undo});
+    EXPECT_EQ(r.redrawn_ids, std::vector<std::int64_t>{face});
+    EXPECT_EQ(r.deleted, 1u);  // the moved one
+    EXPECT_EQ(r.written, 2u);  // the deleted one and the moved one, as drawn
+    EXPECT_EQ(r.kept, of_face - 2);
+    const auto after = features(out);
+    for (const auto& [key, f] : drawn)
+        if (key.second != fids[0] && key.second != fids[1]) EXPECT_EQ(after.at(key), f);  // same fid, same bytes
+    EXPECT_EQ(by_face(after), by_face(drawn));
+    // The undo file: the moved feature and the two fids written, nothing of what stayed.
+    {
+        std::unique_ptr<GDALDataset> u(GDALDataset::Open(undo.c_str(), GDAL_OF_VECTOR));
+        ASSERT_TRUE(u);
+        std::size_t kept_there = 0;
+        for (OGRLayer* l : u->GetLayers())
+            if (std::string(l->GetName()).rfind("hatch_", 0) == 0) kept_there += std::size_t(l->GetFeatureCount());
+        EXPECT_EQ(kept_there, 1u);
+        EXPECT_EQ(u->GetLayerByName("rockhatch_written")->GetFeatureCount(), 2);
+    }
+    const FaceReplacement back = restore_faces(out, undo);
+    EXPECT_EQ(back.deleted, 2u);
+    EXPECT_EQ(back.written, 1u);
+    EXPECT_EQ(by_face(features(out)), by_face(edited));
 }
 
 TEST(Update, RefusesAnotherStyleUnlessResetAndLeavesTheFileOnCancel) {

@@ -102,13 +102,15 @@ struct FaceReplacement {
 // those of d.fingerprints->faces, its run metadata by d.fingerprints->run, and the frame by
 // d.bounds: all in one SQLite transaction (an interruption leaves the file as it was).
 // Features of other faces are not touched. The R-trees follow through their triggers. With
-// `undo`, the features and fingerprints removed, the faces replaced and the file's metadata
-// are first written to that GeoPackage (replaced if it exists), for restore_faces.
+// `undo`, the features and fingerprints it removes, the fids of the features it writes, the
+// faces replaced and the file's metadata go to that GeoPackage (replaced if it exists), for
+// restore_faces: the features drawn again as they were are in neither.
 FaceReplacement replace_faces(const std::string& path, const std::vector<std::int64_t>& faces, bool all,
                               const Drawing& d, const std::string& undo = "");
-// Undoes the replace_faces that wrote `undo`: removes the features and fingerprints of the
-// faces it replaced and puts back those it removed (the same geometry and attributes, hand
-// edits included) and the metadata, in one transaction.
+// Undoes the replace_faces that wrote `undo`: removes the features it wrote and the
+// fingerprints of the faces it replaced, and puts back the features and fingerprints it
+// removed (the same geometry and attributes, hand edits included; new fids) and the
+// metadata, in one transaction.
 FaceReplacement restore_faces(const std::string& path, const std::string& undo);
 // A PNG preview `pixels` wide, over a light hillshade when one is given.
 void write_png(const Drawing& d, const std::string& path, int pixels, const Raster* hillshade);
