@@ -438,13 +438,13 @@ Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const F
         // The tone under the ceiling, less what the crests and valleys already put in this
         // cell (they run along the face's border, where cells reach out of the face: its part
         // counts): the cell's ink, lines included, follows the shade.
-        const double area = region.area_within(box);
+        // The face's area in the cell is asked only where lines put ink (a clip of the face's
+        // ring by the cell: most cells have none, and then nothing is used whatever the area).
         double inside = 0;
-        if (area > 0) {
-            const BBox bb = box.bbox();
-            for (const SpentInk& s : *spent_ink)
-                if (bb.contains(s.mid) && box.contains(s.mid)) inside += s.ink;
-        }
+        const BBox bb = box.bbox();
+        for (const SpentInk& s : *spent_ink)
+            if (bb.contains(s.mid) && box.contains(s.mid)) inside += s.ink;
+        const double area = inside == 0 ? 0.0 : region.area_within(box);
         const double used = area > 0 ? inside / area : 0.0;
         const double target = std::min(tone_coverage(p, shade), p.at("ink_max")) - used;
         if (!(target > 0)) return Nothing();
