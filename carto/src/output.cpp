@@ -679,7 +679,6 @@ constexpr const char* kReplacedTable = "rockhatch_replaced";
 // removes them.
 constexpr const char* kWrittenTable = "rockhatch_written";
 
-// The fields a hatch feature's key reads, by their indices in a feature definition (-1: absent).
 // What a hatch feature holds, as a key: its face, family, style and width (each a tag, then a
 // number's bytes or a text and a NUL; NULL one tag of its own) and its geometry's WKB. Two
 // features with the same key are the same bytes in the file (the blob's header follows from
@@ -878,11 +877,17 @@ public:
             std::string list;
             for (std::size_t i = k; i < std::min(fids.size(), k + 1000); ++i) list += (i > k ? "," : "") + std::to_string(fids[i]);
             const std::string where = " WHERE " + fid + " IN (" + list + ")";
-            OGRLayer* res = ds_->ExecuteSQL(("SELECT * FROM " + table + where).c_str(), nullptr, nullptr);
+            // The features themselves only for a copy; else their count.
+            OGRLayer* res =
+                ds_->ExecuteSQL(((keep ? "SELECT * FROM " : "SELECT count(*) FROM ") + table + where).c_str(), nullptr, nullptr);
             if (!res) throw fail(std::string("cannot read the features of ") + layer->GetName());
             for (auto& f : *res) {
-                if (keep) copy(*f, keep);
-                ++n;
+                if (keep) {
+                    copy(*f, keep);
+                    ++n;
+                } else {
+                    n += std::size_t(f->GetFieldAsInteger64(0));
+                }
             }
             ds_->ReleaseResultSet(res);
             CPLErrorReset();
