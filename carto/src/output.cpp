@@ -658,20 +658,23 @@ std::optional<Fingerprints> read_fingerprints(const std::string& path, const std
 
 namespace {
 
-// The condition of the features of these faces (sorted ids), in batches of SQL text.
-std::vector<std::string> face_conditions(const std::vector<std::int64_t>& ids) {
+// The condition "column IN (values)" in batches of SQL text (SQLite's statements stay small).
+template <class Int>
+std::vector<std::string> in_conditions(const std::string& column, const std::vector<Int>& values) {
     std::vector<std::string> out;
-    // In batches: SQLite's statement length stays small.
-    for (std::size_t k = 0; k < ids.size(); k += 1000) {
-        std::string sql = "face_id IN (";
-        for (std::size_t i = k; i < std::min(ids.size(), k + 1000); ++i) {
+    for (std::size_t k = 0; k < values.size(); k += 1000) {
+        std::string sql = column + " IN (";
+        for (std::size_t i = k; i < std::min(values.size(), k + 1000); ++i) {
             if (i > k) sql += ',';
-            sql += std::to_string(ids[i]);
+            sql += std::to_string(values[i]);
         }
         out.push_back(sql + ")");
     }
     return out;
 }
+
+// The condition of the features of these faces (sorted ids), in batches.
+std::vector<std::string> face_conditions(const std::vector<std::int64_t>& ids) { return in_conditions("face_id", ids); }
 
 // The table of an undo file listing the faces an update replaced.
 constexpr const char* kReplacedTable = "rockhatch_replaced";
@@ -873,10 +876,8 @@ public:
         const std::string table = sql_name(layer->GetName());
         const std::string fid = sql_name(layer->GetFIDColumn());
         std::size_t n = 0;
-        for (std::size_t k = 0; k < fids.size(); k += 1000) {
-            std::string list;
-            for (std::size_t i = k; i < std::min(fids.size(), k + 1000); ++i) list += (i > k ? "," : "") + std::to_string(fids[i]);
-            const std::string where = " WHERE " + fid + " IN (" + list + ")";
+        for (const std::string& batch : in_conditions(fid, fids)) {
+            const std::string where = " WHERE " + batch;
             // The features themselves only for a copy; else their count.
             OGRLayer* res =
                 ds_->ExecuteSQL(((keep ? "SELECT * FROM " : "SELECT count(*) FROM ") + table + where).c_str(), nullptr, nullptr);
