@@ -2,8 +2,11 @@
 // controlled arrangements and mappers, and the local-control check.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
+#include <random>
 #include <set>
 
 #include "helpers.hpp"
@@ -72,6 +75,48 @@ TEST(Field, GridIsBilinearOverCellCentres) {
     EXPECT_EQ(g.domain()->xmin, 0);
     EXPECT_EQ(g.domain()->ymax, 20);
     EXPECT_STREQ(g.kind(), "grid");
+}
+
+TEST(Field, GridSamplesAreTheWeightedMeanToTheBitEverywhere) {
+    // The sampler's common case (four valid cells inside the grid) is computed apart from
+    // its edges and NoData: both must give the renormalised weighted mean, summed in the
+    // order of the cells (top-left, top-right, bottom-left, bottom-right), to the bit.
+    const int w = 7, h = 5;
+    std::vector<float> v(std::size_t(w) * h);
+    for (std::size_t i = 0; i < v.size(); ++i) v[i] = float(std::sin(0.7 * double(i)) * 1000.0 + 0.1 * double(i));
+    v[std::size_t(2) * w + 3] = NAN;
+    v[std::size_t(4) * w + 6] = NAN;
+    auto expected = [&](const Point& p) {
+        const double fx = p.x - 0.5, fy = p.y - 0.5;
+        const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
+        const double tx = fx - x0, ty = fy - y0;
+        double sum = 0, wsum = 0;
+        for (int dy = 0; dy <= 1; ++dy)
+            for (int dx = 0; dx <= 1; ++dx) {
+                const int cx = std::clamp(x0 + dx, 0, w - 1), cy = std::clamp(y0 + dy, 0, h - 1);
+                const float val = v[std::size_t(cy) * w + cx];
+                if (std::isnan(val)) continue;
+                const double wgt = (dx ? tx : 1 - tx) * (dy ? ty : 1 - ty);
+                sum += wgt * val;
+                wsum += wgt;
+            }
+        return wsum > 1e-12 ? sum / wsum : nearest_grid_pixel(v.data(), w, h, p);
+    };
+    auto same = [](double a, double b) { return std::isnan(b) ? std::isnan(a) : std::memcmp(&a, &b, sizeof a) == 0; };
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> ux(0.0, double(w)), uy(0.0, double(h));
+    int inner = 0;
+    for (int k = 0; k < 20000; ++k) {
+        const Point p{ux(rng), uy(rng)};
+        const double got = sample_grid_pixel(v.data(), w, h, p), want = expected(p);
+        ASSERT_TRUE(same(got, want))
+            << p.x << " " << p.y << ": " << got << " against " << want;
+        inner += p.x > 1 && p.x < w - 1 && p.y > 1 && p.y < h - 1;
+    }
+    EXPECT_GT(inner, 5000);  // the common case was sampled
+    // The grid's own edges and corners.
+    for (const Point& p : {Point{0, 0}, Point{double(w), double(h)}, Point{0.25, 2.5}, Point{3.5, double(h)}})
+        EXPECT_TRUE(same(sample_grid_pixel(v.data(), w, h, p), expected(p))) << p.x << " " << p.y;
 }
 
 TEST(Field, GridWithOnlyNoDataAroundIsNaN) {

@@ -408,11 +408,17 @@ Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const F
         GridPartition(stripes(face.theta, cs, "grid"), stripes(face.theta + pi / 2, cs, "grid"), KEEP_OUTSIDE));
     // The ink of each segment of `spent` at its middle, in ink_area's order: a cell sums those
     // whose middle it holds, as ink_area(spent, mm, &cell) does, without walking every curve.
+    // Their order by x lets a cell look only at those within its box (summed then in
+    // ink_area's order: the same sum to the bit).
     struct SpentInk {
         Point mid;
         double ink;
     };
-    auto spent_ink = std::make_shared<std::vector<SpentInk>>();
+    struct Spent {
+        std::vector<SpentInk> ink;        // in ink_area's order
+        std::vector<std::uint32_t> by_x;  // indices into ink, by the x of the middle
+    };
+    auto spent_ink = std::make_shared<Spent>();
     for (const Curve& cv : spent.curves) {
         const std::size_t n = cv.points.size();
         if (n < 2) continue;
@@ -420,17 +426,46 @@ Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const F
         for (std::size_t i = 0; i + 1 < n + (cv.closed ? 1 : 0); ++i) {
             const Point& a = cv.points[i];
             const Point& b = cv.points[(i + 1) % n];
-            spent_ink->push_back({(a + b) * 0.5, distance(a, b) * width});
+            spent_ink->ink.push_back({(a + b) * 0.5, distance(a, b) * width});
         }
     }
+    spent_ink->by_x.resize(spent_ink->ink.size());
+    for (std::size_t i = 0; i < spent_ink->by_x.size(); ++i) spent_ink->by_x[i] = std::uint32_t(i);
+    std::sort(spent_ink->by_x.begin(), spent_ink->by_x.end(), [&ink = spent_ink->ink](std::uint32_t a, std::uint32_t b) {
+        return ink[a].mid.x < ink[b].mid.x || (ink[a].mid.x == ink[b].mid.x && a < b);
+    });
     // The field the rows are cut on: the elevation, its level lines wandering by up to
     // band_wander x band_height over kBandWanderMm on paper, so that the rows thicken and thin
     // as bands of rock do rather than run as regular contours.
     const Field levels = p.count("band_height") ? f.elevation + Noise(kBandWanderMm * p.at(kGroundPerMm)) *
                                                                     Field(p.at("band_wander") * p.at("band_height"))
                                                   : f.elevation;
-    auto hatch_cell = [f, p, face, region, spent_ink, levels](const Face& cell) {
-        const double mm = p.at(kGroundPerMm), gap = p.at("gap"), len = p.at("length");
+    // What a cell reads of the parameters, looked up once.
+    struct CellParams {
+        double mm, gap, len, ink_max, r0, r1, cross_max, cross_min, cross_angle, jitter, slope_min, min_gap;
+        double band, band_gap, band_slope, band_ragged;  // 0 without rows
+        bool follow;
+    };
+    const bool banded = p.count("band_height") > 0;
+    const CellParams q{p.at(kGroundPerMm),
+                       p.at("gap"),
+                       p.at("length"),
+                       p.at("ink_max"),
+                       p.at("roughness_min"),
+                       std::max(p.at("roughness_max"), p.at("roughness_min") + 1e-9),
+                       p.at("cross_spacing_max"),
+                       p.at("cross_spacing_min"),
+                       p.at("cross_angle"),
+                       p.at("jitter"),
+                       p.at("slope_min"),
+                       p.at("min_gap"),
+                       banded ? p.at("band_height") : 0.0,
+                       banded ? p.at("band_gap") : 0.0,
+                       banded ? p.at("band_slope") : 0.0,
+                       banded ? p.at("band_ragged") : 0.0,
+                       p.at("follow_fall_line") > 0};
+    auto hatch_cell = [f, p, q, face, region, spent_ink, levels](const Face& cell) {
+        const double mm = q.mm, gap = q.gap, len = q.len;
         const Region box = ToRegion(cell);
         const Point c = Centroid(cell);
         double shade = f.shade(c);
@@ -442,13 +477,22 @@ Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const F
         // ring by the cell: most cells have none, and then nothing is used whatever the area).
         double inside = 0;
         const BBox bb = box.bbox();
-        for (const SpentInk& s : *spent_ink)
-            if (bb.contains(s.mid) && box.contains(s.mid)) inside += s.ink;
+        {
+            const std::vector<SpentInk>& ink = spent_ink->ink;
+            const std::vector<std::uint32_t>& by_x = spent_ink->by_x;
+            auto it = std::lower_bound(by_x.begin(), by_x.end(), bb.xmin,
+                                       [&ink](std::uint32_t i, double x) { return ink[i].mid.x < x; });
+            std::vector<std::uint32_t> held;
+            for (; it != by_x.end() && ink[*it].mid.x <= bb.xmax; ++it)
+                if (bb.contains(ink[*it].mid) && box.contains(ink[*it].mid)) held.push_back(*it);
+            std::sort(held.begin(), held.end());
+            for (std::uint32_t i : held) inside += ink[i].ink;
+        }
         const double area = inside == 0 ? 0.0 : region.area_within(box);
         const double used = area > 0 ? inside / area : 0.0;
-        const double target = std::min(tone_coverage(p, shade), p.at("ink_max")) - used;
+        const double target = std::min(tone_coverage(p, shade), q.ink_max) - used;
         if (!(target > 0)) return Nothing();
-        const bool follow = p.at("follow_fall_line") > 0;
+        const bool follow = q.follow;
         double theta = face.theta;
         if (follow) {
             const double local = f.fall_line(c);
@@ -456,20 +500,19 @@ Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const F
         }
         Curves out;
         double cross_cover = 0;
-        const double r0 = p.at("roughness_min"), r1 = std::max(p.at("roughness_max"), r0 + 1e-9);
+        const double r0 = q.r0, r1 = q.r1;
         const double rough = f.roughness(c);
         // Rough cells: cross strokes take up to half the cell's tone, denser when rougher;
         // none where that half is too little ink to space them within cross_spacing_max
         // (lone crosses on lit ground read as noise, not texture).
         const double wc = family_width_mm(Family::Cross) * mm;
         const double s_cross = std::max(
-            p.at("cross_spacing_max") -
-                (p.at("cross_spacing_max") - p.at("cross_spacing_min")) * clamp01((rough - r0) / (r1 - r0)),
+            q.cross_max - (q.cross_max - q.cross_min) * clamp01((rough - r0) / (r1 - r0)),
             wc * gap / (0.5 * target));
-        if (rough > r0 && s_cross <= p.at("cross_spacing_max")) {
+        if (rough > r0 && s_cross <= q.cross_max) {
             const double s = s_cross;
             cross_cover = wc * gap / s;
-            const double angle = theta + p.at("cross_angle");
+            const double angle = theta + q.cross_angle;
             out = MapToEdges(JitterEdges("cross", angle, s, len, 0.5, gap),
                              StripesPartition(stripes(angle, s, "cross"), CROP))(cell);
         }
@@ -481,7 +524,7 @@ Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const F
         // level, and laid band_ragged denser than the tone asks; each is then shortened from
         // its lower end by a random share so that the cell's ink is the tone's exactly: the
         // rows start together on their level line and end raggedly.
-        const double band = p.count("band_height") ? p.at("band_height") : 0.0;
+        const double band = q.band;
         double drawn = 1;
         bool rows = false;
         if (band > 0) {
@@ -491,17 +534,17 @@ Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const F
             const double gx = (f.elevation(Point{c.x + h, c.y}) - f.elevation(Point{c.x - h, c.y})) / (2 * h);
             const double gy = (f.elevation(Point{c.x, c.y + h}) - f.elevation(Point{c.x, c.y - h})) / (2 * h);
             const double grade = std::hypot(gx, gy);
-            rows = grade * 100 >= p.at("band_slope");
+            rows = grade * 100 >= q.band_slope;
             if (rows) {
-                const double row = band / grade, cut = p.at("band_gap");  // a row's length on the ground
-                drawn = std::max(0.25, row > cut ? 1 - cut / row : 0.0) / (1 + p.at("band_ragged"));
+                const double row = band / grade, cut = q.band_gap;  // a row's length on the ground
+                drawn = std::max(0.25, row > cut ? 1 - cut / row : 0.0) / (1 + q.band_ragged);
             }
         }
         const double want = target - cross_cover;
-        const double s = std::max(wf * gap * drawn / want, wf + p.at("min_gap"));
+        const double s = std::max(wf * gap * drawn / want, wf + q.min_gap);
         // In rows, the strokes are broken at twice their length: the rows break them too.
         const Arrangement lines = Crop(
-            noisy_lines("fill", theta, s, rows ? 2 * len : len, p.at("jitter"), gap, f.slope, p.at("slope_min")),
+            noisy_lines("fill", theta, s, rows ? 2 * len : len, q.jitter, gap, f.slope, q.slope_min),
             CROP);
         // Each stroke laid on the fall line at its middle (where the partition gave no
         // orientation), else on the cell's direction: the jitter of the break points moves
@@ -511,7 +554,7 @@ Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const F
             out.append(fill(cell));
             return out;
         }
-        Curves hanging = CutAtLevels(fill, levels, band, p.at("band_gap"), 0.5 * mm)(cell);
+        Curves hanging = CutAtLevels(fill, levels, band, q.band_gap, 0.5 * mm)(cell);
         shorten_to_ink(hanging, want * box.area() / wf, theta, kShortestStroke * wf);
         out.append(std::move(hanging));
         return out;

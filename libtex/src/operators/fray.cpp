@@ -47,13 +47,17 @@ public:
         cells_ = std::max(1, std::min(256, int(std::sqrt(double(segs_.size())))));
         cell_ = side > 0 ? side / cells_ : 1.0;
         buckets_.resize(std::size_t(cells_) * std::size_t(cells_));
+        rim_buckets_.resize(buckets_.size());
         for (std::size_t k = 0; k < segs_.size(); ++k) {
             const Seg& s = segs_[k];
             const int x0 = col(std::min(s.a.x, s.b.x)), x1 = col(std::max(s.a.x, s.b.x));
             const int y0 = row(std::min(s.a.y, s.b.y)), y1 = row(std::max(s.a.y, s.b.y));
             for (int y = y0; y <= y1; ++y)
-                for (int x = x0; x <= x1; ++x)
-                    buckets_[std::size_t(y) * std::size_t(cells_) + std::size_t(x)].push_back(k);
+                for (int x = x0; x <= x1; ++x) {
+                    const std::size_t b = std::size_t(y) * std::size_t(cells_) + std::size_t(x);
+                    buckets_[b].push_back(k);
+                    if (s.rim) rim_buckets_[b].push_back(k);
+                }
         }
     }
 
@@ -85,8 +89,8 @@ public:
         double best = limit2;
         for (int yy = std::max(0, y - r); yy <= std::min(cells_ - 1, y + r); ++yy)
             for (int xx = std::max(0, x - r); xx <= std::min(cells_ - 1, x + r); ++xx)
-                for (std::size_t k : buckets_[std::size_t(yy) * std::size_t(cells_) + std::size_t(xx)])
-                    if (segs_[k].rim) best = std::min(best, squared_distance_to(p, segs_[k]));
+                for (std::size_t k : rim_buckets_[std::size_t(yy) * std::size_t(cells_) + std::size_t(xx)])
+                    best = std::min(best, squared_distance_to(p, segs_[k]));
         return best < limit2 ? std::min(limit, std::sqrt(best)) : limit;
     }
 
@@ -110,6 +114,7 @@ private:
     int cells_ = 1;
     double cell_ = 1;
     std::vector<std::vector<std::size_t>> buckets_;
+    std::vector<std::vector<std::size_t>> rim_buckets_;  // the rim segments of each bucket, for to_rim
 };
 
 // The polyline pts from its start drawn back to the first point at least `depth` from the rim
