@@ -83,6 +83,7 @@ Prepared prepare(const Plan& plan, const Progress& progress) {
     const WorkingGrid dem_grid = working_grid(raster_info(o.dem, "--dem"));
     std::vector<std::string> dem_notes;
     Raster dem;
+    std::optional<FingerprintRasters> fingerprint_rasters;
     tick(progress, 0.0, "reading the DEM");
     tex::parallel_for(partition_file ? 2 : 1, [&](std::size_t item) {
         if (item == 1) {
@@ -109,6 +110,7 @@ Prepared prepare(const Plan& plan, const Progress& progress) {
             check_roughness(p.terrain.roughness, o.roughness);
         }
         p.relief = local_relief(dem, o.relief_radius);
+        if (keeps_fingerprints(plan)) fingerprint_rasters = read_fingerprint_rasters(o, dem_grid);
     });
     p.notes = std::move(dem_notes);
     tick(progress, 0.15, "reading the partition");
@@ -133,9 +135,7 @@ Prepared prepare(const Plan& plan, const Progress& progress) {
 
     // Of the partition as read: what the faces' drawing depends on before the terrain fills in
     // their controls (the terrain's cells are in the fingerprint themselves).
-    if (keeps_fingerprints(plan))
-        p.fingerprints = face_fingerprints(plan, p.partition, dem, o.slope.empty() ? nullptr : &p.terrain.slope,
-                                           o.roughness.empty() ? nullptr : &p.terrain.roughness);
+    if (fingerprint_rasters) p.fingerprints = face_fingerprints(plan, p.partition, *fingerprint_rasters);
     resolve_face_controls(p, o.partition.path == "auto");
     return p;
 }

@@ -52,6 +52,46 @@ Raster read_like_dem(const std::string& path, const char* what, const WorkingGri
 
 }  // namespace
 
+bool rasters_read_by_window(const Options& o, const WorkingGrid& grid) {
+    for (const auto& [path, what] : {std::pair<const std::string&, const char*>{o.slope, "--slope"}, {o.roughness, "--roughness"}}) {
+        if (path.empty()) continue;
+        const RasterInfo info = raster_info(path, what);
+        if (!same_grid(info, grid.source) && !same_crs(info.crs_wkt, grid.grid.crs_wkt)) return false;
+    }
+    return true;
+}
+
+Prepared prepare_around(const Plan& plan, const WorkingGrid& grid, const PartitionOptions& po,
+                        const std::optional<tex::BBox>& terrain, long long* dem_cells) {
+    const Options& o = plan.options;
+    const RasterInfo& dem_info = grid.grid;
+    const double cell = std::min(std::abs(dem_info.gt[1]), std::abs(dem_info.gt[5]));
+    Prepared p;
+    if (o.partition.path != "none") {
+        p.partition = load_partition(po, dem_info.crs_wkt);
+    } else {
+        p.partition.crs_wkt = dem_info.crs_wkt;
+    }
+    p.extent = dem_info.bounds();
+    p.user_window = o.window.has_value();
+    // The DEM under all of them (and the terrain's reach), with a halo where the relief
+    // window and the terrain kernels see the same cells as in the whole raster.
+    tex::BBox area = p.partition.bounds();
+    if (terrain) area.add(*terrain);
+    const int halo = tile_halo_cells(plan, cell);
+    Raster dem = read_working_window(o.dem, "--dem", grid, area, halo);
+    if (dem_cells) *dem_cells = (long long)dem.width * dem.height;
+    p.terrain = compute_terrain(dem);
+    if (!o.slope.empty()) p.terrain.slope = read_like_dem(o.slope, "--slope", grid, dem, area, halo, o.dem);
+    if (!o.roughness.empty()) {
+        p.terrain.roughness = read_like_dem(o.roughness, "--roughness", grid, dem, area, halo, o.dem);
+        check_roughness(p.terrain.roughness, o.roughness);
+    }
+    p.relief = local_relief(dem, o.relief_radius);
+    resolve_face_controls(p, false);
+    return p;
+}
+
 void check_tiled_rasters(const Options& o) {
     if (o.slope.empty() && o.roughness.empty()) return;
     const WorkingGrid grid = working_grid(raster_info(o.dem, "--dem"));
@@ -145,13 +185,8 @@ TileReport run_tile(const Plan& plan, const tex::BBox& tile, const std::string& 
         reach.add(*terrain);
     }
     // --partition none (a terrain style over ground without rock): no faces.
-    auto read_faces = [&](const PartitionOptions& opt) {
-        if (o.partition.path != "none") return load_partition(opt, dem_info.crs_wkt);
-        Partition none;
-        none.crs_wkt = dem_info.crs_wkt;
-        return none;
-    };
-    const Partition around = read_faces(po);
+    Partition around;
+    if (o.partition.path != "none") around = load_partition(po, dem_info.crs_wkt);
     for (const RockFace& f : around.faces)
         if (mine(f) || (terrain && f.region.bbox().intersects(*terrain))) reach.add(f.region.bbox());
     double margin = tile_context_margin(plan, cell);
@@ -167,27 +202,10 @@ TileReport run_tile(const Plan& plan, const tex::BBox& tile, const std::string& 
     d.style = plan.style.info.name;
     d.scale = o.scale;
     if (!reach.empty()) {
-        // 2. Their neighbourhood: every face a style may read across an owned face's border.
+        // 2. Their neighbourhood: every face a style may read across an owned face's border;
+        // 3. the DEM under all of them.
         po.filter = reach.expanded(margin);
-        Prepared p;
-        p.partition = read_faces(po);
-        p.extent = dem_info.bounds();
-        p.user_window = o.window.has_value();
-        // 3. The DEM under all of them (and the terrain's reach), with a halo where the relief
-        // window and the terrain kernels see the same cells as in the whole raster.
-        tex::BBox area = p.partition.bounds();
-        if (terrain) area.add(*terrain);
-        const int halo = tile_halo_cells(plan, cell);
-        Raster dem = read_working_window(o.dem, "--dem", grid, area, halo);
-        report.dem_cells = (long long)dem.width * dem.height;
-        p.terrain = compute_terrain(dem);
-        if (!o.slope.empty()) p.terrain.slope = read_like_dem(o.slope, "--slope", grid, dem, area, halo, o.dem);
-        if (!o.roughness.empty()) {
-            p.terrain.roughness = read_like_dem(o.roughness, "--roughness", grid, dem, area, halo, o.dem);
-            check_roughness(p.terrain.roughness, o.roughness);
-        }
-        p.relief = local_relief(dem, o.relief_radius);
-        resolve_face_controls(p, false);
+        const Prepared p = prepare_around(plan, grid, po, terrain, &report.dem_cells);
         std::vector<int> owned;
         for (std::size_t i = 0; i < p.partition.faces.size(); ++i)
             if (mine(p.partition.faces[i])) owned.push_back(int(i));

@@ -9,7 +9,11 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <memory>
 #include <set>
+#include <vector>
+
+#include <ogr_spatialref.h>
 
 #include "carto/error.hpp"
 #include "carto/publish.hpp"
@@ -175,8 +179,8 @@ struct BlockDigests {
     }
 };
 
-// The blocks of the raster under a box of the working CRS grown by `halo` cells, in order;
-// a raster that is not north-up: every block.
+// The blocks of the raster under a box of its CRS grown by `halo` cells, in order; a raster
+// that is not north-up: every block.
 void add_blocks(Digest& d, const Raster& r, const BlockDigests& b, const tex::BBox& box, int halo) {
     int c0 = 0, c1 = r.width - 1, r0 = 0, r1 = r.height - 1;
     if (r.north_up()) {
@@ -207,7 +211,7 @@ std::string number(double v) {
 }
 
 // Every value of the plan a face's drawing depends on, as text (its digest is the plan's).
-std::string plan_text(const Plan& plan, const Raster& dem, bool slope, bool roughness) {
+std::string plan_text(const Plan& plan, const RasterInfo& dem, bool slope, bool roughness) {
     const Options& o = plan.options;
     std::string t = "version=" RH_VERSION_STRING "+" RH_SOURCE_DIGEST "\nstyle=" + plan.style.info.name + "\nrock=" + plan.rock.name + "\n";
     if (!o.style_file.empty()) {
@@ -345,8 +349,56 @@ bool keeps_fingerprints(const Plan& plan) {
                        [](const Output& o) { return o.format == OutputFormat::GeoPackage; });
 }
 
-Fingerprints face_fingerprints(const Plan& plan, const Partition& part, const Raster& dem, const Raster* slope,
-                               const Raster* roughness) {
+FingerprintRasters read_fingerprint_rasters(const Options& o, const WorkingGrid& grid) {
+    FingerprintRasters r;
+    r.grid = grid.grid;
+    r.dem = read_raster(o.dem, "--dem");
+    if (!o.slope.empty()) r.slope = read_raster(o.slope, "--slope");
+    if (!o.roughness.empty()) r.roughness = read_raster(o.roughness, "--roughness");
+    return r;
+}
+
+// A raster file's cells digested by blocks, and the way from the working CRS to its own.
+struct SourceBlocks {
+    const Raster& raster;
+    BlockDigests blocks;
+    std::unique_ptr<OGRCoordinateTransformation> to_file;  // none: the file is in the working CRS
+    SourceBlocks(const Raster& r, const std::string& working_wkt) : raster(r), blocks(r) {
+        if (same_crs(r.crs_wkt, working_wkt)) return;
+        OGRSpatialReference from, to;
+        from.importFromWkt(working_wkt.c_str());
+        to.importFromWkt(r.crs_wkt.c_str());
+        from.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+        to.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+        to_file.reset(OGRCreateCoordinateTransformation(&from, &to));
+        if (!to_file) throw Error(Code::NoCrs, "cannot take the working CRS to the raster's CRS for the fingerprints");
+    }
+    // A box of the working CRS in the file's CRS: the box of its outline (kSides points a side).
+    tex::BBox to_file_box(const tex::BBox& b) const {
+        if (!to_file) return b;
+        constexpr int kSides = 4;
+        std::vector<double> x, y;
+        for (int k = 0; k < kSides; ++k) {
+            const double t = double(k) / kSides;
+            for (const Point& q : {Point{b.xmin + t * b.width(), b.ymin}, Point{b.xmax, b.ymin + t * b.height()},
+                                   Point{b.xmax - t * b.width(), b.ymax}, Point{b.xmin, b.ymax - t * b.height()}}) {
+                x.push_back(q.x);
+                y.push_back(q.y);
+            }
+        }
+        std::vector<int> ok(x.size());
+        to_file->Transform(x.size(), x.data(), y.data(), nullptr, ok.data());
+        tex::BBox out;
+        for (std::size_t i = 0; i < x.size(); ++i)
+            if (ok[i] && std::isfinite(x[i]) && std::isfinite(y[i])) out.add(Point{x[i], y[i]});
+        return out;
+    }
+};
+
+Fingerprints face_fingerprints(const Plan& plan, const Partition& part, const FingerprintRasters& rasters) {
+    const RasterInfo& dem = rasters.grid;
+    const Raster* slope = rasters.slope ? &*rasters.slope : nullptr;
+    const Raster* roughness = rasters.roughness ? &*rasters.roughness : nullptr;
     Fingerprints fp;
     Digest plan_digest;
     plan_digest.add(plan_text(plan, dem, slope != nullptr, roughness != nullptr));
@@ -356,7 +408,7 @@ Fingerprints face_fingerprints(const Plan& plan, const Partition& part, const Ra
     fp.run["plan"] = plan_digest.hex();
     fp.run["command"] = command_text(plan.options);
 
-    const double cell = std::min(dem.cell_x(), dem.cell_y());
+    const double cell = std::min(std::abs(dem.gt[1]), std::abs(dem.gt[5]));
     const double margin = tile_context_margin(plan, cell);
     const int halo = tile_halo_cells(plan, cell);
     std::vector<tex::BBox> face_boxes, line_boxes;
@@ -368,12 +420,20 @@ Fingerprints face_fingerprints(const Plan& plan, const Partition& part, const Ra
     }
     const BoxIndex face_index(face_boxes, std::max(margin, cell)), line_index(line_boxes, std::max(margin, cell));
 
-    const BlockDigests dem_blocks(dem);
-    std::optional<BlockDigests> slope_blocks, roughness_blocks;
-    if (slope) slope_blocks.emplace(*slope);
-    if (roughness) roughness_blocks.emplace(*roughness);
+    // Each file's cells under a face's box grown by the halo, plus two working cells for the
+    // bilinear neighbours of the reprojection, and two of the file's own cells.
+    std::vector<std::unique_ptr<SourceBlocks>> sources;
+    sources.push_back(std::make_unique<SourceBlocks>(rasters.dem, dem.crs_wkt));
+    if (slope) sources.push_back(std::make_unique<SourceBlocks>(*slope, dem.crs_wkt));
+    if (roughness) sources.push_back(std::make_unique<SourceBlocks>(*roughness, dem.crs_wkt));
 
     const std::vector<int> drawn = drawn_faces(plan, part);
+    // The faces' boxes in each file's CRS (PROJ's transformations are not shared between threads).
+    std::vector<std::vector<tex::BBox>> file_boxes(sources.size(), std::vector<tex::BBox>(drawn.size()));
+    for (std::size_t k = 0; k < drawn.size(); ++k) {
+        const tex::BBox grown = part.faces[std::size_t(drawn[k])].region.bbox().expanded(margin + (halo + 2) * cell);
+        for (std::size_t s = 0; s < sources.size(); ++s) file_boxes[s][k] = sources[s]->to_file_box(grown);
+    }
     std::vector<Digest> each(drawn.size());
     tex::parallel_for(drawn.size(), [&](std::size_t k) {
         const RockFace& f = part.faces[std::size_t(drawn[k])];
@@ -385,9 +445,14 @@ Fingerprints face_fingerprints(const Plan& plan, const Partition& part, const Ra
             if (j != drawn[k]) add_face_within(d, part, part.faces[std::size_t(j)], box);
         d.add(std::uint64_t(0xfeedULL));
         for (int j : line_index.find(box)) add_line_within(d, part.lines[std::size_t(j)], box);
-        add_blocks(d, dem, dem_blocks, box, halo);
-        if (slope) add_blocks(d, *slope, *slope_blocks, box, halo);
-        if (roughness) add_blocks(d, *roughness, *roughness_blocks, box, halo);
+        for (std::size_t s = 0; s < sources.size(); ++s) {
+            if (file_boxes[s][k].empty()) {
+                d.add(std::uint64_t(1));  // the box could not be taken to the file's CRS: every block
+                add_blocks(d, sources[s]->raster, sources[s]->blocks, sources[s]->raster.bounds().expanded(1), 0);
+            } else {
+                add_blocks(d, sources[s]->raster, sources[s]->blocks, file_boxes[s][k], 2);
+            }
+        }
         each[k] = d;
     });
     // One fingerprint per face id: the parts of a face that share its id (a repaired
@@ -441,9 +506,36 @@ UpdateReport update(const Plan& plan, const UpdateOptions& u, const Progress& pr
         throw Error(Code::BadLayer, "-o '" + path + "': keeps no fingerprints (written by rockhatch tiles or an older "
                                     "version); write it again with a whole run (rockhatch ... --overwrite)");
 
-    const Prepared p = prepare(plan, progress);
+    // The faces to redraw are read as a tile of a tiled run reads its faces (prepare_around):
+    // the DEM reprojected and its terrain computed under them alone. The fingerprints read the
+    // raster files as they are. A PNG beside the file (the whole hillshade under the drawing),
+    // an extracted partition or rasters a window cannot read take the whole run's preparation.
+    const Options& o = plan.options;
+    const WorkingGrid grid = working_grid(raster_info(o.dem, "--dem"));
+    const bool png = std::any_of(plan.outputs.begin(), plan.outputs.end(),
+                                 [](const Output& out) { return out.format == OutputFormat::Png; });
+    const bool around = o.partition.path != "auto" && o.partition.path != "none" && !png &&
+                        rasters_read_by_window(o, grid);
+    Prepared whole;
+    Partition read;
+    std::optional<Fingerprints> fingerprints;
+    if (around) {
+        if (progress && !progress(0.0, "reading the partition")) throw Error(Code::Cancelled, "cancelled while reading");
+        std::optional<FingerprintRasters> rasters;
+        tex::parallel_for(2, [&](std::size_t item) {
+            if (item == 0) rasters = read_fingerprint_rasters(o, grid);
+            else read = load_partition(o.partition, grid.grid.crs_wkt);
+        });
+        if (!read.bounds().intersects(grid.grid.bounds()))
+            throw Error(Code::NoOverlap, "--partition '" + o.partition.path + "' does not overlap --dem '" + o.dem + "'");
+        fingerprints = face_fingerprints(plan, read, *rasters);
+    } else {
+        whole = prepare(plan, progress);
+        fingerprints = std::move(whole.fingerprints);
+    }
+    const Partition& part = around ? read : whole.partition;
 
-    const Fingerprints& now = *p.fingerprints;
+    const Fingerprints& now = *fingerprints;
     if (!u.reset)
         for (const char* key : {"version", "crs", "style"}) {
             const auto was = stored->run.find(key);
@@ -455,11 +547,16 @@ UpdateReport update(const Plan& plan, const UpdateOptions& u, const Progress& pr
             }
         }
     UpdateReport r;
-    r.crs = crs_name(p.partition.crs_wkt);
-    r.notes = p.notes;
+    r.crs = crs_name(part.crs_wkt);
+    if (around) {
+        if (grid.reprojected()) r.notes.push_back(grid.note());
+        r.notes.insert(r.notes.end(), part.notes.begin(), part.notes.end());
+    } else {
+        r.notes = whole.notes;
+    }
     std::map<std::int64_t, std::string> before(stored->faces.begin(), stored->faces.end());
     std::map<std::int64_t, std::vector<int>> index;  // face id -> the drawn faces (parts) of that id
-    for (int i : drawn_faces(plan, p.partition)) index[p.partition.faces[std::size_t(i)].id].push_back(i);
+    for (int i : drawn_faces(plan, part)) index[part.faces[std::size_t(i)].id].push_back(i);
     const std::set<std::int64_t> forced(u.faces.begin(), u.faces.end());
     std::set<std::int64_t> current;
     for (const auto& [id, fp] : now.faces) current.insert(id);
@@ -488,7 +585,24 @@ UpdateReport update(const Plan& plan, const UpdateOptions& u, const Progress& pr
     r.removed = r.removed_ids.size();
     std::sort(redraw.begin(), redraw.end());  // in partition order, as a run draws them
     if (!redraw.empty()) {
-        Drawing drawn = hatch(p, plan, redraw, progress);
+        Drawing drawn;
+        if (around) {
+            // The faces within the context margin of those redrawn, read again as a tile reads
+            // them, and the DEM under them; the redrawn ones drawn in partition order.
+            tex::BBox reach;
+            for (int i : redraw) reach.add(part.faces[std::size_t(i)].region.bbox());
+            const double cell = std::min(std::abs(grid.grid.gt[1]), std::abs(grid.grid.gt[5]));
+            PartitionOptions po = o.partition;
+            po.filter = reach.expanded(tile_context_margin(plan, cell));
+            const Prepared p = prepare_around(plan, grid, po, std::nullopt);
+            const std::set<std::int64_t> ids(r.redrawn_ids.begin(), r.redrawn_ids.end());
+            std::vector<int> chosen;
+            for (int i : drawn_faces(plan, p.partition))
+                if (ids.count(p.partition.faces[std::size_t(i)].id)) chosen.push_back(i);
+            drawn = hatch(p, plan, chosen, progress);
+        } else {
+            drawn = hatch(whole, plan, redraw, progress);
+        }
         d.faces = std::move(drawn.faces);
         d.style = drawn.style;
         d.crs_wkt = drawn.crs_wkt;
@@ -496,7 +610,7 @@ UpdateReport update(const Plan& plan, const UpdateOptions& u, const Progress& pr
     }
     // The frame of the whole drawing, as a run makes it: the boxes of the faces drawn.
     for (const auto& [id, parts] : index)
-        for (int i : parts) d.bounds.add(p.partition.faces[std::size_t(i)].region.bbox());
+        for (int i : parts) d.bounds.add(part.faces[std::size_t(i)].region.bbox());
     std::vector<std::int64_t> replaced = r.redrawn_ids;
     replaced.insert(replaced.end(), r.removed_ids.begin(), r.removed_ids.end());
     if (progress && !progress(0.92, "writing")) throw Error(Code::Cancelled, "cancelled during writing");
@@ -505,14 +619,14 @@ UpdateReport update(const Plan& plan, const UpdateOptions& u, const Progress& pr
     r.written = written.written;
     r.kept = written.kept;
     // The drawings beside it, from the updated layers.
-    std::optional<Drawing> whole;
+    std::optional<Drawing> drawing;
     for (const Output& out : plan.outputs) {
         if (out.format == OutputFormat::GeoPackage) continue;
-        if (!whole) whole = read_gpkg(path, plan.options.scale);
+        if (!drawing) drawing = read_gpkg(path, plan.options.scale);
         switch (out.format) {
-            case OutputFormat::Svg: write_svg(*whole, out.path); break;
-            case OutputFormat::Png: write_png(*whole, out.path, plan.options.png_pixels, &p.terrain.hillshade); break;
-            case OutputFormat::Pdf: write_pdf(*whole, out.path, plan.page); break;
+            case OutputFormat::Svg: write_svg(*drawing, out.path); break;
+            case OutputFormat::Png: write_png(*drawing, out.path, plan.options.png_pixels, &whole.terrain.hillshade); break;
+            case OutputFormat::Pdf: write_pdf(*drawing, out.path, plan.page); break;
             default: break;
         }
     }

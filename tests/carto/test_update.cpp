@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <gdal_priv.h>
+#include <gdal_utils.h>
 #include <ogrsf_frmts.h>
 
 #include <filesystem>
@@ -158,6 +159,96 @@ TEST(Update, RedrawsTheEditedFacesAsAWholeRunAndKeepsHandEditsElsewhere) {
     const UpdateReport all = update(sample_options(part, out), {true, {}});
     EXPECT_EQ(all.redrawn, all.faces);
     EXPECT_EQ(by_face(features(out)), full);
+}
+
+namespace {
+
+// Adds `dz` to the cells of a raster file within `radius` cells of the cell holding (x, y)
+// (in the raster's CRS).
+void raise_cells(const std::string& path, double x, double y, int radius, float dz) {
+    std::unique_ptr<GDALDataset> ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_UPDATE));
+    ASSERT_TRUE(ds);
+    double gt[6];
+    ds->GetGeoTransform(gt);
+    const int c = int((x - gt[0]) / gt[1]), r = int((y - gt[3]) / gt[5]), side = 2 * radius + 1;
+    std::vector<float> v(std::size_t(side) * side);
+    GDALRasterBand* b = ds->GetRasterBand(1);
+    ASSERT_EQ(b->RasterIO(GF_Read, c - radius, r - radius, side, side, v.data(), side, side, GDT_Float32, 0, 0), CE_None);
+    for (float& z : v) z += dz;
+    ASSERT_EQ(b->RasterIO(GF_Write, c - radius, r - radius, side, side, v.data(), side, side, GDT_Float32, 0, 0), CE_None);
+}
+
+}  // namespace
+
+// A DEM in degrees (the sample's warped to EPSG:4326), as a user's often is: the fingerprints
+// read its cells as the file holds them, the redrawn faces are drawn from a window of it. After
+// a few cells are raised, the faces redrawn and every other one hold a whole run's bytes of
+// the edited DEM (a face whose drawing changed and was not redrawn would differ), and faces
+// far from the edit are left alone. With a PNG beside the file (the whole run's preparation)
+// the same holds.
+TEST(Update, ADemEditInDegreesRedrawsWhatItReachesWithAWholeRunsBytes) {
+    TempDir dir;
+    const std::string dem = dir / "dem_4326.tif", out = dir / "h.gpkg", whole = dir / "whole.gpkg";
+    {
+        GDALAllRegister();
+        std::unique_ptr<GDALDataset> src(GDALDataset::Open((std::string(RH_SAMPLE_DIR) + "/dem.tif").c_str(), GDAL_OF_RASTER));
+        ASSERT_TRUE(src);
+        const char* args[] = {"-t_srs", "EPSG:4326", "-r", "bilinear", "-of", "GTiff", nullptr};
+        GDALWarpAppOptions* wo = GDALWarpAppOptionsNew(const_cast<char**>(args), nullptr);
+        GDALDatasetH in = GDALDataset::ToHandle(src.get());
+        GDALDatasetH made = GDALWarp(dem.c_str(), nullptr, 1, &in, wo, nullptr);
+        GDALWarpAppOptionsFree(wo);
+        ASSERT_TRUE(made);
+        GDALClose(made);
+    }
+    const std::string part = std::string(RH_SAMPLE_DIR) + "/partition.gpkg";
+    Options o = sample_options(part, out);
+    o.dem = dem;
+    o.relief_radius = 40;  // a reach shorter than the sample, so that an edit leaves faces alone
+    o.scale = 5000;
+    run(o);
+    const auto before = by_face(features(out));
+    // Raise 5 x 5 cells at the middle of the DEM.
+    {
+        std::unique_ptr<GDALDataset> ds(GDALDataset::Open(dem.c_str(), GDAL_OF_RASTER));
+        double gt[6];
+        ds->GetGeoTransform(gt);
+        const double x = gt[0] + gt[1] * ds->GetRasterXSize() / 2, y = gt[3] + gt[5] * ds->GetRasterYSize() / 2;
+        ds.reset();
+        raise_cells(dem, x, y, 2, 40.0f);
+    }
+    const UpdateReport r = update(o, {});
+    EXPECT_GE(r.redrawn, 1u);
+    EXPECT_LT(r.redrawn, r.faces);
+    const std::set<std::int64_t> redrawn(r.redrawn_ids.begin(), r.redrawn_ids.end());
+    Options w = o;
+    w.outputs = {whole};
+    run(w);
+    const auto after = by_face(features(out)), full = by_face(features(whole));
+    EXPECT_EQ(after, full);
+    std::size_t changed = 0;
+    for (const auto& [face, fs] : full) changed += before.count(face) && before.at(face) != fs;
+    EXPECT_GT(changed, 0u);  // the edit did change some drawing
+    for (const auto& [face, fs] : full)
+        if (!redrawn.count(face)) EXPECT_EQ(before.at(face), fs) << "face " << face << " changed, not redrawn";
+
+    // Again, a PNG beside the file.
+    const std::string png = dir / "h.png";
+    o.outputs = {out, png};
+    update(o, {});
+    {
+        std::unique_ptr<GDALDataset> ds(GDALDataset::Open(dem.c_str(), GDAL_OF_RASTER));
+        double gt[6];
+        ds->GetGeoTransform(gt);
+        const double x = gt[0] + gt[1] * ds->GetRasterXSize() / 3, y = gt[3] + gt[5] * ds->GetRasterYSize() / 3;
+        ds.reset();
+        raise_cells(dem, x, y, 2, -30.0f);
+    }
+    const UpdateReport again = update(o, {});
+    EXPECT_GE(again.redrawn, 1u);
+    EXPECT_TRUE(fs::exists(png));
+    run(w);
+    EXPECT_EQ(by_face(features(out)), by_face(features(whole)));
 }
 
 TEST(Update, RemovedFacesLoseTheirFeaturesAndAskedFacesAreRedrawn) {

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,17 @@ void check_tiled_rasters(const Options& o);
 // exist unless o.overwrite. --slope and --roughness rasters as check_tiled_rasters. Errors as
 // carto::run.
 TileReport run_tile(const Plan& plan, const tex::BBox& tile, const std::string& out);
+
+// What a tile reads to draw the faces around a box as the whole run draws them: the faces
+// of po (po.filter: the box grown by tile_context_margin), the DEM's cells under them and
+// under `terrain` (a terrain style's reach) with tile_halo_cells more, their terrain, the
+// --slope and --roughness cells alike, the relief and the faces' controls. run_tile and
+// update (carto/update.hpp) read this way; *dem_cells: the DEM cells read.
+Prepared prepare_around(const Plan& plan, const WorkingGrid& grid, const PartitionOptions& po,
+                        const std::optional<tex::BBox>& terrain, long long* dem_cells = nullptr);
+// Whether the --slope and --roughness of o (when given) can be read by windows (on the DEM's
+// grid or in its working CRS), which check_tiled_rasters demands.
+bool rasters_read_by_window(const Options& o, const WorkingGrid& grid);
 // The same from the options: their plan, with the tile file checked as one more output.
 TileReport run_tile(const Options& o, const tex::BBox& tile, const std::string& out);
 

@@ -11,14 +11,17 @@
 //   the style's reach, the terrain kernels, the snap) what the other faces and the labelled
 //   lines put there: their border segments in that box, with labels and the faces across,
 //   whether each corner of the box lies in them, their ids and controls;
-// - the DEM cells (and the --slope / --roughness cells) within that box grown by the halo
-//   (tile_halo_cells: the relief radius or the style's reach), in blocks of 8 x 8 cells.
+// - the DEM's cells (and the --slope / --roughness cells) as their files hold them, in
+//   blocks of 8 x 8 cells, under that box grown by the halo (tile_halo_cells: the relief
+//   radius or the style's reach) and two cells more, the box taken to the file's CRS by
+//   its outline (so no raster is reprojected to fingerprint the faces).
 // These are the inputs a tile of a tiled run reads to draw a face exactly as the whole run
 // does (carto/tiles.hpp); the bounds are generous, so a face whose fingerprint is unchanged
 // draws the same bytes.
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,12 +39,19 @@ namespace carto {
 // crest ornaments, drawn per ridge).
 bool keeps_fingerprints(const Plan& plan);
 
+// The rasters the fingerprints digest: the --dem, --slope and --roughness files as they hold
+// them (their own grids and CRSs; slope and roughness when given), and the working grid.
+struct FingerprintRasters {
+    RasterInfo grid;  // the working grid (WorkingGrid::grid)
+    Raster dem;
+    std::optional<Raster> slope, roughness;
+};
+FingerprintRasters read_fingerprint_rasters(const Options& o, const WorkingGrid& grid);
+
 // The fingerprints of the faces the plan draws (those whose anchor lies in its window, or
 // all), in partition order, from the partition as read (before its orientations and
-// densities are derived from the terrain), the working DEM and the given --slope and
-// --roughness rasters on its grid (null when not given).
-Fingerprints face_fingerprints(const Plan& plan, const Partition& partition, const Raster& dem, const Raster* slope,
-                               const Raster* roughness);
+// densities are derived from the terrain) and the rasters' files.
+Fingerprints face_fingerprints(const Plan& plan, const Partition& partition, const FingerprintRasters& rasters);
 
 struct UpdateOptions {
     // Redraw every face and drop every feature (hand edits included); also accepts a file
