@@ -259,12 +259,17 @@ void write_rest(GpkgWriter& out, const tex::BBox& frame, const CrestSource& cres
     check(0.5);
     if (fingerprints) {
         for (const auto& [key, value] : fingerprints->run) out.set_metadata(run_key(key).c_str(), value);
-        const int layer = out.add_layer(kFacesTable, wkbNone, {{"face_id", OFTInteger64}, {"fingerprint", OFTString}});
+        const int layer = out.add_layer(kFacesTable, wkbNone,
+                                        {{"face_id", OFTInteger64}, {"fingerprint", OFTString}, {"xmin", OFTReal},
+                                         {"ymin", OFTReal}, {"xmax", OFTReal}, {"ymax", OFTReal}});
         GpkgRows rows(out.srs_id());
-        for (const auto& [id, fp] : fingerprints->faces) {
+        for (std::size_t i = 0; i < fingerprints->faces.size(); ++i) {
             rows.attributes(layer);
-            rows.integer(id);
-            rows.text(fp);
+            rows.integer(fingerprints->faces[i].first);
+            rows.text(fingerprints->faces[i].second);
+            // The face's box as drawn (NULL when unknown or empty).
+            const tex::BBox b = i < fingerprints->boxes.size() ? fingerprints->boxes[i] : tex::BBox{};
+            for (double v : {b.xmin, b.ymin, b.xmax, b.ymax}) rows.real(b.empty() ? std::nan("") : v);
         }
         out.insert(rows);
         // The edit loop finds a face's features by face_id (the layers made before the faces
@@ -651,8 +656,17 @@ std::optional<Fingerprints> read_fingerprints(const std::string& path, const std
     const int fp_idx = t->GetLayerDefn()->GetFieldIndex("fingerprint");
     if (id_idx < 0 || fp_idx < 0)
         throw Error(Code::BadLayer, what + " '" + path + "': table " + kFacesTable + " has no face_id or fingerprint field");
+    const int box_idx[4] = {t->GetLayerDefn()->GetFieldIndex("xmin"), t->GetLayerDefn()->GetFieldIndex("ymin"),
+                            t->GetLayerDefn()->GetFieldIndex("xmax"), t->GetLayerDefn()->GetFieldIndex("ymax")};
     t->ResetReading();
-    for (auto& feat : *t) fp.faces.emplace_back(feat->GetFieldAsInteger64(id_idx), feat->GetFieldAsString(fp_idx));
+    for (auto& feat : *t) {
+        fp.faces.emplace_back(feat->GetFieldAsInteger64(id_idx), feat->GetFieldAsString(fp_idx));
+        tex::BBox b;
+        if (std::all_of(std::begin(box_idx), std::end(box_idx), [&](int k) { return k >= 0 && feat->IsFieldSetAndNotNull(k); }))
+            b = {feat->GetFieldAsDouble(box_idx[0]), feat->GetFieldAsDouble(box_idx[1]), feat->GetFieldAsDouble(box_idx[2]),
+                 feat->GetFieldAsDouble(box_idx[3])};
+        fp.boxes.push_back(b);
+    }
     return fp;
 }
 
@@ -1082,9 +1096,19 @@ FaceReplacement replace_faces(const std::string& path, const std::vector<std::in
         OGRFeature feat(t->GetLayerDefn());
         const int id_idx = t->GetLayerDefn()->GetFieldIndex("face_id");
         const int fp_idx = t->GetLayerDefn()->GetFieldIndex("fingerprint");
-        for (const auto& [id, fp] : d.fingerprints->faces) {
+        const char* const box_names[4] = {"xmin", "ymin", "xmax", "ymax"};
+        for (std::size_t i = 0; i < d.fingerprints->faces.size(); ++i) {
+            const auto& [id, fp] = d.fingerprints->faces[i];
             feat.SetField(id_idx, GIntBig(id));
             feat.SetField(fp_idx, fp.c_str());
+            const tex::BBox b = i < d.fingerprints->boxes.size() ? d.fingerprints->boxes[i] : tex::BBox{};
+            const double v[4] = {b.xmin, b.ymin, b.xmax, b.ymax};
+            for (int k = 0; k < 4; ++k) {
+                const int idx = t->GetLayerDefn()->GetFieldIndex(box_names[k]);
+                if (idx < 0) continue;  // a file of an earlier version (only with --reset)
+                if (b.empty()) feat.SetFieldNull(idx);
+                else feat.SetField(idx, v[k]);
+            }
             feat.SetFID(OGRNullFID);
             if (t->CreateFeature(&feat) != OGRERR_NONE) throw edit.fail("cannot write a fingerprint");
         }

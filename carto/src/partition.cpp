@@ -1194,7 +1194,7 @@ Partition load_partition(GDALDataset& ds, const PartitionOptions& opt, const std
     // once, not after the repair of every invalid face (a third of fuzz_partition_struct's time).
     const LineLayers lines = required_line_layers(src);
     read_faces(src, faces, face_proj, fields, p);
-    snap_face_borders(src, p);
+    if (!opt.as_digitised) snap_face_borders(src, p);
 
     // The lines, orientations and densities of every face read, including the parts of the
     // faces beyond the filter box (a face meeting the box is read whole, its attributes too).
@@ -1204,7 +1204,7 @@ Partition load_partition(GDALDataset& ds, const PartitionOptions& opt, const std
     read_orientations(src, around, p);
     read_densities(src, fields.dens_name, around, p);
     read_scree(src, p);
-    label_boundaries(p, opt.snap);
+    if (!opt.as_digitised) label_boundaries(p, opt.snap);
     return p;
 }
 

@@ -84,6 +84,7 @@ Prepared prepare(const Plan& plan, const Progress& progress) {
     std::vector<std::string> dem_notes;
     Raster dem;
     std::optional<FingerprintRasters> fingerprint_rasters;
+    std::optional<Partition> digitised;  // the partition file as digitised, for the fingerprints
     tick(progress, 0.0, "reading the DEM");
     tex::parallel_for(partition_file ? 2 : 1, [&](std::size_t item) {
         if (item == 1) {
@@ -110,7 +111,10 @@ Prepared prepare(const Plan& plan, const Progress& progress) {
             check_roughness(p.terrain.roughness, o.roughness);
         }
         p.relief = local_relief(dem, o.relief_radius);
-        if (keeps_fingerprints(plan)) fingerprint_rasters = read_fingerprint_rasters(o, dem_grid);
+        if (keeps_fingerprints(plan)) {
+            fingerprint_rasters = read_fingerprint_rasters(o, dem_grid);
+            if (partition_file) digitised = read_digitised(o, dem_grid.grid.crs_wkt);
+        }
     });
     p.notes = std::move(dem_notes);
     tick(progress, 0.15, "reading the partition");
@@ -135,7 +139,11 @@ Prepared prepare(const Plan& plan, const Progress& progress) {
 
     // Of the partition as read: what the faces' drawing depends on before the terrain fills in
     // their controls (the terrain's cells are in the fingerprint themselves).
-    if (fingerprint_rasters) p.fingerprints = face_fingerprints(plan, p.partition, *fingerprint_rasters);
+    if (fingerprint_rasters) {
+        // An extracted partition is fingerprinted as extracted.
+        p.fingerprints = face_fingerprints(plan, digitised ? *digitised : p.partition, *fingerprint_rasters);
+        set_drawn_boxes(*p.fingerprints, plan, p.partition);
+    }
     resolve_face_controls(p, o.partition.path == "auto");
     return p;
 }

@@ -76,8 +76,8 @@ struct Digest {
     }
 };
 
-// A face as read: id, rings, labelled borders (the neighbour across by its id), controls, anchor.
-Digest face_digest(const Partition& part, const RockFace& f) {
+// A face as digitised: id, rings, controls, anchor.
+Digest face_digest(const RockFace& f) {
     Digest d;
     d.add(f.id);
     d.add(std::uint64_t(f.region.outer().size()));
@@ -86,14 +86,6 @@ Digest face_digest(const Partition& part, const RockFace& f) {
     for (const auto& h : f.region.holes()) {
         d.add(std::uint64_t(h.size()));
         for (const Point& q : h) d.add(q);
-    }
-    d.add(std::uint64_t(f.boundary.size()));
-    for (const BoundarySegment& s : f.boundary) {
-        d.add(s.a);
-        d.add(s.b);
-        d.add(int(s.kind));
-        d.add(s.neighbor >= 0 && std::size_t(s.neighbor) < part.faces.size() ? part.faces[std::size_t(s.neighbor)].id
-                                                                              : std::int64_t(-1));
     }
     d.add(int(f.orientation.has_value()));
     d.add(f.orientation.value_or(0.0));
@@ -111,23 +103,29 @@ bool meets(const Point& a, const Point& b, const tex::BBox& box) {
 }
 
 // What a face's drawing can read of another face within its box: the other face's id and
-// controls, its border segments (with labels and the face across) that come into the box,
-// and whether each corner of the box lies in it. Inside the box, the other face is fixed by
-// these (a point of the box is in it by the parity of the segments between the point and a
-// corner), so an edit of its far parts does not redraw this face.
+// controls, the segments of its rings (as digitised) that come into the box, and whether
+// each corner of the box lies in it. Inside the box, the other face is fixed by these (a
+// point of the box is in it by the parity of the segments between the point and a corner),
+// so an edit of its far parts does not redraw this face. Its snapped and labelled borders
+// there follow from these, the lines' segments and the snap (all local).
 // A face that does not come into the box (no segment, no corner in it) adds nothing.
-void add_face_within(Digest& digest, const Partition& part, const RockFace& f, const tex::BBox& box) {
+void add_face_within(Digest& digest, const RockFace& f, const tex::BBox& box) {
     Digest d;
     bool inside = false;
-    for (const BoundarySegment& s : f.boundary)
-        if (meets(s.a, s.b, box)) {
+    auto ring = [&](const std::vector<Point>& r, std::uint64_t which) {
+        for (std::size_t i = 0; i < r.size(); ++i) {
+            const Point& a = r[i];
+            const Point& b = r[(i + 1) % r.size()];
+            if (!meets(a, b, box)) continue;
             inside = true;
-            d.add(s.a);
-            d.add(s.b);
-            d.add(int(s.kind));
-            d.add(s.neighbor >= 0 && std::size_t(s.neighbor) < part.faces.size() ? part.faces[std::size_t(s.neighbor)].id
-                                                                                  : std::int64_t(-1));
+            d.add(which);
+            d.add(std::uint64_t(i));
+            d.add(a);
+            d.add(b);
         }
+    };
+    ring(f.region.outer(), 0);
+    for (std::size_t h = 0; h < f.region.holes().size(); ++h) ring(f.region.holes()[h], h + 1);
     for (const Point& corner : {Point{box.xmin, box.ymin}, Point{box.xmax, box.ymin}, Point{box.xmax, box.ymax},
                                 Point{box.xmin, box.ymax}}) {
         const bool in = f.region.contains(corner);
@@ -395,6 +393,22 @@ struct SourceBlocks {
     }
 };
 
+Partition read_digitised(const Options& o, const std::string& working_wkt) {
+    PartitionOptions po = o.partition;
+    po.as_digitised = true;
+    return load_partition(po, working_wkt);
+}
+
+void set_drawn_boxes(Fingerprints& fp, const Plan& plan, const Partition& drawn) {
+    std::map<std::int64_t, tex::BBox> box;
+    for (int i : drawn_faces(plan, drawn)) box[drawn.faces[std::size_t(i)].id].add(drawn.faces[std::size_t(i)].region.bbox());
+    fp.boxes.clear();
+    for (const auto& [id, digest] : fp.faces) {
+        const auto it = box.find(id);
+        fp.boxes.push_back(it == box.end() ? tex::BBox{} : it->second);
+    }
+}
+
 Fingerprints face_fingerprints(const Plan& plan, const Partition& part, const FingerprintRasters& rasters) {
     const RasterInfo& dem = rasters.grid;
     const Raster* slope = rasters.slope ? &*rasters.slope : nullptr;
@@ -440,9 +454,9 @@ Fingerprints face_fingerprints(const Plan& plan, const Partition& part, const Fi
         const tex::BBox box = f.region.bbox().expanded(margin);
         Digest d;
         d.add(plan_digest);
-        d.add(face_digest(part, f));
+        d.add(face_digest(f));
         for (int j : face_index.find(box))
-            if (j != drawn[k]) add_face_within(d, part, part.faces[std::size_t(j)], box);
+            if (j != drawn[k]) add_face_within(d, part.faces[std::size_t(j)], box);
         d.add(std::uint64_t(0xfeedULL));
         for (int j : line_index.find(box)) add_line_within(d, part.lines[std::size_t(j)], box);
         for (std::size_t s = 0; s < sources.size(); ++s) {
@@ -506,10 +520,11 @@ UpdateReport update(const Plan& plan, const UpdateOptions& u, const Progress& pr
         throw Error(Code::BadLayer, "-o '" + path + "': keeps no fingerprints (written by rockhatch tiles or an older "
                                     "version); write it again with a whole run (rockhatch ... --overwrite)");
 
-    // The faces to redraw are read as a tile of a tiled run reads its faces (prepare_around):
-    // the DEM reprojected and its terrain computed under them alone. The fingerprints read the
-    // raster files as they are. A PNG beside the file (the whole hillshade under the drawing),
-    // an extracted partition or rasters a window cannot read take the whole run's preparation.
+    // The fingerprints read the partition as digitised (no border snapped or labelled) and the
+    // raster files as they are; the faces to redraw are read as a tile of a tiled run reads
+    // its faces (prepare_around): snapped, with the DEM reprojected and its terrain computed
+    // under them alone. A PNG beside the file (the whole hillshade under the drawing), an
+    // extracted partition or rasters a window cannot read take the whole run's preparation.
     const Options& o = plan.options;
     const WorkingGrid grid = working_grid(raster_info(o.dem, "--dem"));
     const bool png = std::any_of(plan.outputs.begin(), plan.outputs.end(),
@@ -524,7 +539,7 @@ UpdateReport update(const Plan& plan, const UpdateOptions& u, const Progress& pr
         std::optional<FingerprintRasters> rasters;
         tex::parallel_for(2, [&](std::size_t item) {
             if (item == 0) rasters = read_fingerprint_rasters(o, grid);
-            else read = load_partition(o.partition, grid.grid.crs_wkt);
+            else read = read_digitised(o, grid.grid.crs_wkt);
         });
         if (!read.bounds().intersects(grid.grid.bounds()))
             throw Error(Code::NoOverlap, "--partition '" + o.partition.path + "' does not overlap --dem '" + o.dem + "'");
@@ -555,7 +570,8 @@ UpdateReport update(const Plan& plan, const UpdateOptions& u, const Progress& pr
         r.notes = whole.notes;
     }
     std::map<std::int64_t, std::string> before(stored->faces.begin(), stored->faces.end());
-    std::map<std::int64_t, std::vector<int>> index;  // face id -> the drawn faces (parts) of that id
+    // Face id -> the drawn faces (parts) of that id: as digitised (around), or as drawn.
+    std::map<std::int64_t, std::vector<int>> index;
     for (int i : drawn_faces(plan, part)) index[part.faces[std::size_t(i)].id].push_back(i);
     const std::set<std::int64_t> forced(u.faces.begin(), u.faces.end());
     std::set<std::int64_t> current;
@@ -571,8 +587,9 @@ UpdateReport update(const Plan& plan, const UpdateOptions& u, const Progress& pr
         const auto was = before.find(id);
         const bool appeared = was == before.end();
         if (u.reset || appeared || was->second != fp || forced.count(id)) {
-            const std::vector<int>& parts = index.at(id);
-            redraw.insert(redraw.end(), parts.begin(), parts.end());
+            // (A face left without area by snapping has no part drawn.)
+            if (const auto parts = index.find(id); parts != index.end())
+                redraw.insert(redraw.end(), parts->second.begin(), parts->second.end());
             r.redrawn_ids.push_back(id);
             d.fingerprints->faces.emplace_back(id, fp);
             r.appeared += appeared;
@@ -582,6 +599,13 @@ UpdateReport update(const Plan& plan, const UpdateOptions& u, const Progress& pr
         if (!current.count(id)) r.removed_ids.push_back(id);
     r.faces = now.faces.size();
     r.redrawn = redraw.size();
+    // The box of each face as drawn (the frame is their union): a redrawn face's from the
+    // partition it is drawn from, another's as the file keeps it.
+    std::map<std::int64_t, tex::BBox> box_of;
+    for (std::size_t i = 0; i < stored->faces.size() && i < stored->boxes.size(); ++i)
+        box_of[stored->faces[i].first] = stored->boxes[i];
+    if (!around)
+        for (std::size_t i = 0; i < now.faces.size() && i < now.boxes.size(); ++i) box_of[now.faces[i].first] = now.boxes[i];
     r.removed = r.removed_ids.size();
     std::sort(redraw.begin(), redraw.end());  // in partition order, as a run draws them
     if (!redraw.empty()) {
@@ -597,8 +621,13 @@ UpdateReport update(const Plan& plan, const UpdateOptions& u, const Progress& pr
             const Prepared p = prepare_around(plan, grid, po, std::nullopt);
             const std::set<std::int64_t> ids(r.redrawn_ids.begin(), r.redrawn_ids.end());
             std::vector<int> chosen;
-            for (int i : drawn_faces(plan, p.partition))
-                if (ids.count(p.partition.faces[std::size_t(i)].id)) chosen.push_back(i);
+            for (std::int64_t id : ids) box_of[id] = tex::BBox{};
+            for (int i : drawn_faces(plan, p.partition)) {
+                const RockFace& f = p.partition.faces[std::size_t(i)];
+                if (!ids.count(f.id)) continue;
+                chosen.push_back(i);
+                box_of[f.id].add(f.region.bbox());
+            }
             drawn = hatch(p, plan, chosen, progress);
         } else {
             drawn = hatch(whole, plan, redraw, progress);
@@ -608,9 +637,10 @@ UpdateReport update(const Plan& plan, const UpdateOptions& u, const Progress& pr
         d.crs_wkt = drawn.crs_wkt;
         d.scale = drawn.scale;
     }
+    for (const auto& [id, fp] : d.fingerprints->faces) d.fingerprints->boxes.push_back(box_of[id]);
     // The frame of the whole drawing, as a run makes it: the boxes of the faces drawn.
-    for (const auto& [id, parts] : index)
-        for (int i : parts) d.bounds.add(part.faces[std::size_t(i)].region.bbox());
+    for (const auto& [id, fp] : now.faces)
+        if (const auto b = box_of.find(id); b != box_of.end() && !b->second.empty()) d.bounds.add(b->second);
     std::vector<std::int64_t> replaced = r.redrawn_ids;
     replaced.insert(replaced.end(), r.removed_ids.begin(), r.removed_ids.end());
     if (progress && !progress(0.92, "writing")) throw Error(Code::Cancelled, "cancelled during writing");

@@ -153,6 +153,11 @@ TEST(Update, RedrawsTheEditedFacesAsAWholeRunAndKeepsHandEditsElsewhere) {
         }
     }
     if (!redrawn.count(hand_face)) EXPECT_EQ(after.at(hand_face).size(), full.at(hand_face).size() - 1);
+    // The frame (the faces' boxes as drawn, the others' as the file kept them) is the run's.
+    const tex::BBox fu = read_gpkg(out, 10000).bounds, fw = read_gpkg(whole, 10000).bounds;
+    EXPECT_TRUE(fu.xmin == fw.xmin && fu.ymin == fw.ymin && fu.xmax == fw.xmax && fu.ymax == fw.ymax)
+        << fu.xmin << " " << fu.ymin << " " << fu.xmax << " " << fu.ymax << " against " << fw.xmin << " " << fw.ymin
+        << " " << fw.xmax << " " << fw.ymax;
     // The same update again: nothing to do.
     EXPECT_EQ(update(sample_options(part, out), {}).redrawn, 0u);
     // --reset: every face, the whole run's features.
@@ -249,6 +254,27 @@ TEST(Update, ADemEditInDegreesRedrawsWhatItReachesWithAWholeRunsBytes) {
     EXPECT_TRUE(fs::exists(png));
     run(w);
     EXPECT_EQ(by_face(features(out)), by_face(features(whole)));
+}
+
+// The fingerprints digest the partition as digitised, the drawing reads it snapped: a vertex
+// moved within the snap (0.5 m) of where it was changes the digitised faces, and the update's
+// faces, redrawn from a snapped neighbourhood, and the others are a whole run's, frame included.
+TEST(Update, AVertexMovedWithinTheSnapGivesAWholeRunsDrawing) {
+    TempDir dir;
+    const std::string part = dir / "partition.gpkg", out = dir / "h.gpkg", whole = dir / "whole.gpkg";
+    fs::copy_file(std::string(RH_SAMPLE_DIR) + "/partition.gpkg", part);
+    run(sample_options(part, out));
+    const auto faces = by_face(features(out));
+    const std::int64_t edited = std::next(faces.begin(), std::ptrdiff_t(faces.size() / 2))->first;
+    move_vertex(part, edited, 0.3, -0.2);
+    const UpdateReport r = update(sample_options(part, out), {});
+    EXPECT_GE(r.redrawn, 1u);
+    EXPECT_LT(r.redrawn, r.faces);
+    run(sample_options(part, whole));
+    EXPECT_EQ(by_face(features(out)), by_face(features(whole)));
+    const tex::BBox fu = read_gpkg(out, 10000).bounds, fw = read_gpkg(whole, 10000).bounds;
+    EXPECT_TRUE(fu.xmin == fw.xmin && fu.ymin == fw.ymin && fu.xmax == fw.xmax && fu.ymax == fw.ymax);
+    EXPECT_EQ(update(sample_options(part, out), {}).redrawn, 0u);
 }
 
 TEST(Update, RemovedFacesLoseTheirFeaturesAndAskedFacesAreRedrawn) {

@@ -27,6 +27,9 @@ struct FaceHatches {
 struct Fingerprints {
     std::map<std::string, std::string> run;                    // key -> value (kRunKeys)
     std::vector<std::pair<std::int64_t, std::string>> faces;   // face id, fingerprint
+    // Per face of `faces` (when given): the box of its parts as drawn (borders snapped; empty
+    // for a face snapping left without area), from which update frames the drawing.
+    std::vector<tex::BBox> boxes;
 };
 
 struct Drawing {

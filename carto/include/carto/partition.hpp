@@ -81,6 +81,11 @@ struct PartitionOptions {
     // Read only the features that meet this box (working CRS): a tile's neighbourhood. A
     // box holding no face gives an empty partition instead of an error.
     std::optional<tex::BBox> filter;
+    // The faces and lines as the file holds them (reprojected, repaired): borders neither
+    // snapped nor labelled (RockFace::boundary left empty). What update's fingerprints digest
+    // (carto/update.hpp): snapping is local, so a face's drawing depends on its neighbourhood
+    // as digitised.
+    bool as_digitised = false;
 };
 
 // Reads the partition and reprojects it to the working CRS. Lines come either from a line

@@ -6,11 +6,13 @@
 // A face's fingerprint is a digest (128 bits, not cryptographic) of:
 // - the run's plan: program version, working CRS, the DEM's grid, the style (and the bytes of
 //   its script), its parameters, scale, seed, relief radius, the partition's options;
-// - the face as read (rings, labelled borders and the faces across, id, orientation,
-//   density, anchor), and within its box grown by the context margin (tile_context_margin:
-//   the style's reach, the terrain kernels, the snap) what the other faces and the labelled
-//   lines put there: their border segments in that box, with labels and the faces across,
-//   whether each corner of the box lies in them, their ids and controls;
+// - the face as digitised (rings, id, orientation, density, anchor: its borders before they
+//   are snapped to its neighbours' and labelled by the lines), and within its box grown by
+//   the context margin (tile_context_margin: the style's reach, the terrain kernels, the
+//   snap) what the other faces and the labelled lines put there, as digitised: the segments
+//   of their rings and of the lines in that box, whether each corner of the box lies in the
+//   faces, their ids and controls (snapping and labelling are local: from these follow the
+//   borders as drawn);
 // - the DEM's cells (and the --slope / --roughness cells) as their files hold them, in
 //   blocks of 8 x 8 cells, under that box grown by the halo (tile_halo_cells: the relief
 //   radius or the style's reach) and two cells more, the box taken to the file's CRS by
@@ -49,9 +51,14 @@ struct FingerprintRasters {
 FingerprintRasters read_fingerprint_rasters(const Options& o, const WorkingGrid& grid);
 
 // The fingerprints of the faces the plan draws (those whose anchor lies in its window, or
-// all), in partition order, from the partition as read (before its orientations and
-// densities are derived from the terrain) and the rasters' files.
-Fingerprints face_fingerprints(const Plan& plan, const Partition& partition, const FingerprintRasters& rasters);
+// all), in partition order, from the partition as digitised (PartitionOptions::as_digitised:
+// not snapped, not labelled; its orientations and densities as given) and the rasters' files.
+Fingerprints face_fingerprints(const Plan& plan, const Partition& digitised, const FingerprintRasters& rasters);
+// The partition as digitised, for face_fingerprints.
+Partition read_digitised(const Options& o, const std::string& working_wkt);
+// Sets fp.boxes: per face id, the box of its parts in `drawn` (the partition as a run reads
+// it, snapped) that the plan draws; empty for an id none of whose parts is drawn there.
+void set_drawn_boxes(Fingerprints& fp, const Plan& plan, const Partition& drawn);
 
 struct UpdateOptions {
     // Redraw every face and drop every feature (hand edits included); also accepts a file
