@@ -1015,16 +1015,53 @@ private:
 
 }  // namespace
 
+struct FeatureKeys {
+    std::vector<std::int64_t> faces;  // sorted, distinct
+    std::array<StoredKeys::Fids, kFamilies> old;
+};
+
+namespace {
+
+// The sorted, distinct face ids.
+std::vector<std::int64_t> distinct(std::vector<std::int64_t> ids) {
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    return ids;
+}
+
+// The keys of the features of `ids` (sorted) in the hatch layers of `ds`, in family order.
+void read_keys(GDALDataset& ds, const std::string& path, const std::string& what, const std::vector<std::int64_t>& ids,
+               std::array<StoredKeys::Fids, kFamilies>& old) {
+    StoredKeys stored(path, what);
+    const std::vector<std::string> where = face_conditions(ids);
+    for (int fam = 0; fam < kFamilies; ++fam)
+        if (OGRLayer* layer = ds.GetLayerByName(hatch_table(Family(fam)).c_str())) old[std::size_t(fam)] = stored.read(*layer, where);
+}
+
+}  // namespace
+
+std::shared_ptr<FeatureKeys> read_feature_keys(const std::string& path, const std::vector<std::int64_t>& faces) {
+    const QuietGdal quiet;
+    register_gdal();
+    const std::string what = "-o '" + path + "'";
+    std::unique_ptr<GDALDataset> ds(
+        GDALDataset::FromHandle(GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
+    if (!ds) throw Error(Code::OutputExists, what + ": cannot read (" + CPLGetLastErrorMsg() + ")");
+    auto keys = std::make_shared<FeatureKeys>();
+    keys->faces = distinct(faces);
+    read_keys(*ds, path, what, keys->faces, keys->old);
+    return keys;
+}
+
 FaceReplacement replace_faces(const std::string& path, const std::vector<std::int64_t>& faces, bool all,
-                              const Drawing& d, const std::string& undo) {
+                              const Drawing& d, const std::string& undo, std::shared_ptr<FeatureKeys> keys) {
     const ReproducibleGpkg reproducible;
     const QuietGdal quiet;
     const std::string what = "-o '" + path + "'";
     FaceEdit edit(path, what);
     GDALDataset& ds = edit.ds();
-    std::vector<std::int64_t> ids = faces;
-    std::sort(ids.begin(), ids.end());
-    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    const std::vector<std::int64_t> ids = distinct(faces);
+    if (keys && keys->faces != ids) throw Error(Code::Failure, what + ": the features read before are of other faces");
     std::optional<UndoFile> keep;
     if (!undo.empty()) keep.emplace(undo, ds, ids);
     FaceReplacement r;
@@ -1032,25 +1069,23 @@ FaceReplacement replace_faces(const std::string& path, const std::vector<std::in
     // anything is written.
     std::array<OGRLayer*, kFamilies> layers{};
     std::array<StoredKeys::Fids, kFamilies> old;
-    {
-        std::optional<StoredKeys> stored;
-        if (!all) stored.emplace(path, what);
-        const std::vector<std::string> where = face_conditions(ids);
-        for (int fam = 0; fam < kFamilies; ++fam) {
-            const Family f = Family(fam);
-            const std::string table = std::string("hatch_") + family_name(f);
-            OGRLayer* layer = ds.GetLayerByName(table.c_str());
-            if (!layer) {
-                if (has_family(d, f)) throw Error(Code::BadLayer, what + ": no layer " + table + " for the redrawn faces");
-                continue;
-            }
-            const OGRFeatureDefn* defn = layer->GetLayerDefn();
-            for (const char* field : {"face_id", "family", "style", "width_mm"})
-                if (defn->GetFieldIndex(field) < 0)
-                    throw Error(Code::BadLayer, what + ": layer " + table + " lacks face_id, family, style or width_mm");
-            layers[std::size_t(fam)] = layer;
-            if (stored) old[std::size_t(fam)] = stored->read(*layer, where);
+    for (int fam = 0; fam < kFamilies; ++fam) {
+        const Family f = Family(fam);
+        const std::string table = hatch_table(f);
+        OGRLayer* layer = ds.GetLayerByName(table.c_str());
+        if (!layer) {
+            if (has_family(d, f)) throw Error(Code::BadLayer, what + ": no layer " + table + " for the redrawn faces");
+            continue;
         }
+        const OGRFeatureDefn* defn = layer->GetLayerDefn();
+        for (const char* field : {"face_id", "family", "style", "width_mm"})
+            if (defn->GetFieldIndex(field) < 0)
+                throw Error(Code::BadLayer, what + ": layer " + table + " lacks face_id, family, style or width_mm");
+        layers[std::size_t(fam)] = layer;
+    }
+    if (!all) {
+        if (keys) old = std::move(keys->old);
+        else read_keys(ds, path, what, ids, old);
     }
     std::vector<Point> pts;
     std::string key;

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <iterator>
 #include <map>
 #include <memory>
@@ -608,6 +609,13 @@ UpdateReport update(const Plan& plan, const UpdateOptions& u, const Progress& pr
         for (std::size_t i = 0; i < now.faces.size() && i < now.boxes.size(); ++i) box_of[now.faces[i].first] = now.boxes[i];
     r.removed = r.removed_ids.size();
     std::sort(redraw.begin(), redraw.end());  // in partition order, as a run draws them
+    std::vector<std::int64_t> replaced = r.redrawn_ids;
+    replaced.insert(replaced.end(), r.removed_ids.begin(), r.removed_ids.end());
+    // The file's features of those faces are read on a thread of their own while the faces are
+    // drawn (when the run may use more than one).
+    std::future<std::shared_ptr<FeatureKeys>> keys;
+    if (!u.reset && !replaced.empty() && tex::GetThreads() > 1)
+        keys = std::async(std::launch::async, [&path, &replaced] { return read_feature_keys(path, replaced); });
     if (!redraw.empty()) {
         Drawing drawn;
         if (around) {
@@ -641,10 +649,8 @@ UpdateReport update(const Plan& plan, const UpdateOptions& u, const Progress& pr
     // The frame of the whole drawing, as a run makes it: the boxes of the faces drawn.
     for (const auto& [id, fp] : now.faces)
         if (const auto b = box_of.find(id); b != box_of.end() && !b->second.empty()) d.bounds.add(b->second);
-    std::vector<std::int64_t> replaced = r.redrawn_ids;
-    replaced.insert(replaced.end(), r.removed_ids.begin(), r.removed_ids.end());
     if (progress && !progress(0.92, "writing")) throw Error(Code::Cancelled, "cancelled during writing");
-    const FaceReplacement written = replace_faces(path, replaced, u.reset, d, u.undo);
+    const FaceReplacement written = replace_faces(path, replaced, u.reset, d, u.undo, keys.valid() ? keys.get() : nullptr);
     r.deleted = written.deleted;
     r.written = written.written;
     r.kept = written.kept;

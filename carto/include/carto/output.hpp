@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -108,8 +109,14 @@ struct FaceReplacement {
 // `undo`, the features and fingerprints it removes, the fids of the features it writes, the
 // faces replaced and the file's metadata go to that GeoPackage (replaced if it exists), for
 // restore_faces: the features drawn again as they were are in neither.
+// The features of some faces in a hatch GeoPackage as replace_faces matches them (a digest of
+// each one's bytes), read before the edit: update reads them on a thread of their own while
+// the faces are drawn. Null: replace_faces reads them itself.
+struct FeatureKeys;
+std::shared_ptr<FeatureKeys> read_feature_keys(const std::string& path, const std::vector<std::int64_t>& faces);
 FaceReplacement replace_faces(const std::string& path, const std::vector<std::int64_t>& faces, bool all,
-                              const Drawing& d, const std::string& undo = "");
+                              const Drawing& d, const std::string& undo = "",
+                              std::shared_ptr<FeatureKeys> keys = nullptr);
 // Undoes the replace_faces that wrote `undo`: removes the features it wrote and the
 // fingerprints of the faces it replaced, and puts back the features and fingerprints it
 // removed (the same geometry and attributes, hand edits included; new fids) and the
