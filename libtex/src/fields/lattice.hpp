@@ -8,6 +8,7 @@
 
 #include "libtex/error.hpp"
 #include "libtex/fields.hpp"
+#include "libtex/parallel.hpp"
 
 namespace tex::detail {
 
@@ -28,9 +29,13 @@ struct LatticeWindow {
           ny(j1 - j0 + 1 + 2 * ring_nodes) {
         if (nx * ny > 50'000'000) throw Error(who, "too many lattice nodes for the region (cell too small)");
         values.resize(std::size_t(nx * ny));
-        for (long long j = 0; j < ny; ++j)
+        // Rows of nodes apart (each value is the field's at its node alone): a face drawn last
+        // shares them with the threads that have run out of faces.
+        parallel_for(std::size_t(ny), [&](std::size_t row) {
+            const long long j = (long long)row;
             for (long long i = 0; i < nx; ++i)
                 values[std::size_t(j * nx + i)] = f(Point{double(i0 - ring + i) * cell, double(j0 - ring + j) * cell});
+        });
     }
     double at(long long i, long long j) const {
         return values[std::size_t((j - j0 + ring) * nx + (i - i0 + ring))];

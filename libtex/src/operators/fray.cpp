@@ -2,6 +2,7 @@
 // that the border is not drawn by the ends of the curves (rock drawing has no outline).
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <utility>
@@ -9,6 +10,7 @@
 
 #include "libtex/error.hpp"
 #include "libtex/merge.hpp"
+#include "libtex/parallel.hpp"
 #include "libtex/random.hpp"
 #include "libtex/region.hpp"
 
@@ -225,19 +227,18 @@ Arrangement FrayedCrop(Arrangement a, double min, double max, Field across, std:
         // Whether an end goes on past the rim (a draw of its own, keyed as its depth is).
         const std::uint64_t side_key = hash_combine(key, 1);
         auto onward = [&](const Point& p) { return beyond > 0 && unit_from_hash(hash_point(side_key, p)) < beyond; };
+        // The region prepared once, by the first end that needs it (ends are drawn in parallel).
         std::optional<PreparedRegion> prepared;
+        std::once_flag prepare_once;
         auto region = [&]() -> const PreparedRegion& {
-            if (!prepared) prepared.emplace(r);
+            std::call_once(prepare_once, [&] { prepared.emplace(r); });
             return *prepared;
         };
-        Curves out;
-        out.points = std::move(in.points);
-        out.origin = std::move(in.origin);
-        for (Curve& c : in.curves) {
-            if (c.closed || c.points.size() < 2) {
-                out.curves.push_back(std::move(c));
-                continue;
-            }
+        // Each curve's ends alone: blocks of curves in parallel (a face drawn last shares them
+        // with the threads that have run out of faces), the curves kept in their order.
+        std::vector<char> keep(in.curves.size(), 1);
+        auto fray = [&](Curve& c) -> bool {
+            if (c.closed || c.points.size() < 2) return true;
             const Point first = c.points.front(), last = c.points.back();
             const auto [head, head_inset] = depth_at(first);
             const auto [tail, tail_inset] = depth_at(last);
@@ -255,10 +256,21 @@ Arrangement FrayedCrop(Arrangement a, double min, double max, Field across, std:
                 pts = draw_back(std::move(pts), tail, border);
                 std::reverse(pts.begin(), pts.end());
             }
-            if (pts.size() < 2) continue;
+            if (pts.size() < 2) return false;
             c.points = std::move(pts);
-            out.curves.push_back(std::move(c));
-        }
+            return true;
+        };
+        constexpr std::size_t kBlock = 256;
+        parallel_for((in.curves.size() + kBlock - 1) / kBlock, [&](std::size_t b) {
+            for (std::size_t i = b * kBlock; i < std::min(in.curves.size(), (b + 1) * kBlock); ++i)
+                keep[i] = fray(in.curves[i]);
+        });
+        Curves out;
+        out.points = std::move(in.points);
+        out.origin = std::move(in.origin);
+        out.curves.reserve(in.curves.size());
+        for (std::size_t i = 0; i < in.curves.size(); ++i)
+            if (keep[i]) out.curves.push_back(std::move(in.curves[i]));
         return out;
     });
 }
