@@ -587,19 +587,23 @@ TEST(Merge, FrayedCropDrawsCutEndsBackIntoTheBand) {
         EXPECT_NEAR(distance(k.points.front(), k.points.back()), 8.0, 1e-6);
 }
 
-// A face drawn last shares its FrayedCrop's curves (and IsoLines' lattice rows) with the
-// threads that have run out of faces: the same curves as on one thread. Item 1 of the outer
-// call ends at once, so its thread helps with item 0's nested calls.
-TEST(Merge, FrayedCropAndIsoLinesSharedWithIdleThreadsGiveTheSameCurves) {
+// A face drawn last shares its FrayedCrop's and Apart's curves (and IsoLines' lattice rows)
+// with the threads that have run out of faces: the same curves as on one thread. Item 1 of
+// the outer call ends at once, so its thread helps with item 0's nested calls.
+TEST(Merge, FrayedCropApartAndIsoLinesSharedWithIdleThreadsGiveTheSameCurves) {
     SetSeed(5);
     Curves many;
     for (double y = 0.05; y < 10; y += 0.01) many.append(Polyline({{-5, y}, {15, y + 0.3}}));  // 995 rows
     const Arrangement fray = FrayedCrop(Constant(many), 0.5, 2.0, Field(), {}, 0.5);
     const Field f([](const Point& p) { return std::sin(p.x / 3) + std::cos(p.y / 4); });
     const Arrangement iso = IsoLines(f, 0.3, 0.05);
+    Curves lines = Polyline({{2, -1}, {3, 11}});
+    lines.append(Polyline({{7, 11}, {8.5, 4}, {6, -1}}));
+    const Arrangement apart = Apart(Constant(many), lines, 0.15);
     auto both = [&] {
         Curves c = fray(kTall);
         c.append(iso(kTall));
+        c.append(apart(kTall));
         return c;
     };
     Curves alone, shared;
@@ -613,7 +617,7 @@ TEST(Merge, FrayedCropAndIsoLinesSharedWithIdleThreadsGiveTheSameCurves) {
             if (i == 0) shared = both();
         });
     }
-    ASSERT_GT(alone.curves.size(), 900u);
+    ASSERT_GT(alone.curves.size(), 2 * 995u);
     ASSERT_EQ(shared.curves.size(), alone.curves.size());
     for (std::size_t i = 0; i < alone.curves.size(); ++i) ASSERT_EQ(shared.curves[i].points, alone.curves[i].points) << i;
 }

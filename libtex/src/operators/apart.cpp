@@ -8,6 +8,7 @@
 
 #include "libtex/error.hpp"
 #include "libtex/merge.hpp"
+#include "libtex/parallel.hpp"
 
 namespace tex {
 namespace {
@@ -27,7 +28,8 @@ public:
     // The parameters t in [0, 1] of p + t (q - p) within the distance of a line, as sorted,
     // merged intervals: the line through p and q meets each segment's capsule (a convex set)
     // in one interval, the union of its meetings with the two end discs and the band between.
-    std::vector<std::pair<double, double>> near(const Point& p, const Point& q) const {
+    // `seen_` is the caller's scratch (one per thread).
+    std::vector<std::pair<double, double>> near(const Point& p, const Point& q, std::vector<std::size_t>& seen_) const {
         std::vector<std::pair<double, double>> out;
         const long long x0 = cell(std::min(p.x, q.x) - d_), x1 = cell(std::max(p.x, q.x) + d_);
         const long long y0 = cell(std::min(p.y, q.y) - d_), y1 = cell(std::max(p.y, q.y) + d_);
@@ -111,8 +113,61 @@ private:
     double d_, bucket_;
     std::vector<std::pair<Point, Point>> segs_;
     std::unordered_map<long long, std::vector<std::size_t>> buckets_;
-    mutable std::vector<std::size_t> seen_;
 };
+
+// The pieces of `c` farther than the index's distance from its lines, appended to `out`
+// (c itself, moved, when nothing comes near it).
+void keep_apart(Curve& c, const NearIndex& index, std::vector<std::size_t>& seen, Curves& out) {
+    const std::size_t n = c.points.size();
+    if (n < 2) {
+        out.curves.push_back(std::move(c));
+        return;
+    }
+    std::vector<Point> pts = c.points;
+    if (c.closed) pts.push_back(pts.front());
+    std::vector<std::vector<Point>> pieces;
+    std::vector<Point> run;
+    bool cut = false;
+    for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+        const Point p = pts[i], q = pts[i + 1];
+        if (run.empty() && i == 0) run.push_back(p);
+        double from = 0;  // the kept stretch of this segment starts here
+        for (const auto& [t0, t1] : index.near(p, q, seen)) {
+            cut = true;
+            if (t0 > from) {
+                if (run.empty()) run.push_back(p + (q - p) * from);
+                run.push_back(p + (q - p) * t0);
+            }
+            if (run.size() >= 2) pieces.push_back(run);
+            run.clear();
+            from = t1;
+        }
+        if (from < 1) {
+            if (run.empty()) run.push_back(p + (q - p) * from);
+            run.push_back(q);
+        }
+    }
+    if (!cut) {
+        out.curves.push_back(std::move(c));  // untouched
+        return;
+    }
+    if (run.size() >= 2) pieces.push_back(run);
+    // A closed curve kept through its first point: the pieces before and after that point are
+    // one piece (wherever the curve happened to start).
+    if (c.closed && pieces.size() >= 2 && pieces.front().front() == pts.front() && pieces.back().back() == pts.back()) {
+        std::vector<Point>& last = pieces.back();
+        last.insert(last.end(), pieces.front().begin() + 1, pieces.front().end());
+        pieces.erase(pieces.begin());
+    }
+    for (auto& piece : pieces) {
+        Curve k;
+        k.points = std::move(piece);
+        k.labels = c.labels;
+        k.left = c.left;
+        k.right = c.right;
+        out.curves.push_back(std::move(k));
+    }
+}
 
 }  // namespace
 
@@ -122,64 +177,25 @@ Arrangement Apart(Arrangement a, Curves lines, double distance) {
     auto lines_ptr = std::make_shared<const Curves>(std::move(lines));
     return Arrangement([a = std::move(a), lines_ptr, distance](const Region& r) {
         Curves in = a(r);
-        // The index is built per evaluation: its query buffer is the thread's own.
         const NearIndex index(*lines_ptr, distance);
         if (index.empty()) return in;
+        // Blocks of curves apart, each with its own query buffer (a face drawn last shares
+        // them with the threads that have run out of faces), their pieces kept in order.
+        constexpr std::size_t kBlock = 256;
+        std::vector<Curves> blocks((in.curves.size() + kBlock - 1) / kBlock);
+        parallel_for(blocks.size(), [&](std::size_t b) {
+            std::vector<std::size_t> seen;
+            for (std::size_t i = b * kBlock; i < std::min(in.curves.size(), (b + 1) * kBlock); ++i)
+                keep_apart(in.curves[i], index, seen, blocks[b]);
+        });
         Curves out;
         out.points = std::move(in.points);
         out.origin = std::move(in.origin);
-        for (Curve& c : in.curves) {
-            const std::size_t n = c.points.size();
-            if (n < 2) {
-                out.curves.push_back(std::move(c));
-                continue;
-            }
-            std::vector<Point> pts = c.points;
-            if (c.closed) pts.push_back(pts.front());
-            std::vector<std::vector<Point>> pieces;
-            std::vector<Point> run;
-            bool cut = false;
-            for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
-                const Point p = pts[i], q = pts[i + 1];
-                if (run.empty() && i == 0) run.push_back(p);
-                double from = 0;  // the kept stretch of this segment starts here
-                for (const auto& [t0, t1] : index.near(p, q)) {
-                    cut = true;
-                    if (t0 > from) {
-                        if (run.empty()) run.push_back(p + (q - p) * from);
-                        run.push_back(p + (q - p) * t0);
-                    }
-                    if (run.size() >= 2) pieces.push_back(run);
-                    run.clear();
-                    from = t1;
-                }
-                if (from < 1) {
-                    if (run.empty()) run.push_back(p + (q - p) * from);
-                    run.push_back(q);
-                }
-            }
-            if (!cut) {
-                out.curves.push_back(std::move(c));  // untouched
-                continue;
-            }
-            if (run.size() >= 2) pieces.push_back(run);
-            // A closed curve kept through its first point: the pieces before and after that
-            // point are one piece (wherever the curve happened to start).
-            if (c.closed && pieces.size() >= 2 && pieces.front().front() == pts.front() &&
-                pieces.back().back() == pts.back()) {
-                std::vector<Point>& last = pieces.back();
-                last.insert(last.end(), pieces.front().begin() + 1, pieces.front().end());
-                pieces.erase(pieces.begin());
-            }
-            for (auto& piece : pieces) {
-                Curve k;
-                k.points = std::move(piece);
-                k.labels = c.labels;
-                k.left = c.left;
-                k.right = c.right;
-                out.curves.push_back(std::move(k));
-            }
-        }
+        std::size_t total = 0;
+        for (const Curves& b : blocks) total += b.curves.size();
+        out.curves.reserve(total);
+        for (Curves& b : blocks)
+            for (Curve& c : b.curves) out.curves.push_back(std::move(c));
         return out;
     });
 }
