@@ -28,12 +28,12 @@ public:
     // The parameters t in [0, 1] of p + t (q - p) within the distance of a line, as sorted,
     // merged intervals: the line through p and q meets each segment's capsule (a convex set)
     // in one interval, the union of its meetings with the two end discs and the band between.
-    // `seen_` is the caller's scratch (one per thread).
-    std::vector<std::pair<double, double>> near(const Point& p, const Point& q, std::vector<std::size_t>& seen_) const {
+    // `seen` is the caller's scratch (one per thread).
+    std::vector<std::pair<double, double>> near(const Point& p, const Point& q, std::vector<std::size_t>& seen) const {
         std::vector<std::pair<double, double>> out;
         const long long x0 = cell(std::min(p.x, q.x) - d_), x1 = cell(std::max(p.x, q.x) + d_);
         const long long y0 = cell(std::min(p.y, q.y) - d_), y1 = cell(std::max(p.y, q.y) + d_);
-        seen_.clear();
+        seen.clear();
         const Point v = q - p;
         for (long long y = y0; y <= y1; ++y)
             for (long long x = x0; x <= x1; ++x) {
@@ -44,8 +44,8 @@ public:
                     if (std::max(a.x, b.x) + d_ < std::min(p.x, q.x) || std::min(a.x, b.x) - d_ > std::max(p.x, q.x) ||
                         std::max(a.y, b.y) + d_ < std::min(p.y, q.y) || std::min(a.y, b.y) - d_ > std::max(p.y, q.y))
                         continue;
-                    if (std::find(seen_.begin(), seen_.end(), s) != seen_.end()) continue;
-                    seen_.push_back(s);
+                    if (std::find(seen.begin(), seen.end(), s) != seen.end()) continue;
+                    seen.push_back(s);
                     double lo = INFINITY, hi = -INFINITY;
                     capsule(p, v, segs_[s].first, segs_[s].second, lo, hi);
                     lo = std::max(lo, 0.0);
