@@ -175,9 +175,9 @@ void RtreeLoader::add(sqlite3* db, const BoxF* boxes, std::size_t n, std::int64_
     if (sqlite3_prepare_v2(db, ("INSERT INTO " + sql_name(rtree_ + "_node") + " VALUES (?, ?)").c_str(), -1, &ins_node.s,
                            nullptr))
         fail(db, path_, "cannot prepare the inserts");
-    // The leaves, numbered on from the last; the leaf of each feature for its _rowid row.
-    std::vector<std::pair<std::int64_t, std::int64_t>> leaf_of;  // (feature id, node)
-    leaf_of.reserve(items.size());
+    // The leaves, numbered on from the last; the leaf of each feature for its _rowid row
+    // (by id - first_id; -1 for an empty geometry).
+    std::vector<std::int64_t> node_of(n, -1);
     std::vector<unsigned char> blob(static_cast<std::size_t>(node_size_));
     const auto same = [](const RtreeEntry& e) { return e; };
     str_pack(items, fanout_, same, [&](std::size_t b, std::size_t e) {
@@ -187,11 +187,14 @@ void RtreeLoader::add(sqlite3* db, const BoxF* boxes, std::size_t n, std::int64_
         sqlite3_bind_int64(ins_node.s, 1, no);
         sqlite3_bind_blob(ins_node.s, 2, blob.data(), node_size_, SQLITE_STATIC);
         step(db, path_, ins_node.s, "node insert");
-        for (std::size_t c = b; c < e; ++c) leaf_of.push_back({items[c].id, no});
+        for (std::size_t c = b; c < e; ++c) node_of[std::size_t(items[c].id - first_id)] = no;
     });
     // Rows of the _rowid table in the order of the ids (appended, not put all over it),
     // kRowidBatch a statement.
-    std::sort(leaf_of.begin(), leaf_of.end());
+    std::vector<std::pair<std::int64_t, std::int64_t>> leaf_of;  // (feature id, node)
+    leaf_of.reserve(items.size());
+    for (std::size_t i = 0; i < n; ++i)
+        if (node_of[i] >= 0) leaf_of.push_back({first_id + std::int64_t(i), node_of[i]});
     constexpr std::size_t kRowidBatch = 100;
     Stmt one, many;
     const std::string ins = "INSERT INTO " + sql_name(rtree_ + "_rowid") + " VALUES (?, ?)";

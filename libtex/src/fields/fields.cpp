@@ -396,13 +396,15 @@ Field Noise(double wavelength) {
     return FunctionField([key, wavelength](const Point& p) {
         const double x = p.x / wavelength, y = p.y / wavelength;
         const double fx = std::floor(x), fy = std::floor(y);
-        auto node = [&](double i, double j) {
-            return 2 * unit_from_hash(hash_double(hash_double(key, fx + i), fy + j)) - 1;
-        };
+        // The value at node (fx + i, fy + j) hashes the column's hash with the row: each
+        // column hashed once.
+        const std::uint64_t c0 = hash_double(key, fx), c1 = hash_double(key, fx + 1);
+        auto node = [](std::uint64_t column, double row) { return 2 * unit_from_hash(hash_double(column, row)) - 1; };
+        const double n00 = node(c0, fy), n10 = node(c1, fy), n01 = node(c0, fy + 1), n11 = node(c1, fy + 1);
         auto smooth = [](double t) { return t * t * (3 - 2 * t); };
         const double u = smooth(x - fx), v = smooth(y - fy);
-        const double a = node(0, 0) + (node(1, 0) - node(0, 0)) * u;
-        const double b = node(0, 1) + (node(1, 1) - node(0, 1)) * u;
+        const double a = n00 + (n10 - n00) * u;
+        const double b = n01 + (n11 - n01) * u;
         return a + (b - a) * v;
     });
 }

@@ -60,39 +60,56 @@ public:
                     buckets_[b].push_back(k);
                     if (s.rim) rim_buckets_[b].push_back(k);
                 }
+            first_.push_back({x0, y0});
         }
     }
 
     // The distance from p to the nearest segment within `limit` (+inf when none), and
     // whether that segment is rim.
+    // Of segments at the same distance, the one met first in the window of buckets read row
+    // by row (each bucket's segments in their order): the first bucket of the window that
+    // holds a segment is the corner of the overlap of its buckets with the window, so the
+    // buckets farther from p than `limit`, which hold no segment within it, are skipped
+    // without changing the answer.
     std::pair<double, bool> nearest(const Point& p, double limit) const {
-        const int r = int(std::ceil(limit / cell_));
-        const int x = col(p.x), y = row(p.y);
+        const Window w = window(p, limit);
         double best = limit * limit;  // squared distances: one square root per query
         bool rim = false, found = false;
-        for (int yy = std::max(0, y - r); yy <= std::min(cells_ - 1, y + r); ++yy)
-            for (int xx = std::max(0, x - r); xx <= std::min(cells_ - 1, x + r); ++xx)
+        std::size_t best_first = 0, best_k = 0;  // where the best was met first, and its index
+        for (int yy = w.y0; yy <= w.y1; ++yy) {
+            if (!w.near_row(*this, p, yy)) continue;
+            for (int xx = w.x0; xx <= w.x1; ++xx) {
+                if (!w.near_col(*this, p, xx)) continue;
                 for (std::size_t k : buckets_[std::size_t(yy) * std::size_t(cells_) + std::size_t(xx)]) {
                     const double d = squared_distance_to(p, segs_[k]);
-                    if (d < best || (d == best && !found)) {
+                    if (d > best) continue;
+                    const std::size_t first = std::size_t(std::max(first_[k].y, w.y0)) * std::size_t(cells_) +
+                                              std::size_t(std::max(first_[k].x, w.x0));
+                    if (d < best || !found || first < best_first || (first == best_first && k < best_k)) {
                         best = d;
                         rim = segs_[k].rim;
                         found = true;
+                        best_first = first;
+                        best_k = k;
                     }
                 }
+            }
+        }
         return {found ? std::sqrt(best) : INFINITY, rim};
     }
 
     // The distance from p to the nearest rim segment, up to `limit` (limit when none nearer).
     double to_rim(const Point& p, double limit) const {
-        const int r = int(std::ceil(limit / cell_));
-        const int x = col(p.x), y = row(p.y);
+        const Window w = window(p, limit);
         const double limit2 = limit * limit;
         double best = limit2;
-        for (int yy = std::max(0, y - r); yy <= std::min(cells_ - 1, y + r); ++yy)
-            for (int xx = std::max(0, x - r); xx <= std::min(cells_ - 1, x + r); ++xx)
-                for (std::size_t k : rim_buckets_[std::size_t(yy) * std::size_t(cells_) + std::size_t(xx)])
-                    best = std::min(best, squared_distance_to(p, segs_[k]));
+        for (int yy = w.y0; yy <= w.y1; ++yy) {
+            if (!w.near_row(*this, p, yy)) continue;
+            for (int xx = w.x0; xx <= w.x1; ++xx)
+                if (w.near_col(*this, p, xx))
+                    for (std::size_t k : rim_buckets_[std::size_t(yy) * std::size_t(cells_) + std::size_t(xx)])
+                        best = std::min(best, squared_distance_to(p, segs_[k]));
+        }
         return best < limit2 ? std::min(limit, std::sqrt(best)) : limit;
     }
 
@@ -101,6 +118,34 @@ private:
         Point a, b;
         bool rim;
     };
+    struct Cell {
+        int x, y;
+    };
+    // The buckets within `limit` of p (by ceil(limit / cell) around its own), and whether a
+    // row or a column of them may hold a point within `limit` of p: its band, widened by a
+    // rounding margin (and without end on the grid's first and last), reaches p's
+    // coordinate within `limit`. A segment within `limit` of p holds a point within it, and
+    // lies in that point's bucket.
+    struct Window {
+        int x0, x1, y0, y1;
+        double reach;
+        bool near_col(const BorderIndex& b, const Point& p, int c) const {
+            const double lo = c == 0 ? -INFINITY : b.box_.xmin + c * b.cell_;
+            const double hi = c == b.cells_ - 1 ? INFINITY : b.box_.xmin + (c + 1) * b.cell_;
+            return p.x >= lo - reach && p.x <= hi + reach;
+        }
+        bool near_row(const BorderIndex& b, const Point& p, int r) const {
+            const double lo = r == 0 ? -INFINITY : b.box_.ymin + r * b.cell_;
+            const double hi = r == b.cells_ - 1 ? INFINITY : b.box_.ymin + (r + 1) * b.cell_;
+            return p.y >= lo - reach && p.y <= hi + reach;
+        }
+    };
+    Window window(const Point& p, double limit) const {
+        const int r = int(std::ceil(limit / cell_));
+        const int x = col(p.x), y = row(p.y);
+        return {std::max(0, x - r), std::min(cells_ - 1, x + r), std::max(0, y - r), std::min(cells_ - 1, y + r),
+                limit + 1e-6 * cell_};
+    }
     static double squared_distance_to(const Point& p, const Seg& s) {
         const Point ab = s.b - s.a;
         const double l2 = dot(ab, ab);
@@ -117,6 +162,7 @@ private:
     double cell_ = 1;
     std::vector<std::vector<std::size_t>> buckets_;
     std::vector<std::vector<std::size_t>> rim_buckets_;  // the rim segments of each bucket, for to_rim
+    std::vector<Cell> first_;                            // each segment's first bucket (lowest row and column)
 };
 
 // The polyline pts from its start drawn back to the first point at least `depth` from the rim
