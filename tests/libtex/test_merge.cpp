@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <random>
 #include <string>
 #include <tuple>
@@ -451,6 +452,169 @@ TEST(FastCrop, SamePiecesAsTheExactPlanarMap) {
                     EXPECT_TRUE(region.contains((c.points[k] + c.points[k + 1]) / 2));
         }
     }
+}
+
+// The exact path of a CROP cuts the curves at their exact crossings without the joint
+// planar map where every contact is simple (merge.cpp, exact_crossing_pieces): the same
+// curves, points, labels, sides and order as the map. Cases like the crest lines of the
+// rock style: a border traced from a raster (axis-aligned steps, UTM-sized coordinates),
+// lines smoothed from stretches of it (lying along it, leaving and joining it inside its
+// segments, cutting its corners), the border's own segments, strokes hanging from feet on
+// it, strokes ending at its vertices, touching it or crossing it at one of their points,
+// strokes crossing each other and ending on one another.
+TEST(ExactCrop, CutAtExactCrossingsLikeTheJointMap) {
+    const Point base{331000.3, 5091000.7};
+    const double cell = 7.73046875;
+    std::uint64_t cut_here = 0, cases = 0, along = 0;
+    for (std::uint64_t seed = 1; seed <= 40; ++seed) {
+        SCOPED_TRACE(seed);
+        KeyedRng rng(seed);
+        // A staircase ring: steps right and up, then back left and down.
+        std::vector<Point> ring;
+        Point p = base;
+        const int steps = 6 + int(rng.uniform(0, 6));
+        for (int i = 0; i < steps; ++i) {
+            ring.push_back(p);
+            p.x += cell * (1 + int(rng.uniform(0, 4)));
+            ring.push_back(p);
+            p.y += cell * (1 + int(rng.uniform(0, 3)));
+        }
+        const Point top = p;
+        ring.push_back(p);
+        p.x = base.x - cell * int(rng.uniform(0, 3));
+        ring.push_back(p);
+        std::vector<Point> outer;
+        for (const Point& q : ring) {
+            // Some sides in two collinear halves (a traced border has such vertices).
+            if (!outer.empty() && outer.back() != q && outer.size() % 3 == 1) outer.push_back((outer.back() + q) * 0.5);
+            if (outer.empty() || outer.back() != q) outer.push_back(q);
+        }
+        const double w = top.x - base.x, h = top.y - base.y;
+        const Point hc{base.x + 0.5 * w, base.y + 0.75 * h};
+        const std::vector<Point> hole{{hc.x - cell, hc.y - cell}, {hc.x - cell, hc.y + cell}, {hc.x + cell, hc.y + cell},
+                                      {hc.x + cell, hc.y - cell}};
+        // The hole where it is clear of the outer ring (else none).
+        BBox hole_box;
+        for (const Point& q : hole) hole_box.add(q);
+        bool clear = true;
+        for (std::size_t i = 0; i < outer.size(); ++i) {
+            BBox sb;
+            sb.add(outer[i]);
+            sb.add(outer[(i + 1) % outer.size()]);
+            clear = clear && !sb.intersects(hole_box.expanded(cell / 4));
+        }
+        const Region region = clear ? Region(outer, {hole}) : Region(outer);
+        const std::size_t n = outer.size();
+        auto on_segment = [&](std::size_t i, double t) {  // exactly on border segment i (axis-aligned)
+            const Point a = outer[i], b = outer[(i + 1) % n];
+            return a.x == b.x ? Point{a.x, a.y + (b.y - a.y) * t} : Point{a.x + (b.x - a.x) * t, a.y};
+        };
+        auto random_point = [&] { return Point{base.x + rng.uniform(-0.2, 1.2) * w, base.y + rng.uniform(-0.2, 1.2) * h}; };
+        Curves subject;
+        auto add = [&](std::vector<Point> pts, const char* label) {
+            Curves c = Polyline(std::move(pts));
+            c.curves[0].labels.add(label);
+            c.curves[0].left.add("left");
+            subject.append(c);
+        };
+        // Odd seeds: lines along stretches of the border apart from each other, and strokes
+        // on the rest of it, which the cut follows all alone; even seeds: with the border's
+        // segments themselves, strokes on the lines and across everything, which send some
+        // curves (and then all) to the map.
+        const bool apart = seed % 2 == 1;
+        std::vector<char> used(n, 0);  // border segments under a line
+        for (int k = 0; k < 4; ++k) {
+            // A stretch of the border smoothed (corners cut, ends kept).
+            const std::size_t i0 = std::size_t(rng.uniform(0, double(n)));
+            const std::size_t len = 2 + std::size_t(rng.uniform(0, 4));
+            bool free = true;
+            for (std::size_t q = 0; q <= len + 1; ++q) free = free && !used[(i0 + n - 1 + q) % n];
+            if (apart && !free) continue;
+            std::vector<Point> stretch;
+            for (std::size_t q = 0; q <= len; ++q) {
+                stretch.push_back(outer[(i0 + q) % n]);
+                used[(i0 + q) % n] = 1;
+            }
+            used[(i0 + n - 1) % n] = 1;
+            std::vector<Point> smooth{stretch.front()};
+            for (std::size_t q = 0; q + 1 < stretch.size(); ++q) {
+                smooth.push_back(stretch[q] * 0.75 + stretch[q + 1] * 0.25);
+                smooth.push_back(stretch[q] * 0.25 + stretch[q + 1] * 0.75);
+            }
+            smooth.push_back(stretch.back());
+            add(smooth, "crest");
+            if (!apart) add({outer[i0], outer[(i0 + 1) % n]}, "edge");
+        }
+        auto free_segment = [&] {
+            for (int tries = 0; tries < 50; ++tries) {
+                const std::size_t i = std::size_t(rng.uniform(0, double(n)));
+                if (!apart || !used[i]) return i;
+            }
+            return n;
+        };
+        for (int k = 0; k < 25; ++k) {
+            const std::size_t i = free_segment();
+            if (i == n) break;
+            const Point foot = on_segment(i, rng.uniform(0.05, 0.95));
+            add({foot, foot + Point{rng.uniform(-2, 2), rng.uniform(-2, 2)} * cell}, "stroke");
+        }
+        for (int k = 0; k < 6; ++k) {
+            const std::size_t i = free_segment();
+            if (i == n || (apart && used[(i + n - 1) % n])) continue;
+            add({outer[i], random_point()}, "from a vertex");
+        }
+        for (int k = 0; k < 8; ++k) {
+            // Through a point of the border at one of its own points (touching or crossing).
+            const std::size_t i = free_segment();
+            if (i == n) break;
+            const Point v = on_segment(i, rng.uniform(0.1, 0.9));
+            add({v + Point{rng.uniform(-3, 3), rng.uniform(-3, 3)} * cell, v, v + Point{rng.uniform(-3, 3), rng.uniform(-3, 3)} * cell},
+                "through");
+        }
+        if (!apart) {
+            for (int k = 0; k < 20; ++k) {
+                std::vector<Point> pts{random_point()};
+                for (int q = 0, m = 1 + int(rng.uniform(0, 4)); q < m; ++q)
+                    pts.push_back(pts.back() + Point{rng.uniform(-4, 4), rng.uniform(-4, 4)} * cell);
+                add(pts, "across");
+            }
+        }
+        // Ending on one another: a horizontal stroke and one ending on it.
+        const Point mid = apart ? Point{base.x - 5 * w, base.y} : random_point();
+        add({mid, mid + Point{3 * cell, 0}}, "bar");
+        add({mid + Point{1.5 * cell, 0}, mid + Point{1.5 * cell, 2 * cell}}, "post");
+        for (bool all_exact : {false, true}) {
+            Curves by_map, here;
+            const std::uint64_t before = detail::exact_crossing_crops(), before_along = detail::pieces_cut_along_mask();
+            {
+                std::optional<detail::ExactCropScope> exact;
+                if (all_exact) exact.emplace();
+                here = apply_mask(subject, region, CROP);
+            }
+            cut_here += detail::exact_crossing_crops() - before;
+            along += detail::pieces_cut_along_mask() - before_along;
+            {
+                std::optional<detail::ExactCropScope> exact;
+                if (all_exact) exact.emplace();
+                detail::JointMapScope map_only;
+                by_map = apply_mask(subject, region, CROP);
+            }
+            ++cases;
+            ASSERT_EQ(here.curves.size(), by_map.curves.size());
+            for (std::size_t i = 0; i < here.curves.size(); ++i) {
+                const Curve &x = here.curves[i], &y = by_map.curves[i];
+                EXPECT_EQ(x.points, y.points) << i;
+                EXPECT_EQ(x.closed, y.closed) << i;
+                EXPECT_EQ(x.labels, y.labels) << i;
+                EXPECT_EQ(x.left, y.left) << i;
+                EXPECT_EQ(x.right, y.right) << i;
+            }
+        }
+    }
+    // Crops cut here, crops left to the map: the comparison covers both.
+    EXPECT_GT(cut_here, cases / 4);
+    EXPECT_LT(cut_here, cases);
+    EXPECT_GT(along, 10u);  // pieces along the mask cut here
 }
 
 TEST(FastCrop, ADegenerateCurveAloneTakesTheExactPath) {

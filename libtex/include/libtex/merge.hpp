@@ -102,6 +102,23 @@ private:
 };
 // How many crops this thread cut by walking open polylines.
 std::uint64_t polyline_crops();
+// Within this scope (on this thread) the exact path of a CROP always builds its joint
+// planar map, instead of cutting the curves at their exact crossings when every contact is
+// a simple one; for the tests that compare both.
+class JointMapScope {
+public:
+    JointMapScope();
+    ~JointMapScope();
+    JointMapScope(const JointMapScope&) = delete;
+    JointMapScope& operator=(const JointMapScope&) = delete;
+
+private:
+    bool saved_;
+};
+// How many crops this thread cut at exact crossings without the joint map, and how many
+// pieces along the mask they gave.
+std::uint64_t exact_crossing_crops();
+std::uint64_t pieces_cut_along_mask();
 // How many segments of subject curves this thread's merges searched one by one (against the
 // mask, or against each other for the edges of KEEP modes). A curve whose box meets no mask
 // segment, or that meets no other curve's box and is plainly simple, is classified whole and

@@ -16,6 +16,7 @@
 #include <map>
 #include <numeric>
 
+#include "geometry/exact_double.hpp"
 #include "geometry/segment_index.hpp"
 
 #include "libtex/error.hpp"
@@ -29,6 +30,9 @@ thread_local bool g_exact_only = false;
 thread_local std::uint64_t g_fast_crops = 0;
 thread_local bool g_general_only = false;
 thread_local std::uint64_t g_polyline_crops = 0;
+thread_local bool g_map_only = false;
+thread_local std::uint64_t g_exact_crossing_crops = 0;
+thread_local std::uint64_t g_pieces_along = 0;
 }  // namespace
 std::uint64_t fast_crops() { return g_fast_crops; }
 bool exact_crops_only() { return g_exact_only; }
@@ -37,6 +41,10 @@ ExactCropScope::~ExactCropScope() { g_exact_only = saved_; }
 GeneralCropScope::GeneralCropScope() : saved_(g_general_only) { g_general_only = true; }
 GeneralCropScope::~GeneralCropScope() { g_general_only = saved_; }
 std::uint64_t polyline_crops() { return g_polyline_crops; }
+JointMapScope::JointMapScope() : saved_(g_map_only) { g_map_only = true; }
+JointMapScope::~JointMapScope() { g_map_only = saved_; }
+std::uint64_t exact_crossing_crops() { return g_exact_crossing_crops; }
+std::uint64_t pieces_cut_along_mask() { return g_pieces_along; }
 }  // namespace detail
 
 namespace {
@@ -599,7 +607,7 @@ struct JointMap {
 
 // Locates the runs of `src` against the mask.
 JointMap joint_map(const Curves& src, const Curves& mask, const detail::SegmentGrid& grid, const std::vector<Run>& runs,
-                   const std::vector<char>& included) {
+                   const std::vector<char>& included, const std::vector<char>* to_map = nullptr) {
     JointMap j;
     j.run_status.assign(runs.size(), Status::Unknown);
     for (std::uint32_t r = 0; r < runs.size(); ++r) {
@@ -608,6 +616,7 @@ JointMap joint_map(const Curves& src, const Curves& mask, const detail::SegmentG
                 grid.locate(runs[r].pts.front()) == detail::SegmentGrid::Where::In ? Status::In : Status::Out;
             continue;
         }
+        if (to_map && !(*to_map)[r]) continue;  // cut without the map
         const Curve& c = src.curves[runs[r].curve];
         Curve jc;
         jc.points = runs[r].pts;
@@ -791,10 +800,13 @@ void add_joint_pieces(const std::vector<Run>& runs, const JointMap& j, Border b,
 // does not cut them; the loose pieces and (CROP_ADD_BOUNDARY) the mask's boundaries after.
 void crop_pieces(const Curves& src, const Curves& mask, const detail::SegmentGrid& grid, const std::vector<Run>& runs,
                  const std::vector<char>& included, const JointMap& j, Border b, Status wanted, LabelId in,
-                 Curves& out) {
+                 Curves& out, CurvePieces* cut = nullptr) {
     CurvePieces pieces(src.curves.size());
     Curves loose;  // pieces on the mask or shared by several curves
     add_far_pieces(runs, j, wanted, pieces);
+    if (cut)  // the near runs cut without the map (exact_crossing_pieces)
+        for (std::size_t i = 0; i < pieces.size(); ++i)
+            for (auto& p : (*cut)[i]) pieces[i].push_back(std::move(p));
     if (j.jm) add_joint_pieces(runs, j, b, wanted, in, pieces, loose);
     if (j.jm && b == Border::CROP_ADD_BOUNDARY)  // the boundaries that met no subject curve
         for (std::size_t m = 0; m < mask.curves.size(); ++m)
@@ -806,6 +818,446 @@ void crop_pieces(const Curves& src, const Curves& mask, const detail::SegmentGri
     if (!j.jm && b == Border::CROP_ADD_BOUNDARY)
         for (const Curve& mc : mask.curves)
             if (mc.left.has(in) || mc.right.has(in)) out.curves.push_back(strip(mc));
+}
+
+// The near runs of a CROP cut at their exact crossings, without the joint map: what the
+// map gives for every curve whose near runs meet the mask and each other only simply.
+// Simple contacts are a proper crossing of a mask segment or of a near run (this one
+// included), at an exact point the map would round to the nearest doubles
+// (detail::exact_double); a segment lying along the mask from end to end (its pieces, kept
+// whatever the side, come after the curves as the map's edges on the mask do); an inner
+// point of the run inside a mask segment, where it touches, crosses, joins or leaves the
+// mask; an end of the curve on the mask; an end of a near run inside another near run's
+// segment, or shared with another run's end. A run is cut at those points (in their exact
+// order along it, each rounded as the map rounds its vertices), and each piece off the mask
+// keeps the side of one of the run's own points located exactly (or of the point after it
+// leaves the mask, or before it joins it), turned over at each crossing of a boundary
+// across which the inside changes. A curve's kept pieces come after its far pieces in the
+// order of the map's edges: by their end vertices (by point, then by exact point), then by
+// their points read from the smaller end. Any other contact (a run through a mask vertex,
+// an overlap of part of a segment, two cuts at one exact point, a closed near run) leaves
+// the curve to the joint map, with every curve whose near runs touch its own, so that the
+// map's cuts are all there; and all of them when a piece along the mask was cut here.
+struct ExactPieces {
+    std::vector<char> to_map;  // per run: a near run left to the joint map
+    CurvePieces pieces;        // per curve: the kept pieces of its near runs cut here
+    Curves along;              // the pieces along the mask, in the map's order (no run left to the map)
+    bool any = false;          // some curve was cut here
+};
+
+ExactPieces exact_crossing_pieces(const Curves& src, const detail::SegmentGrid& grid, const std::vector<Run>& runs,
+                                  Status wanted) {
+    using FT = mpq_class;
+    struct Cut {
+        FT key;      // exact position along the segment (growing in its direction)
+        Point p;     // rounded
+        int id;      // the crossing (its exact point) when p is rounded, else -1
+        bool flip;   // a crossing of a boundary across which the inside changes
+    };
+    struct NearSeg {
+        std::uint32_t run, k;
+        std::vector<Cut> cuts;
+        // Lying along the mask: the collinear mask segments and the ends of theirs strictly
+        // inside this one, by key; the covered length is checked to be all of it.
+        std::vector<std::uint32_t> along;
+        std::vector<std::pair<double, Point>> mask_points;
+        // Mask segments (not collinear) through the segment's first and last points.
+        std::vector<std::uint32_t> at_a, at_b;
+    };
+    ExactPieces res;
+    res.to_map.assign(runs.size(), 0);
+    std::vector<std::uint32_t> first_run(src.curves.size(), UINT32_MAX), last_run(src.curves.size(), 0);
+    for (std::uint32_t r = 0; r < runs.size(); ++r) {
+        first_run[runs[r].curve] = std::min(first_run[runs[r].curve], r);
+        last_run[runs[r].curve] = std::max(last_run[runs[r].curve], r);
+    }
+    std::vector<char> hard(runs.size(), 0);  // a contact the cut cannot follow
+    std::vector<NearSeg> near;
+    std::vector<detail::Seg> segs;
+    std::vector<std::uint32_t> seg0(runs.size(), 0);  // the run's first segment in `near`
+    for (std::uint32_t r = 0; r < runs.size(); ++r) {
+        if (!runs[r].near) continue;
+        if (runs[r].closed || src.curves[runs[r].curve].closed) hard[r] = 1;
+        seg0[r] = std::uint32_t(near.size());
+        const auto& pts = runs[r].pts;
+        for (std::uint32_t k = 0; k + 1 < pts.size(); ++k) {
+            near.push_back({r, k, {}, {}, {}, {}, {}});
+            detail::Seg sg;
+            sg.a = pts[k];
+            sg.b = pts[k + 1];
+            sg.owner = std::uint32_t(near.size() - 1);
+            segs.push_back(sg);
+        }
+    }
+    if (near.empty()) return res;
+    // The exact points of the rounded crossings.
+    std::vector<std::pair<FT, FT>> exact;
+    // Position along a -> b of a point on its line: the coordinate that changes more.
+    auto along_key = [](const Point& a, const Point& b, const Point& q) {
+        const double dx = b.x - a.x, dy = b.y - a.y;
+        if (std::abs(dx) >= std::abs(dy)) return dx > 0 ? q.x : -q.x;
+        return dy > 0 ? q.y : -q.y;
+    };
+    auto along = [](const Point& a, const Point& b, const FT& x, const FT& y) -> FT {
+        const double dx = b.x - a.x, dy = b.y - a.y;
+        if (std::abs(dx) >= std::abs(dy)) return dx > 0 ? x : FT(-x);
+        return dy > 0 ? y : FT(-y);
+    };
+    auto crossing = [&](const Point& a, const Point& b, const Point& c, const Point& d, bool flip_ab,
+                        std::vector<Cut>& on_ab, std::vector<Cut>* on_cd) {
+        const FT ax(a.x), ay(a.y), bx(b.x), by(b.y), cx(c.x), cy(c.y), dx(d.x), dy(d.y);
+        const FT den = (bx - ax) * (dy - cy) - (by - ay) * (dx - cx);
+        const FT num = (cx - ax) * (dy - cy) - (cy - ay) * (dx - cx);
+        const FT t = num / den;
+        const FT x = ax + (bx - ax) * t, y = ay + (by - ay) * t;
+        const Point p{detail::exact_double(x), detail::exact_double(y)};
+        int id = -1;
+        if (!(FT(p.x) == x && FT(p.y) == y)) {
+            id = int(exact.size());
+            exact.push_back({x, y});
+        }
+        on_ab.push_back({along(a, b, x, y), p, id, flip_ab});
+        if (on_cd) on_cd->push_back({along(c, d, x, y), p, id, false});
+    };
+    auto at_point = [&](const Point& a, const Point& b, const Point& q) {
+        return Cut{along(a, b, FT(q.x), FT(q.y)), q, -1, false};
+    };
+    const auto& msegs = grid.segments();
+    // The mask.
+    for (NearSeg& ns : near) {
+        const Run& run = runs[ns.run];
+        if (hard[ns.run]) continue;
+        const Point a = run.pts[ns.k], b = run.pts[ns.k + 1];
+        BBox sb;
+        sb.add(a);
+        sb.add(b);
+        bool ok = true;
+        grid.for_each_in(sb, [&](std::uint32_t j) {
+            if (!ok) return;
+            const detail::Seg& m = msegs[j];
+            if (std::max(m.a.x, m.b.x) < sb.xmin || std::min(m.a.x, m.b.x) > sb.xmax ||
+                std::max(m.a.y, m.b.y) < sb.ymin || std::min(m.a.y, m.b.y) > sb.ymax)
+                return;
+            if (!detail::segments_touch(a, b, m.a, m.b)) return;
+            const int o1 = detail::orientation(m.a, m.b, a), o2 = detail::orientation(m.a, m.b, b);
+            const int o3 = detail::orientation(a, b, m.a), o4 = detail::orientation(a, b, m.b);
+            if (o1 * o2 < 0 && o3 * o4 < 0) {
+                crossing(a, b, m.a, m.b, m.changes(), ns.cuts, nullptr);
+            } else if (o1 == 0 && o2 == 0) {
+                // Along m: the part they share must have a length; m's ends inside are points.
+                const double ka = along_key(a, b, a), kb = along_key(a, b, b);
+                const double k1 = along_key(a, b, m.a), k2 = along_key(a, b, m.b);
+                if (!(std::min(kb, std::max(k1, k2)) > std::max(ka, std::min(k1, k2)))) {
+                    ok = false;  // an end against an end
+                    return;
+                }
+                ns.along.push_back(j);
+                for (const Point& q : {m.a, m.b}) {
+                    const double kq = along_key(a, b, q);
+                    if (kq > ka && kq < kb) ns.mask_points.push_back({kq, q});
+                }
+            } else if (o1 == 0) {
+                ns.at_a.push_back(j);  // a on m, the segment leaving m's line
+            } else if (o2 == 0) {
+                ns.at_b.push_back(j);
+            } else {
+                ok = false;  // m's end inside the segment, m leaving its line: a mask vertex
+            }
+        });
+        if (!ok) {
+            hard[ns.run] = 1;
+            continue;
+        }
+        if (!ns.along.empty()) {
+            // All of the segment along the mask: the covering segments' ends inside it each
+            // shared by two of them, so that the cover has no gap.
+            std::sort(ns.mask_points.begin(), ns.mask_points.end(),
+                      [](const auto& x, const auto& y) { return x.first < y.first; });
+            double covered_lo = INFINITY, covered_hi = -INFINITY;
+            const double ka = along_key(a, b, a), kb = along_key(a, b, b);
+            for (std::uint32_t j : ns.along) {
+                const double k1 = along_key(a, b, msegs[j].a), k2 = along_key(a, b, msegs[j].b);
+                covered_lo = std::min(covered_lo, std::min(k1, k2));
+                covered_hi = std::max(covered_hi, std::max(k1, k2));
+                if (!msegs[j].changes()) hard[ns.run] = 1;  // a slit: kept by the side
+            }
+            if (!(covered_lo <= ka && covered_hi >= kb) || !ns.cuts.empty()) hard[ns.run] = 1;
+            for (std::size_t i = 0; i < ns.mask_points.size(); ++i) {
+                // Each inner end twice (two collinear mask segments meet there), no more.
+                const bool twice = (i + 1 < ns.mask_points.size() && ns.mask_points[i + 1].second == ns.mask_points[i].second) ||
+                                   (i > 0 && ns.mask_points[i - 1].second == ns.mask_points[i].second);
+                const bool thrice = i + 2 < ns.mask_points.size() && ns.mask_points[i + 2].second == ns.mask_points[i].second;
+                if (!twice || thrice) hard[ns.run] = 1;
+            }
+            ns.mask_points.erase(std::unique(ns.mask_points.begin(), ns.mask_points.end(),
+                                             [](const auto& x, const auto& y) { return x.second == y.second; }),
+                                 ns.mask_points.end());
+        }
+    }
+    // The near runs among themselves; runs that touch go to the map together, or not at all.
+    std::vector<std::uint32_t> group(runs.size());
+    std::iota(group.begin(), group.end(), 0u);
+    auto find = [&](std::uint32_t x) {
+        while (group[x] != x) x = group[x] = group[group[x]];
+        return x;
+    };
+    auto unite = [&](std::uint32_t x, std::uint32_t y) { group[find(x)] = find(y); };
+    for (std::uint32_t r = 0; r < runs.size(); ++r)
+        if (runs[r].near && first_run[runs[r].curve] != r) unite(r, first_run[runs[r].curve]);
+    const detail::SegmentGrid index(segs);
+    auto run_end = [&](std::uint32_t r, std::uint32_t k, const Point& q) {
+        const auto& pts = runs[r].pts;
+        return (k == 0 && q == pts.front()) || (k + 2 == pts.size() && q == pts.back());
+    };
+    for (std::uint32_t g = 0; g < near.size(); ++g) {
+        const Point a = segs[g].a, b = segs[g].b;
+        BBox sb;
+        sb.add(a);
+        sb.add(b);
+        index.for_each_in(sb, [&](std::uint32_t h) {
+            if (h <= g) return;
+            const Point c = segs[h].a, d = segs[h].b;
+            const NearSeg &s = near[g], &t = near[h];
+            if (s.run == t.run && h == g + 1) {
+                // Neighbours along the run share b = c: they may not fold back onto each other.
+                if (detail::orientation(a, b, d) == 0 && dot(a - b, d - b) > 0) hard[s.run] = 1;
+                return;
+            }
+            if (!detail::segments_touch(a, b, c, d)) return;
+            unite(s.run, t.run);
+            const int o1 = detail::orientation(a, b, c), o2 = detail::orientation(a, b, d);
+            const int o3 = detail::orientation(c, d, a), o4 = detail::orientation(c, d, b);
+            if (o1 * o2 < 0 && o3 * o4 < 0) {
+                crossing(a, b, c, d, false, near[g].cuts, &near[h].cuts);
+                return;
+            }
+            if (o1 == 0 && o2 == 0) {  // on one line
+                hard[s.run] = 1;
+                return;
+            }
+            // One point in common, an end of one of them at least.
+            if (a == c || a == d || b == c || b == d) {
+                const Point q = (a == c || a == d) ? a : b;
+                if (!run_end(s.run, s.k, q) || !run_end(t.run, t.k, q)) hard[s.run] = 1;
+                return;
+            }
+            if (o1 == 0 && run_end(t.run, t.k, c)) near[g].cuts.push_back(at_point(a, b, c));
+            else if (o2 == 0 && run_end(t.run, t.k, d)) near[g].cuts.push_back(at_point(a, b, d));
+            else if (o3 == 0 && run_end(s.run, s.k, a)) near[h].cuts.push_back(at_point(c, d, a));
+            else if (o4 == 0 && run_end(s.run, s.k, b)) near[h].cuts.push_back(at_point(c, d, b));
+            else hard[s.run] = 1;
+        });
+    }
+    for (NearSeg& ns : near) {
+        if (!ns.along.empty() && !ns.cuts.empty()) hard[ns.run] = 1;  // a run across or ending on a stretch along the mask
+        std::sort(ns.cuts.begin(), ns.cuts.end(), [](const Cut& x, const Cut& y) { return x.key < y.key; });
+        for (std::size_t i = 1; i < ns.cuts.size(); ++i)
+            if (!(ns.cuts[i - 1].key < ns.cuts[i].key)) hard[ns.run] = 1;  // two cuts at one point
+    }
+    // The pieces of each run, in order. A piece's ends are the map's vertices: a point of
+    // the run (a double) or a rounded crossing (known by its exact point).
+    struct End {
+        Point p;
+        int id;  // the crossing, -1 for a double
+    };
+    struct Piece {
+        std::uint32_t curve, run;
+        std::vector<Point> pts;
+        End front, back;
+        bool on;          // along the mask
+        std::size_t chain;  // the stretch off the mask it belongs to
+        bool parity;      // boundaries crossed since the chain's start
+    };
+    std::vector<Piece> all;
+    std::vector<int> chain_status;  // -1 unknown, else the status at the chain's start (0 out, 1 in)
+    auto side_status = [&](const detail::Seg& m, const Point& q) -> int {  // q off m's line
+        const int o = detail::orientation(m.a, m.b, q);
+        return (o > 0 ? m.in_left : m.in_right) ? 1 : 0;
+    };
+    for (std::uint32_t r = 0; r < runs.size(); ++r) {
+        const Run& run = runs[r];
+        if (!run.near || hard[r]) continue;
+        const auto& pts = run.pts;
+        const std::size_t n = pts.size();
+        const NearSeg* sg = near.data() + seg0[r];
+        const std::size_t begin = all.size();
+        bool bad = false;
+        std::vector<Point> cur{pts.front()};
+        End from{pts.front(), -1};
+        bool on = sg[0].along.size() > 0, parity = false;
+        chain_status.push_back(-1);
+        std::size_t chain = chain_status.size() - 1;
+        auto finish = [&](const End& to) {
+            all.push_back({run.curve, r, std::move(cur), from, to, on, chain, parity});
+            cur = {to.p};
+            from = to;
+        };
+        auto know = [&](int status_here) {  // the status just here, off the mask
+            const int at_start = status_here ^ int(parity);
+            if (chain_status[chain] >= 0 && chain_status[chain] != at_start) bad = true;
+            chain_status[chain] = at_start;
+        };
+        // A point of the run off the mask, located (once a chain).
+        auto locate_here = [&](const Point& q) {
+            if (chain_status[chain] >= 0) return;
+            const auto w = grid.locate(q);
+            if (w == detail::SegmentGrid::Where::On) bad = true;
+            else know(w == detail::SegmentGrid::Where::In ? 1 : 0);
+        };
+        if (!on && sg[0].at_a.empty()) locate_here(pts.front());
+        if (!on && !sg[0].at_a.empty() && !(first_run[run.curve] == r)) bad = true;  // only the curve's end
+        for (std::size_t k = 0; k + 1 < n && !bad; ++k) {
+            const NearSeg& s = sg[k];
+            if (s.along.empty()) {
+                for (const Cut& c : s.cuts) {
+                    cur.push_back(c.p);
+                    finish({c.p, c.id});
+                    parity ^= c.flip;
+                }
+            } else {
+                for (const auto& mp : s.mask_points) cur.push_back(mp.second);
+            }
+            cur.push_back(pts[k + 1]);
+            if (k + 2 == n) break;
+            // The inner point v = pts[k + 1], between s and the next segment t.
+            const NearSeg& t = sg[k + 1];
+            const Point v = pts[k + 1];
+            const bool on_s = !s.along.empty(), on_t = !t.along.empty();
+            // The mask segments through v, other than those along s or t.
+            std::vector<std::uint32_t> through;
+            for (std::uint32_t j : s.at_b)
+                if (std::find(t.along.begin(), t.along.end(), j) == t.along.end()) through.push_back(j);
+            for (std::uint32_t j : t.at_a)
+                if (std::find(s.along.begin(), s.along.end(), j) == s.along.end() &&
+                    std::find(through.begin(), through.end(), j) == through.end())
+                    through.push_back(j);
+            if (on_s && on_t) {
+                if (!through.empty()) bad = true;  // another mask segment at v
+                continue;  // on along the mask, v one of the piece's points
+            }
+            if (!on_s && !on_t) {
+                if (through.empty()) {
+                    locate_here(v);
+                    continue;
+                }
+                // Touching or crossing inside one mask segment: a vertex of the map.
+                if (through.size() != 1) {
+                    bad = true;
+                    break;
+                }
+                const detail::Seg& m = msegs[through[0]];
+                if (v == m.a || v == m.b) {
+                    bad = true;
+                    break;
+                }
+                finish({v, -1});
+                const int before = detail::orientation(m.a, m.b, pts[k]), after = detail::orientation(m.a, m.b, pts[k + 2]);
+                if (before == 0 || after == 0) {
+                    bad = true;
+                    break;
+                }
+                parity ^= before != after && m.changes();
+                continue;
+            }
+            // Joining or leaving the mask at v, inside the mask segment along the other side.
+            const std::vector<std::uint32_t>& at = on_s ? s.along : t.along;
+            std::uint32_t mj = UINT32_MAX;
+            for (std::uint32_t j : at) {
+                const detail::Seg& m = msegs[j];
+                if (detail::orientation(m.a, m.b, v) == 0 && std::min(m.a, m.b) < v && v < std::max(m.a, m.b)) mj = j;
+            }
+            if (mj == UINT32_MAX || !through.empty()) {
+                bad = true;  // at a mask vertex
+                break;
+            }
+            const detail::Seg& m = msegs[mj];
+            if (on_s) {  // leaving: the next point tells the side
+                finish({v, -1});
+                on = false;
+                parity = false;
+                chain_status.push_back(-1);
+                chain = chain_status.size() - 1;
+                know(side_status(m, pts[k + 2]));
+            } else {  // joining: the point before tells the side
+                know(side_status(m, pts[k]));
+                finish({v, -1});
+                on = true;
+            }
+        }
+        if (!bad) {
+            if (!on && sg[n - 2].at_b.empty()) locate_here(pts.back());
+            if (!on && !sg[n - 2].at_b.empty() && !(last_run[run.curve] == r)) bad = true;
+            finish({pts.back(), -1});
+        }
+        for (std::size_t i = begin; i < all.size() && !bad; ++i)
+            bad = !all[i].on && chain_status[all[i].chain] < 0;  // a stretch whose side is not known
+        if (bad) {
+            hard[r] = 1;
+            all.resize(begin);
+        }
+    }
+    // The groups with a hard run go to the map; so do all runs when the map is needed and a
+    // piece along the mask was cut here (the map's edges on the mask come in its order).
+    std::vector<char> group_hard(runs.size(), 0);
+    for (std::uint32_t r = 0; r < runs.size(); ++r)
+        if (runs[r].near && hard[r]) group_hard[find(r)] = 1;
+    bool any_map = false, any_along = false;
+    for (std::uint32_t r = 0; r < runs.size(); ++r)
+        if (runs[r].near && group_hard[find(r)]) res.to_map[r] = 1, any_map = true;
+    for (const Piece& pc : all) any_along = any_along || (pc.on && !res.to_map[pc.run]);
+    if (any_map && any_along) return res;  // `any` stays false: all to the map
+    // A curve's pieces in the order of the map's edges.
+    auto exact_of = [&](const End& e) -> std::pair<FT, FT> {
+        return e.id < 0 ? std::pair<FT, FT>{FT(e.p.x), FT(e.p.y)} : exact[std::size_t(e.id)];
+    };
+    auto vless = [&](const End& x, const End& y) {
+        if (x.p != y.p) return x.p < y.p;
+        if (x.id == y.id) return false;
+        const auto ex = exact_of(x), ey = exact_of(y);
+        return ex.first < ey.first || (ex.first == ey.first && ex.second < ey.second);
+    };
+    auto canonical = [](const std::vector<Point>& p) {
+        std::vector<Point> rev(p.rbegin(), p.rend());
+        return std::lexicographical_compare(rev.begin(), rev.end(), p.begin(), p.end()) ? rev : p;
+    };
+    auto edge_order = [&](const Piece& x, const Piece& y) {
+        const End& x0 = vless(x.back, x.front) ? x.back : x.front;
+        const End& x1 = vless(x.back, x.front) ? x.front : x.back;
+        const End& y0 = vless(y.back, y.front) ? y.back : y.front;
+        const End& y1 = vless(y.back, y.front) ? y.front : y.back;
+        if (vless(x0, y0) || vless(y0, x0)) return vless(x0, y0);
+        if (vless(x1, y1) || vless(y1, x1)) return vless(x1, y1);
+        return canonical(x.pts) < canonical(y.pts);
+    };
+    std::vector<Piece> kept, on_mask;
+    for (Piece& pc : all) {
+        if (res.to_map[pc.run]) continue;
+        if (pc.on) {
+            if (pc.front.p == pc.back.p) return ExactPieces{std::vector<char>(runs.size(), 1), {}, {}, false};
+            on_mask.push_back(std::move(pc));
+        } else if (((chain_status[pc.chain] ^ int(pc.parity)) ? Status::In : Status::Out) == wanted) {
+            kept.push_back(std::move(pc));
+        }
+    }
+    std::stable_sort(kept.begin(), kept.end(), [&](const Piece& x, const Piece& y) {
+        if (x.curve != y.curve) return x.curve < y.curve;
+        return edge_order(x, y);
+    });
+    std::stable_sort(on_mask.begin(), on_mask.end(), edge_order);
+    res.pieces.resize(src.curves.size());
+    for (Piece& pc : kept) res.pieces[pc.curve].push_back(std::move(pc.pts));
+    for (Piece& pc : on_mask) {
+        const Curve& from = src.curves[pc.curve];
+        Curve c;
+        c.points = std::move(pc.pts);
+        c.labels.merge(from.labels);
+        c.left.merge(from.left);
+        c.right.merge(from.right);
+        res.along.curves.push_back(strip(std::move(c)));
+        ++detail::g_pieces_along;
+    }
+    for (std::uint32_t r = 0; r < runs.size(); ++r) res.any = res.any || (runs[r].near && !res.to_map[r]);
+    return res;
 }
 
 // Distinct exact points of the planar map may round to the same doubles: no piece keeps
@@ -853,6 +1305,17 @@ Curves mask_core(const Curves& subject, const Curves& mask, MaskSide side, Borde
         if (crop_by_crossings_fast(src, mask, grid, runs, side, b, wanted, fast)) return fast;
     }
 
+    if (b == Border::CROP && !detail::g_map_only) {
+        ExactPieces cut = exact_crossing_pieces(src, grid, runs, wanted);
+        if (cut.any) {
+            ++detail::g_exact_crossing_crops;
+            const JointMap j = joint_map(src, mask, grid, runs, included, &cut.to_map);
+            crop_pieces(src, mask, grid, runs, included, j, b, wanted, in, out, &cut.pieces);
+            for (Curve& c : cut.along.curves) out.curves.push_back(std::move(c));
+            drop_repeated_points(out);
+            return out;
+        }
+    }
     const JointMap j = joint_map(src, mask, grid, runs, included);
     crop_pieces(src, mask, grid, runs, included, j, b, wanted, in, out);
     drop_repeated_points(out);

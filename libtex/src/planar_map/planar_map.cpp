@@ -35,6 +35,7 @@
 #include <unordered_map>
 
 #include "libtex/random.hpp"
+#include "geometry/exact_double.hpp"
 #include "geometry/segment_index.hpp"
 
 namespace tex {
@@ -56,22 +57,7 @@ using Caching = CgalTypes<CGAL::Arr_segment_traits_2<Kernel>>;
 using NonCaching = CgalTypes<CGAL::Arr_non_caching_segment_traits_2<Kernel>>;
 using IK = CGAL::Exact_predicates_inexact_constructions_kernel;
 
-// The double nearest below a lazy exact coordinate, as a function of its exact value only.
-// CGAL::to_double returns the middle of the current interval approximation when it is
-// narrow enough, and that interval depends on the history of the number (whether a
-// predicate has already forced its exact value), which differs between builds: a Debug
-// build with sanitizers rounded some cut points of the gallery's exact crops to other
-// doubles than the Release build, and drew other faces.
-double exact_double(const Kernel::FT& x) {
-    const auto& a = x.approx();
-    if (a.inf() == a.sup()) return a.inf();  // a double input coordinate: already exact
-    const auto& e = CGAL::exact(x);
-    const std::pair<double, double> b = CGAL::to_interval(e);  // the two doubles around e
-    if (b.first == b.second) return b.first;
-    // The nearer of the two (ties to the lower one); CGAL::to_double of a rational truncates.
-    const int c = CGAL::compare(e - b.first, b.second - e);
-    return c == CGAL::LARGER ? b.second : b.first;
-}
+using detail::exact_double;
 
 struct PointHash {
     std::size_t operator()(const Point& p) const { return hash_point(0, p); }
