@@ -170,6 +170,9 @@ std::uint64_t vertex_key(const Point& p);
 // lexicographically smaller), when the caller already knows it.
 std::uint64_t edge_key(const std::vector<Point>& points, bool reversed);
 std::uint64_t edge_key(const std::vector<Point>& points);
+// A polyline read in the direction that starts at its smaller end point (for a loop, the
+// one whose second point is smaller): how a planar map orders and keys its edges.
+std::vector<Point> canonical_points(const std::vector<Point>& pts);
 }  // namespace tex::detail
 
 namespace tex::detail {

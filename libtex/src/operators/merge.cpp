@@ -15,6 +15,7 @@
 #include <deque>
 #include <map>
 #include <numeric>
+#include <type_traits>
 
 #include "geometry/exact_double.hpp"
 #include "geometry/segment_index.hpp"
@@ -892,17 +893,15 @@ ExactPieces exact_crossing_pieces(const Curves& src, const detail::SegmentGrid& 
     if (near.empty()) return res;
     // The exact points of the rounded crossings.
     std::vector<std::pair<FT, FT>> exact;
-    // Position along a -> b of a point on its line: the coordinate that changes more.
-    auto along_key = [](const Point& a, const Point& b, const Point& q) {
+    // Position along a -> b of a point (x, y) on its line: the coordinate that changes more
+    // (doubles or exact numbers alike).
+    auto along = [](const Point& a, const Point& b, const auto& x, const auto& y) {
+        using T = std::decay_t<decltype(x)>;
         const double dx = b.x - a.x, dy = b.y - a.y;
-        if (std::abs(dx) >= std::abs(dy)) return dx > 0 ? q.x : -q.x;
-        return dy > 0 ? q.y : -q.y;
+        if (std::abs(dx) >= std::abs(dy)) return dx > 0 ? T(x) : T(-x);
+        return dy > 0 ? T(y) : T(-y);
     };
-    auto along = [](const Point& a, const Point& b, const FT& x, const FT& y) -> FT {
-        const double dx = b.x - a.x, dy = b.y - a.y;
-        if (std::abs(dx) >= std::abs(dy)) return dx > 0 ? x : FT(-x);
-        return dy > 0 ? y : FT(-y);
-    };
+    auto along_key = [&](const Point& a, const Point& b, const Point& q) { return along(a, b, q.x, q.y); };
     auto crossing = [&](const Point& a, const Point& b, const Point& c, const Point& d, bool flip_ab,
                         std::vector<Cut>& on_ab, std::vector<Cut>* on_cd) {
         const FT ax(a.x), ay(a.y), bx(b.x), by(b.y), cx(c.x), cy(c.y), dx(d.x), dy(d.y);
@@ -1216,10 +1215,6 @@ ExactPieces exact_crossing_pieces(const Curves& src, const detail::SegmentGrid& 
         const auto ex = exact_of(x), ey = exact_of(y);
         return ex.first < ey.first || (ex.first == ey.first && ex.second < ey.second);
     };
-    auto canonical = [](const std::vector<Point>& p) {
-        std::vector<Point> rev(p.rbegin(), p.rend());
-        return std::lexicographical_compare(rev.begin(), rev.end(), p.begin(), p.end()) ? rev : p;
-    };
     auto edge_order = [&](const Piece& x, const Piece& y) {
         const End& x0 = vless(x.back, x.front) ? x.back : x.front;
         const End& x1 = vless(x.back, x.front) ? x.front : x.back;
@@ -1227,7 +1222,7 @@ ExactPieces exact_crossing_pieces(const Curves& src, const detail::SegmentGrid& 
         const End& y1 = vless(y.back, y.front) ? y.front : y.back;
         if (vless(x0, y0) || vless(y0, x0)) return vless(x0, y0);
         if (vless(x1, y1) || vless(y1, x1)) return vless(x1, y1);
-        return canonical(x.pts) < canonical(y.pts);
+        return detail::canonical_points(x.pts) < detail::canonical_points(y.pts);
     };
     std::vector<Piece> kept, on_mask;
     for (Piece& pc : all) {

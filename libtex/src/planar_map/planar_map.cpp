@@ -66,12 +66,6 @@ struct PointHash {
 // Lexicographic "left to right" order of CGAL's x-monotone curves.
 bool left_to_right(const Point& a, const Point& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); }
 
-// The chain's polyline read in one direction, for ordering and keys: the direction that
-// starts at the smaller end point, or for a loop the one whose second point is smaller.
-std::vector<Point> canonical_points(const std::vector<Point>& pts) {
-    std::vector<Point> rev(pts.rbegin(), pts.rend());
-    return std::lexicographical_compare(rev.begin(), rev.end(), pts.begin(), pts.end()) ? rev : pts;
-}
 
 // A planar map at the level of segments. Half-edges 2k and 2k+1 are twins; a half-edge's
 // face lies on its left.
@@ -654,6 +648,10 @@ MapPtr induce_clean_complex(const Curves& curves, const KnownVertices& known) {
     return PlanarMapBuilder::build(curves, Way::Any, &known);
 }
 std::uint64_t vertex_key(const Point& p) { return hash_point(0x5645525445ULL, p); }
+std::vector<Point> canonical_points(const std::vector<Point>& pts) {
+    std::vector<Point> rev(pts.rbegin(), pts.rend());
+    return std::lexicographical_compare(rev.begin(), rev.end(), pts.begin(), pts.end()) ? rev : pts;
+}
 std::uint64_t edge_key(const std::vector<Point>& points, bool reversed) {
     std::uint64_t key = 0x45444745ULL;
     if (reversed)
@@ -841,7 +839,7 @@ void PlanarMapBuilder::orient_chains(BuildScratch& sc) {
         ch.points.push_back(g.vpt[g.he[*(hs_e - 1)].target]);
         bool flip = !src.front().forward;
         // The first curve running both ways along the chain: keep the canonical direction.
-        if (src.size() > 1 && src[1].curve == src[0].curve) flip = canonical_points(ch.points) != ch.points;
+        if (src.size() > 1 && src[1].curve == src[0].curve) flip = detail::canonical_points(ch.points) != ch.points;
         if (flip) {
             std::reverse(hs_b, hs_e);
             for (auto it = hs_b; it != hs_e; ++it) *it ^= 1;
