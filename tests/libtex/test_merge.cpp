@@ -998,6 +998,21 @@ TEST(Merge, CutAtLevelsHangsRowsFromTheLevelLines) {
     EXPECT_NEAR(ends[3], std::sqrt(300.0), 1e-3);
     // Only the curve's own points are kept between the cuts, not the samples.
     for (const auto& c : fine.curves) EXPECT_EQ(c.points.size(), 2u);
+    // A closed curve is cut on its closing side as well: a ring up the right side (y = 0 to
+    // 25) and down the left, cut at 10 and 20 on both sides, is five open pieces (the first
+    // and the last meet at the ring's first point), their cut ends on the levels.
+    const Curves ring = CutAtLevels(Constant(Polyline({{0, 0}, {10, 0}, {10, 25}, {0, 25}}, true)), f, 10, 0, 1)(kAny);
+    ASSERT_EQ(ring.curves.size(), 5u);
+    std::vector<double> at_x0;
+    for (const auto& c : ring.curves) {
+        EXPECT_FALSE(c.closed);
+        for (const Point& e : {c.points.front(), c.points.back()})
+            if (e.x == 0 && e.y != 0) at_x0.push_back(e.y);
+    }
+    std::sort(at_x0.begin(), at_x0.end());
+    ASSERT_EQ(at_x0.size(), 4u);  // 10 and 20 on the closing side, each the end of two pieces
+    EXPECT_NEAR(at_x0[0], 10, 1e-9);
+    EXPECT_NEAR(at_x0[3], 20, 1e-9);
     // No value, no cut; bad arguments refused.
     const Curves none = CutAtLevels(Constant(strokes), Field(), 10, 1)(kAny);
     EXPECT_EQ(none.curves.size(), strokes.curves.size());
@@ -1050,6 +1065,34 @@ TEST(Fields, NoiseIsSmoothBoundedAndKeyedBySeed) {
     EXPECT_GT(hi - lo, 0.8);      // it spans most of its range
     EXPECT_GT(differs, 200 * 0.1);  // another seed, another noise
     EXPECT_THROW(Noise(0), Error);
+}
+
+TEST(Fields, NoiseReadInTurnsGivesWhatEachGivesAlone) {
+    // Noise keeps the last lattice cell it read on each thread: fields read in turns at the
+    // same points (other seeds, other wavelengths) must each give what they give read alone.
+    const std::uint64_t saved = GetSeed();
+    SetSeed(7);
+    const Field a = Noise(10), b = Noise(10.5);
+    SetSeed(8);
+    const Field c = Noise(10);
+    SetSeed(saved);
+    std::vector<Point> pts;
+    for (int i = 0; i < 300; ++i) pts.push_back({i * 0.37 - 40, (i % 17) * 0.9 - 8});  // runs within cells
+    auto alone = [&](const Field& f) {
+        std::vector<double> v;
+        for (const Point& p : pts) v.push_back(f(p));
+        return v;
+    };
+    const std::vector<double> va = alone(a), vb = alone(b), vc = alone(c);
+    int differ = 0;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+        const double x = c(pts[i]), y = a(pts[i]), z = b(pts[i]);
+        EXPECT_EQ(y, va[i]) << i;
+        EXPECT_EQ(z, vb[i]) << i;
+        EXPECT_EQ(x, vc[i]) << i;
+        differ += va[i] != vc[i] && va[i] != vb[i];
+    }
+    EXPECT_GT(differ, 250);  // the three fields do differ
 }
 
 TEST(Merge, MovingAverageIsLocalAndKeepsTheEnds) {

@@ -846,6 +846,60 @@ TEST(PartitionMaps, AnEdgeLocalMapperRunsWithoutTheMapAndGivesWhatTheMapGives) {
     }
 }
 
+TEST(PartitionMaps, AMapperOfOneLabelReadsOnlyTheEdgesWithIt) {
+    // A LocalEdgeMapper with `only` maps the edges without that label to nothing: the
+    // partition leaves them out of its edges (the others in the map's order, key for key),
+    // the function never sees them, and the curves are those of the same mapper run on every
+    // edge of the map.
+    std::mt19937 rng(20261207);
+    std::uniform_real_distribution<double> u(0, 1);
+    const LabelId fill = intern_label("fill");
+    int labelled = 0, unlabelled = 0;
+    for (int k = 0; k < 40; ++k) {
+        const Region r = jittered_region(rng, {(u(rng) - 0.5) * 1e4, (u(rng) - 0.5) * 1e4}, 5 + 40 * u(rng));
+        const double theta = u(rng) * 6.283185307179586, across = 0.5 + 2 * u(rng), along = 2 + 6 * u(rng);
+        Stripes lines = StripesProperties(theta, across);
+        SetEdgeLabels(lines, {"fill"});
+        const std::string what = "case " + std::to_string(k);
+        for (const Arrangement& a : {GridPartition(lines, StripesProperties(theta + 1.5707963267948966, along), KEEP_OUTSIDE),
+                                     GridPartition(StripesProperties(theta + 1.2, along), lines, KEEP_INSIDE),
+                                     StripesPartition(lines, KEEP_OUTSIDE)}) {
+            const auto all = a.local_edges(r);
+            const auto some = a.local_edges(r, fill);
+            ASSERT_TRUE(all && some) << what;
+            std::vector<LocalEdge> expected;
+            for (const LocalEdge& e : *all)
+                if (e.curve.labels.has(fill)) expected.push_back(e);
+            ASSERT_EQ(some->size(), expected.size()) << what;
+            for (std::size_t i = 0; i < expected.size(); ++i) {
+                ASSERT_EQ((*some)[i].curve.points, expected[i].curve.points) << what << " edge " << i;
+                ASSERT_EQ((*some)[i].key, expected[i].key) << what << " edge " << i;
+                ASSERT_EQ((*some)[i].source_key, expected[i].source_key) << what << " edge " << i;
+                ASSERT_EQ((*some)[i].target_key, expected[i].target_key) << what << " edge " << i;
+            }
+            labelled += int(expected.size());
+            unlabelled += int(all->size() - expected.size());
+            // The function sees only labelled edges, with or without the map.
+            std::atomic<int> calls{0}, strangers{0};
+            const EdgeMapper only = LocalEdgeMapper(
+                [&, fill](const LocalEdge& e) {
+                    ++calls;
+                    if (!e.curve.labels.has(fill)) ++strangers;
+                    return Polyline(e.curve.points);
+                },
+                fill);
+            const Curves local = MapToEdges(only, a)(r);
+            EXPECT_EQ(calls.load(), int(expected.size())) << what;
+            const Curves mapped = MapToEdges([only](const Edge& e) { return only(e); }, a)(r);
+            EXPECT_EQ(strangers.load(), 0) << what;
+            expect_same_curves(local, mapped, what);
+            if (HasFailure()) return;
+        }
+    }
+    EXPECT_GT(labelled, 1000);
+    EXPECT_GT(unlabelled, 1000);
+}
+
 TEST(PartitionMaps, CropModesAndVoronoiInduceFromTheirCurves) {
     // CROP modes cut cells, and Voronoi complexes carry no proof of cleanness: both induce
     // their map from the curves (the same map, by definition), never through the complex.

@@ -32,8 +32,9 @@ public:
     // The edges of that map, as LocalEdges in the map's edge order, when the arrangement
     // knows them without the map (none: it does not, this time); a mapper that reads only
     // its edge then runs without the map (MapToEdges of a LocalEdgeMapper). `edges(r)` must
-    // give exactly the edges of map(r), in order, curve for curve and key for key.
-    using EdgesFn = std::function<std::optional<std::vector<LocalEdge>>(const Region&)>;
+    // give exactly the edges of map(r), in order, curve for curve and key for key; with
+    // `only`, exactly those whose curve has that label.
+    using EdgesFn = std::function<std::optional<std::vector<LocalEdge>>(const Region&, std::optional<LabelId> only)>;
     Arrangement(Fn fn, MapFn map, EdgesFn edges);
 
     // Evaluates the arrangement on a region.
@@ -42,8 +43,9 @@ public:
     Curves operator()(const Face& f) const;
     // Evaluates and induces the planar map of the result.
     MapPtr induce(const Region& r) const;
-    // The edges of induce(r) without inducing it, when the arrangement knows them.
-    std::optional<std::vector<LocalEdge>> local_edges(const Region& r) const;
+    // The edges of induce(r) without inducing it, when the arrangement knows them (with
+    // `only`, those with that label).
+    std::optional<std::vector<LocalEdge>> local_edges(const Region& r, std::optional<LabelId> only = std::nullopt) const;
 
 private:
     std::shared_ptr<const Fn> fn_;

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 
 #include "libtex/arrangement.hpp"
 
@@ -28,8 +29,11 @@ Arrangement MapToEdges(EdgeMapper m, Arrangement a, MapperThreads t = MapperThre
 // and fields at points of it). As an EdgeMapper it runs on AsLocalEdge(e); MapToEdges runs
 // it straight on the edges of a partition that knows them without its planar map (the KEEP
 // modes of StripesPartition and GridPartition), with the same result, cell for cell.
+// With `only`, an edge without that label maps to nothing, f is not called on it, and MapToEdges
+// does not read it at all (the partition leaves it out of its edges: half of a grid's edges
+// when the mapper draws one family of its lines).
 using LocalEdgeFn = std::function<Curves(const LocalEdge&)>;
-EdgeMapper LocalEdgeMapper(LocalEdgeFn f);
+EdgeMapper LocalEdgeMapper(LocalEdgeFn f, std::optional<LabelId> only = std::nullopt);
 
 // Visits the bounded faces only.
 Arrangement MapToFaces(FaceMapper m, Arrangement a, MapperThreads t = MapperThreads::Parallel);

@@ -393,6 +393,16 @@ Field Fallback(Field f, Field g) {
                     dom);
 }
 
+namespace {
+// The nodes of one cell of a Noise lattice.
+struct NoiseCell {
+    bool valid = false;
+    std::uint64_t key = 0;
+    double wavelength = 0, fx = 0, fy = 0;
+    double n00 = 0, n10 = 0, n01 = 0, n11 = 0;
+};
+}  // namespace
+
 Field Noise(double wavelength) {
     if (!(wavelength > 0) || !std::isfinite(wavelength))
         throw Error("Noise", "the wavelength must be positive and finite (got " + std::to_string(wavelength) + ")");
@@ -401,10 +411,15 @@ Field Noise(double wavelength) {
         const double x = p.x / wavelength, y = p.y / wavelength;
         const double fx = std::floor(x), fy = std::floor(y);
         // The value at node (fx + i, fy + j) hashes the column's hash with the row: each
-        // column hashed once.
-        const std::uint64_t c0 = hash_double(key, fx), c1 = hash_double(key, fx + 1);
-        auto node = [](std::uint64_t column, double row) { return 2 * unit_from_hash(hash_double(column, row)) - 1; };
-        const double n00 = node(c0, fy), n10 = node(c1, fy), n01 = node(c0, fy + 1), n11 = node(c1, fy + 1);
+        // column hashed once. Readings come in runs within one lattice cell (the points of a
+        // stroke): the thread keeps the last cell's four nodes.
+        thread_local NoiseCell last;
+        if (!(last.valid && last.key == key && last.wavelength == wavelength && last.fx == fx && last.fy == fy)) {
+            const std::uint64_t c0 = hash_double(key, fx), c1 = hash_double(key, fx + 1);
+            auto node = [](std::uint64_t column, double row) { return 2 * unit_from_hash(hash_double(column, row)) - 1; };
+            last = {true, key, wavelength, fx, fy, node(c0, fy), node(c1, fy), node(c0, fy + 1), node(c1, fy + 1)};
+        }
+        const double n00 = last.n00, n10 = last.n10, n01 = last.n01, n11 = last.n11;
         auto smooth = [](double t) { return t * t * (3 - 2 * t); };
         const double u = smooth(x - fx), v = smooth(y - fy);
         const double a = n00 + (n10 - n00) * u;

@@ -123,8 +123,14 @@ void keep_apart(Curve& c, const NearIndex& index, std::vector<std::size_t>& seen
         out.curves.push_back(std::move(c));
         return;
     }
-    std::vector<Point> pts = c.points;
-    if (c.closed) pts.push_back(pts.front());
+    // The points walked: the curve's own, closed by its first point again when closed.
+    std::vector<Point> closed_pts;
+    if (c.closed) {
+        closed_pts.reserve(n + 1);
+        closed_pts = c.points;
+        closed_pts.push_back(c.points.front());
+    }
+    const std::vector<Point>& pts = c.closed ? closed_pts : c.points;
     std::vector<std::vector<Point>> pieces;
     std::vector<Point> run;
     bool cut = false;

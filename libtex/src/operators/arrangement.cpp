@@ -14,8 +14,8 @@ Arrangement::Arrangement(Fn fn, MapFn map, EdgesFn edges)
       map_(std::make_shared<const MapFn>(std::move(map))),
       edges_(std::make_shared<const EdgesFn>(std::move(edges))) {}
 
-std::optional<std::vector<LocalEdge>> Arrangement::local_edges(const Region& r) const {
-    if (edges_) return (*edges_)(r);
+std::optional<std::vector<LocalEdge>> Arrangement::local_edges(const Region& r, std::optional<LabelId> only) const {
+    if (edges_) return (*edges_)(r, only);
     return std::nullopt;
 }
 

@@ -23,14 +23,18 @@ struct Sampled {
     std::vector<char> given;  // a point of the curve, not a sample between two
 };
 
-Sampled sample(const Curve& c, const Field& f, double sampling) {
-    Sampled out;
-    std::vector<Point> pts = c.points;
-    if (c.closed && pts.size() > 2) pts.push_back(pts.front());
+// Fills `out` (a buffer kept from curve to curve).
+void sample(const Curve& c, const Field& f, double sampling, Sampled& out) {
+    out.pts.clear();
+    out.s.clear();
+    out.v.clear();
+    out.given.clear();
+    const std::size_t n = c.points.size() + (c.closed && c.points.size() > 2 ? 1 : 0);
+    auto pt = [&](std::size_t i) -> const Point& { return c.points[i < c.points.size() ? i : 0]; };
     double s = 0;
-    for (std::size_t i = 0; i < pts.size(); ++i) {
+    for (std::size_t i = 0; i < n; ++i) {
         if (i > 0) {
-            const Point a = pts[i - 1], b = pts[i];
+            const Point a = pt(i - 1), b = pt(i);
             const double l = distance(a, b);
             const int n = sampling > 0 ? std::max(1, int(std::ceil(l / sampling))) : 1;
             for (int k = 1; k < n; ++k) {
@@ -42,12 +46,11 @@ Sampled sample(const Curve& c, const Field& f, double sampling) {
             }
             s += l;
         }
-        out.pts.push_back(pts[i]);
+        out.pts.push_back(pt(i));
         out.s.push_back(s);
-        out.v.push_back(f(pts[i]));
+        out.v.push_back(f(pt(i)));
         out.given.push_back(1);
     }
-    return out;
 }
 
 // Where f crosses `level` between a and b (g0 = f(a) - level and g1 = f(b) - level of opposite
@@ -108,15 +111,18 @@ Arrangement CutAtLevels(Arrangement a, Field f, double step, double gap, double 
         Curves out;
         out.points = std::move(in.points);
         out.origin = std::move(in.origin);
+        out.curves.reserve(in.curves.size());
+        Sampled sc;
+        std::vector<std::pair<double, double>> cuts;
         for (Curve& c : in.curves) {
             if (c.points.size() < 2) {
                 out.curves.push_back(std::move(c));
                 continue;
             }
-            const Sampled sc = sample(c, f, sampling);
+            sample(c, f, sampling, sc);
             const double total = sc.s.back();
             // Stretches taken out: the gap on the higher side of each crossing of a level.
-            std::vector<std::pair<double, double>> cuts;
+            cuts.clear();
             for (std::size_t i = 0; i + 1 < sc.s.size(); ++i) {
                 const double v0 = sc.v[i], v1 = sc.v[i + 1];
                 if (!std::isfinite(v0) || !std::isfinite(v1) || v0 == v1) continue;

@@ -18,9 +18,10 @@ EdgeMapper JitterEdges(const std::string& label, double theta, double across, do
     const LabelId id = intern_label(label);
     const Point d{std::cos(theta), std::sin(theta)}, n{-d.y, d.x};
     const double half_across = across * r / 2, half_along = along * r / 2;
-    // It reads only its edge: MapToEdges runs it on a partition's edges without the map.
-    return LocalEdgeMapper([=, gate = std::move(gate)](const LocalEdge& e) -> Curves {
-        if (!e.curve.labels.has(id)) return Nothing();
+    // It reads only its edge: MapToEdges runs it on a partition's edges without the map, and
+    // only on those with the label.
+    return LocalEdgeMapper(
+        [=, gate = std::move(gate)](const LocalEdge& e) -> Curves {
         if (gate_min > 0 && !(gate(LocationAt(e, 0.5)) >= gate_min)) return Nothing();
         const Point s = e.source(), t = e.target();
         const Point ms = s + n * RandomAtSource(e, -half_across, half_across, 0) +
@@ -34,7 +35,8 @@ EdgeMapper JitterEdges(const std::string& label, double theta, double across, do
         detail::match_points_in_place(c, s, t, ms, mt);
         if (gap < 1) detail::scale_in_place(c, gap);
         return c;
-    });
+        },
+        id);
 }
 
 double ThinRank(long long k) {

@@ -63,7 +63,11 @@ Curves map_local_edges(const std::vector<LocalEdge>& edges, const LocalEdgeFn& f
 // The EdgeMapper of a LocalEdgeFn: MapToEdges knows it by its type.
 struct LocalMapper {
     LocalEdgeFn f;
-    Curves operator()(const Edge& e) const { return f(AsLocalEdge(e)); }
+    std::optional<LabelId> only;
+    Curves operator()(const Edge& e) const {
+        if (only && !record(e).labels.has(*only)) return Nothing();
+        return f(AsLocalEdge(e));
+    }
 };
 
 std::vector<int> iota_ids(std::size_t n) {
@@ -82,12 +86,12 @@ Arrangement MapToVertices(VertexMapper m, Arrangement a, MapperThreads t) {
     });
 }
 
-EdgeMapper LocalEdgeMapper(LocalEdgeFn f) { return LocalMapper{std::move(f)}; }
+EdgeMapper LocalEdgeMapper(LocalEdgeFn f, std::optional<LabelId> only) { return LocalMapper{std::move(f), only}; }
 
 Arrangement MapToEdges(EdgeMapper m, Arrangement a, MapperThreads t) {
     return Arrangement([m = std::move(m), a = std::move(a), t](const Region& r) {
         if (const LocalMapper* local = m.target<LocalMapper>())
-            if (std::optional<std::vector<LocalEdge>> edges = a.local_edges(r))
+            if (std::optional<std::vector<LocalEdge>> edges = a.local_edges(r, local->only))
                 return map_local_edges(*edges, local->f, t);
         MapPtr map = a.induce(r);
         return map_cells<Edge>(map, iota_ids(map->edges().size()), m,

@@ -391,7 +391,9 @@ bool crop_open_polylines(const Curves& src, const detail::SegmentGrid& grid, Sta
             continue;
         }
         detail::note_segments_searched(c.points.size() - 1);
-        std::vector<Point> cur{c.points.front()};
+        std::vector<Point> cur;
+        cur.reserve(c.points.size() + 1);  // a piece has at most the curve's points and a crossing
+        cur.push_back(c.points.front());
         // The curve's ends and crossings, which must all differ: crop_by_crossings joins two
         // pieces again where a rounded crossing repeats and misses the mask.
         seen.assign({c.points.front(), c.points.back()});
@@ -405,8 +407,13 @@ bool crop_open_polylines(const Curves& src, const detail::SegmentGrid& grid, Sta
                 // touches the mask. Left to crop_by_crossings.
                 if (!msegs[x.seg].changes()) return false;
                 cur.push_back(x.x);
-                if (st == wanted) emit(std::move(cur));
-                cur = {x.x};
+                if (st == wanted) {
+                    emit(std::move(cur));
+                    cur = std::vector<Point>();
+                    cur.reserve(c.points.size() - k + 1);
+                }
+                cur.clear();
+                cur.push_back(x.x);
                 st = st == Status::In ? Status::Out : Status::In;
             }
             cur.push_back(c.points[k + 1]);

@@ -17,10 +17,12 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 #include <numeric>
 #include <optional>
 #include <sstream>
 #include <unordered_map>
+#include <utility>
 
 #include "libtex/error.hpp"
 #include "libtex/merge.hpp"
@@ -85,8 +87,10 @@ Curve complex_edge_curve(const Complex& cx, const Complex::CEdge& e, const std::
 }
 
 // Turns a complex into the curves of a partition of region r with border mode b. For the
-// KEEP modes, `ends` (when given) receives the complex's vertex ids of each curve's two ends.
-Curves realize(const Complex& cx, const Region& r, Border b, detail::KnownVertices* ends = nullptr) {
+// KEEP modes, `ends` (when given) receives the complex's vertex ids of each curve's two ends,
+// and with `only` the edges without that label are left out (the cells kept are the same).
+Curves realize(const Complex& cx, const Region& r, Border b, detail::KnownVertices* ends = nullptr,
+               std::optional<LabelId> only = std::nullopt) {
     Curves out;
     if (b == Border::KEEP_INSIDE || b == Border::KEEP_OUTSIDE) {
         std::vector<char> kept(cx.cells.size(), 0);
@@ -107,7 +111,7 @@ Curves realize(const Complex& cx, const Region& r, Border b, detail::KnownVertic
         for (const auto& e : cx.edges) {
             const bool l = e.left >= 0 && kept[e.left];
             const bool rr = e.right >= 0 && kept[e.right];
-            if (l || rr) {
+            if ((l || rr) && !(only && !e.labels.has(*only))) {
                 out.curves.push_back(complex_edge_curve(cx, e, &kept));
                 if (ends) ends->ends.push_back({e.a, e.b});
             }
@@ -161,10 +165,12 @@ MapPtr realize_map(const Complex& cx, const Region& r, Border b) {
 // edges are the complex's kept edges one for one: a clean complex in a KEEP mode (each kept
 // edge is a curve of its own whose ends are vertices). Then each edge runs like its curve,
 // and the map orders its edges by their pairs of end points (its vertices are numbered in
-// the order of their points), and keys an edge and a vertex by hashing their points.
-std::optional<std::vector<LocalEdge>> realize_edges(const Complex& cx, const Region& r, Border b) {
+// the order of their points), and keys an edge and a vertex by hashing their points. With
+// `only`, the edges with that label, in the same order.
+std::optional<std::vector<LocalEdge>> realize_edges(const Complex& cx, const Region& r, Border b,
+                                                    std::optional<LabelId> only) {
     if (!cx.clean || !(b == Border::KEEP_INSIDE || b == Border::KEEP_OUTSIDE)) return std::nullopt;
-    Curves curves = realize(cx, r, b);
+    Curves curves = realize(cx, r, b, nullptr, only);
     const std::size_t n = curves.curves.size();
     struct Ends {
         Point lo, hi;
@@ -705,19 +711,27 @@ void detail::StripesProbe::record(const Point& normal, double period) {
     if (t_probe) t_probe->families_.push_back({normal, period});
 }
 
+// The partitions' three ways (curves, map, edges) share one copy of their stripes: programs
+// build a partition per cell.
 Arrangement StripesPartition(const Stripes& p, Border b) {
     check_stripes(p, "StripesPartition");
-    return Arrangement([p, b](const Region& r) { return realize(stripes_complex(p, r), r, b); },
-                       [p, b](const Region& r) { return realize_map(stripes_complex(p, r), r, b); },
-                       [p, b](const Region& r) { return realize_edges(stripes_complex(p, r), r, b); });
+    auto s = std::make_shared<const Stripes>(p);
+    return Arrangement([s, b](const Region& r) { return realize(stripes_complex(*s, r), r, b); },
+                       [s, b](const Region& r) { return realize_map(stripes_complex(*s, r), r, b); },
+                       [s, b](const Region& r, std::optional<LabelId> only) {
+                           return realize_edges(stripes_complex(*s, r), r, b, only);
+                       });
 }
 
 Arrangement GridPartition(const Stripes& s1, const Stripes& s2, Border b) {
     check_stripes(s1, "GridPartition");
     check_stripes(s2, "GridPartition");
-    return Arrangement([s1, s2, b](const Region& r) { return realize(grid_complex(s1, s2, r), r, b); },
-                       [s1, s2, b](const Region& r) { return realize_map(grid_complex(s1, s2, r), r, b); },
-                       [s1, s2, b](const Region& r) { return realize_edges(grid_complex(s1, s2, r), r, b); });
+    auto s = std::make_shared<const std::pair<Stripes, Stripes>>(s1, s2);
+    return Arrangement([s, b](const Region& r) { return realize(grid_complex(s->first, s->second, r), r, b); },
+                       [s, b](const Region& r) { return realize_map(grid_complex(s->first, s->second, r), r, b); },
+                       [s, b](const Region& r, std::optional<LabelId> only) {
+                           return realize_edges(grid_complex(s->first, s->second, r), r, b, only);
+                       });
 }
 
 Arrangement UniformPartition(const Irregular& p, Border b, std::optional<std::uint64_t> seed) {
