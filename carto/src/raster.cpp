@@ -79,12 +79,6 @@ Raster from_dataset(GDALDataset& ds, const std::string& what, const std::string&
 
 }  // namespace
 
-Point Raster::to_pixel(const Point& w) const {
-    if (!grid_gt) return tex::grid_pixel(gt, w);
-    const Point p = tex::grid_pixel(*grid_gt, w);
-    return {p.x - col0, p.y - row0};
-}
-
 BBox Raster::bounds() const {
     BBox b;
     b.add(to_world(0, 0));
@@ -95,8 +89,6 @@ BBox Raster::bounds() const {
 }
 
 // One bilinear sampler for carto and libtex: tex::sample_grid on the raster's cells.
-double Raster::sample(const Point& w) const { return tex::sample_grid_pixel(data.data(), width, height, to_pixel(w)); }
-
 double Raster::nearest(const Point& w) const { return tex::nearest_grid_pixel(data.data(), width, height, to_pixel(w)); }
 
 std::pair<double, double> Raster::min_max() const {

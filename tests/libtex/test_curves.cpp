@@ -159,6 +159,15 @@ TEST(Labels, SetSemanticsAcrossInlineAndHeapStorage) {
     EXPECT_EQ(three, other);
     three = Labels{"x"};
     EXPECT_EQ(three.names(), (std::vector<std::string>{"x"}));
+    // An inline set copied over a heap set (its array freed) and into a fresh one.
+    const Labels two{"m", "n"};
+    Labels heap = l;
+    heap = two;
+    EXPECT_EQ(heap, two);
+    heap.add("o");
+    EXPECT_EQ(heap.names(), (std::vector<std::string>{"m", "n", "o"}));
+    const Labels copy(two);
+    EXPECT_EQ(copy.names(), (std::vector<std::string>{"m", "n"}));
     EXPECT_EQ(sizeof(Labels), 16u);
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "libtex/fields.hpp"
 #include "libtex/geometry.hpp"
 
 namespace carto {
@@ -44,12 +45,18 @@ struct Raster {
         const double c = col + col0, r = row + row0;
         return {g[0] + c * g[1] + r * g[2], g[3] + c * g[4] + r * g[5]};
     }
-    Point to_pixel(const Point& w) const;  // a rotated geotransform is inverted
+    // A rotated geotransform is inverted.
+    Point to_pixel(const Point& w) const {
+        if (!grid_gt) return tex::grid_pixel(gt, w);
+        const Point p = tex::grid_pixel(*grid_gt, w);
+        return {p.x - col0, p.y - row0};
+    }
     BBox bounds() const;
     // Bilinear interpolation at a world point over the four surrounding cell centres;
     // NoData neighbours are left out and the weights renormalised. NaN outside or when all
     // four are NoData.
-    double sample(const Point& w) const;
+    // Every field reading of the DEM and its rasters: inline.
+    double sample(const Point& w) const { return tex::sample_grid_pixel(data.data(), width, height, to_pixel(w)); }
     // Value of the cell containing w (NaN outside).
     double nearest(const Point& w) const;
     // Minimum and maximum of the valid cells (NaN, NaN when none).

@@ -14,6 +14,7 @@
 #include <atomic>
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -100,12 +101,47 @@ double sample_grid(const float* values, int width, int height, const std::array<
 // Value of the cell containing p (NaN outside).
 double nearest_grid(const float* values, int width, int height, const std::array<double, 6>& t, const Point& p);
 // Pixel position (col, row) of a world point.
-Point grid_pixel(const std::array<double, 6>& t, const Point& p);
+inline Point grid_pixel(const std::array<double, 6>& t, const Point& p) {
+    if (t[2] == 0 && t[4] == 0) return {(p.x - t[0]) / t[1], (p.y - t[3]) / t[5]};
+    const double det = t[1] * t[5] - t[2] * t[4];
+    const double dx = p.x - t[0], dy = p.y - t[3];
+    return {(t[5] * dx - t[2] * dy) / det, (t[1] * dy - t[4] * dx) / det};
+}
 // sample_grid and nearest_grid at a pixel position (col, row; 0.5 = a cell centre): for a
 // window of a larger grid, whose callers compute the position in the larger grid and
 // subtract the window's integer offset (exact), so a window samples the same bits as the
-// whole grid.
-double sample_grid_pixel(const float* values, int width, int height, const Point& pixel);
+// whole grid. Every field reading of a raster comes here: the common case (four cells
+// inside the grid, none NaN) is inline, the rest (borders, NoData) in sample_grid_edge.
+double sample_grid_edge(const float* values, int width, int height, const Point& pixel);
+inline double sample_grid_pixel(const float* values, int width, int height, const Point& p) {
+    const double fx = p.x - 0.5, fy = p.y - 0.5;
+    if (!(p.x >= 0 && p.y >= 0 && p.x <= width && p.y <= height)) return std::numeric_limits<double>::quiet_NaN();
+    // floor(fx) and floor(fy) (fx, fy >= -0.5 and within int here): the truncation, one less
+    // below it.
+    int x0 = int(fx), y0 = int(fy);
+    x0 -= fx < x0;
+    y0 -= fy < y0;
+    if (x0 >= 0 && y0 >= 0 && x0 + 1 < width && y0 + 1 < height) {
+        const double tx = fx - x0, ty = fy - y0;
+        const float* row = values + std::size_t(y0) * width + x0;
+        const float v00 = row[0], v10 = row[1], v01 = row[width], v11 = row[width + 1];
+        if (!(v00 != v00 || v10 != v10 || v01 != v01 || v11 != v11)) {
+            // sample_grid_edge's weighted mean in the same operations and order: the same bits.
+            const double w00 = (1 - tx) * (1 - ty), w10 = tx * (1 - ty), w01 = (1 - tx) * ty, w11 = tx * ty;
+            double sum = 0, wsum = 0;
+            sum += w00 * v00;
+            wsum += w00;
+            sum += w10 * v10;
+            wsum += w10;
+            sum += w01 * v01;
+            wsum += w01;
+            sum += w11 * v11;
+            wsum += w11;
+            if (wsum > 1e-12) return sum / wsum;
+        }
+    }
+    return sample_grid_edge(values, width, height, p);
+}
 double nearest_grid_pixel(const float* values, int width, int height, const Point& pixel);
 // The grid as a field (sample_grid). Throws tex::Error naming GridField on a bad grid.
 Field GridField(GridSamples g);

@@ -29,20 +29,36 @@ bool find_label(std::string_view name, LabelId& out);
 class Labels {
 public:
     Labels() = default;
-    Labels(const Labels& o) { assign(o.begin(), o.n_); }
+    // Inline sets are copied and moved as their fixed bytes (a constant-size copy the
+    // compiler does in registers: curves are moved by the million).
+    Labels(const Labels& o) {
+        if (o.n_ <= kInline) {
+            std::memcpy(small_, o.small_, sizeof small_);
+            n_ = o.n_;
+        } else {
+            assign(o.heap(), o.n_);
+        }
+    }
     Labels& operator=(const Labels& o) {
-        if (this != &o) assign(o.begin(), o.n_);
+        if (this == &o) return *this;
+        if (o.n_ <= kInline) {
+            release();
+            std::memcpy(small_, o.small_, sizeof small_);
+            n_ = o.n_;
+        } else {
+            assign(o.heap(), o.n_);
+        }
         return *this;
     }
     Labels(Labels&& o) noexcept : n_(o.n_) {
-        std::copy(o.small_, o.small_ + kInline, small_);
+        std::memcpy(small_, o.small_, sizeof small_);
         o.n_ = 0;
     }
     Labels& operator=(Labels&& o) noexcept {
         if (this == &o) return *this;
         release();
         n_ = o.n_;
-        std::copy(o.small_, o.small_ + kInline, small_);
+        std::memcpy(small_, o.small_, sizeof small_);
         o.n_ = 0;
         return *this;
     }

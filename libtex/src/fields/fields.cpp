@@ -216,13 +216,6 @@ Field FunctionField(Field::Fn fn, std::optional<BBox> domain) {
 
 // ---- Grids ----
 
-Point grid_pixel(const std::array<double, 6>& t, const Point& p) {
-    if (t[2] == 0 && t[4] == 0) return {(p.x - t[0]) / t[1], (p.y - t[3]) / t[5]};
-    const double det = t[1] * t[5] - t[2] * t[4];
-    const double dx = p.x - t[0], dy = p.y - t[3];
-    return {(t[5] * dx - t[2] * dy) / det, (t[1] * dy - t[4] * dx) / det};
-}
-
 double nearest_grid(const float* values, int width, int height, const std::array<double, 6>& t, const Point& w) {
     return nearest_grid_pixel(values, width, height, grid_pixel(t, w));
 }
@@ -237,34 +230,13 @@ double sample_grid(const float* values, int width, int height, const std::array<
     return sample_grid_pixel(values, width, height, grid_pixel(t, w));
 }
 
-double sample_grid_pixel(const float* values, int width, int height, const Point& p) {
+double sample_grid_edge(const float* values, int width, int height, const Point& p) {
     const double fx = p.x - 0.5, fy = p.y - 0.5;
     if (!(p.x >= 0 && p.y >= 0 && p.x <= width && p.y <= height)) return kNaN;
-    // floor(fx) and floor(fy) (fx, fy >= -0.5 and within int here): the truncation, one less
-    // below it; no call to floor in this loop of every field reading.
     int x0 = int(fx), y0 = int(fy);
     x0 -= fx < x0;
     y0 -= fy < y0;
     const double tx = fx - x0, ty = fy - y0;
-    if (x0 >= 0 && y0 >= 0 && x0 + 1 < width && y0 + 1 < height) {
-        // The common case, four cells inside the grid and none NaN: the loop below unrolled
-        // (the same operations in the same order, so the same bits).
-        const float* row = values + std::size_t(y0) * width + x0;
-        const float v00 = row[0], v10 = row[1], v01 = row[width], v11 = row[width + 1];
-        if (!(std::isnan(v00) || std::isnan(v10) || std::isnan(v01) || std::isnan(v11))) {
-            const double w00 = (1 - tx) * (1 - ty), w10 = tx * (1 - ty), w01 = (1 - tx) * ty, w11 = tx * ty;
-            double sum = 0, wsum = 0;
-            sum += w00 * v00;
-            wsum += w00;
-            sum += w10 * v10;
-            wsum += w10;
-            sum += w01 * v01;
-            wsum += w01;
-            sum += w11 * v11;
-            wsum += w11;
-            if (wsum > 1e-12) return sum / wsum;
-        }
-    }
     double sum = 0, wsum = 0;
     for (int dy = 0; dy <= 1; ++dy)
         for (int dx = 0; dx <= 1; ++dx) {
