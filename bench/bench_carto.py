@@ -160,7 +160,7 @@ def gpkg_section(build_dir, runs, tmp):
             copies[style].append(time_command(["ogr2ogr", "-f", "GPKG", "-lco", "SPATIAL_INDEX=NO", copy, out])[0])
     lines = [GPKG_MARK, "", "### Drawing to a GeoPackage against GDAL's copy of it (issue 43)", "",
              f"Chamonix.tif at 1:10000, its partition saved once (`rockhatch partition --scale 10000`), the "
-             f"whole command to a GeoPackage alone (R-tree included), 2 threads; then "
+             f"whole command to a new GeoPackage (R-tree included), 2 threads; then "
              f"`ogr2ogr -f GPKG -lco SPATIAL_INDEX=NO` of the result; {runs} alternating rounds, medians "
              f"(range). How the writer works: [gpkg-writer.md](gpkg-writer.md).", "",
              "| style | wall time | peak memory | strokes | strokes / s | ogr2ogr copy of the result | run / copy |",

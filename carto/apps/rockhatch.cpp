@@ -24,6 +24,18 @@
 #include "carto/progress.hpp"
 #include "carto/update.hpp"
 
+#ifdef RH_WITH_JEMALLOC
+// The command's own allocator settings, read by jemalloc as the process starts (MALLOC_CONF in
+// the environment still overrides them): huge pages for its extents (a drawing churns through
+// a few hundred megabytes of small curves: a tenth of the run went to page faults and TLB
+// misses) and one arena per CPU (the extents of more arenas than cores, each on huge pages,
+// would raise the peak memory for nothing). See docs/engine.md.
+extern "C" {
+extern const char* malloc_conf;
+const char* malloc_conf = "thp:always,percpu_arena:percpu";
+}
+#endif
+
 namespace {
 
 using carto::Code;

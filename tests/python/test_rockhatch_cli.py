@@ -1,4 +1,5 @@
 """The rockhatch command as a cartographer runs it: outputs, errors, real terrain."""
+import os
 import shutil
 import subprocess
 import xml.etree.ElementTree as ET
@@ -480,3 +481,27 @@ def test_relief_radius_option(rockhatch_exe, sample_dir, tmp_path):
         assert r.returncode == 2 and "--relief-radius" in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
         assert not (tmp_path / "x.svg").exists()
     assert "--relief-radius" in run(rockhatch_exe, "--help").stdout
+
+
+def test_the_command_sets_its_allocator_and_a_user_may_override_it(rockhatch_exe, sample_dir, tmp_path):
+    """Linked with jemalloc, the command asks it for huge pages and one arena per CPU
+    (docs/engine.md); MALLOC_CONF in the environment still wins, and the drawing's bytes
+    do not depend on the allocator."""
+    libs = subprocess.run(["ldd", str(rockhatch_exe)], capture_output=True, text=True).stdout
+    if "libjemalloc" not in libs:
+        pytest.skip("the command is not linked with jemalloc here (no libjemalloc-dev at build time)")
+    env = dict(os.environ, MALLOC_CONF="stats_print:true")
+    stats = subprocess.run([str(rockhatch_exe), "--help"], capture_output=True, text=True, env=env).stderr
+    assert 'opt.thp: "always"' in stats and 'opt.percpu_arena: "percpu"' in stats, stats[:2000]
+    env = dict(os.environ, MALLOC_CONF="stats_print:true,thp:never,percpu_arena:disabled")
+    stats = subprocess.run([str(rockhatch_exe), "--help"], capture_output=True, text=True, env=env).stderr
+    assert 'opt.thp: "never"' in stats and 'opt.percpu_arena: "disabled"' in stats, stats[:2000]
+    outs = []
+    for conf in ("", "thp:never,percpu_arena:disabled"):
+        out = tmp_path / f"h{len(outs)}.svg"
+        env = dict(os.environ, MALLOC_CONF=conf)
+        r = subprocess.run([str(rockhatch_exe), *map(str, sample_args(sample_dir)), "-q", "-o", str(out)],
+                           capture_output=True, text=True, env=env, timeout=300)
+        assert r.returncode == 0, r.stderr
+        outs.append(out.read_bytes())
+    assert outs[0] == outs[1]
