@@ -514,7 +514,7 @@ Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const F
             cross_cover = wc * gap / s;
             const double angle = theta + q.cross_angle;
             out = MapToEdges(JitterEdges("cross", angle, s, len, 0.5, gap),
-                             StripesPartition(stripes(angle, s, "cross"), CROP))(cell);
+                             StripesPartition(stripes(angle, s, "cross"), CROP))(box);
         }
         // Fill strokes of width w every s cover w x gap / s of the cell; min_gap keeps white
         // paper between neighbours whatever the tone asks.
@@ -551,10 +551,10 @@ Arrangement toned_hatching(const ControlFields& f, const ParamValues& p, const F
         // strokes, it does not tilt them (tilted, sparse strokes read as zigzags).
         const Arrangement fill = AlignToField(lines, follow ? Fallback(f.fall_line, Field(theta)) : Field(theta));
         if (!rows) {
-            out.append(fill(cell));
+            out.append(fill(box));  // the cell as a region, made once
             return out;
         }
-        Curves hanging = CutAtLevels(fill, levels, band, q.band_gap, 0.5 * mm)(cell);
+        Curves hanging = CutAtLevels(fill, levels, band, q.band_gap, 0.5 * mm)(box);
         shorten_to_ink(hanging, want * box.area() / wf, theta, kShortestStroke * wf);
         out.append(std::move(hanging));
         return out;
