@@ -153,7 +153,8 @@ bool SegmentGrid::box_meets(const BBox& b, bool only_changing) const {
     return false;
 }
 
-int SegmentGrid::first_above(const Point& p, const std::function<bool(std::uint32_t)>& use, bool& on) const {
+template <class Use>
+int SegmentGrid::first_above_with(const Point& p, const Use& use, bool& on) const {
     on = false;
     if (segs_.empty() || p.x < box_.xmin || p.x > box_.xmax || p.y > box_.ymax) return -1;
     const int c = col(p.x);
@@ -214,10 +215,14 @@ int SegmentGrid::first_above(const Point& p, const std::function<bool(std::uint3
     return best;
 }
 
+int SegmentGrid::first_above(const Point& p, const std::function<bool(std::uint32_t)>& use, bool& on) const {
+    return first_above_with(p, use, on);
+}
+
 SegmentGrid::Where SegmentGrid::locate(const Point& p) const {
     // Shoot a ray upwards and read the side of the lowest boundary segment it meets.
     bool on = false;
-    const int best = first_above(p, [&](std::uint32_t i) { return segs_[i].changes(); }, on);
+    const int best = first_above_with(p, [&](std::uint32_t i) { return segs_[i].changes(); }, on);
     if (on) return Where::On;
     if (best < 0) return Where::Out;
     const Seg& s = segs_[best];

@@ -113,6 +113,10 @@ public:
     int first_above(const Point& p, const std::function<bool(std::uint32_t)>& use, bool& on) const;
 
 private:
+    // first_above's search, for any predicate (locate's inline, the public one's through
+    // std::function).
+    template <class Use>
+    int first_above_with(const Point& p, const Use& use, bool& on) const;
     int col(double x) const;
     int row(double y) const;
     std::size_t cell(int c, int r) const { return std::size_t(r) * std::size_t(nx_) + std::size_t(c); }
