@@ -407,12 +407,13 @@ bool crop_open_polylines(const Curves& src, const detail::SegmentGrid& grid, Sta
                 // touches the mask. Left to crop_by_crossings.
                 if (!msegs[x.seg].changes()) return false;
                 cur.push_back(x.x);
-                if (st == wanted) {
+                if (st == wanted) {  // the piece goes out; the next one gets storage of its own
                     emit(std::move(cur));
                     cur = std::vector<Point>();
                     cur.reserve(c.points.size() - k + 1);
+                } else {  // the piece is dropped; its storage serves the next one
+                    cur.clear();
                 }
-                cur.clear();
                 cur.push_back(x.x);
                 st = st == Status::In ? Status::Out : Status::In;
             }
