@@ -159,6 +159,7 @@ private:
     TempFile tmp_;
     ReproducibleGpkg reproducible_;
     ConfigScope sync_{"OGR_SQLITE_SYNCHRONOUS", "OFF"}, journal_{"OGR_SQLITE_JOURNAL", "OFF"};
+    ConfigScope pages_{"OGR_SQLITE_PRAGMA", large_page_pragmas().c_str()};
     QuietGdal quiet_;
     OGRSpatialReference srs_;
     std::unique_ptr<GDALDataset> ds_;

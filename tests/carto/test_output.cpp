@@ -54,7 +54,8 @@ Drawing small_drawing(std::size_t hatches) {
     return d;
 }
 
-const char* const kKeys[] = {"OGR_CURRENT_DATE", "OGR_SQLITE_JOURNAL", "OGR_SQLITE_SYNCHRONOUS", "CPL_LOG"};
+const char* const kKeys[] = {"OGR_CURRENT_DATE", "OGR_SQLITE_JOURNAL", "OGR_SQLITE_SYNCHRONOUS", "OGR_SQLITE_PRAGMA",
+                             "CPL_LOG"};
 
 // Every option carto sets, as the process (global) and this thread see it.
 std::vector<std::string> settings() {
@@ -166,6 +167,45 @@ TEST(GdalSettings, WriteGpkgPutsBackTheHostsOptionsAndErrorHandler) {
     CPLPopErrorHandler();
     CPLSetThreadLocalConfigOption("OGR_CURRENT_DATE", nullptr);
     CPLSetConfigOption("OGR_SQLITE_JOURNAL", nullptr);
+}
+
+// The page size of a GeoPackage, as SQLite reports it.
+int page_size(const std::string& path) {
+    std::unique_ptr<GDALDataset> ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR));
+    if (!ds) return -1;
+    OGRLayer* rs = ds->ExecuteSQL("PRAGMA page_size", nullptr, nullptr);
+    if (!rs) return -1;
+    std::unique_ptr<OGRFeature> f(rs->GetNextFeature());
+    const int n = f ? f->GetFieldAsInteger(0) : -1;
+    ds->ReleaseResultSet(rs);
+    return n;
+}
+
+// A run's GeoPackage has SQLite's largest pages (its rows go in with a sixteenth of the page
+// writes); a page size the host asks for wins, and the host's setting is left as it was.
+TEST(GdalSettings, AGpkgIsWrittenInLargePagesUnlessTheHostAsksOtherwise) {
+    GDALAllRegister();
+    const fs::path dir = fresh_dir("pages");
+    const std::string plain = (dir / "plain.gpkg").string();
+    write_gpkg(small_drawing(300), plain);
+    EXPECT_EQ(page_size(plain), 65536);
+    // The index and the rows read back whole from the large pages.
+    {
+        std::unique_ptr<GDALDataset> ds(GDALDataset::Open(plain.c_str(), GDAL_OF_VECTOR));
+        ASSERT_TRUE(ds);
+        OGRLayer* fill = ds->GetLayerByName("hatch_fill");
+        ASSERT_TRUE(fill);
+        EXPECT_EQ(fill->GetFeatureCount(), 300);
+        fill->SetSpatialFilterRect(1000010.2, 6500000, 1000012.2, 6500001);
+        EXPECT_EQ(fill->GetFeatureCount(), 3);  // the hatches starting at x + 10, 11, 12 (GDAL also checks the geometry)
+    }
+    CPLSetConfigOption("OGR_SQLITE_PRAGMA", "page_size=8192");
+    const std::vector<std::string> before = settings();
+    const std::string host = (dir / "host.gpkg").string();
+    write_gpkg(small_drawing(300), host);
+    EXPECT_EQ(page_size(host), 8192);
+    EXPECT_EQ(settings(), before);
+    CPLSetConfigOption("OGR_SQLITE_PRAGMA", nullptr);
 }
 
 // A hatch GeoPackage keeps its drawing's frame, which can be larger than its hatches (the

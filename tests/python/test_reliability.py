@@ -18,7 +18,7 @@ from conftest import python_env
 FRAMED_TILES = pathlib.Path(__file__).resolve().parent / "style_scripts" / "framed_tiles.py"
 SPELLINGS = ["same", "dot", "dotdot", "symlink", "hardlink"]
 # Every GDAL configuration option carto sets (scoped to its calls since issue 17).
-GDAL_KEYS = ["OGR_CURRENT_DATE", "OGR_SQLITE_JOURNAL", "OGR_SQLITE_SYNCHRONOUS", "CPL_LOG"]
+GDAL_KEYS = ["OGR_CURRENT_DATE", "OGR_SQLITE_JOURNAL", "OGR_SQLITE_SYNCHRONOUS", "OGR_SQLITE_PRAGMA", "CPL_LOG"]
 FIXED_DATE = "2000/01/01 00:00:00+00"  # carto's OGR_CURRENT_DATE, as OGR reads it back
 
 
