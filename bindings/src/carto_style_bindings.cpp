@@ -106,7 +106,7 @@ void add_hatch_bindings(py::module_& m) {
     m.def("area_within", [](const tex::Region& face, const tex::Region& cell) { return face.area_within(cell); },
           py::arg("face"), py::arg("cell"),
           "area of the face (less its holes) inside the cell, whose outer ring is taken as convex");
-    m.def("hatches_from_curves", &hatches_from_curves, py::arg("curves"),
+    m.def("hatches_from_curves", py::overload_cast<const tex::Curves&>(&hatches_from_curves), py::arg("curves"),
           "libtex curves (an evaluated style) as hatches, their family read from their labels");
 }
 

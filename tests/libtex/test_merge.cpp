@@ -895,6 +895,61 @@ TEST(Merge, FrayedCropDrawsAShareOfTheEndsOnPastTheBorder) {
     EXPECT_THROW(FrayedCrop(rows(), 0.5, 2.0, Field(), {}, -0.1), Error);
 }
 
+// FrayedCrop on curves in hand is the operator on those curves: the same stream (taken when
+// called, as creating the operator takes it), the same curves, bit for bit; two calls in turn
+// draw as two operators created in turn. The rows lie partly outside, so the crop cuts them.
+TEST(Merge, FrayedCropOfCurvesInHandIsTheOperatorOnThem) {
+    const Region& sq = kTall;
+    const Curves given = rows()(sq);
+    const Field across([](const Point& p) { return p.x > 11 ? 1.0 : NAN; });
+    for (double beyond : {0.0, 0.5}) {
+        SetSeed(7);
+        const Curves a1 = FrayedCrop(Constant(given), 0.5, 2.0, across, {"hard"}, beyond)(sq);
+        const Curves a2 = FrayedCrop(Constant(given), 0.3, 1.0, across, {"hard"}, beyond)(sq);
+        SetSeed(7);
+        const Curves b1 = FrayedCrop(Curves(given), sq, 0.5, 2.0, across, {"hard"}, beyond);
+        const Curves b2 = FrayedCrop(Curves(given), sq, 0.3, 1.0, across, {"hard"}, beyond);
+        ASSERT_EQ(a1.curves.size(), b1.curves.size()) << beyond;
+        ASSERT_EQ(a2.curves.size(), b2.curves.size()) << beyond;
+        for (std::size_t i = 0; i < a1.curves.size(); ++i) EXPECT_EQ(a1.curves[i].points, b1.curves[i].points) << i;
+        for (std::size_t i = 0; i < a2.curves.size(); ++i) EXPECT_EQ(a2.curves[i].points, b2.curves[i].points) << i;
+        // The second operator draws other depths than the first.
+        EXPECT_NE(a1.curves[0].points, a2.curves[0].points);
+    }
+    EXPECT_THROW(FrayedCrop(Curves(given), sq, 2.0, 1.0), Error);
+}
+
+// A crop of curves given up by the caller (apply_mask(Curves&&)) moves the curves it keeps
+// whole instead of copying them, and gives what the copying crop gives: the same pieces in
+// the same order, whether the fast crop decides or the exact path does (a curve through a
+// vertex of the region sends the crop there, and the curves it was given are still whole).
+TEST(Merge, ACropOfCurvesGivenUpMovesTheWholeOnesAndCutsTheSame) {
+    std::mt19937 rng(20261207);
+    std::uniform_real_distribution<double> u(0, 1);
+    const Region r({{0, 0}, {10, 1}, {9, 8}, {4, 11}, {-1, 7}});
+    for (int k = 0; k < 60; ++k) {
+        Curves c;
+        for (int i = 0; i < 40; ++i) {
+            const Point a{u(rng) * 14 - 2, u(rng) * 14 - 2};
+            c.append(Polyline({a, a + Point{u(rng) * 3 - 1.5, u(rng) * 3 - 1.5}, a + Point{u(rng) * 4 - 2, u(rng) * 4 - 2}}));
+        }
+        if (k % 3 == 0) c.append(Polyline({{-3, -3}, {0, 0}, {1, 5}}));  // through a vertex: the exact path
+        const Curves copied = apply_mask(c, r, CROP);
+        Curves given = c;
+        const Curves moved = apply_mask(std::move(given), r, CROP);
+        ASSERT_EQ(copied.curves.size(), moved.curves.size()) << k;
+        for (std::size_t i = 0; i < copied.curves.size(); ++i) {
+            ASSERT_EQ(copied.curves[i].points, moved.curves[i].points) << k << " piece " << i;
+            ASSERT_TRUE(copied.curves[i].labels == moved.curves[i].labels) << k << " piece " << i;
+        }
+        // The fast crop moved the whole curves out; the exact path took none.
+        std::size_t emptied = 0;
+        for (const Curve& g : given.curves) emptied += g.points.empty();
+        if (k % 3 == 0) EXPECT_EQ(emptied, 0u) << k;
+        else EXPECT_GT(emptied, 0u) << k;
+    }
+}
+
 // Only ends whose strokes cross the rim steeply (60 degrees or more) go on past it: a stroke
 // drawn on at a slant runs along the outside of the rim, a hair on the rock's edge.
 TEST(Merge, FrayedCropDrawsOnlySteepEndsOnPastTheBorder) {

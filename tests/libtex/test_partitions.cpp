@@ -882,10 +882,10 @@ TEST(PartitionMaps, AMapperOfOneLabelReadsOnlyTheEdgesWithIt) {
             // The function sees only labelled edges, with or without the map.
             std::atomic<int> calls{0}, strangers{0};
             const EdgeMapper only = LocalEdgeMapper(
-                [&, fill](const LocalEdge& e) {
+                [&, fill](const LocalEdge& e, Curves& out) {
                     ++calls;
                     if (!e.curve.labels.has(fill)) ++strangers;
-                    return Polyline(e.curve.points);
+                    out.append(Polyline(e.curve.points));
                 },
                 fill);
             const Curves local = MapToEdges(only, a)(r);

@@ -162,8 +162,10 @@ Family family_of(const tex::Labels& labels);
 double ink_area(const tex::Curves& c, double ground_per_mm, const tex::Region* within = nullptr);
 
 
-// The strokes of an evaluated style, their family read from their labels.
+// The strokes of an evaluated style, their family read from their labels (the second form
+// moves the points out of `c`).
 std::vector<Hatch> hatches_from_curves(const tex::Curves& c);
+std::vector<Hatch> hatches_from_curves(tex::Curves&& c);
 
 // The hatches of one face: the style's arrangement evaluated on face_region (its random
 // values follow `seed`, whatever else the process set).

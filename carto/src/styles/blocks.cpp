@@ -581,13 +581,13 @@ Arrangement frayed(const ControlFields& f, const ParamValues& p, Arrangement a) 
     // fall line to follow reads as stray hairs round the rock. The fill strokes end on both
     // sides of it (fray_beyond of them past it).
     const double lo = p.at("fray_min"), hi = p.at("fray_max"), beyond = p.at("fray_beyond");
-    return Arrangement([a = std::move(a), across = f.density, lo, hi, beyond](const Region& r) {
+    const tex::LabelId cross = tex::intern_label("cross");
+    return Arrangement([a = std::move(a), across = f.density, lo, hi, beyond, cross](const Region& r) {
         Curves strokes, crosses;
         Curves all = a(r);
-        for (Curve& c : all.curves) (c.labels.has("cross") ? crosses : strokes).curves.push_back(std::move(c));
-        auto given = [](Curves c) { return Arrangement([c = std::move(c)](const Region&) { return c; }); };
-        Curves out = FrayedCrop(given(std::move(strokes)), lo, hi, across, {"ridge", "cliff"}, beyond)(r);
-        out.append(FrayedCrop(given(std::move(crosses)), lo, hi, across, {"ridge", "cliff"}, 0)(r));
+        for (Curve& c : all.curves) (c.labels.has(cross) ? crosses : strokes).curves.push_back(std::move(c));
+        Curves out = FrayedCrop(std::move(strokes), r, lo, hi, across, {"ridge", "cliff"}, beyond);
+        out.append(FrayedCrop(std::move(crosses), r, lo, hi, across, {"ridge", "cliff"}, 0));
         return out;
     });
 }

@@ -206,6 +206,16 @@ std::vector<Hatch> hatches_from_curves(const tex::Curves& c) {
     return out;
 }
 
+std::vector<Hatch> hatches_from_curves(tex::Curves&& c) {
+    std::vector<Hatch> out;
+    out.reserve(c.curves.size());
+    for (auto& cv : c.curves) {
+        if (cv.points.size() < 2) continue;
+        out.push_back(Hatch{std::move(cv.points), cv.closed, family_of(cv.labels)});
+    }
+    return out;
+}
+
 Family family_of(const tex::Labels& labels) {
     static const tex::LabelId ridge = tex::intern_label("ridge"), valley = tex::intern_label("valley"),
                               cross = tex::intern_label("cross"), ridgeline = tex::intern_label("ridgeline"),

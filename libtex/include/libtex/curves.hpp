@@ -86,9 +86,12 @@ Curves Polyline(std::vector<Point> pts, bool closed = false);
 
 namespace detail {
 // MatchPoints(c, ...) and Scale(c, s) applied to c itself (the same arithmetic, so the same
-// points), for mappers that would otherwise copy every curve once per step.
+// points), for mappers that would otherwise copy every curve once per step; on one curve,
+// what they give on curves holding that curve alone.
 void match_points_in_place(Curves& c, const Point& s1, const Point& s2, const Point& t1, const Point& t2);
 void scale_in_place(Curves& c, double s);
+void match_points_in_place(Curve& c, const Point& s1, const Point& s2, const Point& t1, const Point& t2);
+void scale_in_place(Curve& c, double s);
 }  // namespace detail
 
 }  // namespace tex

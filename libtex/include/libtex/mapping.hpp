@@ -31,8 +31,11 @@ Arrangement MapToEdges(EdgeMapper m, Arrangement a, MapperThreads t = MapperThre
 // modes of StripesPartition and GridPartition), with the same result, cell for cell.
 // With `only`, an edge without that label maps to nothing, f is not called on it, and MapToEdges
 // does not read it at all (the partition leaves it out of its edges: half of a grid's edges
-// when the mapper draws one family of its lines).
-using LocalEdgeFn = std::function<Curves(const LocalEdge&)>;
+// when the mapper draws one family of its lines). f appends the edge's curves to `out`, which
+// holds those of the edges before it (f leaves them alone): one buffer for a run of edges,
+// not a set of curves per edge. The edge handed to f is a copy of its own, read by nothing
+// after the call: f may take its curve (move it into `out`).
+using LocalEdgeFn = std::function<void(LocalEdge& e, Curves& out)>;
 EdgeMapper LocalEdgeMapper(LocalEdgeFn f, std::optional<LabelId> only = std::nullopt);
 
 // Visits the bounded faces only.

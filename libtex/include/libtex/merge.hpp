@@ -45,6 +45,10 @@ Arrangement Crop(Arrangement a, Border b);
 // for a band or share out of range.
 Arrangement FrayedCrop(Arrangement a, double min, double max, Field across = Field(),
                        std::vector<std::string> hard = {}, double beyond = 0);
+// FrayedCrop(a, ...)(r) for curves already in hand: the same stream (taken now, as creating
+// the operator takes it), the same result, without a copy of the curves.
+Curves FrayedCrop(Curves curves, const Region& r, double min, double max, Field across = Field(),
+                  std::vector<std::string> hard = {}, double beyond = 0);
 // The curves of a (evaluated on the region) less their parts within `distance` of any of
 // `lines` (a gap left along them, as a couloir is drawn in rock), cut exactly where they
 // enter that buffer (the union of the capsules round the lines' segments); a curve that
@@ -67,8 +71,10 @@ Arrangement Outline();
 // cut by the boundaries of the bounded faces of `mask_map`; returns the kept pieces.
 enum class MaskSide { Inside, Outside };
 Curves apply_mask(const Curves& subject, const PlanarMap& mask_map, MaskSide side, Border b);
-// Same, with a region as the mask.
+// Same, with a region as the mask; the second form may move the curves it keeps whole out
+// of `subject` instead of copying them.
 Curves apply_mask(const Curves& subject, const Region& region, Border b);
+Curves apply_mask(Curves&& subject, const Region& region, Border b);
 
 }  // namespace tex
 

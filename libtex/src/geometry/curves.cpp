@@ -72,6 +72,14 @@ Curves Scale(const Curves& c, double sx, double sy) {
 
 void detail::scale_in_place(Curves& c, double s) { c.transform(Affine::scaling(s, s, BBoxCenter(c))); }
 
+void detail::scale_in_place(Curve& c, double s) {
+    BBox b;  // as Curves::bbox of curves holding c alone
+    for (const Point& p : c.points) b.add(p);
+    const Affine m = Affine::scaling(s, s, b.center());
+    for (Point& p : c.points) p = m(p);
+    if (m.determinant() < 0) std::swap(c.left, c.right);
+}
+
 Curves Rotate(const Curves& c, double a) {
     return transformed(c, Affine::rotation(a, BBoxCenter(c)));
 }
@@ -82,18 +90,18 @@ Curves Translate(const Curves& c, const Point& v) {
 
 // Applies m, sending the points equal to a source exactly onto its target (rounding would
 // leave them a few ulps away, and a curve meant to end on a vertex would then miss it).
+static Point map_onto(const Point& p, const Affine& m, const Point* s, const Point* t, std::size_t n) {
+    for (std::size_t k = 0; k < n; ++k)
+        if (p == s[k]) return t[k];
+    return m(p);
+}
+static void transform_onto(Curve& cv, const Affine& m, const Point* s, const Point* t, std::size_t n) {
+    for (auto& p : cv.points) p = map_onto(p, m, s, t, n);
+    if (m.determinant() < 0) std::swap(cv.left, cv.right);
+}
 static void transform_onto(Curves& c, const Affine& m, const Point* s, const Point* t, std::size_t n) {
-    const bool mirror = m.determinant() < 0;
-    auto map = [&](const Point& p) {
-        for (std::size_t k = 0; k < n; ++k)
-            if (p == s[k]) return t[k];
-        return m(p);
-    };
-    for (auto& cv : c.curves) {
-        for (auto& p : cv.points) p = map(p);
-        if (mirror) std::swap(cv.left, cv.right);
-    }
-    for (auto& lp : c.points) lp.point = map(lp.point);
+    for (auto& cv : c.curves) transform_onto(cv, m, s, t, n);
+    for (auto& lp : c.points) lp.point = map_onto(lp.point, m, s, t, n);
 }
 
 Curves MatchPoint(const Curves& c, const Point& s, const Point& t) {
@@ -102,7 +110,8 @@ Curves MatchPoint(const Curves& c, const Point& s, const Point& t) {
     return out;
 }
 
-void detail::match_points_in_place(Curves& c, const Point& s1, const Point& s2, const Point& t1, const Point& t2) {
+// The similarity sending s1 to t1 and s2 to t2.
+static Affine similarity(const Point& s1, const Point& s2, const Point& t1, const Point& t2) {
     const Point ds = s2 - s1, dt = t2 - t1;
     const double ls = dot(ds, ds);
     if (ls == 0.0) throw Error("MatchPoints", "the two source points coincide");
@@ -112,8 +121,17 @@ void detail::match_points_in_place(Curves& c, const Point& s1, const Point& s2, 
     Affine m{ra, -rb, 0, rb, ra, 0};
     m.c = t1.x - (ra * s1.x - rb * s1.y);
     m.f = t1.y - (rb * s1.x + ra * s1.y);
+    return m;
+}
+
+void detail::match_points_in_place(Curves& c, const Point& s1, const Point& s2, const Point& t1, const Point& t2) {
     const Point src[2] = {s1, s2}, dst[2] = {t1, t2};
-    transform_onto(c, m, src, dst, 2);
+    transform_onto(c, similarity(s1, s2, t1, t2), src, dst, 2);
+}
+
+void detail::match_points_in_place(Curve& c, const Point& s1, const Point& s2, const Point& t1, const Point& t2) {
+    const Point src[2] = {s1, s2}, dst[2] = {t1, t2};
+    transform_onto(c, similarity(s1, s2, t1, t2), src, dst, 2);
 }
 
 Curves MatchPoints(const Curves& c, const Point& s1, const Point& s2, const Point& t1,

@@ -59,6 +59,9 @@ bool segments_touch(const Point& a, const Point& b, const Point& c, const Point&
     return CGAL::do_intersect(KS(kp(a), kp(b)), KS(kp(c), kp(d)));
 }
 
+// At most this many segments go in one cell: scanning them costs less than bucketing them.
+constexpr std::size_t kFewSegments = 16;
+
 SegmentGrid::SegmentGrid(std::vector<Seg> segs) : segs_(std::move(segs)) {
     if (segs_.empty()) return;
     for (const auto& s : segs_) {
@@ -71,10 +74,19 @@ SegmentGrid::SegmentGrid(std::vector<Seg> segs) : segs_(std::move(segs)) {
     const double w = box_.width(), h = box_.height();
     const double n = double(segs_.size());
     const double s = std::sqrt(w * h / n);
-    nx_ = int(std::clamp(std::ceil(w / s), 1.0, 1024.0));
-    ny_ = int(std::clamp(std::ceil(h / s), 1.0, 1024.0));
+    // A few segments (a cell of a grid, a small face) are searched one by one: one cell.
+    const bool few = segs_.size() <= kFewSegments;
+    nx_ = few ? 1 : int(std::clamp(std::ceil(w / s), 1.0, 1024.0));
+    ny_ = few ? 1 : int(std::clamp(std::ceil(h / s), 1.0, 1024.0));
     cw_ = w / nx_;
     ch_ = h / ny_;
+    if (few) {  // every segment in the one cell, in order (what the passes below would give)
+        start_ = {0, std::uint32_t(segs_.size())};
+        items_.resize(segs_.size());
+        for (std::uint32_t i = 0; i < segs_.size(); ++i) items_[i] = i;
+        seen_.assign(segs_.size(), 0);
+        return;
+    }
     // Two passes: count, then fill (compressed rows).
     std::vector<std::uint32_t> count(std::size_t(nx_) * std::size_t(ny_) + 1, 0);
     auto cells_of = [&](const Seg& sg, auto&& emit) {
@@ -105,11 +117,13 @@ SegmentGrid::SegmentGrid(std::vector<Seg> segs) : segs_(std::move(segs)) {
 }
 
 int SegmentGrid::col(double x) const {
+    if (nx_ == 1) return 0;
     const double t = std::floor((x - box_.xmin) / cw_);
     return int(std::clamp(t, 0.0, double(nx_ - 1)));
 }
 
 int SegmentGrid::row(double y) const {
+    if (ny_ == 1) return 0;
     const double t = std::floor((y - box_.ymin) / ch_);
     return int(std::clamp(t, 0.0, double(ny_ - 1)));
 }

@@ -182,7 +182,10 @@ std::vector<Point> canonical_points(const std::vector<Point>& pts);
 namespace tex::detail {
 // apply_mask with a region, the pieces of the region's boundary that CROP_ADD_BOUNDARY adds
 // carrying the label `outline` besides their own (the cropping partitions find them so).
-Curves crop_to_region(const Curves& subject, const Region& region, Border b, std::optional<LabelId> outline);
+// With `movable` (subject itself, given up by the caller), curves kept whole may be moved
+// out of it.
+Curves crop_to_region(const Curves& subject, const Region& region, Border b, std::optional<LabelId> outline,
+                      Curves* movable = nullptr);
 // The pieces of `cropped` carrying `outline` (pieces of the region's outline) lose that label
 // and their side labels, and get on their left, the inner side, what `inner(probe, mid)` says
 // of the face there: `mid` is the middle of the piece's first segment (a piece may turn a

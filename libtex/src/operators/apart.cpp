@@ -136,9 +136,15 @@ void keep_apart(Curve& c, const NearIndex& index, std::vector<std::size_t>& seen
     bool cut = false;
     for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
         const Point p = pts[i], q = pts[i + 1];
-        if (run.empty() && i == 0) run.push_back(p);
+        const std::vector<std::pair<double, double>> near = index.near(p, q, seen);
+        if (!cut) {
+            // Until the first cut the run is the curve's points so far: made only when a cut
+            // comes (most curves have none and are moved out whole).
+            if (near.empty()) continue;
+            run.assign(pts.begin(), pts.begin() + std::ptrdiff_t(i) + 1);
+        }
         double from = 0;  // the kept stretch of this segment starts here
-        for (const auto& [t0, t1] : index.near(p, q, seen)) {
+        for (const auto& [t0, t1] : near) {
             cut = true;
             if (t0 > from) {
                 if (run.empty()) run.push_back(p + (q - p) * from);

@@ -241,84 +241,101 @@ bool draw_on(std::vector<Point>& pts, double depth, double inset, const Prepared
     return false;
 }
 
-}  // namespace
-
-Arrangement FrayedCrop(Arrangement a, double min, double max, Field across, std::vector<std::string> hard,
-                       double beyond) {
+// The checks of both forms of FrayedCrop.
+void check_fray(double min, double max, double beyond) {
     if (!(min >= 0) || !(max >= min) || !std::isfinite(max))
         throw Error("FrayedCrop", "the band must be 0 <= min <= max (got " + std::to_string(min) + ", " +
                                       std::to_string(max) + ")");
     if (!(beyond >= 0 && beyond <= 1))
         throw Error("FrayedCrop", "the share of ends drawn on past the rim must be in [0, 1] (got " +
                                       std::to_string(beyond) + ")");
+}
+
+// FrayedCrop on curves already cut to the region, with the operator's stream.
+Curves fray_ends(Curves in, const Region& r, double min, double max, const Field& across,
+                 const std::vector<std::string>& hard, double beyond, std::uint64_t stream) {
+    if (in.curves.empty()) return in;
+    const double eps = 1e-7 * std::max({r.bbox().width(), r.bbox().height(), 1.0});
+    // Another face across is looked for a little beyond the border.
+    const BorderIndex border(r, hard, across, 4 * eps + 0.05 * max);
+    const std::uint64_t key = hash_combine(hash_combine(kFrayTag, stream), GetSeed());
+    // An end within `min` of the border whose nearest border is rim is drawn back to a
+    // depth in [min, max] from the rim (0: it stays).
+    const double near = std::max(eps, min);
+    // Also how far inside the rim the end lies.
+    auto depth_at = [&](const Point& p) -> std::pair<double, double> {
+        const auto [d, rim] = border.nearest(p, near);
+        if (!rim || !(d <= near)) return {0.0, 0.0};
+        return {min + (max - min) * unit_from_hash(hash_point(key, p)), d};
+    };
+    // Whether an end goes on past the rim (a draw of its own, keyed as its depth is).
+    const std::uint64_t side_key = hash_combine(key, 1);
+    auto onward = [&](const Point& p) { return beyond > 0 && unit_from_hash(hash_point(side_key, p)) < beyond; };
+    // The region prepared once, by the first end that needs it (ends are drawn in parallel).
+    std::optional<PreparedRegion> prepared;
+    std::once_flag prepare_once;
+    auto region = [&]() -> const PreparedRegion& {
+        std::call_once(prepare_once, [&] { prepared.emplace(r); });
+        return *prepared;
+    };
+    // Each curve's ends alone: blocks of curves in parallel (a face drawn last shares them
+    // with the threads that have run out of faces), the curves kept in their order.
+    std::vector<char> keep(in.curves.size(), 1);
+    auto fray = [&](Curve& c) -> bool {
+        if (c.closed || c.points.size() < 2) return true;
+        const Point first = c.points.front(), last = c.points.back();
+        const auto [head, head_inset] = depth_at(first);
+        const auto [tail, tail_inset] = depth_at(last);
+        std::vector<Point> pts = std::move(c.points);
+        // Each end on past the rim when its draw says so and the way is free, else back.
+        if (head > 0) {
+            std::reverse(pts.begin(), pts.end());
+            const bool on = onward(first) && draw_on(pts, head, head_inset, region(), across, border);
+            std::reverse(pts.begin(), pts.end());
+            if (!on) pts = draw_back(std::move(pts), head, border);
+        }
+        if (tail > 0 && pts.size() >= 2 &&
+            !(onward(last) && draw_on(pts, tail, tail_inset, region(), across, border))) {
+            std::reverse(pts.begin(), pts.end());
+            pts = draw_back(std::move(pts), tail, border);
+            std::reverse(pts.begin(), pts.end());
+        }
+        if (pts.size() < 2) return false;
+        c.points = std::move(pts);
+        return true;
+    };
+    constexpr std::size_t kBlock = 256;
+    parallel_for((in.curves.size() + kBlock - 1) / kBlock, [&](std::size_t b) {
+        for (std::size_t i = b * kBlock; i < std::min(in.curves.size(), (b + 1) * kBlock); ++i)
+            keep[i] = fray(in.curves[i]);
+    });
+    Curves out;
+    out.points = std::move(in.points);
+    out.origin = std::move(in.origin);
+    out.curves.reserve(in.curves.size());
+    for (std::size_t i = 0; i < in.curves.size(); ++i)
+        if (keep[i]) out.curves.push_back(std::move(in.curves[i]));
+    return out;
+}
+
+}  // namespace
+
+Arrangement FrayedCrop(Arrangement a, double min, double max, Field across, std::vector<std::string> hard,
+                       double beyond) {
+    check_fray(min, max, beyond);
     // The stream is fixed now, when the operator is created (random.hpp, "Streams").
     const std::uint64_t stream = NextStream();
     return Arrangement([a = std::move(a), min, max, across = std::move(across), hard = std::move(hard), beyond,
                         stream](const Region& r) {
-        Curves in = apply_mask(a(r), r, CROP);
-        if (in.curves.empty()) return in;
-        const double eps = 1e-7 * std::max({r.bbox().width(), r.bbox().height(), 1.0});
-        // Another face across is looked for a little beyond the border.
-        const BorderIndex border(r, hard, across, 4 * eps + 0.05 * max);
-        const std::uint64_t key = hash_combine(hash_combine(kFrayTag, stream), GetSeed());
-        // An end within `min` of the border whose nearest border is rim is drawn back to a
-        // depth in [min, max] from the rim (0: it stays).
-        const double near = std::max(eps, min);
-        // Also how far inside the rim the end lies.
-        auto depth_at = [&](const Point& p) -> std::pair<double, double> {
-            const auto [d, rim] = border.nearest(p, near);
-            if (!rim || !(d <= near)) return {0.0, 0.0};
-            return {min + (max - min) * unit_from_hash(hash_point(key, p)), d};
-        };
-        // Whether an end goes on past the rim (a draw of its own, keyed as its depth is).
-        const std::uint64_t side_key = hash_combine(key, 1);
-        auto onward = [&](const Point& p) { return beyond > 0 && unit_from_hash(hash_point(side_key, p)) < beyond; };
-        // The region prepared once, by the first end that needs it (ends are drawn in parallel).
-        std::optional<PreparedRegion> prepared;
-        std::once_flag prepare_once;
-        auto region = [&]() -> const PreparedRegion& {
-            std::call_once(prepare_once, [&] { prepared.emplace(r); });
-            return *prepared;
-        };
-        // Each curve's ends alone: blocks of curves in parallel (a face drawn last shares them
-        // with the threads that have run out of faces), the curves kept in their order.
-        std::vector<char> keep(in.curves.size(), 1);
-        auto fray = [&](Curve& c) -> bool {
-            if (c.closed || c.points.size() < 2) return true;
-            const Point first = c.points.front(), last = c.points.back();
-            const auto [head, head_inset] = depth_at(first);
-            const auto [tail, tail_inset] = depth_at(last);
-            std::vector<Point> pts = std::move(c.points);
-            // Each end on past the rim when its draw says so and the way is free, else back.
-            if (head > 0) {
-                std::reverse(pts.begin(), pts.end());
-                const bool on = onward(first) && draw_on(pts, head, head_inset, region(), across, border);
-                std::reverse(pts.begin(), pts.end());
-                if (!on) pts = draw_back(std::move(pts), head, border);
-            }
-            if (tail > 0 && pts.size() >= 2 &&
-                !(onward(last) && draw_on(pts, tail, tail_inset, region(), across, border))) {
-                std::reverse(pts.begin(), pts.end());
-                pts = draw_back(std::move(pts), tail, border);
-                std::reverse(pts.begin(), pts.end());
-            }
-            if (pts.size() < 2) return false;
-            c.points = std::move(pts);
-            return true;
-        };
-        constexpr std::size_t kBlock = 256;
-        parallel_for((in.curves.size() + kBlock - 1) / kBlock, [&](std::size_t b) {
-            for (std::size_t i = b * kBlock; i < std::min(in.curves.size(), (b + 1) * kBlock); ++i)
-                keep[i] = fray(in.curves[i]);
-        });
-        Curves out;
-        out.points = std::move(in.points);
-        out.origin = std::move(in.origin);
-        out.curves.reserve(in.curves.size());
-        for (std::size_t i = 0; i < in.curves.size(); ++i)
-            if (keep[i]) out.curves.push_back(std::move(in.curves[i]));
-        return out;
+        return fray_ends(apply_mask(a(r), r, CROP), r, min, max, across, hard, beyond, stream);
     });
+}
+
+Curves FrayedCrop(Curves curves, const Region& r, double min, double max, Field across, std::vector<std::string> hard,
+                  double beyond) {
+    check_fray(min, max, beyond);
+    const std::uint64_t stream = NextStream();
+    return fray_ends(apply_mask(std::move(curves), r, CROP), r, min, max, across, hard, beyond, stream);
 }
 
 }  // namespace tex

@@ -21,20 +21,18 @@ EdgeMapper JitterEdges(const std::string& label, double theta, double across, do
     // It reads only its edge: MapToEdges runs it on a partition's edges without the map, and
     // only on those with the label.
     return LocalEdgeMapper(
-        [=, gate = std::move(gate)](const LocalEdge& e) -> Curves {
-        if (gate_min > 0 && !(gate(LocationAt(e, 0.5)) >= gate_min)) return Nothing();
+        [=, gate = std::move(gate)](LocalEdge& e, Curves& out) {
+        if (gate_min > 0 && !(gate(LocationAt(e, 0.5)) >= gate_min)) return;
         const Point s = e.source(), t = e.target();
         const Point ms = s + n * RandomAtSource(e, -half_across, half_across, 0) +
                          d * RandomAtSource(e, -half_along, half_along, 1);
         const Point mt = t + n * RandomAtTarget(e, -half_across, half_across, 0) +
                          d * RandomAtTarget(e, -half_along, half_along, 1);
-        // One curve, moved and shortened where it lies (MatchPoints then Scale, without the
-        // copy each of them makes).
-        Curves c;
-        c.curves.push_back(e.curve);
+        // One curve, the edge's own (LocalEdgeFn: nothing reads the edge after this), moved
+        // and shortened where it lies (MatchPoints then Scale, without the copy each makes).
+        Curve& c = out.curves.emplace_back(std::move(e.curve));
         detail::match_points_in_place(c, s, t, ms, mt);
         if (gap < 1) detail::scale_in_place(c, gap);
-        return c;
         },
         id);
 }

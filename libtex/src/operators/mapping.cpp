@@ -2,6 +2,8 @@
 // parallel), concatenate the results in cell order.
 #include "libtex/mapping.hpp"
 
+#include <algorithm>
+
 #include "libtex/fields.hpp"
 #include "libtex/parallel.hpp"
 #include "libtex/random.hpp"
@@ -45,19 +47,25 @@ Curves map_cells(const MapPtr& map, const std::vector<int>& ids, const Mapper& m
 }
 
 // map_cells over the edges of a map for a mapper that reads only its edge, the edges read
-// without the map: the same calls, keys and windows, so the same result.
-Curves map_local_edges(const std::vector<LocalEdge>& edges, const LocalEdgeFn& f, MapperThreads t) {
-    std::vector<Curves> results(edges.size());
-    auto visit = [&](std::size_t i) {
-        RandomScope scope(edges[i].key);
-        if (detail::locality_checked()) {
-            FieldWindow window(CellBBox(edges[i]));
-            results[i] = f(edges[i]);
-        } else {
-            results[i] = f(edges[i]);
+// without the map: the same calls, keys and windows, so the same result. The edges go in
+// blocks, each appended to one buffer in order.
+Curves map_local_edges(std::vector<LocalEdge>& edges, const LocalEdgeFn& f, MapperThreads t) {
+    constexpr std::size_t kBlock = 64;
+    std::vector<Curves> results((edges.size() + kBlock - 1) / kBlock);
+    auto visit = [&](std::size_t b) {
+        Curves& out = results[b];
+        out.curves.reserve(std::min(kBlock, edges.size() - b * kBlock));
+        for (std::size_t i = b * kBlock; i < std::min(edges.size(), (b + 1) * kBlock); ++i) {
+            RandomScope scope(edges[i].key);
+            if (detail::locality_checked()) {
+                FieldWindow window(CellBBox(edges[i]));
+                f(edges[i], out);
+            } else {
+                f(edges[i], out);
+            }
         }
     };
-    return map_items(edges.size(), results, visit, t);
+    return map_items(results.size(), results, visit, t);
 }
 
 // The EdgeMapper of a LocalEdgeFn: MapToEdges knows it by its type.
@@ -66,7 +74,10 @@ struct LocalMapper {
     std::optional<LabelId> only;
     Curves operator()(const Edge& e) const {
         if (only && !record(e).labels.has(*only)) return Nothing();
-        return f(AsLocalEdge(e));
+        LocalEdge local = AsLocalEdge(e);
+        Curves out;
+        f(local, out);
+        return out;
     }
 };
 

@@ -352,7 +352,10 @@ bool segment_crossings(const detail::SegmentGrid& grid, const Point& a, const Po
 // the same maximal pieces), without its per-curve runs and tables; the crops of a cell's
 // jittered lines (two-point curves) are nearly all of this kind. Returns false, leaving
 // `out` alone, when a curve is not of this kind or meets the mask otherwise.
-bool crop_open_polylines(const Curves& src, const detail::SegmentGrid& grid, Status wanted, Curves& out) {
+// With `movable` (src itself, which the caller gives up), the curves kept whole are moved
+// out of it once the crop has succeeded; src is left as it was when it fails.
+bool crop_open_polylines(const Curves& src, const detail::SegmentGrid& grid, Status wanted, Curves& out,
+                         Curves* movable = nullptr) {
     std::vector<Point> sorted;
     for (const Curve& c : src.curves) {
         if (c.closed || c.points.size() < 2 || c.points.front() == c.points.back()) return false;
@@ -372,6 +375,7 @@ bool crop_open_polylines(const Curves& src, const detail::SegmentGrid& grid, Sta
     result.curves.reserve(src.curves.size());
     std::vector<Cross> cs;
     std::vector<Point> seen;
+    std::vector<std::pair<std::size_t, std::size_t>> whole;  // (piece, curve of src) to move in
     for (const Curve& c : src.curves) {
         const auto where = grid.locate(c.points.front());
         if (where == detail::SegmentGrid::Where::On) return false;
@@ -387,7 +391,12 @@ bool crop_open_polylines(const Curves& src, const detail::SegmentGrid& grid, Sta
         BBox box;  // a curve whose box meets no mask segment is kept or dropped whole
         for (const Point& q : c.points) box.add(q);
         if (!grid.box_meets(box, false)) {
-            if (st == wanted) emit(std::vector<Point>(c.points));
+            if (st == wanted && movable) {
+                whole.push_back({result.curves.size(), std::size_t(&c - src.curves.data())});
+                emit(std::vector<Point>());
+            } else if (st == wanted) {
+                emit(std::vector<Point>(c.points));
+            }
             continue;
         }
         detail::note_segments_searched(c.points.size() - 1);
@@ -425,6 +434,7 @@ bool crop_open_polylines(const Curves& src, const detail::SegmentGrid& grid, Sta
             if (std::adjacent_find(seen.begin(), seen.end()) != seen.end()) return false;
         }
     }
+    for (const auto& [piece, curve] : whole) result.curves[piece].points = std::move(movable->curves[curve].points);
     out = std::move(result);
     return true;
 }
@@ -563,7 +573,7 @@ bool crop_by_crossings(const Curves& src, const Curves& mask, const detail::Segm
 
 // ---- The steps of mask_core
 
-Curves mask_core(const Curves& subject, const Curves& mask, MaskSide side, Border b);
+Curves mask_core(const Curves& subject, const Curves& mask, MaskSide side, Border b, Curves* movable = nullptr);
 
 // The mask's segments, each knowing on which of its sides the mask's inside lies.
 std::vector<detail::Seg> inside_marked_segments(const Curves& mask, LabelId in) {
@@ -578,8 +588,9 @@ std::vector<detail::Seg> inside_marked_segments(const Curves& mask, LabelId in) 
 
 // CROP of open polylines by their crossings with the mask alone (counted); false when that
 // cannot decide.
-bool crop_polylines_fast(const Curves& subject, const detail::SegmentGrid& grid, Status wanted, Curves& fast) {
-    if (!crop_open_polylines(subject, grid, wanted, fast)) return false;
+bool crop_polylines_fast(const Curves& subject, const detail::SegmentGrid& grid, Status wanted, Curves& fast,
+                         Curves* movable) {
+    if (!crop_open_polylines(subject, grid, wanted, fast, movable)) return false;
     ++detail::g_fast_crops;
     ++detail::g_polyline_crops;
     return true;
@@ -1277,7 +1288,8 @@ void drop_repeated_points(Curves& out) {
     out.curves.resize(kept);
 }
 
-Curves mask_core(const Curves& subject, const Curves& mask, MaskSide side, Border b) {
+// `movable`: subject itself, given up by the caller (the fast crop moves whole curves).
+Curves mask_core(const Curves& subject, const Curves& mask, MaskSide side, Border b, Curves* movable) {
     const LabelId in = inside_marker();
     const bool keep_whole = (b == Border::KEEP_INSIDE || b == Border::KEEP_OUTSIDE);
     const bool want_in = side == MaskSide::Inside;
@@ -1286,7 +1298,7 @@ Curves mask_core(const Curves& subject, const Curves& mask, MaskSide side, Borde
 
     if (b == Border::CROP && !detail::exact_crops_only() && !detail::g_general_only) {
         Curves fast;
-        if (crop_polylines_fast(subject, grid, wanted, fast)) return fast;
+        if (crop_polylines_fast(subject, grid, wanted, fast, movable)) return fast;
     }
 
     // KEEP modes decide on the edges of the subject's own planar map; CROP on its curves.
@@ -1348,13 +1360,18 @@ Curves apply_mask(const Curves& subject, const Region& region, Border b) {
     return detail::crop_to_region(subject, region, b, std::nullopt);
 }
 
-Curves detail::crop_to_region(const Curves& subject, const Region& region, Border b, std::optional<LabelId> outline) {
+Curves apply_mask(Curves&& subject, const Region& region, Border b) {
+    return detail::crop_to_region(subject, region, b, std::nullopt, &subject);
+}
+
+Curves detail::crop_to_region(const Curves& subject, const Region& region, Border b, std::optional<LabelId> outline,
+                              Curves* movable) {
     Curves mask = region.boundary();
     for (auto& c : mask.curves) {
         c.left.add(inside_marker());
         if (outline) c.labels.add(*outline);
     }
-    return mask_core(subject, mask, MaskSide::Inside, b);
+    return mask_core(subject, mask, MaskSide::Inside, b, movable);
 }
 
 void detail::label_outline_pieces(Curves& cropped, LabelId outline,

@@ -42,32 +42,44 @@ struct Complex {
         Labels labels;
     };
     struct CCell {
-        std::vector<Point> ring;  // counter-clockwise
+        std::size_t first = 0, size = 0;  // its ring: ring_points[first, first + size)
         BBox box;
         Labels labels;
     };
     std::vector<Point> verts;
     std::vector<CEdge> edges;
     std::vector<CCell> cells;
+    std::vector<Point> ring_points;  // the cells' rings, counter-clockwise, one after another
     std::vector<LabeledPoint> vertex_labels;
     // Proved clean (see "Clean complexes" below): its edges meet only at shared vertices,
     // and different vertices have different points, in doubles as well as in exact values.
     bool clean = false;
 
-    int add_cell(std::vector<Point> ring, Labels labels) {
-        if (signed_area(ring) < 0) std::reverse(ring.begin(), ring.end());
+    int add_cell(const std::vector<Point>& ring, Labels labels) {
         CCell c;
+        c.first = ring_points.size();
+        c.size = ring.size();
+        ring_points.insert(ring_points.end(), ring.begin(), ring.end());
+        if (signed_area(ring) < 0) std::reverse(ring_points.begin() + std::ptrdiff_t(c.first), ring_points.end());
         for (const auto& p : ring) c.box.add(p);
-        c.ring = std::move(ring);
         c.labels = std::move(labels);
         cells.push_back(std::move(c));
         return int(cells.size()) - 1;
     }
+    // Cell i's ring, into a buffer of the caller's (one for all the cells it reads).
+    void ring_of(std::size_t i, std::vector<Point>& ring) const {
+        const auto begin = ring_points.begin() + std::ptrdiff_t(cells[i].first);
+        ring.assign(begin, begin + std::ptrdiff_t(cells[i].size));
+    }
 
     // The cell containing p (first match), or -1.
     int locate(const Point& p) const {
-        for (std::size_t i = 0; i < cells.size(); ++i)
-            if (cells[i].box.contains(p) && point_in_ring(p, cells[i].ring)) return int(i);
+        std::vector<Point> ring;
+        for (std::size_t i = 0; i < cells.size(); ++i) {
+            if (!cells[i].box.contains(p)) continue;
+            ring_of(i, ring);
+            if (point_in_ring(p, ring)) return int(i);
+        }
         return -1;
     }
 };
@@ -98,14 +110,16 @@ Curves realize(const Complex& cx, const Region& r, Border b, detail::KnownVertic
         // once; the answers are the same.
         std::optional<PreparedRegion> prepared;
         if (cx.cells.size() > 4 && PreparedRegion::worth_preparing(r)) prepared.emplace(r);
+        std::vector<Point> ring;
         for (std::size_t i = 0; i < cx.cells.size(); ++i) {
             const auto& c = cx.cells[i];
+            cx.ring_of(i, ring);
             if (prepared)
-                kept[i] = b == Border::KEEP_INSIDE ? prepared->classify_polygon(c.ring, c.box) == Overlap::Inside
-                                                   : prepared->polygon_meets_region(c.ring, c.box);
+                kept[i] = b == Border::KEEP_INSIDE ? prepared->classify_polygon(ring, c.box) == Overlap::Inside
+                                                   : prepared->polygon_meets_region(ring, c.box);
             else
-                kept[i] = b == Border::KEEP_INSIDE ? classify_polygon(c.ring, c.box, r) == Overlap::Inside
-                                                   : polygon_meets_region(c.ring, c.box, r);
+                kept[i] = b == Border::KEEP_INSIDE ? classify_polygon(ring, c.box, r) == Overlap::Inside
+                                                   : polygon_meets_region(ring, c.box, r);
         }
         out.curves.reserve(cx.edges.size());
         for (const auto& e : cx.edges) {
@@ -277,6 +291,16 @@ struct StripeFamily {
     }
 };
 
+// Stripes and their family, made once for a partition (its labels interned once, not at
+// every region it is evaluated on).
+struct PreparedStripes {
+    Stripes s;
+    StripeFamily f{s};
+    explicit PreparedStripes(const Stripes& stripes) : s(stripes) {}
+    PreparedStripes(const PreparedStripes&) = delete;  // f points into s
+    PreparedStripes& operator=(const PreparedStripes&) = delete;
+};
+
 void check_stripes(const Stripes& s, const char* op) {
     if (!std::isfinite(s.angle)) throw Error(op, "the angle is not a finite number");
     if (s.widths.empty()) throw Error(op, "no width given");
@@ -301,8 +325,7 @@ std::pair<double, double> project(const BBox& b, const Point& u) {
 
 thread_local detail::StripesProbe* t_probe = nullptr;
 
-Complex stripes_complex(const Stripes& s, const Region& r) {
-    const StripeFamily f(s);
+Complex stripes_complex(const StripeFamily& f, const Region& r) {
     detail::StripesProbe::record(f.n, f.full_period());
     const BBox box = r.bbox().expanded(1.0 + 0.01 * std::max(r.bbox().width(), r.bbox().height()));
     auto [tlo, thi] = project(box, f.n);
@@ -312,9 +335,11 @@ Complex stripes_complex(const Stripes& s, const Region& r) {
     Complex cx;
     // Bands i0 - 1 .. i1 clipped to the [slo, shi] range along the lines.
     auto pt = [&](double t, double sv) { return f.n * t + f.d * sv; };
+    std::vector<Point> ring;
     for (long long i = i0 - 1; i <= i1; ++i) {
         const double a = f.offset(i), b = f.offset(i + 1);
-        cx.add_cell({pt(a, slo), pt(a, shi), pt(b, shi), pt(b, slo)}, f.face_label(i));
+        ring.assign({pt(a, slo), pt(a, shi), pt(b, shi), pt(b, slo)});
+        cx.add_cell(ring, f.face_label(i));
     }
     for (long long i = i0; i <= i1; ++i) {
         const double t = f.offset(i);
@@ -332,8 +357,7 @@ Complex stripes_complex(const Stripes& s, const Region& r) {
     return cx;
 }
 
-Complex grid_complex(const Stripes& s1, const Stripes& s2, const Region& r) {
-    const StripeFamily f1(s1), f2(s2);
+Complex grid_complex(const StripeFamily& f1, const StripeFamily& f2, const Region& r) {
     const double det = cross(f1.n, f2.n);
     if (std::abs(det) < 1e-9) throw Error("GridPartition", "the two stripe families are parallel");
     detail::StripesProbe::record(f1.n, f1.full_period());
@@ -361,21 +385,22 @@ Complex grid_complex(const Stripes& s1, const Stripes& s2, const Region& r) {
     // Cells (i, j) for i in [i0, i1), j in [j0, j1), skipping those far from the region.
     std::vector<int> cell_id(std::size_t((ni - 1) * (nj - 1)), -1);
     cx.cells.reserve(cell_id.size());
+    cx.ring_points.reserve(4 * cell_id.size());
     cx.edges.reserve(std::size_t(ni * (nj - 1) + nj * (ni - 1)));
     auto cid = [&](long long i, long long j) -> int {
         if (i < i0 || i >= i1 || j < j0 || j >= j1) return -1;
         return cell_id[std::size_t((i - i0) * (nj - 1) + (j - j0))];
     };
+    std::vector<Point> ring;
     for (long long i = i0; i < i1; ++i)
         for (long long j = j0; j < j1; ++j) {
-            std::vector<Point> ring = {cx.verts[vid(i, j)], cx.verts[vid(i + 1, j)],
-                                       cx.verts[vid(i + 1, j + 1)], cx.verts[vid(i, j + 1)]};
+            ring.assign({cx.verts[vid(i, j)], cx.verts[vid(i + 1, j)], cx.verts[vid(i + 1, j + 1)], cx.verts[vid(i, j + 1)]});
             BBox cb;
             for (const auto& p : ring) cb.add(p);
             if (!cb.intersects(box)) continue;
             Labels l = f1.face_label(i);
             l.merge(f2.face_label(j));
-            cell_id[std::size_t((i - i0) * (nj - 1) + (j - j0))] = cx.add_cell(std::move(ring), std::move(l));
+            cell_id[std::size_t((i - i0) * (nj - 1) + (j - j0))] = cx.add_cell(ring, std::move(l));
         }
     // Edges along the lines of family 1 (between family-2 lines j and j+1), oriented +d1:
     // the band above (+n1) is cell (i, j), the one below is cell (i-1, j).
@@ -592,7 +617,7 @@ Complex voronoi_complex(const std::vector<Point>& sites, const Irregular& p, std
             if (ring.empty() || ring.back() != cx.verts[id]) ring.push_back(cx.verts[id]);
         while (ring.size() > 1 && ring.front() == ring.back()) ring.pop_back();
         if (ring.size() < 3) continue;
-        cell_of[si] = cx.add_cell(std::move(ring), pick_label(p.face_labels, stream, hash_point(0x53495445ULL, sites[si])));
+        cell_of[si] = cx.add_cell(ring, pick_label(p.face_labels, stream, hash_point(0x53495445ULL, sites[si])));
     }
     // Edges: duals of the Delaunay edges between two finite triangles, by site pair.
     std::vector<std::pair<std::pair<int, int>, Delaunay::Edge>> des;
@@ -715,22 +740,24 @@ void detail::StripesProbe::record(const Point& normal, double period) {
 // build a partition per cell.
 Arrangement StripesPartition(const Stripes& p, Border b) {
     check_stripes(p, "StripesPartition");
-    auto s = std::make_shared<const Stripes>(p);
-    return Arrangement([s, b](const Region& r) { return realize(stripes_complex(*s, r), r, b); },
-                       [s, b](const Region& r) { return realize_map(stripes_complex(*s, r), r, b); },
+    auto s = std::make_shared<const PreparedStripes>(p);
+    return Arrangement([s, b](const Region& r) { return realize(stripes_complex(s->f, r), r, b); },
+                       [s, b](const Region& r) { return realize_map(stripes_complex(s->f, r), r, b); },
                        [s, b](const Region& r, std::optional<LabelId> only) {
-                           return realize_edges(stripes_complex(*s, r), r, b, only);
+                           return realize_edges(stripes_complex(s->f, r), r, b, only);
                        });
 }
 
 Arrangement GridPartition(const Stripes& s1, const Stripes& s2, Border b) {
     check_stripes(s1, "GridPartition");
     check_stripes(s2, "GridPartition");
-    auto s = std::make_shared<const std::pair<Stripes, Stripes>>(s1, s2);
-    return Arrangement([s, b](const Region& r) { return realize(grid_complex(s->first, s->second, r), r, b); },
-                       [s, b](const Region& r) { return realize_map(grid_complex(s->first, s->second, r), r, b); },
+    auto s = std::make_shared<const std::pair<PreparedStripes, PreparedStripes>>(std::piecewise_construct,
+                                                                                  std::forward_as_tuple(s1),
+                                                                                  std::forward_as_tuple(s2));
+    return Arrangement([s, b](const Region& r) { return realize(grid_complex(s->first.f, s->second.f, r), r, b); },
+                       [s, b](const Region& r) { return realize_map(grid_complex(s->first.f, s->second.f, r), r, b); },
                        [s, b](const Region& r, std::optional<LabelId> only) {
-                           return realize_edges(grid_complex(s->first, s->second, r), r, b, only);
+                           return realize_edges(grid_complex(s->first.f, s->second.f, r), r, b, only);
                        });
 }
 
