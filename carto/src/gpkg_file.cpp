@@ -49,7 +49,7 @@ constexpr std::size_t kRtreeChunk = 32768;
 // envelope as minx, maxx, miny, maxy (begin_geometry), then the WKB (byte order 1, type,
 // counts, points).
 void GpkgRows::begin_geometry(int layer, const BoxD& box) {
-    rows_.push_back({layer, std::uint32_t(cells_.size()), 0, data_.size(), 0, box});
+    rows_.push_back({layer, std::uint32_t(cells_.size()), 0, 0, data_.size(), box});
     data_ += "GP";
     data_ += char(0);
     data_ += char(0x03);
@@ -80,7 +80,7 @@ void GpkgRows::line(int layer, const tex::Point* pts, std::size_t n, bool close,
     extend(box, pts, n);
     begin_geometry(layer, box);
     append_line_wkb(data_, pts, n, close, polygon);
-    rows_.back().blob_size = data_.size() - rows_.back().blob;
+    end_geometry();
 }
 
 void GpkgRows::polygon(int layer, const std::vector<std::vector<tex::Point>>& rings) {
@@ -91,25 +91,43 @@ void GpkgRows::polygon(int layer, const std::vector<std::vector<tex::Point>>& ri
     put(data_, kWkbPolygon);
     put(data_, std::uint32_t(rings.size()));
     for (const auto& r : rings) put_points(data_, r.data(), r.size(), !r.empty());
-    rows_.back().blob_size = data_.size() - rows_.back().blob;
+    end_geometry();
+}
+
+void GpkgRows::end_geometry() {
+    const std::size_t size = data_.size() - rows_.back().blob;
+    if (size > INT32_MAX) throw Error(Code::Failure, "a geometry of more than 2 GB for a GeoPackage row");
+    rows_.back().blob_size = std::uint32_t(size);
 }
 
 void GpkgRows::attributes(int layer) {
-    rows_.push_back({layer, std::uint32_t(cells_.size()), 0, data_.size(), 0, BoxD{1, 0, 1, 0}});
+    rows_.push_back({layer, std::uint32_t(cells_.size()), 0, 0, data_.size(), BoxD{1, 0, 1, 0}});
+}
+
+GpkgRows::Cell GpkgRows::make_cell(Cell::Kind kind, std::int64_t i, double d, std::size_t at, std::size_t size) {
+    static_assert(sizeof(Row) <= 56 && sizeof(Cell) <= 16, "a waiting row takes few bytes");
+    if (size > UINT32_MAX) throw Error(Code::Failure, "a text of more than 4 GB for a GeoPackage row");
+    Cell c;
+    c.kind = kind;
+    c.size = std::uint32_t(size);
+    if (kind == Cell::Integer) c.i = i;
+    else if (kind == Cell::Real) c.d = d;
+    else c.at = at;
+    return c;
 }
 
 void GpkgRows::integer(std::int64_t v) {
-    cells_.push_back({Cell::Integer, v, 0, 0, 0});
+    cells_.push_back(make_cell(Cell::Integer, v, 0, 0, 0));
     ++rows_.back().cells;
 }
 
 void GpkgRows::real(double v) {
-    cells_.push_back({Cell::Real, 0, v, 0, 0});
+    cells_.push_back(make_cell(Cell::Real, 0, v, 0, 0));
     ++rows_.back().cells;
 }
 
 void GpkgRows::text(std::string_view v) {
-    cells_.push_back({Cell::Text, 0, 0, data_.size(), v.size()});
+    cells_.push_back(make_cell(Cell::Text, 0, 0, data_.size(), v.size()));
     data_.append(v);
     ++rows_.back().cells;
 }

@@ -62,19 +62,27 @@ public:
 
 private:
     friend class GpkgWriter;
+    // A row and its cells in 56 and 16 bytes: a face's rows wait in memory for their turn
+    // (OrderedInserter), and the fewer bytes they take, the more of them may wait.
     struct Row {
         int layer;
         std::uint32_t first_cell, cells;
-        std::size_t blob, blob_size;  // in data_; blob_size 0: no geometry
+        std::uint32_t blob_size;  // 0: no geometry
+        std::size_t blob;         // its place in data_
         BoxD box;
     };
     struct Cell {
         enum Kind : std::uint8_t { Integer, Real, Text } kind;
-        std::int64_t i;
-        double d;
-        std::size_t at, size;  // text in data_
+        std::uint32_t size;  // a text's length
+        union {
+            std::int64_t i;
+            double d;
+            std::size_t at;  // a text's place in data_
+        };
     };
+    static Cell make_cell(Cell::Kind kind, std::int64_t i, double d, std::size_t at, std::size_t size);
     void begin_geometry(int layer, const BoxD& box);
+    void end_geometry();
     std::int32_t srs_id_;
     std::string data_;
     std::vector<Row> rows_;

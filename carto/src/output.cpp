@@ -308,7 +308,7 @@ struct FaceRows {
 // inserter waits for never waits), so memory stays bounded whatever the order faces end in.
 class OrderedInserter {
 public:
-    static constexpr std::size_t kQueueBytes = std::size_t(8) << 20;
+    static constexpr std::size_t kQueueBytes = std::size_t(16) << 20;
     OrderedInserter(GpkgWriter& out, std::size_t faces, std::size_t total, const std::function<bool(double)>& keep_going,
                     const std::string& path)
         : out_(out), slots_(faces), total_(total), keep_going_(keep_going), path_(path), later_(kFamilies) {
