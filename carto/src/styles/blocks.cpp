@@ -585,6 +585,7 @@ Arrangement frayed(const ControlFields& f, const ParamValues& p, Arrangement a) 
     return Arrangement([a = std::move(a), across = f.density, lo, hi, beyond, cross](const Region& r) {
         Curves strokes, crosses;
         Curves all = a(r);
+        strokes.curves.reserve(all.curves.size());
         for (Curve& c : all.curves) (c.labels.has(cross) ? crosses : strokes).curves.push_back(std::move(c));
         Curves out = FrayedCrop(std::move(strokes), r, lo, hi, across, {"ridge", "cliff"}, beyond);
         out.append(FrayedCrop(std::move(crosses), r, lo, hi, across, {"ridge", "cliff"}, 0));

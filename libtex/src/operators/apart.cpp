@@ -196,6 +196,7 @@ Arrangement Apart(Arrangement a, Curves lines, double distance) {
         constexpr std::size_t kBlock = 256;
         std::vector<Curves> blocks((in.curves.size() + kBlock - 1) / kBlock);
         parallel_for(blocks.size(), [&](std::size_t b) {
+            blocks[b].curves.reserve(std::min(kBlock, in.curves.size() - b * kBlock));  // one piece a curve, mostly
             std::vector<std::size_t> seen;
             for (std::size_t i = b * kBlock; i < std::min(in.curves.size(), (b + 1) * kBlock); ++i)
                 keep_apart(in.curves[i], index, seen, blocks[b]);
