@@ -810,12 +810,60 @@ TEST(PartitionMaps, KeepPartitionsKnowTheirMapsEdges) {
         }
     }
     EXPECT_GT(cases, 300);
-    // CROP modes cut cells, and an unclean complex is not its map: no edges without the map.
+    // CROP modes cut cells, and an unclean complex is not its map: no edges without the map,
+    // but for the stripes cut by CROP alone (parallel lines: each piece is an edge).
     const Region r({{0, 0}, {90, 10}, {70, 80}, {10, 60}});
     for (Border b : {CROP, CROP_ADD_BOUNDARY})
         EXPECT_FALSE(GridPartition(StripesProperties(0.4, 7), StripesProperties(2.0, 5), b).local_edges(r)) << border_name(b);
+    EXPECT_FALSE(StripesPartition(StripesProperties(0.4, 7), CROP_ADD_BOUNDARY).local_edges(r));
     EXPECT_FALSE(GridPartition(StripesProperties(0.7, 3), StripesProperties(0.7 + 2e-9, 4), KEEP_OUTSIDE)
                      .local_edges(Region::rectangle(0, 0, 30, 30)));
+}
+
+// Stripes cut by CROP: parallel lines, so each piece the crop leaves is an edge of the map
+// on its own; the partition hands those pieces over as the map's edges, in its order and
+// with its keys, for jittered (not convex) regions, regions whose vertices lie on the lines
+// (pieces that share an end, lines along a side), and with a label asked for.
+TEST(PartitionMaps, StripesCutByCropKnowTheirMapsEdges) {
+    std::mt19937 rng(20261208);
+    std::uniform_real_distribution<double> u(0, 1);
+    int cases = 0, pieces = 0;
+    for (int k = 0; k < 120; ++k) {
+        const auto [r, s1, s2] = random_grid_case(rng, k);
+        const std::string what = "case " + std::to_string(k);
+        const Arrangement a = StripesPartition(s1, CROP);
+        const auto edges = a.local_edges(r);
+        ASSERT_TRUE(edges.has_value()) << what;
+        expect_same_edges(*edges, a.induce(r), what);
+        if (HasFailure()) return;
+        cases += !edges->empty();
+        pieces += int(edges->size());
+    }
+    EXPECT_GT(cases, 100);
+    EXPECT_GT(pieces, 1000);
+    // Horizontal and vertical lines through the vertices of a notched square, and along its sides.
+    const Region notched({{0, 0}, {8, 0}, {8, 8}, {6, 8}, {4, 4}, {2, 8}, {0, 8}});
+    for (double angle : {0.0, 1.5707963267948966, 0.7853981633974483}) {
+        Stripes s = StripesProperties(angle, 2.0, 2.0);
+        SetEdgeLabels(s, {"a", "b"});
+        const Arrangement a = StripesPartition(s, CROP);
+        const std::string what = "notched, angle " + std::to_string(angle);
+        const auto edges = a.local_edges(notched);
+        ASSERT_TRUE(edges.has_value()) << what;
+        expect_same_edges(*edges, a.induce(notched), what);
+        // With a label: the map's edges with it, in its order.
+        const auto some = a.local_edges(notched, intern_label("b"));
+        ASSERT_TRUE(some.has_value()) << what;
+        std::vector<LocalEdge> expected;
+        for (const LocalEdge& e : *edges)
+            if (e.curve.labels.has(intern_label("b"))) expected.push_back(e);
+        ASSERT_EQ(some->size(), expected.size()) << what;
+        for (std::size_t i = 0; i < expected.size(); ++i) {
+            EXPECT_EQ((*some)[i].curve.points, expected[i].curve.points) << what;
+            EXPECT_EQ((*some)[i].key, expected[i].key) << what;
+        }
+        EXPECT_FALSE(expected.empty()) << what;
+    }
 }
 
 TEST(PartitionMaps, AnEdgeLocalMapperRunsWithoutTheMapAndGivesWhatTheMapGives) {

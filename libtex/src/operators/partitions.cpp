@@ -181,10 +181,8 @@ MapPtr realize_map(const Complex& cx, const Region& r, Border b) {
 // and the map orders its edges by their pairs of end points (its vertices are numbered in
 // the order of their points), and keys an edge and a vertex by hashing their points. With
 // `only`, the edges with that label, in the same order.
-std::optional<std::vector<LocalEdge>> realize_edges(const Complex& cx, const Region& r, Border b,
-                                                    std::optional<LabelId> only) {
-    if (!cx.clean || !(b == Border::KEEP_INSIDE || b == Border::KEEP_OUTSIDE)) return std::nullopt;
-    Curves curves = realize(cx, r, b, nullptr, only);
+// Curves that are the map's edges one for one, as those edges: in the map's order, keyed.
+std::vector<LocalEdge> edges_in_map_order(Curves curves) {
     const std::size_t n = curves.curves.size();
     struct Ends {
         Point lo, hi;
@@ -207,6 +205,31 @@ std::optional<std::vector<LocalEdge>> realize_edges(const Complex& cx, const Reg
         e.key = detail::edge_key(e.curve.points);
     }
     return edges;
+}
+
+std::optional<std::vector<LocalEdge>> realize_edges(const Complex& cx, const Region& r, Border b,
+                                                    std::optional<LabelId> only) {
+    if (!cx.clean || !(b == Border::KEEP_INSIDE || b == Border::KEEP_OUTSIDE)) return std::nullopt;
+    return edges_in_map_order(realize(cx, r, b, nullptr, only));
+}
+
+// The edges of a stripes partition in CROP mode, read without building the map. Its lines
+// are parallel: the pieces the crop leaves of them are segments that meet no other piece
+// except where two share an end (a line through a vertex of the region), and the map's
+// vertices are the pieces' ends, so each piece is an edge of the map on its own. With
+// `only`, the pieces with that label, in the same order.
+std::vector<LocalEdge> stripes_crop_edges(const Complex& cx, const Region& r, std::optional<LabelId> only) {
+    Curves pieces = realize(cx, r, Border::CROP);
+    if (only) {
+        std::size_t kept = 0;
+        for (std::size_t i = 0; i < pieces.curves.size(); ++i) {
+            if (!pieces.curves[i].labels.has(*only)) continue;
+            if (kept != i) pieces.curves[kept] = std::move(pieces.curves[i]);
+            ++kept;
+        }
+        pieces.curves.resize(kept);
+    }
+    return edges_in_map_order(std::move(pieces));
 }
 
 // ---------------------------------------------------------------------------------------
@@ -743,7 +766,8 @@ Arrangement StripesPartition(const Stripes& p, Border b) {
     auto s = std::make_shared<const PreparedStripes>(p);
     return Arrangement([s, b](const Region& r) { return realize(stripes_complex(s->f, r), r, b); },
                        [s, b](const Region& r) { return realize_map(stripes_complex(s->f, r), r, b); },
-                       [s, b](const Region& r, std::optional<LabelId> only) {
+                       [s, b](const Region& r, std::optional<LabelId> only) -> std::optional<std::vector<LocalEdge>> {
+                           if (b == Border::CROP) return stripes_crop_edges(stripes_complex(s->f, r), r, only);
                            return realize_edges(stripes_complex(s->f, r), r, b, only);
                        });
 }
