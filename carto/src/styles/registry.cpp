@@ -196,15 +196,7 @@ tex::Region face_region(const Partition& p, std::size_t face) {
     return f.region.with_edges(std::move(edges));
 }
 
-std::vector<Hatch> hatches_from_curves(const tex::Curves& c) {
-    std::vector<Hatch> out;
-    out.reserve(c.curves.size());
-    for (const auto& cv : c.curves) {
-        if (cv.points.size() < 2) continue;
-        out.push_back(Hatch{cv.points, cv.closed, family_of(cv.labels)});
-    }
-    return out;
-}
+std::vector<Hatch> hatches_from_curves(const tex::Curves& c) { return hatches_from_curves(tex::Curves(c)); }
 
 std::vector<Hatch> hatches_from_curves(tex::Curves&& c) {
     std::vector<Hatch> out;
